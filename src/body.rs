@@ -1,0 +1,109 @@
+//! Body models: what one body offers the contact problem.
+//!
+//! A body model gives exactly one thing to the contact problem: its [`Flexibility`] at the
+//! contact grid, plus its undeformed profile and (where it has one) an operator for the surface
+//! strain used to re-check the slip. The contact solver never knows which model it talks to.
+//!
+//! # Pair convention
+//! All quantities are written so that the two bodies' contributions simply add:
+//! * loads: the nodal pressure p ≥ 0 (compressive, acting on both bodies) and the shear q that
+//!   B exerts on A, positive in +x (B receives −q);
+//! * `h` is the body's normal surface displacement **into the body** (its share of the
+//!   compression; the gap closes by h_A + h_B);
+//! * `w` is the body's share of the relative tangential displacement w = u_xA − u_xB, i.e.
+//!   w = u_xA for body A and w = −u_xB for body B.
+
+pub mod half_space;
+pub mod rigid;
+
+use crate::grid::ContactGrid;
+use faer::Mat;
+use serde::Serialize;
+
+/// Which body of the pair: A is the upper body (y > 0), B the lower one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Side {
+    /// Upper body; y points from B into A.
+    A,
+    /// Lower body.
+    B,
+}
+
+impl Side {
+    /// +1 for A, −1 for B: the sign with which this body's x-displacement enters w = u_xA − u_xB.
+    pub fn sign(self) -> f64 {
+        match self {
+            Side::A => 1.0,
+            Side::B => -1.0,
+        }
+    }
+}
+
+/// Flexibility of one body at the m contact nodes, in the pair convention of this module.
+///
+/// Each block is m × m: entry (i, j) is the displacement at node i due to a unit nodal value
+/// of the traction at node j (the traction interpolated by the grid's shape functions).
+/// Units: length / stress.
+#[derive(Debug, Clone)]
+pub struct Flexibility {
+    /// ∂h_i/∂p_j: normal displacement into the body due to pressure.
+    pub hp: Mat<f64>,
+    /// ∂h_i/∂q_j: normal displacement into the body due to shear (dissimilar coupling).
+    pub hq: Mat<f64>,
+    /// ∂w_i/∂p_j: tangential share due to pressure (dissimilar coupling).
+    pub wp: Mat<f64>,
+    /// ∂w_i/∂q_j: tangential share due to shear.
+    pub wq: Mat<f64>,
+}
+
+impl Flexibility {
+    /// A body that does not deform.
+    pub fn zero(m: usize) -> Self {
+        Self {
+            hp: Mat::zeros(m, m),
+            hq: Mat::zeros(m, m),
+            wp: Mat::zeros(m, m),
+            wq: Mat::zeros(m, m),
+        }
+    }
+}
+
+/// Operator giving the tangential surface strain share ∂w/∂x at the nodes from nodal (p, q),
+/// evaluated by the boundary-integral derivative rather than by differencing w.
+/// Units: 1/stress. Entries follow the same pair convention as [`Flexibility`].
+#[derive(Debug, Clone)]
+pub struct StrainOperator {
+    /// ∂(∂w/∂x)_i/∂p_j.
+    pub p: Mat<f64>,
+    /// ∂(∂w/∂x)_i/∂q_j.
+    pub q: Mat<f64>,
+}
+
+/// A model of one body, as seen by the contact problem.
+pub trait BodyModel {
+    /// Short model name for reports (`half_space`, `rigid`, `bem`).
+    fn model_name(&self) -> &'static str;
+
+    /// Flexibility at the grid's nodes, for this body placed on `side`.
+    fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility;
+
+    /// Undeformed distance [length] of this body's surface from the common tangent line at
+    /// abscissa x (≥ 0 for a convex body); the two bodies' profiles add up to the initial gap.
+    fn profile(&self, x: f64) -> f64;
+
+    /// Surface-strain operator for the boundary-integral re-check of the slip, if the model
+    /// has one.
+    fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator>;
+}
+
+/// Undeformed height of a circle of radius `radius` above its tangent at horizontal distance x:
+/// R − √(R² − x²) (the exact profile, not the parabola x²/2R). Beyond |x| = R the circle has no
+/// point and the height is taken as R (the grid is always much shorter than R).
+pub fn circle_profile(radius: f64, x: f64) -> f64 {
+    let r2 = radius * radius - x * x;
+    if r2 <= 0.0 {
+        return radius;
+    }
+    // x²/(R + √(R²−x²)) avoids the cancellation of R − √(R²−x²) for x ≪ R.
+    x * x / (radius + r2.sqrt())
+}

@@ -1,0 +1,281 @@
+//! The half-space body model: closed-form plane-strain half-plane influence coefficients.
+//!
+//! For a half-plane z ≥ 0 (z into the body) loaded on its surface by a pressure p(s) and a
+//! shear q(s) in +x (reference sheet §3.1; Johnson, *Contact Mechanics*, eqs 2.24–2.25):
+//!
+//! ```text
+//! u_x(x) = −A ∫ p(s) sgn(x−s) ds − B ∫ q(s) ln|x−s| ds
+//! u_z(x) = −B ∫ p(s) ln|x−s| ds + A ∫ q(s) sgn(x−s) ds
+//! A = (1−2ν)(1+ν)/(2E),   B = 2(1−ν²)/(πE)
+//! ```
+//!
+//! Body B sees the shear −q and its x-displacement enters w with a minus sign, so in the pair
+//! convention of [`crate::body`] the coupling terms change sign with the side; summed over the
+//! two bodies this gives the dissimilar coupling 2β/E* = 2(A_A − A_B) of reference sheet §3.3.
+//!
+//! **Datum.** The logarithm fixes displacements only up to a constant. We measure them from the
+//! datum length ℓ = 2R/e, i.e. use ln(|x−s|/ℓ): with it the normal approach under a Hertz
+//! pressure equals the centre-to-contact approach of a disc of radius R compressed between two
+//! opposite contacts, (2P(1−ν²)/(πE))(ln(4R/a) − ½) (reference sheet §6b, Johnson eq. 5.36).
+//! Under load control the datum only shifts the overlap δ0; nothing else depends on it.
+//!
+//! The element integrals are exact (closed form in u = s − x) for elements near the field point;
+//! for far elements (centre more than [`FAR_FIELD_RATIO`] element lengths away) the closed form
+//! loses digits to cancellation (relative error ≈ ε·(d/L)³), so a 12-point Gauss rule is used
+//! there, which is exact to round-off for those smooth integrands.
+
+use super::{circle_profile, BodyModel, Flexibility, Side, StrainOperator};
+use crate::grid::{ContactGrid, ElementKind};
+use crate::material::Elastic;
+use crate::quadrature::gauss_legendre;
+use faer::Mat;
+
+/// Distance (in element lengths) from the field point to an element's centre beyond which the
+/// element integrals use Gauss quadrature instead of the closed form.
+pub const FAR_FIELD_RATIO: f64 = 2.5;
+
+/// Surface kernels of the half-plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kernel {
+    /// ln|x − s|.
+    Log,
+    /// sgn(x − s).
+    Sign,
+    /// 1/(x − s), as a Cauchy principal value when x lies inside the element.
+    Cauchy,
+}
+
+impl Kernel {
+    fn eval(self, x: f64, s: f64) -> f64 {
+        match self {
+            Kernel::Log => (x - s).abs().ln(),
+            Kernel::Sign => (x - s).signum(),
+            Kernel::Cauchy => 1.0 / (x - s),
+        }
+    }
+
+    /// Moments M_k = ∫_{u1}^{u2} u^k K du, k = 0, 1, 2, with u = s − x (reference sheet §3.2).
+    fn moments(self, u1: f64, u2: f64) -> [f64; 3] {
+        match self {
+            Kernel::Log => {
+                // d/du [u^{k+1}/(k+1)·(ln|u| − 1/(k+1))] = u^k ln|u|;  0·ln 0 := 0.
+                let f = |u: f64, k: i32| {
+                    let kp = (k + 1) as f64;
+                    if u == 0.0 {
+                        0.0
+                    } else {
+                        u.powi(k + 1) / kp * (u.abs().ln() - 1.0 / kp)
+                    }
+                };
+                [0, 1, 2].map(|k| f(u2, k) - f(u1, k))
+            }
+            Kernel::Sign => {
+                // sgn(x−s) = −sgn(u); ∫ −sgn(u) u^k du = −|u| u^k/(k+1).
+                let f = |u: f64, k: i32| -u.abs() * u.powi(k) / (k + 1) as f64;
+                [0, 1, 2].map(|k| f(u2, k) - f(u1, k))
+            }
+            Kernel::Cauchy => [
+                // PV ∫ du/(−u) = ln|u1/u2|; ∫ u^k/(−u) du = −(u2^k − u1^k)/k for k ≥ 1.
+                (u1 / u2).abs().ln(),
+                -(u2 - u1),
+                -(u2 * u2 - u1 * u1) / 2.0,
+            ],
+        }
+    }
+}
+
+/// ∫ N_a(s) K(x − s) ds over the element [s1, s2] for each of its shape functions, exactly.
+pub fn element_integrals_exact(kind: ElementKind, kernel: Kernel, s1: f64, s2: f64, x: f64) -> Vec<f64> {
+    let (u1, u2) = (s1 - x, s2 - x);
+    let length = s2 - s1;
+    let moments = kernel.moments(u1, u2);
+    // ξ = α + γ u maps the element to [−1, 1].
+    let alpha = -(u1 + u2) / length;
+    let gamma = 2.0 / length;
+    (0..kind.nodes_per_element())
+        .map(|a| {
+            let [c0, c1, c2] = kind.shape_polynomial(a);
+            let d0 = c0 + c1 * alpha + c2 * alpha * alpha;
+            let d1 = (c1 + 2.0 * c2 * alpha) * gamma;
+            let d2 = c2 * gamma * gamma;
+            d0 * moments[0] + d1 * moments[1] + d2 * moments[2]
+        })
+        .collect()
+}
+
+/// Element integrals by Gauss quadrature (valid for field points well outside the element).
+fn element_integrals_gauss(kind: ElementKind, kernel: Kernel, s1: f64, s2: f64, x: f64, rule: &(Vec<f64>, Vec<f64>)) -> Vec<f64> {
+    let half = 0.5 * (s2 - s1);
+    let centre = 0.5 * (s1 + s2);
+    (0..kind.nodes_per_element())
+        .map(|a| {
+            let [c0, c1, c2] = kind.shape_polynomial(a);
+            rule.0
+                .iter()
+                .zip(&rule.1)
+                .map(|(&xi, &w)| w * (c0 + c1 * xi + c2 * xi * xi) * kernel.eval(x, centre + half * xi))
+                .sum::<f64>()
+                * half
+        })
+        .collect()
+}
+
+/// Matrix K_ij = ∫ N_j(s) K(x_i − s) ds over the grid, for every node i and nodal shape j.
+pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
+    let m = grid.n_nodes();
+    let npe = grid.kind.nodes_per_element();
+    let length = grid.element_length();
+    let rule = gauss_legendre(12);
+    let mut k = Mat::zeros(m, m);
+    for (i, &x) in grid.nodes.iter().enumerate() {
+        for e in 0..grid.n_elements() {
+            let (s1, s2) = (grid.edges[e], grid.edges[e + 1]);
+            let far = (0.5 * (s1 + s2) - x).abs() > FAR_FIELD_RATIO * length;
+            let values = if far {
+                element_integrals_gauss(grid.kind, kernel, s1, s2, x, &rule)
+            } else {
+                element_integrals_exact(grid.kind, kernel, s1, s2, x)
+            };
+            for (a, v) in values.into_iter().enumerate() {
+                k[(i, e * npe + a)] = v;
+            }
+        }
+    }
+    k
+}
+
+/// An elastic half-plane standing in for a cylinder of radius `radius`.
+#[derive(Debug, Clone)]
+pub struct HalfSpace {
+    /// Material of the body.
+    pub material: Elastic,
+    /// Radius of the cylinder's profile [length]; sets the undeformed gap and the datum.
+    pub radius: f64,
+}
+
+impl HalfSpace {
+    /// Datum length ℓ = 2R/e [length] of the logarithmic displacement (see the module docs).
+    pub fn datum_length(&self) -> f64 {
+        2.0 * self.radius / std::f64::consts::E
+    }
+}
+
+impl BodyModel for HalfSpace {
+    fn model_name(&self) -> &'static str {
+        "half_space"
+    }
+
+    fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
+        let a_coef = self.material.halfplane_sgn_coefficient();
+        let b_coef = self.material.halfplane_log_coefficient();
+        let sign = side.sign();
+        let log = influence_matrix(grid, Kernel::Log);
+        let sgn = influence_matrix(grid, Kernel::Sign);
+        let ln_datum = self.datum_length().ln();
+        let m = grid.n_nodes();
+        // ∫ N_j ln(|x−s|/ℓ) ds = ∫ N_j ln|x−s| ds − w_j ln ℓ.
+        let log_datum = Mat::from_fn(m, m, |i, j| log[(i, j)] - grid.weights[j] * ln_datum);
+        Flexibility {
+            hp: Mat::from_fn(m, m, |i, j| -b_coef * log_datum[(i, j)]),
+            hq: Mat::from_fn(m, m, |i, j| sign * a_coef * sgn[(i, j)]),
+            wp: Mat::from_fn(m, m, |i, j| -sign * a_coef * sgn[(i, j)]),
+            wq: Mat::from_fn(m, m, |i, j| -b_coef * log_datum[(i, j)]),
+        }
+    }
+
+    fn profile(&self, x: f64) -> f64 {
+        circle_profile(self.radius, x)
+    }
+
+    /// ∂w/∂x = −side·2A·p(x) − B·PV∫ q(s)/(x−s) ds, exact for the interpolated tractions.
+    fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
+        let a_coef = self.material.halfplane_sgn_coefficient();
+        let b_coef = self.material.halfplane_log_coefficient();
+        let m = grid.n_nodes();
+        let cauchy = influence_matrix(grid, Kernel::Cauchy);
+        Some(StrainOperator {
+            // Nodes are interpolation points, so p(x_i) = p_i.
+            p: Mat::from_fn(m, m, |i, j| if i == j { -side.sign() * 2.0 * a_coef } else { 0.0 }),
+            q: Mat::from_fn(m, m, |i, j| -b_coef * cauchy[(i, j)]),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() < 5e-9
+    }
+
+    /// Reference sheet §3.2 table: quadratic element s ∈ [−0.4, 0.25] with nodes at its ends and
+    /// midpoint. Our elements place nodes at ξ = ±2/3, so rebuild the end-node shape functions
+    /// from ours by the change of basis N_end = Σ_b N_end(ξ_b) N_b (exact for quadratics).
+    fn end_node_integrals(kernel: Kernel, x: f64) -> [f64; 3] {
+        let ours = element_integrals_exact(ElementKind::DiscontinuousQuadratic, kernel, -0.4, 0.25, x);
+        let xi_b = ElementKind::DiscontinuousQuadratic.node_coordinates();
+        let end = |xi: f64, target: f64| {
+            // Lagrange basis through −1, 0, 1, evaluated at ξ.
+            match target as i32 {
+                -1 => 0.5 * xi * (xi - 1.0),
+                0 => 1.0 - xi * xi,
+                _ => 0.5 * xi * (xi + 1.0),
+            }
+        };
+        [-1.0, 0.0, 1.0].map(|t| (0..3).map(|b| end(xi_b[b], t) * ours[b]).sum())
+    }
+
+    #[test]
+    fn quadratic_element_integrals_match_reference_sheet() {
+        let cases = [
+            (-0.9, [-0.070286223, -0.090323505, 0.017909553], [-0.108333333, -0.433333333, -0.108333333]),
+            (-0.1, [-0.183779527, -1.060971795, -0.133878263], [0.161489152, -0.049901381, -0.161587771]),
+            (0.25, [-0.028612594, -0.547783708, -0.353612594], [0.108333333, 0.433333333, 0.108333333]),
+            (0.8, [0.022231732, -0.064028242, -0.060607271], [0.108333333, 0.433333333, 0.108333333]),
+        ];
+        for (x, log_ref, sgn_ref) in cases {
+            let log = end_node_integrals(Kernel::Log, x);
+            let sgn = end_node_integrals(Kernel::Sign, x);
+            for a in 0..3 {
+                assert!(close(log[a], log_ref[a]), "log x={x} a={a}: {} vs {}", log[a], log_ref[a]);
+                assert!(close(sgn[a], sgn_ref[a]), "sgn x={x} a={a}: {} vs {}", sgn[a], sgn_ref[a]);
+            }
+        }
+        let cau = end_node_integrals(Kernel::Cauchy, 0.03);
+        for (c, r) in cau.iter().zip([0.603641931, 1.246361324, -1.179845593]) {
+            assert!(close(*c, r), "cauchy {c} vs {r}");
+        }
+        let cau = end_node_integrals(Kernel::Cauchy, -0.9);
+        for (c, r) in cau.iter().zip([-0.202236830, -0.542743236, -0.087929057]) {
+            assert!(close(*c, r), "cauchy {c} vs {r}");
+        }
+    }
+
+    #[test]
+    fn constant_element_integrals_match_reference_sheet() {
+        let k = ElementKind::Constant;
+        for (x, refs) in [(0.0, [-2.0, 0.0, 0.0]), (0.5, [-1.738375928, 1.0, 3f64.ln()]), (2.0, [1.295836866, 2.0, 3f64.ln()])] {
+            let got = [Kernel::Log, Kernel::Sign, Kernel::Cauchy]
+                .map(|kern| element_integrals_exact(k, kern, -1.0, 1.0, x)[0]);
+            for (g, r) in got.iter().zip(refs) {
+                assert!(close(*g, r), "x={x}: {g} vs {r}");
+            }
+        }
+    }
+
+    #[test]
+    fn far_field_quadrature_agrees_with_closed_form_at_the_switch() {
+        let rule = gauss_legendre(12);
+        let kind = ElementKind::DiscontinuousQuadratic;
+        for kernel in [Kernel::Log, Kernel::Sign, Kernel::Cauchy] {
+            for x in [2.6, -2.7, 3.5] {
+                let exact = element_integrals_exact(kind, kernel, -0.5, 0.5, x);
+                let gauss = element_integrals_gauss(kind, kernel, -0.5, 0.5, x, &rule);
+                for (e, g) in exact.iter().zip(&gauss) {
+                    assert!((e - g).abs() < 1e-13, "{kernel:?} x={x}: {e} vs {g}");
+                }
+            }
+        }
+    }
+}

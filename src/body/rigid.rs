@@ -1,0 +1,33 @@
+//! The rigid body model: zero flexibility, circular profile.
+
+use super::{circle_profile, BodyModel, Flexibility, Side, StrainOperator};
+use crate::grid::ContactGrid;
+
+/// A rigid cylinder of the given radius [length].
+#[derive(Debug, Clone)]
+pub struct Rigid {
+    /// Profile radius [length].
+    pub radius: f64,
+}
+
+impl BodyModel for Rigid {
+    fn model_name(&self) -> &'static str {
+        "rigid"
+    }
+
+    fn flexibility(&self, grid: &ContactGrid, _side: Side) -> Flexibility {
+        Flexibility::zero(grid.n_nodes())
+    }
+
+    fn profile(&self, x: f64) -> f64 {
+        circle_profile(self.radius, x)
+    }
+
+    fn strain_operator(&self, grid: &ContactGrid, _side: Side) -> Option<StrainOperator> {
+        let m = grid.n_nodes();
+        Some(StrainOperator {
+            p: faer::Mat::zeros(m, m),
+            q: faer::Mat::zeros(m, m),
+        })
+    }
+}

@@ -1,0 +1,213 @@
+//! The steady rolling contact problem on the contact grid (González & Abascal §3).
+//!
+//! After each body has been condensed to its flexibility at the contact nodes, the gap and the
+//! slip are affine in the nodal tractions (paper Eq. 21):
+//!
+//! ```text
+//! g = h0 − δ0 + H_p p + H_q q                (compression h = H_p p + H_q q, Eq. 11–13)
+//! s = σ (ξ + D w),  w = W_p p + W_q q        (Eq. 15–20; B = σ D W)
+//! ```
+//!
+//! with the user-facing signs of DESIGN §2: p ≥ 0 compressive, q the shear on A in +x, g ≥ 0,
+//! s the slip velocity of A relative to B divided by |V|, ξ = (V_A − V_B)/V, δ0 the overlap.
+//! σ = sgn(V) is the sign of the material flow through the contact: material enters at the
+//! leading edge, so rolling in +x (the contact moves +x over the bodies) means flow in −x, σ = −1.
+//!
+//! **Mapping to the paper's notation** (documented once here and in docs/theory.md):
+//! p_n = −p, p_t = q, T_n = g, s_t = s, ξ0 = ξ, δ0 = δ0. The paper's T (Eq. 17) is our D
+//! multiplied by σ; the paper writes the contact conditions for p_n ≤ 0, we for p ≥ 0, so its
+//! min(0, p_n + r T_n) becomes −max(0, p − r g).
+
+pub mod newton;
+pub mod slip_operator;
+pub mod solution;
+
+use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
+use crate::grid::ContactGrid;
+use faer::Mat;
+use serde::{Deserialize, Serialize};
+pub use slip_operator::{SlipDerivative, SlipOperator};
+
+/// Direction in which the contact moves over the bodies (DESIGN §2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum RollingDirection {
+    /// The contact moves in +x over the bodies; material flows in −x; leading edge at x = +a.
+    #[serde(rename = "+x")]
+    PlusX,
+    /// The contact moves in −x over the bodies; material flows in +x; leading edge at x = −a.
+    #[serde(rename = "-x")]
+    MinusX,
+}
+
+impl RollingDirection {
+    /// σ = sgn(V), the sign of the material velocity through the contact along x.
+    pub fn flow_sign(self) -> f64 {
+        match self {
+            RollingDirection::PlusX => -1.0,
+            RollingDirection::MinusX => 1.0,
+        }
+    }
+}
+
+/// What is prescribed in the normal direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NormalControl {
+    /// Normal force P > 0 per unit length [force/length]; the overlap δ0 is unknown.
+    Force(f64),
+    /// Overlap δ0 [length]; P is computed.
+    Overlap(f64),
+}
+
+/// What is prescribed in the tangential direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TangentialControl {
+    /// Tangential force Q [force/length]; the creepage ξ is unknown.
+    Force(f64),
+    /// Ratio Q/(μP) ∈ (−1, 1); the creepage ξ is unknown (linear in the tractions, so it mixes
+    /// freely with either normal control).
+    Ratio(f64),
+    /// Creepage ξ [-]; Q is computed.
+    Creep(f64),
+}
+
+/// The assembled contact problem: everything the solver needs, and nothing about the bodies.
+#[derive(Debug, Clone)]
+pub struct ContactProblem {
+    /// The contact grid.
+    pub grid: ContactGrid,
+    /// Sum of the bodies' flexibilities (pair convention of [`crate::body`]).
+    pub flex: Flexibility,
+    /// Slip operator: B_p = σ D W_p, B_q = σ D W_q (paper Eq. 20) [1/stress].
+    pub bp: Mat<f64>,
+    /// See `bp`.
+    pub bq: Mat<f64>,
+    /// The difference operator D (paper Eq. 17 without its sign σ).
+    pub slip_operator: SlipOperator,
+    /// Undeformed gap h0(x_i) from the true profiles [length].
+    pub h0: Vec<f64>,
+    /// Coulomb friction coefficient μ ≥ 0.
+    pub friction: f64,
+    /// σ = sgn(V), see [`RollingDirection::flow_sign`].
+    pub flow_sign: f64,
+    /// Normal control.
+    pub normal: NormalControl,
+    /// Tangential control.
+    pub tangential: TangentialControl,
+    /// Combined boundary-integral strain operator ∂w/∂x, when both models have one.
+    pub strain: Option<StrainOperator>,
+}
+
+/// Sum of two dense matrices of equal shape.
+fn add(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
+    a + b
+}
+
+impl ContactProblem {
+    /// Assembles the problem from the two body models on a grid.
+    #[allow(clippy::too_many_arguments)]
+    pub fn assemble(
+        grid: ContactGrid,
+        body_a: &dyn BodyModel,
+        body_b: &dyn BodyModel,
+        derivative: SlipDerivative,
+        friction: f64,
+        rolling: RollingDirection,
+        normal: NormalControl,
+        tangential: TangentialControl,
+    ) -> Self {
+        let fa = body_a.flexibility(&grid, Side::A);
+        let fb = body_b.flexibility(&grid, Side::B);
+        let flex = Flexibility {
+            hp: add(&fa.hp, &fb.hp),
+            hq: add(&fa.hq, &fb.hq),
+            wp: add(&fa.wp, &fb.wp),
+            wq: add(&fa.wq, &fb.wq),
+        };
+        let strain = match (body_a.strain_operator(&grid, Side::A), body_b.strain_operator(&grid, Side::B)) {
+            (Some(a), Some(b)) => Some(StrainOperator {
+                p: add(&a.p, &b.p),
+                q: add(&a.q, &b.q),
+            }),
+            _ => None,
+        };
+        let h0 = grid.nodes.iter().map(|&x| body_a.profile(x) + body_b.profile(x)).collect();
+        let flow_sign = rolling.flow_sign();
+        let slip_operator = SlipOperator::new(&grid, derivative, flow_sign);
+        let bp = slip_operator.apply_scaled(&flex.wp, flow_sign);
+        let bq = slip_operator.apply_scaled(&flex.wq, flow_sign);
+        Self {
+            grid,
+            flex,
+            bp,
+            bq,
+            slip_operator,
+            h0,
+            friction,
+            flow_sign,
+            normal,
+            tangential,
+            strain,
+        }
+    }
+
+    /// Number of contact nodes m.
+    pub fn n_nodes(&self) -> usize {
+        self.grid.n_nodes()
+    }
+
+    /// Gap g = h0 − δ0 + H_p p + H_q q at every node [length].
+    pub fn gap(&self, p: &[f64], q: &[f64], overlap: f64) -> Vec<f64> {
+        let h = self.compression(p, q);
+        self.h0.iter().zip(h).map(|(h0, h)| h0 - overlap + h).collect()
+    }
+
+    /// Total compression h = H_p p + H_q q (sum of the displacements into the bodies) [length].
+    pub fn compression(&self, p: &[f64], q: &[f64]) -> Vec<f64> {
+        mat_vec2(&self.flex.hp, p, &self.flex.hq, q)
+    }
+
+    /// Relative tangential displacement w = u_xA − u_xB = W_p p + W_q q [length].
+    pub fn relative_tangential(&self, p: &[f64], q: &[f64]) -> Vec<f64> {
+        mat_vec2(&self.flex.wp, p, &self.flex.wq, q)
+    }
+
+    /// Slip s = σ(ξ + D w) at every node [-] (paper Eq. 19).
+    pub fn slip(&self, p: &[f64], q: &[f64], creep: f64) -> Vec<f64> {
+        let b = mat_vec2(&self.bp, p, &self.bq, q);
+        let e = &self.slip_operator.creep_weight;
+        b.into_iter().zip(e).map(|(v, e)| self.flow_sign * creep * e + v).collect()
+    }
+
+    /// Slip from the boundary-integral strain operator, s = σ(ξ + ∂w/∂x), if available.
+    pub fn slip_from_strain(&self, p: &[f64], q: &[f64], creep: f64) -> Option<Vec<f64>> {
+        self.strain.as_ref().map(|op| {
+            mat_vec2(&op.p, p, &op.q, q)
+                .into_iter()
+                .map(|dw| self.flow_sign * (creep + dw))
+                .collect()
+        })
+    }
+}
+
+/// y = A x + B z for square dense matrices and slices.
+pub fn mat_vec2(a: &Mat<f64>, x: &[f64], b: &Mat<f64>, z: &[f64]) -> Vec<f64> {
+    let m = a.nrows();
+    let mut y = vec![0.0; m];
+    // Column-major storage: accumulate column by column.
+    for j in 0..a.ncols() {
+        let (xj, zj) = (x[j], z[j]);
+        if xj != 0.0 {
+            let col = a.col(j);
+            for (i, yi) in y.iter_mut().enumerate() {
+                *yi += col[i] * xj;
+            }
+        }
+        if zj != 0.0 {
+            let col = b.col(j);
+            for (i, yi) in y.iter_mut().enumerate() {
+                *yi += col[i] * zj;
+            }
+        }
+    }
+    y
+}

@@ -1,0 +1,194 @@
+//! The contact grid: traction elements along x on which the contact unknowns live.
+//!
+//! The grid is a row of equal elements on `[x_min, x_max]`. Each element carries either one node
+//! at its centre (constant element) or three nodes at the intrinsic coordinates ξ = −2/3, 0, +2/3
+//! (discontinuous quadratic element, the paper's choice, §5). With ξ = ±2/3 the nodes of a
+//! discontinuous quadratic grid are equally spaced (spacing L/3), which the slip operator uses.
+//! Nodes are numbered in increasing x.
+
+use serde::Serialize;
+
+/// Traction interpolation on the contact elements.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ElementKind {
+    /// One node at the element centre; traction constant over the element.
+    Constant,
+    /// Three interior nodes at ξ = −2/3, 0, +2/3; traction quadratic over the element and
+    /// discontinuous between elements (González & Abascal §5).
+    DiscontinuousQuadratic,
+}
+
+/// Intrinsic coordinate of the outer nodes of a discontinuous quadratic element.
+pub const DQE_NODE: f64 = 2.0 / 3.0;
+
+impl ElementKind {
+    /// Number of nodes per element.
+    pub fn nodes_per_element(self) -> usize {
+        match self {
+            ElementKind::Constant => 1,
+            ElementKind::DiscontinuousQuadratic => 3,
+        }
+    }
+
+    /// Intrinsic coordinates ξ ∈ (−1, 1) of the element's nodes.
+    pub fn node_coordinates(self) -> &'static [f64] {
+        match self {
+            ElementKind::Constant => &[0.0],
+            ElementKind::DiscontinuousQuadratic => &[-DQE_NODE, 0.0, DQE_NODE],
+        }
+    }
+
+    /// Coefficients `[c0, c1, c2]` of the shape function of local node `a`, N_a(ξ) = c0 + c1 ξ + c2 ξ².
+    pub fn shape_polynomial(self, a: usize) -> [f64; 3] {
+        match self {
+            ElementKind::Constant => [1.0, 0.0, 0.0],
+            ElementKind::DiscontinuousQuadratic => {
+                // Lagrange polynomials through ξ = −c, 0, +c.
+                let c = DQE_NODE;
+                match a {
+                    0 => [0.0, -0.5 / c, 0.5 / (c * c)],
+                    1 => [1.0, 0.0, -1.0 / (c * c)],
+                    _ => [0.0, 0.5 / c, 0.5 / (c * c)],
+                }
+            }
+        }
+    }
+}
+
+/// A contact grid of `n_elements` equal traction elements.
+#[derive(Debug, Clone, Serialize)]
+pub struct ContactGrid {
+    /// Interpolation used on every element.
+    pub kind: ElementKind,
+    /// Element end points in increasing x, `n_elements + 1` values [length].
+    pub edges: Vec<f64>,
+    /// Node x-coordinates in increasing order, `n_elements · nodes_per_element` values [length].
+    pub nodes: Vec<f64>,
+    /// Integration weights w_j = ∫ N_j dx [length]: P = Σ w_j p_j (paper Eq. 38–39).
+    pub weights: Vec<f64>,
+}
+
+impl ContactGrid {
+    /// Builds a uniform grid of `n_elements` elements on `[x_min, x_max]`.
+    ///
+    /// Panics if `n_elements == 0` or the interval is empty: callers validate user input first.
+    pub fn uniform(kind: ElementKind, n_elements: usize, x_min: f64, x_max: f64) -> Self {
+        assert!(n_elements > 0, "a contact grid needs at least one element");
+        assert!(x_max > x_min, "empty grid interval [{x_min}, {x_max}]");
+        let length = (x_max - x_min) / n_elements as f64;
+        let edges: Vec<f64> = (0..=n_elements)
+            .map(|e| x_min + length * e as f64)
+            .collect();
+        let mut nodes = Vec::with_capacity(n_elements * kind.nodes_per_element());
+        let mut weights = Vec::with_capacity(nodes.capacity());
+        for e in 0..n_elements {
+            let centre = 0.5 * (edges[e] + edges[e + 1]);
+            for (a, xi) in kind.node_coordinates().iter().enumerate() {
+                nodes.push(centre + 0.5 * length * xi);
+                let [c0, _, c2] = kind.shape_polynomial(a);
+                // ∫_{-1}^{1} (c0 + c1 ξ + c2 ξ²) dξ · L/2
+                weights.push((2.0 * c0 + 2.0 * c2 / 3.0) * 0.5 * length);
+            }
+        }
+        Self {
+            kind,
+            edges,
+            nodes,
+            weights,
+        }
+    }
+
+    /// Number of contact nodes m.
+    pub fn n_nodes(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Number of traction elements.
+    pub fn n_elements(&self) -> usize {
+        self.edges.len() - 1
+    }
+
+    /// Element length L [length] (all elements are equal).
+    pub fn element_length(&self) -> f64 {
+        self.edges[1] - self.edges[0]
+    }
+
+    /// Distance between neighbouring nodes [length] (uniform for both element kinds).
+    pub fn node_spacing(&self) -> f64 {
+        self.element_length() / self.kind.nodes_per_element() as f64
+    }
+
+    /// Total length of the grid [length].
+    pub fn length(&self) -> f64 {
+        self.edges[self.edges.len() - 1] - self.edges[0]
+    }
+
+    /// Element index and local node index of node `j`.
+    pub fn element_of(&self, j: usize) -> (usize, usize) {
+        let npe = self.kind.nodes_per_element();
+        (j / npe, j % npe)
+    }
+
+    /// Integral Σ w_j v_j of a nodal field over the grid (force from a traction) [length·field].
+    pub fn integrate(&self, values: &[f64]) -> f64 {
+        self.weights.iter().zip(values).map(|(w, v)| w * v).sum()
+    }
+
+    /// Value at `x` of the piecewise interpolant of nodal values (zero outside the grid).
+    pub fn interpolate(&self, values: &[f64], x: f64) -> f64 {
+        let n = self.n_elements();
+        let (x0, x1) = (self.edges[0], self.edges[n]);
+        if x < x0 || x > x1 {
+            return 0.0;
+        }
+        let length = self.element_length();
+        let e = (((x - x0) / length) as usize).min(n - 1);
+        let centre = 0.5 * (self.edges[e] + self.edges[e + 1]);
+        let xi = 2.0 * (x - centre) / length;
+        let npe = self.kind.nodes_per_element();
+        (0..npe)
+            .map(|a| {
+                let [c0, c1, c2] = self.kind.shape_polynomial(a);
+                (c0 + c1 * xi + c2 * xi * xi) * values[e * npe + a]
+            })
+            .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dqe_nodes_are_equally_spaced_and_weights_sum_to_length() {
+        let g = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 7, -1.3, 1.3);
+        let h = g.node_spacing();
+        for w in g.nodes.windows(2) {
+            assert!((w[1] - w[0] - h).abs() < 1e-14);
+        }
+        let total: f64 = g.weights.iter().sum();
+        assert!((total - 2.6).abs() < 1e-14);
+    }
+
+    #[test]
+    fn shape_functions_are_cardinal_and_reproduce_quadratics() {
+        let kind = ElementKind::DiscontinuousQuadratic;
+        for (a, xa) in kind.node_coordinates().iter().enumerate() {
+            for b in 0..3 {
+                let [c0, c1, c2] = kind.shape_polynomial(b);
+                let v = c0 + c1 * xa + c2 * xa * xa;
+                assert!((v - if a == b { 1.0 } else { 0.0 }).abs() < 1e-14);
+            }
+        }
+        // Interpolating f(x) = 3 − 2x + x² exactly, and integrating it with the weights.
+        let g = ContactGrid::uniform(kind, 4, 0.0, 2.0);
+        let f = |x: f64| 3.0 - 2.0 * x + x * x;
+        let vals: Vec<f64> = g.nodes.iter().map(|&x| f(x)).collect();
+        for x in [0.1, 0.77, 1.5, 1.999] {
+            assert!((g.interpolate(&vals, x) - f(x)).abs() < 1e-13);
+        }
+        let exact = 3.0 * 2.0 - 4.0 + 8.0 / 3.0;
+        assert!((g.integrate(&vals) - exact).abs() < 1e-13);
+    }
+}

@@ -1,0 +1,29 @@
+//! # rollbem — 2D steady rolling contact of elastic cylinders
+//!
+//! rollbem solves the coupled normal–tangential steady rolling contact problem between two
+//! cylinders in plane strain with Coulomb friction, by the generalized Newton method with line
+//! search of González & Abascal (IJNME 49, 2000).
+//!
+//! ## Data flow
+//! ```text
+//! case (YAML) ─▶ body models (half_space | rigid) ─▶ Flexibility at the contact grid
+//!            ─▶ ContactProblem (gap and slip affine in the tractions, paper Eq. 21)
+//!            ─▶ contact::newton::solve ─▶ ContactSolution ─▶ output (JSON, CSV, SVG)
+//! ```
+//!
+//! ## Conventions (DESIGN §2)
+//! x along the common tangent, y from B into A. Pressure p ≥ 0 compressive; shear q is the
+//! traction B exerts on A, positive in +x. Creepage ξ = (V_A − V_B)/V; slip s is the velocity of
+//! A's surface relative to B's divided by |V|. Overlap δ0 > 0 presses the bodies together.
+//! Units are whatever the case uses consistently (the shipped cases: mm, N, MPa).
+
+pub mod analytic;
+pub mod app;
+pub mod body;
+pub mod case;
+pub mod contact;
+pub mod error;
+pub mod grid;
+pub mod material;
+pub mod output;
+pub mod quadrature;
