@@ -1,1 +1,327 @@
-//! placeholder
+//! The driver: case → body models → contact problem → solver → solution → outputs.
+
+use crate::analytic::{self, Carter};
+use crate::body::half_space::HalfSpace;
+use crate::body::rigid::Rigid;
+use crate::body::BodyModel;
+use crate::case::{self, BodySpec, LoadedCase, NormalSpec, TangentialSpec};
+use crate::contact::newton::{self, NewtonReport, NewtonSettings};
+use crate::contact::solution::{slip_regime, ContactSolution};
+use crate::contact::{ContactProblem, NormalControl, TangentialControl};
+use crate::error::Error;
+use crate::grid::ContactGrid;
+use crate::material::{self, Elastic};
+use crate::output::{self, Summary};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Hertz-type estimates of a scene (also what `rollbem check` prints).
+#[derive(Debug, Clone, Serialize)]
+pub struct Estimates {
+    /// Contact modulus E* [stress].
+    pub e_star: f64,
+    /// Dundurs' β with A first (κ = 2β in Bentall–Johnson / paper Eq. 78).
+    pub dundurs_beta: f64,
+    /// Effective radius R, 1/R = 1/R_A + 1/R_B [length].
+    pub effective_radius: f64,
+    /// Normal force P used for the estimates (given, or estimated from the overlap) [force/length].
+    pub normal_force: f64,
+    /// Hertz half-width a [length].
+    pub hertz_half_width: f64,
+    /// Hertz peak pressure p0 [stress].
+    pub hertz_peak_pressure: f64,
+    /// a / R.
+    pub half_width_over_radius: f64,
+    /// Carter stick-zone width 2a√(1 − |Q|/μP) (similar bodies), if Q/μP is known [length].
+    pub carter_stick_width: Option<f64>,
+    /// Grid half-length [length].
+    pub grid_half_length: f64,
+    /// Node spacing of the grid [length].
+    pub grid_spacing: f64,
+}
+
+/// Elastic constants of a body spec, or None for a rigid body.
+fn body_material(case: &LoadedCase, spec: &BodySpec) -> Option<Elastic> {
+    match spec {
+        BodySpec::HalfSpace { material, .. } => Some(case.material(material)),
+        BodySpec::Rigid { .. } => None,
+    }
+}
+
+fn body_radius(spec: &BodySpec) -> f64 {
+    match spec {
+        BodySpec::HalfSpace { radius, .. } | BodySpec::Rigid { radius } => *radius,
+    }
+}
+
+/// Builds the body model of a spec.
+pub fn body_model(case: &LoadedCase, spec: &BodySpec) -> Box<dyn BodyModel> {
+    match spec {
+        BodySpec::HalfSpace { material, radius } => Box::new(HalfSpace {
+            material: case.material(material),
+            radius: *radius,
+        }),
+        BodySpec::Rigid { radius } => Box::new(Rigid { radius: *radius }),
+    }
+}
+
+/// Normal force that gives the overlap δ0 between two half-planes measured from their datums:
+/// δ0 = Σ_b (2(1−ν_b²)/(πE_b))·P·(ln(4R_b/a) − ½), a the Hertz half-width of P
+/// (reference sheet §6b; the datum of [`HalfSpace`]). Used only to size the grid.
+fn load_from_overlap(overlap: f64, bodies: [(Option<Elastic>, f64); 2], radius: f64, e_star: f64) -> f64 {
+    let approach = |p: f64| {
+        let a = analytic::hertz_half_width(p, radius, e_star);
+        bodies
+            .iter()
+            .filter_map(|(m, r)| m.map(|m| m.halfplane_log_coefficient() * p * ((4.0 * r / a).ln() - 0.5)))
+            .sum::<f64>()
+    };
+    // Bisection in log P: the approach grows with P while a ≪ R.
+    let (mut lo, mut hi) = (1e-12 * e_star * radius, 1e-2 * e_star * radius);
+    for _ in 0..200 {
+        let mid = (lo * hi).sqrt();
+        if approach(mid) < overlap {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    (lo * hi).sqrt()
+}
+
+/// Hertz estimates and the grid half-length of a case.
+pub fn estimates(case: &LoadedCase) -> Estimates {
+    let c = &case.case;
+    let (ma, mb) = (body_material(case, &c.bodies.a), body_material(case, &c.bodies.b));
+    let e_star = material::contact_modulus(ma.as_ref(), mb.as_ref());
+    let dundurs_beta = material::dundurs_beta(ma.as_ref(), mb.as_ref());
+    let radius = material::effective_radius(body_radius(&c.bodies.a), body_radius(&c.bodies.b));
+    let normal_force = match c.load.normal() {
+        NormalSpec::Force(p) => p,
+        NormalSpec::Overlap(d) => load_from_overlap(
+            d,
+            [(ma, body_radius(&c.bodies.a)), (mb, body_radius(&c.bodies.b))],
+            radius,
+            e_star,
+        ),
+    };
+    let a = analytic::hertz_half_width(normal_force, radius, e_star);
+    let ratio = match c.load.tangential() {
+        TangentialSpec::Ratio(r) => Some(r),
+        TangentialSpec::Force(q) if c.contact.friction > 0.0 => Some(q / (c.contact.friction * normal_force)),
+        _ => None,
+    };
+    let grid_half_length = c.contact.grid.half_length.unwrap_or(c.contact.grid.extent * a);
+    let npe = c.contact.grid.element.nodes_per_element();
+    Estimates {
+        e_star,
+        dundurs_beta,
+        effective_radius: radius,
+        normal_force,
+        hertz_half_width: a,
+        hertz_peak_pressure: analytic::hertz_peak_pressure(normal_force, a),
+        half_width_over_radius: a / radius,
+        carter_stick_width: ratio.filter(|r| r.abs() < 1.0).map(|r| 2.0 * a * (1.0 - r.abs()).sqrt()),
+        grid_half_length,
+        grid_spacing: 2.0 * grid_half_length / (c.contact.grid.elements * npe) as f64,
+    }
+}
+
+/// The solver settings of a case.
+pub fn newton_settings(case: &LoadedCase) -> NewtonSettings {
+    let s = &case.case.solver;
+    NewtonSettings {
+        formulation: s.formulation,
+        penalty_scale: s.penalty.scale(),
+        tolerance: s.tolerance,
+        max_iterations: s.max_iterations,
+        ..NewtonSettings::default()
+    }
+}
+
+/// Assembles the contact problem of a case.
+pub fn build_problem(case: &LoadedCase, est: &Estimates) -> ContactProblem {
+    let c = &case.case;
+    let grid = ContactGrid::uniform(
+        c.contact.grid.element,
+        c.contact.grid.elements,
+        -est.grid_half_length,
+        est.grid_half_length,
+    );
+    let normal = match c.load.normal() {
+        NormalSpec::Force(p) => NormalControl::Force(p),
+        NormalSpec::Overlap(d) => NormalControl::Overlap(d),
+    };
+    let tangential = match c.load.tangential() {
+        TangentialSpec::Ratio(r) => TangentialControl::Ratio(r),
+        TangentialSpec::Force(q) => TangentialControl::Force(q),
+        TangentialSpec::Creep(x) => TangentialControl::Creep(x),
+    };
+    let (a, b) = (body_model(case, &c.bodies.a), body_model(case, &c.bodies.b));
+    ContactProblem::assemble(
+        grid,
+        a.as_ref(),
+        b.as_ref(),
+        c.contact.slip_derivative,
+        c.contact.friction,
+        c.contact.rolling_direction,
+        normal,
+        tangential,
+    )
+}
+
+/// Wall-clock time of each stage [s].
+#[derive(Debug, Clone, Copy, Default, Serialize)]
+pub struct Timings {
+    /// Influence coefficients / BEM assembly.
+    pub assembly_s: f64,
+    /// Condensation to the contact nodes (zero for closed-form models).
+    pub condense_s: f64,
+    /// Contact solve.
+    pub solve_s: f64,
+    /// Whole run including output.
+    pub total_s: f64,
+}
+
+/// Everything a run produced.
+#[derive(Debug, Clone)]
+pub struct RunReport {
+    /// The summary written to summary.json.
+    pub summary: Summary,
+    /// The solution (also for a non-converged run: the last iterate, not written as a result).
+    pub solution: ContactSolution,
+    /// The assembled problem.
+    pub problem: ContactProblem,
+    /// Solver report.
+    pub newton: NewtonReport,
+    /// Where the outputs were written.
+    pub output_dir: PathBuf,
+}
+
+/// Loads a case, solves it and writes its outputs (DESIGN §5). A run that does not converge
+/// writes only summary.json (with `converged: false` and the residual history) and returns
+/// `Ok` with `summary.converged == false`.
+pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result<RunReport, Error> {
+    let start = Instant::now();
+    let case = case::load(case_path, overrides)?;
+    let output_dir = out.map(Path::to_path_buf).unwrap_or_else(|| case.output_dir());
+    let est = estimates(&case);
+    let problem = build_problem(&case, &est);
+    let mut timings = Timings {
+        assembly_s: start.elapsed().as_secs_f64(),
+        ..Timings::default()
+    };
+    let t_solve = Instant::now();
+    let (state, newton) = newton::solve(&problem, &newton_settings(&case));
+    timings.solve_s = t_solve.elapsed().as_secs_f64();
+    let solution = ContactSolution::from_state(&problem, &state);
+    if newton.converged {
+        check_grid_contains_contact(&case, &solution)?;
+    }
+    let leading = case.case.contact.rolling_direction.flow_sign() * -1.0;
+    let regime = slip_regime(&solution, leading, 1);
+    let mut summary = output::summary(&case, &est, &problem, &solution, &newton, regime, timings);
+    output::write_run(&output_dir, &mut summary, &solution, &problem, start)?;
+    Ok(RunReport {
+        summary,
+        solution,
+        problem,
+        newton,
+        output_dir,
+    })
+}
+
+fn check_grid_contains_contact(case: &LoadedCase, sol: &ContactSolution) -> Result<(), Error> {
+    let m = sol.x.len();
+    for (i, end) in [(0, "left"), (m - 1, "right")] {
+        if sol.pressure[i] > 0.0 {
+            return Err(Error::GridTooShort {
+                case: case.path.clone(),
+                end,
+                x: sol.x[i],
+                extent: case.case.contact.grid.extent,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Carter's solution for the case's similar-body estimates (used by `check` and the tests).
+pub fn carter_reference(case: &LoadedCase, est: &Estimates) -> Option<Carter> {
+    let ratio = match case.case.load.tangential() {
+        TangentialSpec::Ratio(r) => r,
+        _ => return None,
+    };
+    Some(Carter {
+        half_width: est.hertz_half_width,
+        peak_pressure: est.hertz_peak_pressure,
+        friction: case.case.contact.friction,
+        ratio,
+        leading_edge_sign: -case.case.contact.rolling_direction.flow_sign(),
+    })
+}
+
+/// The text printed by `rollbem check`: the case as understood, with Hertz estimates.
+pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Error> {
+    let case = case::load(case_path, overrides)?;
+    let est = estimates(&case);
+    let c = &case.case;
+    let mut t = format!("rollbem check {}: valid\n", case_path.display());
+    let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
+    line("title", c.title.clone());
+    for (side, spec) in [("A", &c.bodies.a), ("B", &c.bodies.b)] {
+        let text = match spec {
+            BodySpec::HalfSpace { material, radius } => {
+                let m = case.material(material);
+                format!(
+                    "half_space, R = {radius}, material `{material}` (E = {:.6}, G = {:.6}, nu = {})",
+                    m.young,
+                    m.shear(),
+                    m.poisson
+                )
+            }
+            BodySpec::Rigid { radius } => format!("rigid, R = {radius}"),
+        };
+        line(&format!("body {side}"), text);
+    }
+    let (l, f) = (&c.units.length, &c.units.force);
+    line("effective radius R", format!("{:.6} {l}", est.effective_radius));
+    line("contact modulus E*", format!("{:.6} {f}/{l}^2", est.e_star));
+    line(
+        "Dundurs beta (kappa=2beta)",
+        format!("{:.6} ({:.6}); beta/mu = {:.4}", est.dundurs_beta, 2.0 * est.dundurs_beta, est.dundurs_beta / c.contact.friction.max(f64::MIN_POSITIVE)),
+    );
+    let given = matches!(c.load.normal(), NormalSpec::Force(_));
+    line(
+        "normal force P",
+        format!("{:.6} {f}/{l}{}", est.normal_force, if given { "" } else { " (estimated from the overlap)" }),
+    );
+    line("Hertz half-width a", format!("{:.6} {l}  (a/R = {:.3e})", est.hertz_half_width, est.half_width_over_radius));
+    line("Hertz peak pressure p0", format!("{:.6} {f}/{l}^2", est.hertz_peak_pressure));
+    line(
+        "contact grid",
+        format!(
+            "{} {:?} elements on [-{:.6}, {:.6}] {l}; node spacing {:.4e} {l} ({:.4} a)",
+            c.contact.grid.elements,
+            c.contact.grid.element,
+            est.grid_half_length,
+            est.grid_half_length,
+            est.grid_spacing,
+            est.grid_spacing / est.hertz_half_width
+        ),
+    );
+    if let Some(w) = est.carter_stick_width {
+        line(
+            "stick zone (Carter)",
+            format!("width {:.6} {l} = {:.4} a, at the leading edge (similar bodies; beta shifts it)", w, w / est.hertz_half_width),
+        );
+    }
+    let advice = if est.half_width_over_radius < 0.05 {
+        "half_space is adequate (a/R < 0.05): the half-plane influence coefficients are the classical model"
+    } else {
+        "a/R >= 0.05: the half-space model loses accuracy; consider a bem model of the true geometry"
+    };
+    line("model advice", advice.to_string());
+    Ok(t)
+}

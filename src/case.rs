@@ -1,1 +1,186 @@
-//! placeholder
+//! Reading a case: YAML file → value tree → `--set` overrides → typed [`Case`] → validation.
+//!
+//! This is the only module that names the YAML crate (`serde_norway`, the maintained fork of the
+//! archived `serde_yaml`): swapping it is a change to [`parse_yaml`] alone.
+
+pub mod schema;
+pub mod validate;
+
+use crate::material::Elastic;
+pub use schema::*;
+use std::path::{Path, PathBuf};
+pub use validate::Violation;
+
+/// Everything that can be wrong with a case before solving.
+#[derive(Debug, thiserror::Error)]
+pub enum CaseError {
+    /// The file could not be read.
+    #[error("cannot read case file {path}: {source}")]
+    Read {
+        /// Case file.
+        path: PathBuf,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// The file is not valid YAML.
+    #[error("{path}: not valid YAML: {message}")]
+    Yaml {
+        /// Case file.
+        path: PathBuf,
+        /// Parser message with line and column.
+        message: String,
+    },
+    /// A `--set` argument could not be applied.
+    #[error("--set {argument}: {message}")]
+    Override {
+        /// The argument as given.
+        argument: String,
+        /// What is wrong and what to do.
+        message: String,
+    },
+    /// A key is unknown, missing or of the wrong type.
+    #[error("{path}: key `{key}`: {message}")]
+    Schema {
+        /// Case file.
+        path: PathBuf,
+        /// Dotted key path where the problem is.
+        key: String,
+        /// Serde's message (expected type, unknown field and the valid ones).
+        message: String,
+    },
+    /// Values are out of range or inconsistent; every violation is listed.
+    #[error("{path}: invalid case:\n{}", violations.iter().map(|v| format!("  - {v}")).collect::<Vec<_>>().join("\n"))]
+    Invalid {
+        /// Case file.
+        path: PathBuf,
+        /// All violations found.
+        violations: Vec<Violation>,
+    },
+}
+
+/// A case that parsed and validated, with where it came from.
+#[derive(Debug, Clone)]
+pub struct LoadedCase {
+    /// The typed case.
+    pub case: Case,
+    /// The case file.
+    pub path: PathBuf,
+    /// The case as resolved after overrides, for the summary.
+    pub resolved: serde_json::Value,
+}
+
+impl LoadedCase {
+    /// Folder of the case file (paths in a case are relative to it).
+    pub fn base_dir(&self) -> PathBuf {
+        self.path.parent().map(Path::to_path_buf).unwrap_or_default()
+    }
+
+    /// The output folder: `output.dir` relative to the case file, else `out/<stem>` next to it.
+    pub fn output_dir(&self) -> PathBuf {
+        match &self.case.output.dir {
+            Some(dir) => self.base_dir().join(dir),
+            None => {
+                let stem = self.path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
+                self.base_dir().join("out").join(stem)
+            }
+        }
+    }
+
+    /// Material by name (validated to exist).
+    pub fn material(&self, name: &str) -> Elastic {
+        material_of(&self.case.materials[name])
+    }
+}
+
+/// The elastic constants of a material spec (validated: exactly one of E and G).
+pub fn material_of(spec: &MaterialSpec) -> Elastic {
+    match (spec.young, spec.shear) {
+        (Some(e), _) => Elastic::new(e, spec.nu),
+        (None, Some(g)) => Elastic::from_shear(g, spec.nu),
+        (None, None) => Elastic::new(f64::NAN, spec.nu),
+    }
+}
+
+/// Parses YAML text into a value tree.
+fn parse_yaml(text: &str) -> Result<serde_norway::Value, String> {
+    serde_norway::from_str(text).map_err(|e| e.to_string())
+}
+
+/// Loads, overrides and validates a case file.
+pub fn load(path: &Path, overrides: &[String]) -> Result<LoadedCase, CaseError> {
+    let text = std::fs::read_to_string(path).map_err(|source| CaseError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let mut value = parse_yaml(&text).map_err(|message| CaseError::Yaml {
+        path: path.to_path_buf(),
+        message,
+    })?;
+    for argument in overrides {
+        apply_override(&mut value, argument)?;
+    }
+    let case: Case = serde_path_to_error::deserialize(value.clone()).map_err(|e| CaseError::Schema {
+        path: path.to_path_buf(),
+        key: match e.path().to_string() {
+            p if p == "." => "(top level)".to_string(),
+            p => p,
+        },
+        message: e.inner().to_string(),
+    })?;
+    let violations = validate::validate(&case);
+    if !violations.is_empty() {
+        return Err(CaseError::Invalid {
+            path: path.to_path_buf(),
+            violations,
+        });
+    }
+    let resolved = serde_json::to_value(&value).unwrap_or(serde_json::Value::Null);
+    Ok(LoadedCase {
+        case,
+        path: path.to_path_buf(),
+        resolved,
+    })
+}
+
+/// Applies `key.path=value` to the value tree, creating missing mappings on the way. The value
+/// is read as YAML, so `0.5`, `true`, `phi` and `{force: 10}` all work.
+pub fn apply_override(root: &mut serde_norway::Value, argument: &str) -> Result<(), CaseError> {
+    let err = |message: String| CaseError::Override {
+        argument: argument.to_string(),
+        message,
+    };
+    let (key, raw) = argument
+        .split_once('=')
+        .ok_or_else(|| err("expected key.path=value, e.g. --set contact.friction=0.2".into()))?;
+    let value = parse_yaml(raw).map_err(|m| err(format!("value is not valid YAML: {m}")))?;
+    let parts: Vec<&str> = key.split('.').collect();
+    if parts.iter().any(|p| p.is_empty()) {
+        return Err(err("empty key segment; write e.g. load.normal.force=1000".into()));
+    }
+    let mut node = root;
+    for (depth, part) in parts.iter().enumerate() {
+        let map = match node {
+            serde_norway::Value::Mapping(map) => map,
+            serde_norway::Value::Null => {
+                *node = serde_norway::Value::Mapping(Default::default());
+                match node {
+                    serde_norway::Value::Mapping(map) => map,
+                    _ => unreachable!(),
+                }
+            }
+            _ => {
+                return Err(err(format!(
+                    "`{}` is not a mapping, so it has no key `{part}`",
+                    parts[..depth].join(".")
+                )))
+            }
+        };
+        let k = serde_norway::Value::String(part.to_string());
+        if depth + 1 == parts.len() {
+            map.insert(k, value);
+            return Ok(());
+        }
+        node = map.entry(k).or_insert(serde_norway::Value::Null);
+    }
+    Ok(())
+}

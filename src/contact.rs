@@ -77,6 +77,8 @@ pub struct ContactProblem {
     pub grid: ContactGrid,
     /// Sum of the bodies' flexibilities (pair convention of [`crate::body`]).
     pub flex: Flexibility,
+    /// Each body's own flexibility [A, B], for its surface displacements.
+    pub bodies: [Flexibility; 2],
     /// Slip operator: B_p = σ D W_p, B_q = σ D W_q (paper Eq. 20) [1/stress].
     pub bp: Mat<f64>,
     /// See `bp`.
@@ -138,6 +140,7 @@ impl ContactProblem {
         Self {
             grid,
             flex,
+            bodies: [fa, fb],
             bp,
             bq,
             slip_operator,
@@ -186,6 +189,34 @@ impl ContactProblem {
                 .map(|dw| self.flow_sign * (creep + dw))
                 .collect()
         })
+    }
+}
+
+/// Surface displacements of the two bodies at the contact nodes [length].
+#[derive(Debug, Clone)]
+pub struct SurfaceDisplacements {
+    /// Normal displacement of A, positive into A (+y).
+    pub normal_a: Vec<f64>,
+    /// Tangential displacement of A along +x.
+    pub tangential_a: Vec<f64>,
+    /// Normal displacement of B, positive into B (−y).
+    pub normal_b: Vec<f64>,
+    /// Tangential displacement of B along +x.
+    pub tangential_b: Vec<f64>,
+}
+
+impl ContactProblem {
+    /// Each body's surface displacements under the tractions (half-space bodies: relative to
+    /// their logarithmic datum).
+    pub fn surface_displacements(&self, p: &[f64], q: &[f64]) -> SurfaceDisplacements {
+        let [a, b] = &self.bodies;
+        SurfaceDisplacements {
+            normal_a: mat_vec2(&a.hp, p, &a.hq, q),
+            tangential_a: mat_vec2(&a.wp, p, &a.wq, q),
+            normal_b: mat_vec2(&b.hp, p, &b.hq, q),
+            // w_B = −u_xB in the pair convention.
+            tangential_b: mat_vec2(&b.wp, p, &b.wq, q).into_iter().map(|v| -v).collect(),
+        }
     }
 }
 

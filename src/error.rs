@@ -1,1 +1,46 @@
-//! placeholder
+//! The library's error type and the CLI exit codes of DESIGN §5.
+
+use crate::case::CaseError;
+use std::path::PathBuf;
+
+/// Everything that stops a run (non-convergence is not an error: it is a result with
+/// `converged: false`, see [`crate::app::RunReport`]).
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The case is unreadable or invalid.
+    #[error(transparent)]
+    Case(#[from] CaseError),
+    /// The solved contact touches the end of the grid, so the grid does not contain it.
+    #[error(
+        "{case}: the contact reaches the {end} end of the grid (x = {x:.6}): the grid is too short. \
+         Increase contact.grid.extent (now {extent}) or contact.grid.half_length"
+    )]
+    GridTooShort {
+        /// Case file.
+        case: PathBuf,
+        /// "left" or "right".
+        end: &'static str,
+        /// x of the loaded end node.
+        x: f64,
+        /// The grid extent in Hertz half-widths.
+        extent: f64,
+    },
+    /// Writing results failed.
+    #[error("cannot write results to {path}: {message}")]
+    Output {
+        /// File or folder.
+        path: PathBuf,
+        /// Cause.
+        message: String,
+    },
+}
+
+impl Error {
+    /// Exit code of DESIGN §5: 1 for bad input (nothing written). Output failures also give 1.
+    pub fn exit_code(&self) -> i32 {
+        1
+    }
+}
+
+/// Exit code of a run that finished but did not converge (diagnostics written).
+pub const EXIT_NOT_CONVERGED: i32 = 2;

@@ -21,6 +21,7 @@ pub mod analytic;
 pub mod app;
 pub mod body;
 pub mod case;
+pub mod cli;
 pub mod contact;
 pub mod error;
 pub mod grid;

@@ -1,1 +1,310 @@
-//! placeholder
+//! Results on disk (DESIGN §5): summary.json, contact.csv, contact.svg, and the terminal table.
+//!
+//! Everything is written to a temporary sibling folder and renamed onto the output folder only
+//! when complete, so a failed run never leaves a half-written result.
+
+pub mod svg;
+
+use crate::app::{Estimates, Timings};
+use crate::case::LoadedCase;
+use crate::contact::newton::{IterationRecord, NewtonReport};
+use crate::contact::solution::{ContactSolution, NodeState, Zone};
+use crate::contact::ContactProblem;
+use crate::error::Error;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Contact extent in summary.json.
+#[derive(Debug, Clone, Serialize)]
+pub struct ContactExtent {
+    /// Left end of the contact [length].
+    pub x_min: f64,
+    /// Right end [length].
+    pub x_max: f64,
+    /// Half the contact length [length].
+    pub half_width: f64,
+    /// Centre of the contact [length].
+    pub centre: f64,
+}
+
+/// Grid description in summary.json.
+#[derive(Debug, Clone, Serialize)]
+pub struct GridSummary {
+    /// Number of elements.
+    pub elements: usize,
+    /// Element interpolation.
+    pub element: crate::grid::ElementKind,
+    /// Number of contact nodes.
+    pub nodes: usize,
+    /// Left end [length].
+    pub x_min: f64,
+    /// Right end [length].
+    pub x_max: f64,
+    /// Node spacing [length].
+    pub spacing: f64,
+    /// Slip derivative scheme.
+    pub slip_derivative: crate::contact::SlipDerivative,
+}
+
+/// summary.json (DESIGN §5).
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// Case title.
+    pub title: String,
+    /// Whether the solver converged.
+    pub converged: bool,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// Final scaled residual.
+    pub residual: f64,
+    /// P [force/length].
+    pub normal_force: f64,
+    /// Q [force/length].
+    pub tangential_force: f64,
+    /// Q/(μP) (null when μ = 0).
+    pub load_ratio: Option<f64>,
+    /// δ0 [length] (half-space bodies: relative to the datum ℓ = 2R/e, see docs/theory.md).
+    pub overlap: f64,
+    /// ξ = (V_A − V_B)/V.
+    pub creep: f64,
+    /// Contact extent (null if nothing is in contact).
+    pub contact: Option<ContactExtent>,
+    /// Stick zones [[x0, x1], …].
+    pub stick_zones: Vec<[f64; 2]>,
+    /// Slip zones [[x0, x1], …].
+    pub slip_zones: Vec<[f64; 2]>,
+    /// Sign of the slip in each slip zone, in the order of `slip_zones`.
+    pub slip_directions: Vec<i8>,
+    /// All zones in increasing x, with node counts.
+    pub zones: Vec<Zone>,
+    /// Slip regime 1–4 of paper §5.2 (0: none of them, e.g. full stick).
+    pub slip_regime: u8,
+    /// Peak pressure [stress].
+    pub max_pressure: f64,
+    /// Stage timings [s].
+    pub timings: Timings,
+    /// Model of each body.
+    pub models: Models,
+    /// Hertz estimates and derived constants.
+    pub estimates: Estimates,
+    /// The contact grid.
+    pub grid: GridSummary,
+    /// Solver diagnostics (penalties, residual history).
+    pub solver: SolverSummary,
+    /// The case as resolved after `--set` overrides.
+    pub case: serde_json::Value,
+}
+
+/// Models of A and B.
+#[derive(Debug, Clone, Serialize)]
+pub struct Models {
+    /// Model of A.
+    #[serde(rename = "A")]
+    pub a: String,
+    /// Model of B.
+    #[serde(rename = "B")]
+    pub b: String,
+}
+
+/// Solver diagnostics.
+#[derive(Debug, Clone, Serialize)]
+pub struct SolverSummary {
+    /// Formulation used.
+    pub formulation: crate::contact::newton::Formulation,
+    /// Normal penalty r_n [stress/length].
+    pub penalty_normal: f64,
+    /// Tangential penalty r_t [stress].
+    pub penalty_tangential: f64,
+    /// Traction scale of the convergence test [stress].
+    pub traction_scale: f64,
+    /// Residual, step length and system size per iteration.
+    pub history: Vec<IterationRecord>,
+}
+
+/// Builds the summary of a run.
+pub fn summary(
+    case: &LoadedCase,
+    est: &Estimates,
+    pb: &ContactProblem,
+    sol: &ContactSolution,
+    newton: &NewtonReport,
+    regime: u8,
+    timings: Timings,
+) -> Summary {
+    let mu = case.case.contact.friction;
+    let model = |s: &crate::case::BodySpec| match s {
+        crate::case::BodySpec::HalfSpace { .. } => "half_space".to_string(),
+        crate::case::BodySpec::Rigid { .. } => "rigid".to_string(),
+    };
+    Summary {
+        title: case.case.title.clone(),
+        converged: newton.converged,
+        iterations: newton.iterations,
+        residual: newton.residual,
+        normal_force: sol.normal_force,
+        tangential_force: sol.tangential_force,
+        load_ratio: (mu > 0.0 && sol.normal_force > 0.0).then(|| sol.tangential_force / (mu * sol.normal_force)),
+        overlap: sol.overlap,
+        creep: sol.creep,
+        contact: sol.contact_extent().map(|[x0, x1]| ContactExtent {
+            x_min: x0,
+            x_max: x1,
+            half_width: 0.5 * (x1 - x0),
+            centre: 0.5 * (x0 + x1),
+        }),
+        stick_zones: sol.zones_of(NodeState::Stick),
+        slip_zones: sol.zones_of(NodeState::Slip),
+        slip_directions: sol.slip_directions(),
+        zones: sol.zones.clone(),
+        slip_regime: regime,
+        max_pressure: sol.pressure.iter().fold(0.0, |a, &b| a.max(b)),
+        timings,
+        models: Models {
+            a: model(&case.case.bodies.a),
+            b: model(&case.case.bodies.b),
+        },
+        estimates: est.clone(),
+        grid: GridSummary {
+            elements: pb.grid.n_elements(),
+            element: pb.grid.kind,
+            nodes: pb.grid.n_nodes(),
+            x_min: pb.grid.edges[0],
+            x_max: pb.grid.edges[pb.grid.n_elements()],
+            spacing: pb.grid.node_spacing(),
+            slip_derivative: pb.slip_operator.scheme,
+        },
+        solver: SolverSummary {
+            formulation: case.case.solver.formulation,
+            penalty_normal: newton.penalty_normal,
+            penalty_tangential: newton.penalty_tangential,
+            traction_scale: newton.traction_scale,
+            history: newton.history.clone(),
+        },
+        case: case.resolved.clone(),
+    }
+}
+
+/// Column names of contact.csv, in order (DESIGN §5 plus the surface displacements).
+pub const CSV_COLUMNS: [&str; 11] = [
+    "x", "pressure", "shear", "gap", "slip", "slip_hbem", "state", "u_n_A", "u_t_A", "u_n_B", "u_t_B",
+];
+
+/// Writes contact.csv. `slip_hbem` is left empty when no boundary-integral derivative exists.
+/// Surface displacements: u_n positive into the body, u_t along +x of the contact frame.
+pub fn write_csv(path: &Path, sol: &ContactSolution, pb: &ContactProblem) -> Result<(), Error> {
+    let io = |e: csv::Error| Error::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    let mut w = csv::Writer::from_path(path).map_err(io)?;
+    w.write_record(CSV_COLUMNS).map_err(io)?;
+    let disp = pb.surface_displacements(&sol.pressure, &sol.shear);
+    for i in 0..sol.x.len() {
+        let hbem = sol.slip_strain.as_ref().map_or(String::new(), |s| fmt(s[i]));
+        w.write_record([
+            fmt(sol.x[i]),
+            fmt(sol.pressure[i]),
+            fmt(sol.shear[i]),
+            fmt(sol.gap[i]),
+            fmt(sol.slip[i]),
+            hbem,
+            sol.state[i].name().to_string(),
+            fmt(disp.normal_a[i]),
+            fmt(disp.tangential_a[i]),
+            fmt(disp.normal_b[i]),
+            fmt(disp.tangential_b[i]),
+        ])
+        .map_err(io)?;
+    }
+    w.flush().map_err(|e| Error::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })
+}
+
+/// Full-precision, round-trippable number formatting.
+fn fmt(v: f64) -> String {
+    format!("{v:e}")
+}
+
+/// Writes all outputs of a run atomically into `dir` and fills in the total time.
+/// A non-converged run writes summary.json only.
+pub fn write_run(dir: &Path, summary: &mut Summary, sol: &ContactSolution, pb: &ContactProblem, start: Instant) -> Result<(), Error> {
+    let err = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    let name = dir.file_name().map_or("out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp: PathBuf = dir.with_file_name(format!(".{name}.partial-{}", std::process::id()));
+    if let Some(parent) = tmp.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent).map_err(|e| err(parent, &e))?;
+    }
+    if tmp.exists() {
+        std::fs::remove_dir_all(&tmp).map_err(|e| err(&tmp, &e))?;
+    }
+    std::fs::create_dir(&tmp).map_err(|e| err(&tmp, &e))?;
+    let result = (|| {
+        if summary.converged {
+            write_csv(&tmp.join("contact.csv"), sol, pb)?;
+            svg::write_contact_plot(&tmp.join("contact.svg"), sol, pb.friction, &summary.title)?;
+        }
+        summary.timings.total_s = start.elapsed().as_secs_f64();
+        let json = serde_json::to_string_pretty(summary).map_err(|e| err(&tmp, &e))?;
+        std::fs::write(tmp.join("summary.json"), json).map_err(|e| err(&tmp, &e))?;
+        if dir.exists() {
+            std::fs::remove_dir_all(dir).map_err(|e| err(dir, &e))?;
+        }
+        std::fs::rename(&tmp, dir).map_err(|e| err(dir, &e))
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_dir_all(&tmp);
+    }
+    result
+}
+
+/// The terminal summary table of a run.
+pub fn render_table(s: &Summary, output_dir: &Path) -> String {
+    let mut t = String::new();
+    let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<22} {v}\n"));
+    let status = if s.converged { "converged" } else { "NOT CONVERGED" };
+    line("title", s.title.clone());
+    line("models (A / B)", format!("{} / {}", s.models.a, s.models.b));
+    line(
+        "solver",
+        format!("{status} in {} iterations, residual {:.2e}", s.iterations, s.residual),
+    );
+    line("normal force P", format!("{:.6}", s.normal_force));
+    line(
+        "tangential force Q",
+        format!("{:.6}{}", s.tangential_force, s.load_ratio.map_or(String::new(), |r| format!("  (Q/muP = {r:.4})"))),
+    );
+    line("overlap delta0", format!("{:.6e}", s.overlap));
+    line("creepage xi", format!("{:.6e}", s.creep));
+    if let Some(c) = &s.contact {
+        line(
+            "contact",
+            format!("[{:.5}, {:.5}]  half-width {:.5} (Hertz {:.5})", c.x_min, c.x_max, c.half_width, s.estimates.hertz_half_width),
+        );
+    }
+    line("max pressure", format!("{:.6} (Hertz p0 {:.6})", s.max_pressure, s.estimates.hertz_peak_pressure));
+    let zones = |z: &[[f64; 2]]| z.iter().map(|[a, b]| format!("[{a:.4}, {b:.4}]")).collect::<Vec<_>>().join(" ");
+    line("stick zones", zones(&s.stick_zones));
+    line(
+        "slip zones",
+        format!("{}  directions {:?}  regime {}", zones(&s.slip_zones), s.slip_directions, s.slip_regime),
+    );
+    line(
+        "grid",
+        format!("{} {:?} elements, {} nodes, spacing {:.4e}", s.grid.elements, s.grid.element, s.grid.nodes, s.grid.spacing),
+    );
+    line(
+        "time [s]",
+        format!(
+            "assembly {:.4}  condense {:.4}  solve {:.4}  total {:.4}",
+            s.timings.assembly_s, s.timings.condense_s, s.timings.solve_s, s.timings.total_s
+        ),
+    );
+    line("results", output_dir.display().to_string());
+    t
+}

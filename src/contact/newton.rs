@@ -281,7 +281,7 @@ impl System<'_> {
         let mut rhs = Mat::<f64>::zeros(n, 1);
 
         // Adds Σ_j (ap_j Δp_j + aq_j Δq_j) to row `row`, moving known parts to the right side.
-        let mut add_row = |J: &mut Mat<f64>, rhs: &mut Mat<f64>, row: usize, ap: &dyn Fn(usize) -> f64, aq: &dyn Fn(usize) -> f64| {
+        let add_row = |J: &mut Mat<f64>, rhs: &mut Mat<f64>, row: usize, ap: &dyn Fn(usize) -> f64, aq: &dyn Fn(usize) -> f64| {
             for j in 0..m {
                 let (a_p, a_q) = (ap(j), aq(j));
                 let cp = a_p + a_q * q_pcoef[j];

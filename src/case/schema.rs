@@ -1,0 +1,323 @@
+//! The case file schema (DESIGN §5). Every struct rejects unknown keys; each field documents its
+//! unit and default. Lengths, forces and stresses are in the case's consistent units.
+
+use crate::contact::newton::Formulation;
+use crate::contact::{RollingDirection, SlipDerivative};
+use crate::grid::ElementKind;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// A whole case file.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    /// Free text shown in reports. Default = "".
+    #[serde(default)]
+    pub title: String,
+    /// Unit labels (only printed; the numbers must be consistent). Default = mm, N.
+    #[serde(default)]
+    pub units: Units,
+    /// Named materials.
+    pub materials: BTreeMap<String, MaterialSpec>,
+    /// The two bodies: A (upper) and B (lower).
+    pub bodies: Bodies,
+    /// Friction, rolling direction and contact grid.
+    pub contact: ContactSpec,
+    /// Normal and tangential load or kinematics.
+    pub load: LoadSpec,
+    /// Solver settings. Default = generalized Newton, Φ, automatic penalty.
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// Output settings.
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// Unit labels.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Units {
+    /// Length unit label. Default = "mm".
+    pub length: String,
+    /// Force unit label. Default = "N".
+    pub force: String,
+}
+
+impl Default for Units {
+    fn default() -> Self {
+        Self {
+            length: "mm".into(),
+            force: "N".into(),
+        }
+    }
+}
+
+/// An isotropic elastic material: Poisson's ratio and exactly one of E or G.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Young's modulus [stress].
+    #[serde(rename = "E", default)]
+    pub young: Option<f64>,
+    /// Shear modulus [stress] (instead of E).
+    #[serde(rename = "G", default)]
+    pub shear: Option<f64>,
+    /// Poisson's ratio ν ∈ (−1, 0.5].
+    pub nu: f64,
+}
+
+/// The pair of bodies.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Bodies {
+    /// Upper body (y > 0).
+    #[serde(rename = "A")]
+    pub a: BodySpec,
+    /// Lower body (y < 0).
+    #[serde(rename = "B")]
+    pub b: BodySpec,
+}
+
+/// One body and its model.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum BodySpec {
+    /// Elastic half-plane with the profile of a cylinder of the given radius.
+    HalfSpace {
+        /// Name of a material under `materials`.
+        material: String,
+        /// Profile radius [length].
+        radius: f64,
+    },
+    /// Rigid cylinder.
+    Rigid {
+        /// Profile radius [length].
+        radius: f64,
+    },
+}
+
+/// Friction, rolling direction and the contact grid.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Coulomb friction coefficient μ ≥ 0.
+    pub friction: f64,
+    /// Direction in which the contact moves over the bodies: "+x" or "-x". Default = "+x".
+    #[serde(default = "default_rolling")]
+    pub rolling_direction: RollingDirection,
+    /// Contact grid. Default = 21 discontinuous quadratic elements over ±1.3 Hertz half-widths.
+    #[serde(default)]
+    pub grid: GridSpec,
+    /// Steady-rolling derivative of the slip. Default = second_order.
+    #[serde(default = "default_derivative")]
+    pub slip_derivative: SlipDerivative,
+}
+
+fn default_rolling() -> RollingDirection {
+    RollingDirection::PlusX
+}
+
+fn default_derivative() -> SlipDerivative {
+    SlipDerivative::SecondOrder
+}
+
+/// The contact grid.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GridSpec {
+    /// Number of traction elements. Default = 21 (the paper's grid).
+    pub elements: usize,
+    /// Half-length of the grid in Hertz half-widths (> 1). Default = 1.3.
+    pub extent: f64,
+    /// Half-length of the grid [length]; overrides `extent` when given. Default = none.
+    pub half_length: Option<f64>,
+    /// Traction interpolation. Default = discontinuous_quadratic.
+    pub element: ElementKind,
+}
+
+impl Default for GridSpec {
+    fn default() -> Self {
+        Self {
+            elements: 21,
+            extent: 1.3,
+            half_length: None,
+            element: ElementKind::DiscontinuousQuadratic,
+        }
+    }
+}
+
+/// Normal and tangential loading.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    /// Normal load: `{force: P}` [force/length] or `{overlap: δ0}` [length].
+    #[serde(rename = "normal")]
+    pub normal_keys: NormalKeys,
+    /// Tangential load: `{ratio: Q/(μP)}`, `{force: Q}` [force/length] or `{creep: ξ}`. Default = {ratio: 0}.
+    #[serde(rename = "tangential", default)]
+    pub tangential_keys: TangentialKeys,
+}
+
+/// The keys under `load.normal`: exactly one must be given.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct NormalKeys {
+    /// Normal force per unit length P > 0.
+    pub force: Option<f64>,
+    /// Rigid overlap δ0 > 0.
+    pub overlap: Option<f64>,
+}
+
+/// The keys under `load.tangential`: at most one may be given (none means ratio 0).
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TangentialKeys {
+    /// Q/(μP) ∈ (−1, 1).
+    pub ratio: Option<f64>,
+    /// Tangential force per unit length Q.
+    pub force: Option<f64>,
+    /// Creepage ξ = (V_A − V_B)/V.
+    pub creep: Option<f64>,
+}
+
+/// Normal load or kinematics.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NormalSpec {
+    /// Normal force per unit length P > 0.
+    Force(f64),
+    /// Rigid overlap δ0 > 0.
+    Overlap(f64),
+}
+
+/// Tangential load or kinematics.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TangentialSpec {
+    /// Q/(μP) ∈ (−1, 1).
+    Ratio(f64),
+    /// Tangential force per unit length Q.
+    Force(f64),
+    /// Creepage ξ = (V_A − V_B)/V.
+    Creep(f64),
+}
+
+impl NormalKeys {
+    /// The normal control, or a message if not exactly one key is given.
+    pub fn spec(&self) -> Result<NormalSpec, String> {
+        match (self.force, self.overlap) {
+            (Some(p), None) => Ok(NormalSpec::Force(p)),
+            (None, Some(d)) => Ok(NormalSpec::Overlap(d)),
+            _ => Err("give exactly one of `force` (P) or `overlap` (delta0)".into()),
+        }
+    }
+}
+
+impl TangentialKeys {
+    /// The tangential control, or a message if more than one key is given.
+    pub fn spec(&self) -> Result<TangentialSpec, String> {
+        match (self.ratio, self.force, self.creep) {
+            (None, None, None) => Ok(TangentialSpec::Ratio(0.0)),
+            (Some(r), None, None) => Ok(TangentialSpec::Ratio(r)),
+            (None, Some(q), None) => Ok(TangentialSpec::Force(q)),
+            (None, None, Some(x)) => Ok(TangentialSpec::Creep(x)),
+            _ => Err("give only one of `ratio` (Q/muP), `force` (Q) or `creep` (xi)".into()),
+        }
+    }
+}
+
+impl LoadSpec {
+    /// The normal control (validated cases only; an invalid one falls back to zero force).
+    pub fn normal(&self) -> NormalSpec {
+        self.normal_keys.spec().unwrap_or(NormalSpec::Force(0.0))
+    }
+
+    /// The tangential control (validated cases only).
+    pub fn tangential(&self) -> TangentialSpec {
+        self.tangential_keys.spec().unwrap_or(TangentialSpec::Ratio(0.0))
+    }
+}
+
+/// Solver settings.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverSpec {
+    /// Solution method. Default = newton (generalized Newton with line search).
+    pub method: Method,
+    /// Projection formulation: phi (paper Eq. 43) or psi (Eq. 44). Default = phi.
+    pub formulation: Formulation,
+    /// `auto` (scale 1) or a positive scale c of the automatic penalties. Default = auto.
+    pub penalty: Penalty,
+    /// Scaled residual at which the solver stops. Default = 1e-10.
+    pub tolerance: f64,
+    /// Maximum number of Newton iterations. Default = 100.
+    pub max_iterations: usize,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        Self {
+            method: Method::Newton,
+            formulation: Formulation::Phi,
+            penalty: Penalty::Auto(AutoTag::Auto),
+            tolerance: 1e-10,
+            max_iterations: 100,
+        }
+    }
+}
+
+/// Solution methods.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// Generalized Newton with Armijo line search (González & Abascal §4).
+    Newton,
+}
+
+/// Penalty choice: the word `auto` or a positive scale.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum Penalty {
+    /// `auto`: scale 1.
+    Auto(AutoTag),
+    /// A positive scale c.
+    Scale(f64),
+}
+
+/// The literal `auto`.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AutoTag {
+    /// `auto`.
+    Auto,
+}
+
+impl Penalty {
+    /// The penalty scale c.
+    pub fn scale(self) -> f64 {
+        match self {
+            Penalty::Auto(_) => 1.0,
+            Penalty::Scale(c) => c,
+        }
+    }
+}
+
+/// Output settings.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OutputSpec {
+    /// Output folder, relative to the case file. Default = out/<case file stem> next to the case.
+    pub dir: Option<String>,
+    /// VTK files for ParaView (not available yet for half-space runs). Default = false.
+    pub vtk: bool,
+    /// Interior stress grid (not available yet). Default = null.
+    pub interior: Option<serde_json::Value>,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        Self {
+            dir: None,
+            vtk: false,
+            interior: None,
+        }
+    }
+}
