@@ -90,6 +90,18 @@ fn load_from_overlap(overlap: f64, bodies: [(Option<Elastic>, f64); 2], radius: 
     (lo * hi).sqrt()
 }
 
+/// Half-length L ≈ extent·a of a grid of `elements` equal elements on [−L, L] such that ±a are
+/// element boundaries: with k elements outside the contact on each side, L = a·n/(n − 2k).
+pub fn aligned_half_length(a: f64, extent: f64, elements: usize) -> f64 {
+    let n = elements as f64;
+    let k = (0.5 * n * (1.0 - 1.0 / extent)).round().max(1.0);
+    if n - 2.0 * k >= 1.0 {
+        a * n / (n - 2.0 * k)
+    } else {
+        extent * a
+    }
+}
+
 /// Hertz estimates and the grid half-length of a case.
 pub fn estimates(case: &LoadedCase) -> Estimates {
     let c = &case.case;
@@ -112,7 +124,12 @@ pub fn estimates(case: &LoadedCase) -> Estimates {
         TangentialSpec::Force(q) if c.contact.friction > 0.0 => Some(q / (c.contact.friction * normal_force)),
         _ => None,
     };
-    let grid_half_length = c.contact.grid.half_length.unwrap_or(c.contact.grid.extent * a);
+    let g = &c.contact.grid;
+    let grid_half_length = match g.half_length {
+        Some(h) => h,
+        None if g.align_edges => aligned_half_length(a, g.extent, g.elements),
+        None => g.extent * a,
+    };
     let npe = c.contact.grid.element.nodes_per_element();
     Estimates {
         e_star,
@@ -199,6 +216,52 @@ pub struct RunReport {
     pub output_dir: PathBuf,
 }
 
+/// A solved case, before anything is written.
+#[derive(Debug, Clone)]
+pub struct Solved {
+    /// Hertz estimates.
+    pub estimates: Estimates,
+    /// The assembled problem.
+    pub problem: ContactProblem,
+    /// The solution (for a non-converged run: the last iterate).
+    pub solution: ContactSolution,
+    /// Solver report.
+    pub newton: NewtonReport,
+    /// Stage timings (total excludes output).
+    pub timings: Timings,
+    /// Slip regime 1–4 (paper §5.2), 0 for none.
+    pub regime: u8,
+}
+
+/// Assembles and solves a loaded case; checks that the grid contains the contact.
+pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
+    let start = Instant::now();
+    let estimates = estimates(case);
+    let problem = build_problem(case, &estimates);
+    let mut timings = Timings {
+        assembly_s: start.elapsed().as_secs_f64(),
+        ..Timings::default()
+    };
+    let t_solve = Instant::now();
+    let (state, newton) = newton::solve(&problem, &newton_settings(case));
+    timings.solve_s = t_solve.elapsed().as_secs_f64();
+    timings.total_s = start.elapsed().as_secs_f64();
+    let solution = ContactSolution::from_state(&problem, &state);
+    if newton.converged {
+        check_grid_contains_contact(case, &solution)?;
+    }
+    let leading = -case.case.contact.rolling_direction.flow_sign();
+    let regime = slip_regime(&solution, leading, 1);
+    Ok(Solved {
+        estimates,
+        problem,
+        solution,
+        newton,
+        timings,
+        regime,
+    })
+}
+
 /// Loads a case, solves it and writes its outputs (DESIGN §5). A run that does not converge
 /// writes only summary.json (with `converged: false` and the residual history) and returns
 /// `Ok` with `summary.converged == false`.
@@ -206,28 +269,14 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
     let start = Instant::now();
     let case = case::load(case_path, overrides)?;
     let output_dir = out.map(Path::to_path_buf).unwrap_or_else(|| case.output_dir());
-    let est = estimates(&case);
-    let problem = build_problem(&case, &est);
-    let mut timings = Timings {
-        assembly_s: start.elapsed().as_secs_f64(),
-        ..Timings::default()
-    };
-    let t_solve = Instant::now();
-    let (state, newton) = newton::solve(&problem, &newton_settings(&case));
-    timings.solve_s = t_solve.elapsed().as_secs_f64();
-    let solution = ContactSolution::from_state(&problem, &state);
-    if newton.converged {
-        check_grid_contains_contact(&case, &solution)?;
-    }
-    let leading = case.case.contact.rolling_direction.flow_sign() * -1.0;
-    let regime = slip_regime(&solution, leading, 1);
-    let mut summary = output::summary(&case, &est, &problem, &solution, &newton, regime, timings);
-    output::write_run(&output_dir, &mut summary, &solution, &problem, start)?;
+    let s = solve(&case)?;
+    let mut summary = output::summary(&case, &s.estimates, &s.problem, &s.solution, &s.newton, s.regime, s.timings);
+    output::write_run(&output_dir, &mut summary, &s.solution, &s.problem, start)?;
     Ok(RunReport {
         summary,
-        solution,
-        problem,
-        newton,
+        solution: s.solution,
+        problem: s.problem,
+        newton: s.newton,
         output_dir,
     })
 }

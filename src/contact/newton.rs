@@ -224,6 +224,38 @@ impl System<'_> {
         }
     }
 
+    /// With δ0 free, at least one node must carry the contact row (δ0 appears nowhere else,
+    /// and the P row would repeat itself): if none does, the node closest to contact (largest
+    /// p − r g) is given the contact derivative, the paper's "modified" choice at a near-tie.
+    fn ensure_contact_row(&self, z: &State, mut contact: Vec<bool>) -> Vec<bool> {
+        if self.free_overlap && !contact.iter().any(|&c| c) {
+            let f = |k: usize| z.pressure[k] - self.rn * z.gap[k];
+            let k = (0..contact.len()).max_by(|&i, &j| f(i).total_cmp(&f(j))).unwrap_or(0);
+            contact[k] = true;
+        }
+        contact
+    }
+
+    /// With ξ free, ξ enters only the stick rows: when every loaded node slips (a full-sliding
+    /// active set, met transiently), the Q row becomes a multiple of the P row and the matrix is
+    /// singular. The slipping node closest to sticking (smallest (|t| − bound)/bound) then gets
+    /// the stick derivative, again a "modified" choice at a near-tie (paper Eq. 60).
+    fn ensure_stick_row(&self, z: &State, contact: &[bool], tangential: &mut [Tangential]) {
+        if !self.free_creep || tangential.iter().any(|t| *t == Tangential::Stick) {
+            return;
+        }
+        let excess = |i: usize| {
+            let bound = self.pb.friction * self.bound_pressure(z.pressure[i], z.gap[i]);
+            ((z.shear[i] - self.rt * z.slip[i]).abs() - bound) / bound
+        };
+        if let Some(k) = (0..tangential.len())
+            .filter(|&i| matches!(tangential[i], Tangential::Slip(_)) && contact[i])
+            .min_by(|&i, &j| excess(i).total_cmp(&excess(j)))
+        {
+            tangential[k] = Tangential::Stick;
+        }
+    }
+
     /// Solves the linearized equations BG(z)Δz = −G(z) by the reduction in the module docs.
     #[allow(non_snake_case)]
     fn newton_direction(&self, z: &State, G: &[f64]) -> Result<(State, usize), String> {
@@ -237,8 +269,12 @@ impl System<'_> {
         let mut p_col = vec![None; m];
         let mut p_const = vec![0.0; m];
         let mut contact_rows = Vec::new();
+        let normal_contact: Vec<bool> = (0..m).map(|i| self.is_contact(z.pressure[i], z.gap[i])).collect();
+        let mut tangential: Vec<Tangential> = (0..m).map(|i| self.tangential_state(z, i)).collect();
+        let normal_contact = self.ensure_contact_row(z, normal_contact);
+        self.ensure_stick_row(z, &normal_contact, &mut tangential);
         for i in 0..m {
-            if self.is_contact(z.pressure[i], z.gap[i]) {
+            if normal_contact[i] {
                 p_col[i] = Some(n_cols);
                 n_cols += 1;
                 contact_rows.push(i);
@@ -251,7 +287,7 @@ impl System<'_> {
         let mut q_pcoef = vec![0.0; m];
         let mut stick_rows = Vec::new();
         for i in 0..m {
-            match self.tangential_state(z, i) {
+            match tangential[i] {
                 Tangential::Free => q_const[i] = -g4[i],
                 Tangential::Stick => {
                     q_col[i] = Some(n_cols);

@@ -93,7 +93,7 @@ impl ContactSolution {
             })
             .collect();
         let zones = zones(&pb.grid.nodes, &state, &slip);
-        Self {
+        let mut solution = Self {
             x: pb.grid.nodes.clone(),
             normal_force: pb.grid.integrate(&pressure),
             tangential_force: pb.grid.integrate(&z.shear),
@@ -106,15 +106,49 @@ impl ContactSolution {
             overlap: z.overlap,
             creep: z.creep,
             zones,
+        };
+        solution.snap_zones_to_contact_edges();
+        solution
+    }
+
+    /// Moves the zone boundaries at the two contact edges onto the extrapolated edges of
+    /// [`Self::contact_extent`], so zones and contact extent agree.
+    fn snap_zones_to_contact_edges(&mut self) {
+        let Some([x0, x1]) = self.contact_extent() else { return };
+        let n = self.zones.len();
+        if let Some(k) = self.zones.iter().position(|z| z.state != NodeState::Open) {
+            self.zones[k].x0 = x0;
+            if k > 0 {
+                self.zones[k - 1].x1 = x0;
+            }
+        }
+        if let Some(k) = self.zones.iter().rposition(|z| z.state != NodeState::Open) {
+            self.zones[k].x1 = x1;
+            if k + 1 < n {
+                self.zones[k + 1].x0 = x1;
+            }
         }
     }
 
-    /// Contact extent [x_min, x_max] (midway between the outermost loaded node and the next
-    /// open one), or None if nothing is in contact.
+    /// Contact extent [x_min, x_max], or None if nothing is in contact.
+    ///
+    /// Near a smooth contact edge p ≈ C·√(distance), so p² is linear in x: each end is where the
+    /// line through p² at the two outermost loaded nodes reaches zero, kept between the
+    /// outermost loaded node and the first open node (sub-node resolution instead of ±h/2).
     pub fn contact_extent(&self) -> Option<[f64; 2]> {
-        let first = self.zones.iter().find(|z| z.state != NodeState::Open)?;
-        let last = self.zones.iter().rev().find(|z| z.state != NodeState::Open)?;
-        Some([first.x0, last.x1])
+        let loaded: Vec<usize> = (0..self.x.len()).filter(|&i| self.state[i] != NodeState::Open).collect();
+        let (&first, &last) = (loaded.first()?, loaded.last()?);
+        let h = if self.x.len() > 1 { self.x[1] - self.x[0] } else { 0.0 };
+        let edge = |i: usize, j: usize, outward: f64| -> f64 {
+            // Extrapolate p² from node j (inner) through node i (outermost) to zero.
+            let (pi, pj) = (self.pressure[i].powi(2), self.pressure[j].powi(2));
+            let slope = (pi - pj) / (self.x[i] - self.x[j]);
+            let t = if slope * outward < 0.0 { -pi / slope } else { 0.5 * h * outward };
+            self.x[i] + t.clamp(-h, h).abs().min(h) * outward
+        };
+        let x0 = if last > first && self.state[first + 1] != NodeState::Open { edge(first, first + 1, -1.0) } else { self.x[first] - 0.5 * h };
+        let x1 = if last > first && self.state[last - 1] != NodeState::Open { edge(last, last - 1, 1.0) } else { self.x[last] + 0.5 * h };
+        Some([x0, x1])
     }
 
     /// Zones of the given state as [x0, x1] pairs.
@@ -193,4 +227,22 @@ pub fn slip_regime(solution: &ContactSolution, leading_edge_sign: f64, min_nodes
         [a, b, c] if a == c && a != b => 4,
         _ => 0,
     }
+}
+
+/// Ripple of the shear [stress]: node-to-node zig-zag, measured as the largest
+/// min(|Δ²q_i|, |Δ²q_{i+1}|) over neighbouring second differences of opposite sign whose
+/// stencils lie inside one zone. A smooth traction changes the sign of Δ²q only at inflection
+/// points, where Δ²q is small (about h³ times the third derivative), and square-root kinks at
+/// zone or contact edges keep one sign; an odd–even oscillation of amplitude A (the ripples Man
+/// & Aliabadi reported with continuous elements) gives about 4A.
+pub fn traction_ripple(solution: &ContactSolution) -> f64 {
+    let m = solution.x.len();
+    let q = &solution.shear;
+    let key = |i: usize| (solution.state[i], solution.slip[i] >= 0.0 || solution.state[i] != NodeState::Slip);
+    let inside = |i: usize| solution.state[i] != NodeState::Open && key(i - 1) == key(i) && key(i + 1) == key(i);
+    let d2 = |i: usize| q[i - 1] - 2.0 * q[i] + q[i + 1];
+    (1..m.saturating_sub(2))
+        .filter(|&i| inside(i) && inside(i + 1) && key(i) == key(i + 1) && d2(i) * d2(i + 1) < 0.0)
+        .map(|i| d2(i).abs().min(d2(i + 1).abs()))
+        .fold(0.0, f64::max)
 }

@@ -1,0 +1,33 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use rollbem::app::{self, Solved};
+use rollbem::case::{self, LoadedCase};
+use std::path::PathBuf;
+
+/// Path of a shipped case by its stem.
+pub fn case_path(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases").join(format!("{name}.yaml"))
+}
+
+/// Loads a shipped case with `key=value` overrides and solves it (no files written).
+pub fn solve(name: &str, overrides: &[&str]) -> (LoadedCase, Solved) {
+    let set: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let case = case::load(&case_path(name), &set).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let solved = app::solve(&case).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert!(solved.newton.converged, "{name} {overrides:?} did not converge: {:?}", solved.newton.history);
+    (case, solved)
+}
+
+/// Max and RMS of |f(x_i) − g_i| / scale over the nodes with |x_i| < limit.
+pub fn nodal_error(x: &[f64], values: &[f64], exact: impl Fn(f64) -> f64, limit: f64, scale: f64) -> (f64, f64) {
+    let errs: Vec<f64> = x
+        .iter()
+        .zip(values)
+        .filter(|(x, _)| x.abs() < limit)
+        .map(|(x, v)| (v - exact(*x)).abs() / scale)
+        .collect();
+    let max = errs.iter().fold(0.0_f64, |a, &b| a.max(b));
+    let rms = (errs.iter().map(|e| e * e).sum::<f64>() / errs.len() as f64).sqrt();
+    (max, rms)
+}
