@@ -62,15 +62,22 @@ fn carter_traction_stick_zone_and_creepage() {
     }
 }
 
-/// The first-order operator of the paper under-predicts |ξ| by O(h); the second-order one does
-/// not. At the paper's 21 elements: first order ≥ 1 % low, second order within 0.5 %.
+/// The paper's first-order operator under-predicts |ξ| by O(h). The second-order upwind
+/// operator has a smaller error at every grid (measured: +0.51 % against −0.78 % at 21 elements)
+/// but also O(h): the remaining error comes from the traction discretization at the contact and
+/// stick/slip edges, not from the derivative (docs/validation.md). Both errors fall ~ linearly.
 #[test]
-fn second_order_slip_derivative_removes_the_creepage_bias() {
-    let (loaded, first) = solve("carter_051", &["contact.slip_derivative=first_order"]);
-    let (_, second) = solve("carter_051", &["contact.slip_derivative=second_order"]);
-    let xi = rollbem::app::carter_reference(&loaded, &first.estimates).unwrap().creep(first.estimates.effective_radius);
-    let e1 = first.solution.creep / xi - 1.0;
-    let e2 = second.solution.creep / xi - 1.0;
-    assert!(e1 < -0.01, "first-order creep error {e1}");
-    assert!(e2.abs() < 0.005, "second-order creep error {e2}");
+fn slip_derivatives_creepage_error_is_small_and_decreases_like_h() {
+    let creep_error = |der: &str, n: usize| {
+        let (loaded, s) = solve("carter_051", &[&format!("contact.slip_derivative={der}"), &format!("contact.grid.elements={n}")]);
+        let xi = rollbem::app::carter_reference(&loaded, &s.estimates).unwrap().creep(s.estimates.effective_radius);
+        s.solution.creep / xi - 1.0
+    };
+    let (f21, s21) = (creep_error("first_order", 21), creep_error("second_order", 21));
+    let (f81, s81) = (creep_error("first_order", 81), creep_error("second_order", 81));
+    assert!(f21 < 0.0 && f81 < 0.0, "first order must under-predict |ξ|: {f21}, {f81}");
+    assert!(s21.abs() < f21.abs() && s81.abs() < f81.abs(), "second order {s21}, {s81} vs first {f21}, {f81}");
+    assert!(f21.abs() < 0.01 && s21.abs() < 0.01);
+    // Four times finer grid: error at least three times smaller (O(h) would give four).
+    assert!(f81.abs() < f21.abs() / 3.0 && s81.abs() < s21.abs() / 3.0, "{f21} {f81} {s21} {s81}");
 }

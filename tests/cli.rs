@@ -1,0 +1,140 @@
+//! The `rollbem` binary: exit codes, messages, files written (DESIGN §5, §8).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const BASE: &str = r#"
+title: "cli test"
+materials:
+  steel: {E: 210000.0, nu: 0.3}
+bodies:
+  A: {model: half_space, material: steel, radius: 100.0}
+  B: {model: half_space, material: steel, radius: 100.0}
+contact:
+  friction: 0.1
+  grid: {elements: 21, extent: 1.3}
+load:
+  normal: {force: 1812.4573}
+  tangential: {ratio: 0.51}
+output: {dir: out}
+"#;
+
+fn write_case(dir: &Path, text: &str) -> PathBuf {
+    let path = dir.join("case.yaml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn rollbem(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_rollbem")).args(args).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn run_writes_the_documented_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = write_case(dir.path(), BASE);
+    let (code, stdout, stderr) = rollbem(&["run", case.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("converged") && stdout.contains("stick zones"), "{stdout}");
+    let out = dir.path().join("out");
+    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    for key in ["converged", "iterations", "residual", "normal_force", "tangential_force", "overlap", "creep", "contact", "stick_zones", "slip_zones", "timings", "models", "case"] {
+        assert!(summary.get(key).is_some(), "summary.json lacks `{key}`");
+    }
+    for key in ["x_min", "x_max", "half_width"] {
+        assert!(summary["contact"].get(key).is_some(), "summary.json contact lacks `{key}`");
+    }
+    for key in ["assembly_s", "condense_s", "solve_s", "total_s"] {
+        assert!(summary["timings"][key].as_f64().is_some(), "timings lacks `{key}`");
+    }
+    assert_eq!(summary["converged"], true);
+    assert!(!summary["solver"]["history"].as_array().unwrap().is_empty());
+    let csv = std::fs::read_to_string(out.join("contact.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next().unwrap(), "x,pressure,shear,gap,slip,slip_hbem,state,u_n_A,u_t_A,u_n_B,u_t_B");
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), 63);
+    assert!(!csv.contains("NaN") && !csv.contains("inf"));
+    assert!(rows.iter().any(|r| r.contains(",stick,")) && rows.iter().any(|r| r.contains(",slip,")) && rows.iter().any(|r| r.contains(",open,")));
+    let svg = std::fs::read_to_string(out.join("contact.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.len() > 2000);
+    // No temporary folder left behind.
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path()).unwrap().filter_map(|e| e.ok()).filter(|e| e.file_name().to_string_lossy().contains("partial")).collect();
+    assert!(leftovers.is_empty());
+}
+
+/// Each defect: exit code 1, a message naming the key, and no output folder.
+#[test]
+fn bad_input_is_rejected_with_the_key_named_and_nothing_written() {
+    let cases: [(&str, &str, &str); 11] = [
+        ("unknown key", "  friction: 0.1\n", "  friction: 0.1\n  frictoin: 0.2\n"),
+        ("wrong type", "friction: 0.1", "friction: lots"),
+        ("missing material", "A: {model: half_space, material: steel", "A: {model: half_space, material: stainless"),
+        ("nu outside", "nu: 0.3", "nu: 0.6"),
+        ("E <= 0", "E: 210000.0", "E: -5.0"),
+        ("mu < 0", "friction: 0.1", "friction: -0.1"),
+        ("P <= 0", "force: 1812.4573", "force: 0.0"),
+        ("full sliding", "ratio: 0.51", "ratio: 1.0"),
+        ("zero elements", "elements: 21", "elements: 0"),
+        ("two normal keys", "normal: {force: 1812.4573}", "normal: {force: 1812.4573, overlap: 0.01}"),
+        ("missing section", "load:\n  normal: {force: 1812.4573}\n  tangential: {ratio: 0.51}\n", ""),
+    ];
+    let expected_key = ["frictoin", "contact.friction", "bodies.A.material", "materials.steel.nu", "materials.steel.E", "contact.friction", "load.normal.force", "load.tangential.ratio", "contact.grid.elements", "load.normal", "load"];
+    for ((label, from, to), key) in cases.iter().zip(expected_key) {
+        let dir = tempfile::tempdir().unwrap();
+        assert!(BASE.contains(from), "{label}: base lacks {from}");
+        let case = write_case(dir.path(), &BASE.replacen(from, to, 1));
+        let (code, _, stderr) = rollbem(&["run", case.to_str().unwrap()]);
+        assert_eq!(code, 1, "{label}: {stderr}");
+        assert!(stderr.contains(key), "{label}: message does not name `{key}`: {stderr}");
+        assert!(stderr.contains("case.yaml"), "{label}: message does not name the file: {stderr}");
+        assert!(!dir.path().join("out").exists(), "{label}: output written");
+    }
+}
+
+#[test]
+fn bad_override_and_missing_file_are_input_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = write_case(dir.path(), BASE);
+    let (code, _, stderr) = rollbem(&["run", case.to_str().unwrap(), "--set", "contact.friction"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--set contact.friction") && stderr.contains("key.path=value"), "{stderr}");
+    let (code, _, stderr) = rollbem(&["run", case.to_str().unwrap(), "--set", "contact.friction.value=2"]);
+    assert_eq!(code, 1, "{stderr}");
+    let (code, _, stderr) = rollbem(&["run", dir.path().join("nope.yaml").to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("nope.yaml"), "{stderr}");
+    assert!(!dir.path().join("out").exists());
+}
+
+#[test]
+fn non_convergence_exits_2_with_history_and_no_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = write_case(dir.path(), BASE);
+    let (code, _, stderr) = rollbem(&["run", case.to_str().unwrap(), "--set", "solver.max_iterations=1"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("did not converge"), "{stderr}");
+    let out = dir.path().join("out");
+    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["converged"], false);
+    assert_eq!(summary["solver"]["history"].as_array().unwrap().len(), 1);
+    assert!(summary["solver"]["history"][0]["residual"].as_f64().unwrap() > 0.0);
+    assert!(!out.join("contact.csv").exists(), "a non-converged run must not look like a result");
+}
+
+#[test]
+fn check_prints_hertz_estimates_and_set_overrides_apply() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = write_case(dir.path(), BASE);
+    let (code, stdout, stderr) = rollbem(&["check", case.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("Hertz half-width a") && stdout.contains("1.000000"), "{stdout}");
+    assert!(stdout.contains("stick zone (Carter)") && stdout.contains("1.4000 a"), "{stdout}");
+    let (_, stdout, _) = rollbem(&["check", case.to_str().unwrap(), "--set", "contact.grid.elements=41"]);
+    assert!(stdout.contains("41 DiscontinuousQuadratic"), "{stdout}");
+}
