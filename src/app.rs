@@ -139,7 +139,9 @@ pub fn estimates(case: &LoadedCase) -> Estimates {
         hertz_half_width: a,
         hertz_peak_pressure: analytic::hertz_peak_pressure(normal_force, a),
         half_width_over_radius: a / radius,
-        carter_stick_width: ratio.filter(|r| r.abs() < 1.0).map(|r| 2.0 * a * (1.0 - r.abs()).sqrt()),
+        carter_stick_width: ratio
+            .filter(|r| r.abs() < 1.0)
+            .map(|r| 2.0 * a * (1.0 - r.abs()).sqrt()),
         grid_half_length,
         grid_spacing: 2.0 * grid_half_length / (c.contact.grid.elements * npe) as f64,
     }
@@ -270,7 +272,15 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
     let case = case::load(case_path, overrides)?;
     let output_dir = out.map(Path::to_path_buf).unwrap_or_else(|| case.output_dir());
     let s = solve(&case)?;
-    let mut summary = output::summary(&case, &s.estimates, &s.problem, &s.solution, &s.newton, s.regime, s.timings);
+    let mut summary = output::summary(
+        &case,
+        &s.estimates,
+        &s.problem,
+        &s.solution,
+        &s.newton,
+        s.regime,
+        s.timings,
+    );
     output::write_run(&output_dir, &mut summary, &s.solution, &s.problem, start)?;
     Ok(RunReport {
         summary,
@@ -339,21 +349,39 @@ pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Er
     line("contact modulus E*", format!("{:.6} {f}/{l}^2", est.e_star));
     line(
         "Dundurs beta (kappa=2beta)",
-        format!("{:.6} ({:.6}); beta/mu = {:.4}", est.dundurs_beta, 2.0 * est.dundurs_beta, est.dundurs_beta / c.contact.friction.max(f64::MIN_POSITIVE)),
+        format!(
+            "{:.6} ({:.6}); beta/mu = {:.4}",
+            est.dundurs_beta,
+            2.0 * est.dundurs_beta,
+            est.dundurs_beta / c.contact.friction.max(f64::MIN_POSITIVE)
+        ),
     );
     let given = matches!(c.load.normal(), NormalSpec::Force(_));
     line(
         "normal force P",
-        format!("{:.6} {f}/{l}{}", est.normal_force, if given { "" } else { " (estimated from the overlap)" }),
+        format!(
+            "{:.6} {f}/{l}{}",
+            est.normal_force,
+            if given { "" } else { " (estimated from the overlap)" }
+        ),
     );
-    line("Hertz half-width a", format!("{:.6} {l}  (a/R = {:.3e})", est.hertz_half_width, est.half_width_over_radius));
-    line("Hertz peak pressure p0", format!("{:.6} {f}/{l}^2", est.hertz_peak_pressure));
+    line(
+        "Hertz half-width a",
+        format!(
+            "{:.6} {l}  (a/R = {:.3e})",
+            est.hertz_half_width, est.half_width_over_radius
+        ),
+    );
+    line(
+        "Hertz peak pressure p0",
+        format!("{:.6} {f}/{l}^2", est.hertz_peak_pressure),
+    );
     line(
         "contact grid",
         format!(
-            "{} {:?} elements on [-{:.6}, {:.6}] {l}; node spacing {:.4e} {l} ({:.4} a)",
+            "{} {} elements on [-{:.6}, {:.6}] {l}; node spacing {:.4e} {l} ({:.4} a)",
             c.contact.grid.elements,
-            c.contact.grid.element,
+            c.contact.grid.element.name(),
             est.grid_half_length,
             est.grid_half_length,
             est.grid_spacing,
@@ -363,7 +391,11 @@ pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Er
     if let Some(w) = est.carter_stick_width {
         line(
             "stick zone (Carter)",
-            format!("width {:.6} {l} = {:.4} a, at the leading edge (similar bodies; beta shifts it)", w, w / est.hertz_half_width),
+            format!(
+                "width {:.6} {l} = {:.4} a, at the leading edge (similar bodies; beta shifts it)",
+                w,
+                w / est.hertz_half_width
+            ),
         );
     }
     let advice = if est.half_width_over_radius < 0.05 {

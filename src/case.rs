@@ -77,13 +77,17 @@ impl LoadedCase {
 
     /// The output folder: `output.dir` relative to the case file, else `out/<stem>` next to it.
     pub fn output_dir(&self) -> PathBuf {
-        match &self.case.output.dir {
+        let dir = match &self.case.output.dir {
             Some(dir) => self.base_dir().join(dir),
             None => {
-                let stem = self.path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
+                let stem = self
+                    .path
+                    .file_stem()
+                    .map_or("case".into(), |s| s.to_string_lossy().into_owned());
                 self.base_dir().join("out").join(stem)
             }
-        }
+        };
+        normalize(&dir)
     }
 
     /// Material by name (validated to exist).
@@ -98,6 +102,26 @@ pub fn material_of(spec: &MaterialSpec) -> Elastic {
         (Some(e), _) => Elastic::new(e, spec.nu),
         (None, Some(g)) => Elastic::from_shear(g, spec.nu),
         (None, None) => Elastic::new(f64::NAN, spec.nu),
+    }
+}
+
+/// Removes `.` and `name/..` pairs lexically (`cases/../out/x` → `out/x`).
+fn normalize(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir if matches!(out.components().next_back(), Some(Component::Normal(_))) => {
+                out.pop();
+            }
+            other => out.push(other),
+        }
+    }
+    if out.as_os_str().is_empty() {
+        PathBuf::from(".")
+    } else {
+        out
     }
 }
 

@@ -125,14 +125,21 @@ impl ContactProblem {
             wp: add(&fa.wp, &fb.wp),
             wq: add(&fa.wq, &fb.wq),
         };
-        let strain = match (body_a.strain_operator(&grid, Side::A), body_b.strain_operator(&grid, Side::B)) {
+        let strain = match (
+            body_a.strain_operator(&grid, Side::A),
+            body_b.strain_operator(&grid, Side::B),
+        ) {
             (Some(a), Some(b)) => Some(StrainOperator {
                 p: add(&a.p, &b.p),
                 q: add(&a.q, &b.q),
             }),
             _ => None,
         };
-        let h0 = grid.nodes.iter().map(|&x| body_a.profile(x) + body_b.profile(x)).collect();
+        let h0 = grid
+            .nodes
+            .iter()
+            .map(|&x| body_a.profile(x) + body_b.profile(x))
+            .collect();
         let flow_sign = rolling.flow_sign();
         let slip_operator = SlipOperator::new(&grid, derivative, flow_sign);
         let bp = slip_operator.apply_scaled(&flex.wp, flow_sign);
@@ -178,7 +185,10 @@ impl ContactProblem {
     pub fn slip(&self, p: &[f64], q: &[f64], creep: f64) -> Vec<f64> {
         let b = mat_vec2(&self.bp, p, &self.bq, q);
         let e = &self.slip_operator.creep_weight;
-        b.into_iter().zip(e).map(|(v, e)| self.flow_sign * creep * e + v).collect()
+        b.into_iter()
+            .zip(e)
+            .map(|(v, e)| self.flow_sign * creep * e + v)
+            .collect()
     }
 
     /// Slip from the boundary-integral strain operator, s = σ(ξ + ∂w/∂x), if available.

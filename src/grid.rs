@@ -23,6 +23,14 @@ pub enum ElementKind {
 pub const DQE_NODE: f64 = 2.0 / 3.0;
 
 impl ElementKind {
+    /// Name as written in case files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ElementKind::Constant => "constant",
+            ElementKind::DiscontinuousQuadratic => "discontinuous_quadratic",
+        }
+    }
+
     /// Number of nodes per element.
     pub fn nodes_per_element(self) -> usize {
         match self {
@@ -77,9 +85,7 @@ impl ContactGrid {
         assert!(n_elements > 0, "a contact grid needs at least one element");
         assert!(x_max > x_min, "empty grid interval [{x_min}, {x_max}]");
         let length = (x_max - x_min) / n_elements as f64;
-        let edges: Vec<f64> = (0..=n_elements)
-            .map(|e| x_min + length * e as f64)
-            .collect();
+        let edges: Vec<f64> = (0..=n_elements).map(|e| x_min + length * e as f64).collect();
         let mut nodes = Vec::with_capacity(n_elements * kind.nodes_per_element());
         let mut weights = Vec::with_capacity(nodes.capacity());
         for e in 0..n_elements {

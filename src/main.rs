@@ -22,6 +22,9 @@ fn dispatch(cli: Cli) -> Result<i32> {
     match cli.command {
         Command::Run { case, out, set } => {
             let report = rollbem::app::run(&case, &set, out.as_deref())?;
+            for notice in &report.summary.notices {
+                eprintln!("notice: {notice}");
+            }
             println!("rollbem run {}", case.display());
             print!("{}", rollbem::output::render_table(&report.summary, &report.output_dir));
             if report.summary.converged {

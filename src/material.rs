@@ -53,8 +53,7 @@ impl Elastic {
 ///
 /// A rigid body contributes zero compliance; pass `None` for it.
 pub fn contact_modulus(a: Option<&Elastic>, b: Option<&Elastic>) -> f64 {
-    let c = a.map_or(0.0, Elastic::plane_strain_compliance)
-        + b.map_or(0.0, Elastic::plane_strain_compliance);
+    let c = a.map_or(0.0, Elastic::plane_strain_compliance) + b.map_or(0.0, Elastic::plane_strain_compliance);
     1.0 / c
 }
 

@@ -92,6 +92,8 @@ pub struct Summary {
     pub grid: GridSummary,
     /// Solver diagnostics (penalties, residual history).
     pub solver: SolverSummary,
+    /// Notices for the user (requested features not available, adjustments made).
+    pub notices: Vec<String>,
     /// The case as resolved after `--set` overrides.
     pub case: serde_json::Value,
 }
@@ -181,13 +183,36 @@ pub fn summary(
             traction_scale: newton.traction_scale,
             history: newton.history.clone(),
         },
+        notices: notices(case),
         case: case.resolved.clone(),
     }
 }
 
+/// Notices about the case that do not stop the run.
+pub fn notices(case: &LoadedCase) -> Vec<String> {
+    let mut out = Vec::new();
+    if case.case.output.vtk {
+        out.push(
+            "output.vtk: VTK output is not available yet for half-space and rigid bodies; wrote JSON, CSV and SVG only"
+                .to_string(),
+        );
+    }
+    out
+}
+
 /// Column names of contact.csv, in order (DESIGN §5 plus the surface displacements).
 pub const CSV_COLUMNS: [&str; 11] = [
-    "x", "pressure", "shear", "gap", "slip", "slip_hbem", "state", "u_n_A", "u_t_A", "u_n_B", "u_t_B",
+    "x",
+    "pressure",
+    "shear",
+    "gap",
+    "slip",
+    "slip_hbem",
+    "state",
+    "u_n_A",
+    "u_t_A",
+    "u_n_B",
+    "u_t_B",
 ];
 
 /// Writes contact.csv. `slip_hbem` is left empty when no boundary-integral derivative exists.
@@ -230,12 +255,20 @@ fn fmt(v: f64) -> String {
 
 /// Writes all outputs of a run atomically into `dir` and fills in the total time.
 /// A non-converged run writes summary.json only.
-pub fn write_run(dir: &Path, summary: &mut Summary, sol: &ContactSolution, pb: &ContactProblem, start: Instant) -> Result<(), Error> {
+pub fn write_run(
+    dir: &Path,
+    summary: &mut Summary,
+    sol: &ContactSolution,
+    pb: &ContactProblem,
+    start: Instant,
+) -> Result<(), Error> {
     let err = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
         path: path.to_path_buf(),
         message: e.to_string(),
     };
-    let name = dir.file_name().map_or("out".into(), |n| n.to_string_lossy().into_owned());
+    let name = dir
+        .file_name()
+        .map_or("out".into(), |n| n.to_string_lossy().into_owned());
     let tmp: PathBuf = dir.with_file_name(format!(".{name}.partial-{}", std::process::id()));
     if let Some(parent) = tmp.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent).map_err(|e| err(parent, &e))?;
@@ -277,26 +310,55 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     line("normal force P", format!("{:.6}", s.normal_force));
     line(
         "tangential force Q",
-        format!("{:.6}{}", s.tangential_force, s.load_ratio.map_or(String::new(), |r| format!("  (Q/muP = {r:.4})"))),
+        format!(
+            "{:.6}{}",
+            s.tangential_force,
+            s.load_ratio.map_or(String::new(), |r| format!("  (Q/muP = {r:.4})"))
+        ),
     );
     line("overlap delta0", format!("{:.6e}", s.overlap));
     line("creepage xi", format!("{:.6e}", s.creep));
     if let Some(c) = &s.contact {
         line(
             "contact",
-            format!("[{:.5}, {:.5}]  half-width {:.5} (Hertz {:.5})", c.x_min, c.x_max, c.half_width, s.estimates.hertz_half_width),
+            format!(
+                "[{:.5}, {:.5}]  half-width {:.5} (Hertz {:.5})",
+                c.x_min, c.x_max, c.half_width, s.estimates.hertz_half_width
+            ),
         );
     }
-    line("max pressure", format!("{:.6} (Hertz p0 {:.6})", s.max_pressure, s.estimates.hertz_peak_pressure));
-    let zones = |z: &[[f64; 2]]| z.iter().map(|[a, b]| format!("[{a:.4}, {b:.4}]")).collect::<Vec<_>>().join(" ");
+    line(
+        "max pressure",
+        format!(
+            "{:.6} (Hertz p0 {:.6})",
+            s.max_pressure, s.estimates.hertz_peak_pressure
+        ),
+    );
+    let zones = |z: &[[f64; 2]]| {
+        z.iter()
+            .map(|[a, b]| format!("[{a:.4}, {b:.4}]"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
     line("stick zones", zones(&s.stick_zones));
     line(
         "slip zones",
-        format!("{}  directions {:?}  regime {}", zones(&s.slip_zones), s.slip_directions, s.slip_regime),
+        format!(
+            "{}  directions {:?}  regime {}",
+            zones(&s.slip_zones),
+            s.slip_directions,
+            s.slip_regime
+        ),
     );
     line(
         "grid",
-        format!("{} {:?} elements, {} nodes, spacing {:.4e}", s.grid.elements, s.grid.element, s.grid.nodes, s.grid.spacing),
+        format!(
+            "{} {} elements, {} nodes, spacing {:.4e}",
+            s.grid.elements,
+            s.grid.element.name(),
+            s.grid.nodes,
+            s.grid.spacing
+        ),
     );
     line(
         "time [s]",

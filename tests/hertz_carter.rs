@@ -12,7 +12,11 @@ fn hertz_half_width_and_peak_within_one_percent_at_41_elements() {
     let [x0, x1] = s.solution.contact_extent().unwrap();
     let a = 0.5 * (x1 - x0);
     let p0 = s.solution.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
-    assert!((a / est.hertz_half_width - 1.0).abs() < 0.01, "a = {a}, Hertz {}", est.hertz_half_width);
+    assert!(
+        (a / est.hertz_half_width - 1.0).abs() < 0.01,
+        "a = {a}, Hertz {}",
+        est.hertz_half_width
+    );
     assert!((p0 / est.hertz_peak_pressure - 1.0).abs() < 0.01, "p0 = {p0}");
     // Similar bodies, Q = 0: no shear at all.
     assert!(s.solution.shear.iter().all(|q| q.abs() < 1e-9 * p0));
@@ -27,7 +31,13 @@ fn hertz_pressure_converges_with_the_grid() {
     for n in [11, 21, 41, 81, 161] {
         let (_, s) = solve("hertz", &[&format!("contact.grid.elements={n}")]);
         let (a, p0) = (s.estimates.hertz_half_width, s.estimates.hertz_peak_pressure);
-        let (_, r) = nodal_error(&s.solution.x, &s.solution.pressure, |x| hertz_pressure(x, a, p0), 1.3 * a, p0);
+        let (_, r) = nodal_error(
+            &s.solution.x,
+            &s.solution.pressure,
+            |x| hertz_pressure(x, a, p0),
+            1.3 * a,
+            p0,
+        );
         rms.push(r);
     }
     for k in 2..rms.len() {
@@ -40,11 +50,22 @@ fn hertz_pressure_converges_with_the_grid() {
 /// leading edge with width 2a√(1−Q/μP) within one element, creepage within 1 %.
 #[test]
 fn carter_traction_stick_zone_and_creepage() {
-    for (case, n) in [("carter_051", 81), ("carter_084", 81), ("carter_051", 161), ("carter_084", 161)] {
+    for (case, n) in [
+        ("carter_051", 81),
+        ("carter_084", 81),
+        ("carter_051", 161),
+        ("carter_084", 161),
+    ] {
         let (loaded, s) = solve(case, &[&format!("contact.grid.elements={n}")]);
         let carter = rollbem::app::carter_reference(&loaded, &s.estimates).unwrap();
         let mu_p0 = carter.friction * carter.peak_pressure;
-        let (max, _) = nodal_error(&s.solution.x, &s.solution.shear, |x| carter.shear(x), f64::INFINITY, mu_p0);
+        let (max, _) = nodal_error(
+            &s.solution.x,
+            &s.solution.shear,
+            |x| carter.shear(x),
+            f64::INFINITY,
+            mu_p0,
+        );
         assert!(max < 0.02, "{case}/{n}: max |q − q_Carter| = {max} μp0");
 
         let stick = s.solution.zones_of(rollbem::contact::solution::NodeState::Stick);
@@ -52,13 +73,25 @@ fn carter_traction_stick_zone_and_creepage() {
         let element = s.problem.grid.element_length();
         let [c0, c1] = carter.stick_zone();
         let [s0, s1] = stick[0];
-        assert!((s1 - s0 - (c1 - c0)).abs() < element, "{case}/{n}: stick width {} vs Carter {}", s1 - s0, c1 - c0);
+        assert!(
+            (s1 - s0 - (c1 - c0)).abs() < element,
+            "{case}/{n}: stick width {} vs Carter {}",
+            s1 - s0,
+            c1 - c0
+        );
         // Adjacent to the leading edge (x = +a for rolling +x).
         let [_, edge] = s.solution.contact_extent().unwrap();
-        assert!((s1 - edge).abs() < 1e-12, "{case}/{n}: stick zone {stick:?} does not reach the leading edge {edge}");
+        assert!(
+            (s1 - edge).abs() < 1e-12,
+            "{case}/{n}: stick zone {stick:?} does not reach the leading edge {edge}"
+        );
 
         let xi = carter.creep(s.estimates.effective_radius);
-        assert!((s.solution.creep / xi - 1.0).abs() < 0.01, "{case}/{n}: creep {} vs Carter {xi}", s.solution.creep);
+        assert!(
+            (s.solution.creep / xi - 1.0).abs() < 0.01,
+            "{case}/{n}: creep {} vs Carter {xi}",
+            s.solution.creep
+        );
     }
 }
 
@@ -69,15 +102,32 @@ fn carter_traction_stick_zone_and_creepage() {
 #[test]
 fn slip_derivatives_creepage_error_is_small_and_decreases_like_h() {
     let creep_error = |der: &str, n: usize| {
-        let (loaded, s) = solve("carter_051", &[&format!("contact.slip_derivative={der}"), &format!("contact.grid.elements={n}")]);
-        let xi = rollbem::app::carter_reference(&loaded, &s.estimates).unwrap().creep(s.estimates.effective_radius);
+        let (loaded, s) = solve(
+            "carter_051",
+            &[
+                &format!("contact.slip_derivative={der}"),
+                &format!("contact.grid.elements={n}"),
+            ],
+        );
+        let xi = rollbem::app::carter_reference(&loaded, &s.estimates)
+            .unwrap()
+            .creep(s.estimates.effective_radius);
         s.solution.creep / xi - 1.0
     };
     let (f21, s21) = (creep_error("first_order", 21), creep_error("second_order", 21));
     let (f81, s81) = (creep_error("first_order", 81), creep_error("second_order", 81));
-    assert!(f21 < 0.0 && f81 < 0.0, "first order must under-predict |ξ|: {f21}, {f81}");
-    assert!(s21.abs() < f21.abs() && s81.abs() < f81.abs(), "second order {s21}, {s81} vs first {f21}, {f81}");
+    assert!(
+        f21 < 0.0 && f81 < 0.0,
+        "first order must under-predict |ξ|: {f21}, {f81}"
+    );
+    assert!(
+        s21.abs() < f21.abs() && s81.abs() < f81.abs(),
+        "second order {s21}, {s81} vs first {f21}, {f81}"
+    );
     assert!(f21.abs() < 0.01 && s21.abs() < 0.01);
     // Four times finer grid: error at least three times smaller (O(h) would give four).
-    assert!(f81.abs() < f21.abs() / 3.0 && s81.abs() < s21.abs() / 3.0, "{f21} {f81} {s21} {s81}");
+    assert!(
+        f81.abs() < f21.abs() / 3.0 && s81.abs() < s21.abs() / 3.0,
+        "{f21} {f81} {s21} {s81}"
+    );
 }

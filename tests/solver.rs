@@ -27,15 +27,28 @@ fn every_shipped_case_converges_balances_its_loads_and_phi_equals_psi() {
         let (case, phi) = solve(&name, &["solver.formulation=phi"]);
         let (_, psi) = solve(&name, &["solver.formulation=psi"]);
         let sol = &phi.solution;
-        let p_target = case.case.load.normal_keys.force.expect("shipped cases are load controlled");
-        assert!((sol.normal_force / p_target - 1.0).abs() < 1e-10, "{name}: P = {}", sol.normal_force);
+        let p_target = case
+            .case
+            .load
+            .normal_keys
+            .force
+            .expect("shipped cases are load controlled");
+        assert!(
+            (sol.normal_force / p_target - 1.0).abs() < 1e-10,
+            "{name}: P = {}",
+            sol.normal_force
+        );
         let mu = case.case.contact.friction;
         let q_target = match case.case.load.tangential() {
             rollbem::case::TangentialSpec::Ratio(r) => r * mu * p_target,
             rollbem::case::TangentialSpec::Force(q) => q,
             rollbem::case::TangentialSpec::Creep(_) => unreachable!(),
         };
-        assert!((sol.tangential_force - q_target).abs() < 1e-10 * p_target, "{name}: Q = {} vs {q_target}", sol.tangential_force);
+        assert!(
+            (sol.tangential_force - q_target).abs() < 1e-10 * p_target,
+            "{name}: Q = {} vs {q_target}",
+            sol.tangential_force
+        );
         let rel = |a: f64, b: f64, scale: f64| (a - b).abs() / scale;
         let pmax = sol.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
         for (a, b) in sol.pressure.iter().zip(&psi.solution.pressure) {
@@ -44,7 +57,10 @@ fn every_shipped_case_converges_balances_its_loads_and_phi_equals_psi() {
         for (a, b) in sol.shear.iter().zip(&psi.solution.shear) {
             assert!(rel(*a, *b, mu * pmax) < 1e-4, "{name}: Φ and Ψ shears differ");
         }
-        assert!(rel(sol.creep, psi.solution.creep, sol.creep.abs().max(1e-300)) < 1e-4, "{name}: creep");
+        assert!(
+            rel(sol.creep, psi.solution.creep, sol.creep.abs().max(1e-300)) < 1e-4,
+            "{name}: creep"
+        );
     }
 }
 
@@ -61,18 +77,33 @@ fn kinematic_and_mixed_control_reproduce_the_load_controlled_run() {
         let force = format!("load.normal.force={:.17e}", s.normal_force);
         let q = format!("load.tangential.force={:.17e}", s.tangential_force);
         let variants: [(&str, Vec<&str>); 3] = [
-            ("kinematic", vec!["load.normal.force=null", &overlap, "load.tangential.ratio=null", &creep]),
+            (
+                "kinematic",
+                vec!["load.normal.force=null", &overlap, "load.tangential.ratio=null", &creep],
+            ),
             ("P with ξ", vec![&force, "load.tangential.ratio=null", &creep]),
-            ("δ0 with Q", vec!["load.normal.force=null", &overlap, "load.tangential.ratio=null", &q]),
+            (
+                "δ0 with Q",
+                vec!["load.normal.force=null", &overlap, "load.tangential.ratio=null", &q],
+            ),
         ];
         for (label, mut set) in variants {
             set.push(&half);
             let (_, k) = solve(name, &set);
             let p_err = (k.solution.normal_force - s.normal_force).abs() / s.normal_force;
             let q_err = (k.solution.tangential_force - s.tangential_force).abs() / s.normal_force;
-            assert!(p_err < 1e-8 && q_err < 1e-8, "{name} {label}: P err {p_err:e}, Q err {q_err:e} (relative to P)");
-            assert!((k.solution.overlap - s.overlap).abs() < 1e-8 * s.overlap.abs(), "{name} {label}: δ0");
-            assert!((k.solution.creep - s.creep).abs() < 1e-8 * s.creep.abs(), "{name} {label}: ξ");
+            assert!(
+                p_err < 1e-8 && q_err < 1e-8,
+                "{name} {label}: P err {p_err:e}, Q err {q_err:e} (relative to P)"
+            );
+            assert!(
+                (k.solution.overlap - s.overlap).abs() < 1e-8 * s.overlap.abs(),
+                "{name} {label}: δ0"
+            );
+            assert!(
+                (k.solution.creep - s.creep).abs() < 1e-8 * s.creep.abs(),
+                "{name} {label}: ξ"
+            );
         }
     }
 }
@@ -103,14 +134,29 @@ fn dissimilar_regimes_of_the_paper_with_dundurs_beta_over_mu_2_88() {
 /// p(0) → cosh(πε)E*a/(2R) as μ → ∞ (reference sheet §4.4), within 1 % at 321 elements.
 #[test]
 fn free_rolling_creepage_limits() {
-    let (_, slip) = solve("free_rolling_al_steel", &["contact.friction=1e-4", "contact.grid.elements=321"]);
+    let (_, slip) = solve(
+        "free_rolling_al_steel",
+        &["contact.friction=1e-4", "contact.grid.elements=321"],
+    );
     let e = &slip.estimates;
     let limit = analytic::free_rolling_creep_complete_slip(e.dundurs_beta, e.hertz_half_width, e.effective_radius);
-    assert!((slip.solution.creep / limit - 1.0).abs() < 0.01, "complete slip: ξ = {} vs {limit}", slip.solution.creep);
+    assert!(
+        (slip.solution.creep / limit - 1.0).abs() < 0.01,
+        "complete slip: ξ = {} vs {limit}",
+        slip.solution.creep
+    );
 
-    let (_, stick) = solve("free_rolling_al_steel", &["contact.friction=1e3", "contact.grid.elements=321"]);
-    let (limit, _, p_centre) = analytic::free_rolling_no_slip(e.dundurs_beta, e.normal_force, e.effective_radius, e.e_star);
-    assert!((stick.solution.creep / limit - 1.0).abs() < 0.01, "no slip: ξ = {} vs {limit}", stick.solution.creep);
+    let (_, stick) = solve(
+        "free_rolling_al_steel",
+        &["contact.friction=1e3", "contact.grid.elements=321"],
+    );
+    let (limit, _, p_centre) =
+        analytic::free_rolling_no_slip(e.dundurs_beta, e.normal_force, e.effective_radius, e.e_star);
+    assert!(
+        (stick.solution.creep / limit - 1.0).abs() < 0.01,
+        "no slip: ξ = {} vs {limit}",
+        stick.solution.creep
+    );
     let p0 = stick.problem.grid.interpolate(&stick.solution.pressure, 0.0);
     assert!((p0 / p_centre - 1.0).abs() < 1e-3, "no slip: p(0) = {p0} vs {p_centre}");
     // Bufler's p(0) exceeds Hertz: the coupling is really in the solution.

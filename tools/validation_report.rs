@@ -9,15 +9,25 @@ use rollbem::contact::solution::{slip_regime, ContactSolution, NodeState};
 use std::path::PathBuf;
 
 fn solve(name: &str, set: &[String]) -> (LoadedCase, Solved) {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases").join(format!("{name}.yaml"));
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("cases")
+        .join(format!("{name}.yaml"));
     let case = case::load(&path, set).expect("case loads");
     let s = app::solve(&case).expect("case solves");
     (case, s)
 }
 
 fn errs(x: &[f64], v: &[f64], f: impl Fn(f64) -> f64, limit: f64, scale: f64) -> (f64, f64) {
-    let e: Vec<f64> = x.iter().zip(v).filter(|(x, _)| x.abs() < limit).map(|(x, v)| (v - f(*x)).abs() / scale).collect();
-    (e.iter().fold(0.0_f64, |a, &b| a.max(b)), (e.iter().map(|e| e * e).sum::<f64>() / e.len() as f64).sqrt())
+    let e: Vec<f64> = x
+        .iter()
+        .zip(v)
+        .filter(|(x, _)| x.abs() < limit)
+        .map(|(x, v)| (v - f(*x)).abs() / scale)
+        .collect();
+    (
+        e.iter().fold(0.0_f64, |a, &b| a.max(b)),
+        (e.iter().map(|e| e * e).sum::<f64>() / e.len() as f64).sqrt(),
+    )
 }
 
 fn half_width(sol: &ContactSolution) -> f64 {
@@ -37,7 +47,13 @@ fn main() {
         let (_, s) = solve("hertz", &set(&[&format!("contact.grid.elements={n}")]));
         let (a, p0) = (s.estimates.hertz_half_width, s.estimates.hertz_peak_pressure);
         let pmax = s.solution.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
-        let (mx, rms) = errs(&s.solution.x, &s.solution.pressure, |x| hertz_pressure(x, a, p0), f64::INFINITY, p0);
+        let (mx, rms) = errs(
+            &s.solution.x,
+            &s.solution.pressure,
+            |x| hertz_pressure(x, a, p0),
+            f64::INFINITY,
+            p0,
+        );
         println!(
             "| {n} | {:+.3e} | {:+.3e} | {:.3e} | {:.3e} | {} |",
             half_width(&s.solution) / a - 1.0,
@@ -54,7 +70,13 @@ fn main() {
     for name in ["carter_051", "carter_084"] {
         for der in ["first_order", "second_order"] {
             for n in [21, 41, 81, 161, 321] {
-                let (case, s) = solve(name, &set(&[&format!("contact.grid.elements={n}"), &format!("contact.slip_derivative={der}")]));
+                let (case, s) = solve(
+                    name,
+                    &set(&[
+                        &format!("contact.grid.elements={n}"),
+                        &format!("contact.slip_derivative={der}"),
+                    ]),
+                );
                 let c = app::carter_reference(&case, &s.estimates).unwrap();
                 let mu_p0 = c.friction * c.peak_pressure;
                 let (mx, _) = errs(&s.solution.x, &s.solution.shear, |x| c.shear(x), f64::INFINITY, mu_p0);
@@ -74,7 +96,9 @@ fn main() {
     }
 
     println!("\n## Φ versus Ψ on every shipped case (21 elements)\n");
-    println!("| case | it Φ | it Ψ | P | Q | ξ (Φ) | ξ (Ψ) | max |p_Φ − p_Ψ|/p_max | max |q_Φ − q_Ψ|/max|q| | regime |");
+    println!(
+        "| case | it Φ | it Ψ | P | Q | ξ (Φ) | ξ (Ψ) | max |p_Φ − p_Ψ|/p_max | max |q_Φ − q_Ψ|/max|q| | regime |"
+    );
     println!("|---|---|---|---|---|---|---|---|---|---|");
     let mut names: Vec<String> = std::fs::read_dir(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases"))
         .unwrap()
@@ -89,11 +113,29 @@ fn main() {
         let (_, psi) = solve(name, &set(&["solver.formulation=psi"]));
         let pmax = phi.solution.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
         let qmax = phi.solution.shear.iter().fold(1e-300_f64, |m, &q| m.max(q.abs()));
-        let dp = phi.solution.pressure.iter().zip(&psi.solution.pressure).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs())) / pmax;
-        let dq = phi.solution.shear.iter().zip(&psi.solution.shear).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs())) / qmax;
+        let dp = phi
+            .solution
+            .pressure
+            .iter()
+            .zip(&psi.solution.pressure)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
+            / pmax;
+        let dq = phi
+            .solution
+            .shear
+            .iter()
+            .zip(&psi.solution.shear)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
+            / qmax;
         println!(
             "| {name} | {} | {} | {:.6} | {:.6} | {:.6e} | {:.6e} | {dp:.1e} | {dq:.1e} | {} |",
-            phi.newton.iterations, psi.newton.iterations, phi.solution.normal_force, phi.solution.tangential_force, phi.solution.creep, psi.solution.creep, phi.regime
+            phi.newton.iterations,
+            psi.newton.iterations,
+            phi.solution.normal_force,
+            phi.solution.tangential_force,
+            phi.solution.creep,
+            psi.solution.creep,
+            phi.regime
         );
     }
 
@@ -103,15 +145,37 @@ fn main() {
     for name in names.iter().filter(|n| n.starts_with("dissimilar")) {
         for n in [21, 161] {
             let (case, s) = solve(name, &set(&[&format!("contact.grid.elements={n}")]));
-            let (a, r, mu) = (s.estimates.hertz_half_width, s.estimates.effective_radius, case.case.contact.friction);
+            let (a, r, mu) = (
+                s.estimates.hertz_half_width,
+                s.estimates.effective_radius,
+                case.case.contact.friction,
+            );
             let zones: Vec<String> = s
                 .solution
                 .zones
                 .iter()
                 .filter(|z| z.state != NodeState::Open)
-                .map(|z| format!("{}{}[{:.3}, {:.3}]", z.state.name(), match z.direction { 1 => "+", -1 => "−", _ => "" }, z.x0 / a, z.x1 / a))
+                .map(|z| {
+                    format!(
+                        "{}{}[{:.3}, {:.3}]",
+                        z.state.name(),
+                        match z.direction {
+                            1 => "+",
+                            -1 => "−",
+                            _ => "",
+                        },
+                        z.x0 / a,
+                        z.x1 / a
+                    )
+                })
                 .collect();
-            println!("| {name} | {n} | {:.5} | {} | {:?} | {} |", s.solution.creep * r / (mu * a), s.regime, s.solution.slip_directions(), zones.join(" "));
+            println!(
+                "| {name} | {n} | {:.5} | {} | {:?} | {} |",
+                s.solution.creep * r / (mu * a),
+                s.regime,
+                s.solution.slip_directions(),
+                zones.join(" ")
+            );
         }
     }
 
@@ -119,12 +183,19 @@ fn main() {
     println!("| μ | elements | ξ | limit | error | p(0) / limit |");
     println!("|---|---|---|---|---|---|");
     for (mu, n) in [(1e-4, 81), (1e-4, 161), (1e-4, 321), (1e3, 81), (1e3, 161), (1e3, 321)] {
-        let (_, s) = solve("free_rolling_al_steel", &set(&[&format!("contact.friction={mu}"), &format!("contact.grid.elements={n}")]));
+        let (_, s) = solve(
+            "free_rolling_al_steel",
+            &set(&[&format!("contact.friction={mu}"), &format!("contact.grid.elements={n}")]),
+        );
         let e = &s.estimates;
         let (limit, p_centre) = if mu < 1.0 {
-            (analytic::free_rolling_creep_complete_slip(e.dundurs_beta, e.hertz_half_width, e.effective_radius), None)
+            (
+                analytic::free_rolling_creep_complete_slip(e.dundurs_beta, e.hertz_half_width, e.effective_radius),
+                None,
+            )
         } else {
-            let (xi, _, p) = analytic::free_rolling_no_slip(e.dundurs_beta, e.normal_force, e.effective_radius, e.e_star);
+            let (xi, _, p) =
+                analytic::free_rolling_no_slip(e.dundurs_beta, e.normal_force, e.effective_radius, e.e_star);
             (xi, Some(p))
         };
         let p0 = s.problem.grid.interpolate(&s.solution.pressure, 0.0);

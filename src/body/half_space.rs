@@ -104,7 +104,14 @@ pub fn element_integrals_exact(kind: ElementKind, kernel: Kernel, s1: f64, s2: f
 }
 
 /// Element integrals by Gauss quadrature (valid for field points well outside the element).
-fn element_integrals_gauss(kind: ElementKind, kernel: Kernel, s1: f64, s2: f64, x: f64, rule: &(Vec<f64>, Vec<f64>)) -> Vec<f64> {
+fn element_integrals_gauss(
+    kind: ElementKind,
+    kernel: Kernel,
+    s1: f64,
+    s2: f64,
+    x: f64,
+    rule: &(Vec<f64>, Vec<f64>),
+) -> Vec<f64> {
     let half = 0.5 * (s2 - s1);
     let centre = 0.5 * (s1 + s2);
     (0..kind.nodes_per_element())
@@ -121,27 +128,41 @@ fn element_integrals_gauss(kind: ElementKind, kernel: Kernel, s1: f64, s2: f64, 
 }
 
 /// Matrix K_ij = ∫ N_j(s) K(x_i − s) ds over the grid, for every node i and nodal shape j.
+///
+/// The grid is uniform, so an entry depends only on the offset d = e_i − e_j between the
+/// elements of node i and of shape j and on the local indices: the matrix is block-Toeplitz.
+/// Only (2·n_elements − 1)·npe element integrals are evaluated (O(m) instead of O(m²)), each on
+/// a reference element centred at 0; the matrix is then filled from that table.
 pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
     let m = grid.n_nodes();
+    let ne = grid.n_elements();
     let npe = grid.kind.nodes_per_element();
     let length = grid.element_length();
     let rule = gauss_legendre(12);
-    let mut k = Mat::zeros(m, m);
-    for (i, &x) in grid.nodes.iter().enumerate() {
-        for e in 0..grid.n_elements() {
-            let (s1, s2) = (grid.edges[e], grid.edges[e + 1]);
-            let far = (0.5 * (s1 + s2) - x).abs() > FAR_FIELD_RATIO * length;
-            let values = if far {
+    let (s1, s2) = (-0.5 * length, 0.5 * length);
+    // table[(d + ne − 1)·npe + a] = integrals over the reference element of the shapes, at the
+    // field point of local node a of an element d lengths to the right.
+    let table: Vec<Vec<f64>> = (0..(2 * ne - 1))
+        .flat_map(|k| {
+            let d = k as f64 - (ne - 1) as f64;
+            grid.kind
+                .node_coordinates()
+                .iter()
+                .map(move |xi| d * length + 0.5 * length * xi)
+        })
+        .map(|x| {
+            if x.abs() > FAR_FIELD_RATIO * length {
                 element_integrals_gauss(grid.kind, kernel, s1, s2, x, &rule)
             } else {
                 element_integrals_exact(grid.kind, kernel, s1, s2, x)
-            };
-            for (a, v) in values.into_iter().enumerate() {
-                k[(i, e * npe + a)] = v;
             }
-        }
-    }
-    k
+        })
+        .collect();
+    Mat::from_fn(m, m, |i, j| {
+        let (ei, ai) = grid.element_of(i);
+        let (ej, aj) = grid.element_of(j);
+        table[(ei + ne - 1 - ej) * npe + ai][aj]
+    })
 }
 
 /// An elastic half-plane standing in for a cylinder of radius `radius`.
@@ -229,17 +250,43 @@ mod tests {
     #[test]
     fn quadratic_element_integrals_match_reference_sheet() {
         let cases = [
-            (-0.9, [-0.070286223, -0.090323505, 0.017909553], [-0.108333333, -0.433333333, -0.108333333]),
-            (-0.1, [-0.183779527, -1.060971795, -0.133878263], [0.161489152, -0.049901381, -0.161587771]),
-            (0.25, [-0.028612594, -0.547783708, -0.353612594], [0.108333333, 0.433333333, 0.108333333]),
-            (0.8, [0.022231732, -0.064028242, -0.060607271], [0.108333333, 0.433333333, 0.108333333]),
+            (
+                -0.9,
+                [-0.070286223, -0.090323505, 0.017909553],
+                [-0.108333333, -0.433333333, -0.108333333],
+            ),
+            (
+                -0.1,
+                [-0.183779527, -1.060971795, -0.133878263],
+                [0.161489152, -0.049901381, -0.161587771],
+            ),
+            (
+                0.25,
+                [-0.028612594, -0.547783708, -0.353612594],
+                [0.108333333, 0.433333333, 0.108333333],
+            ),
+            (
+                0.8,
+                [0.022231732, -0.064028242, -0.060607271],
+                [0.108333333, 0.433333333, 0.108333333],
+            ),
         ];
         for (x, log_ref, sgn_ref) in cases {
             let log = end_node_integrals(Kernel::Log, x);
             let sgn = end_node_integrals(Kernel::Sign, x);
             for a in 0..3 {
-                assert!(close(log[a], log_ref[a]), "log x={x} a={a}: {} vs {}", log[a], log_ref[a]);
-                assert!(close(sgn[a], sgn_ref[a]), "sgn x={x} a={a}: {} vs {}", sgn[a], sgn_ref[a]);
+                assert!(
+                    close(log[a], log_ref[a]),
+                    "log x={x} a={a}: {} vs {}",
+                    log[a],
+                    log_ref[a]
+                );
+                assert!(
+                    close(sgn[a], sgn_ref[a]),
+                    "sgn x={x} a={a}: {} vs {}",
+                    sgn[a],
+                    sgn_ref[a]
+                );
             }
         }
         let cau = end_node_integrals(Kernel::Cauchy, 0.03);
@@ -255,11 +302,39 @@ mod tests {
     #[test]
     fn constant_element_integrals_match_reference_sheet() {
         let k = ElementKind::Constant;
-        for (x, refs) in [(0.0, [-2.0, 0.0, 0.0]), (0.5, [-1.738375928, 1.0, 3f64.ln()]), (2.0, [1.295836866, 2.0, 3f64.ln()])] {
+        for (x, refs) in [
+            (0.0, [-2.0, 0.0, 0.0]),
+            (0.5, [-1.738375928, 1.0, 3f64.ln()]),
+            (2.0, [1.295836866, 2.0, 3f64.ln()]),
+        ] {
             let got = [Kernel::Log, Kernel::Sign, Kernel::Cauchy]
                 .map(|kern| element_integrals_exact(k, kern, -1.0, 1.0, x)[0]);
             for (g, r) in got.iter().zip(refs) {
                 assert!(close(*g, r), "x={x}: {g} vs {r}");
+            }
+        }
+    }
+
+    /// The block-Toeplitz fill equals integrating every node–element pair directly.
+    #[test]
+    fn toeplitz_fill_equals_direct_integration() {
+        for kind in [ElementKind::DiscontinuousQuadratic, ElementKind::Constant] {
+            let grid = ContactGrid::uniform(kind, 9, -1.7, 1.3);
+            for kernel in [Kernel::Log, Kernel::Sign, Kernel::Cauchy] {
+                let k = influence_matrix(&grid, kernel);
+                let npe = kind.nodes_per_element();
+                for (i, &x) in grid.nodes.iter().enumerate() {
+                    for e in 0..grid.n_elements() {
+                        let direct = element_integrals_exact(kind, kernel, grid.edges[e], grid.edges[e + 1], x);
+                        for (a, v) in direct.iter().enumerate() {
+                            let got = k[(i, e * npe + a)];
+                            assert!(
+                                (got - v).abs() < 1e-12 * (1.0 + v.abs()),
+                                "{kernel:?} i={i} e={e}: {got} vs {v}"
+                            );
+                        }
+                    }
+                }
             }
         }
     }

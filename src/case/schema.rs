@@ -307,7 +307,7 @@ impl Penalty {
 }
 
 /// Output settings.
-#[derive(Debug, Clone, Deserialize, Serialize)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct OutputSpec {
     /// Output folder, relative to the case file. Default = out/<case file stem> next to the case.
@@ -316,14 +316,4 @@ pub struct OutputSpec {
     pub vtk: bool,
     /// Interior stress grid (not available yet). Default = null.
     pub interior: Option<serde_json::Value>,
-}
-
-impl Default for OutputSpec {
-    fn default() -> Self {
-        Self {
-            dir: None,
-            vtk: false,
-            interior: None,
-        }
-    }
 }

@@ -27,7 +27,10 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         let key = |k: &str| format!("materials.{name}.{k}");
         match (m.young, m.shear) {
             (Some(_), Some(_)) => bad(key("E"), "give either E or G, not both".into()),
-            (None, None) => bad(key("E"), "missing: give Young's modulus E (or the shear modulus G)".into()),
+            (None, None) => bad(
+                key("E"),
+                "missing: give Young's modulus E (or the shear modulus G)".into(),
+            ),
             (Some(e), None) if !(e > 0.0 && e.is_finite()) => {
                 bad(key("E"), format!("Young's modulus must be positive (value = {e})"))
             }
@@ -37,7 +40,10 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             _ => {}
         }
         if !(m.nu > -1.0 && m.nu <= 0.5) {
-            bad(key("nu"), format!("Poisson's ratio must lie in (-1, 0.5] (value = {})", m.nu));
+            bad(
+                key("nu"),
+                format!("Poisson's ratio must lie in (-1, 0.5] (value = {})", m.nu),
+            );
         }
     }
 
@@ -49,7 +55,10 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 if !case.materials.contains_key(material) {
                     bad(
                         format!("bodies.{side}.material"),
-                        format!("material `{material}` is not defined under `materials` (defined: {})", defined()),
+                        format!(
+                            "material `{material}` is not defined under `materials` (defined: {})",
+                            defined()
+                        ),
                     );
                 }
                 *radius
@@ -67,25 +76,40 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         }
     }
     if rigid == 2 {
-        bad("bodies".into(), "both bodies are rigid: at least one must be elastic".into());
+        bad(
+            "bodies".into(),
+            "both bodies are rigid: at least one must be elastic".into(),
+        );
     }
 
     let c = &case.contact;
     if !(c.friction >= 0.0 && c.friction.is_finite()) {
-        bad("contact.friction".into(), format!("friction coefficient must be >= 0 (value = {})", c.friction));
+        bad(
+            "contact.friction".into(),
+            format!("friction coefficient must be >= 0 (value = {})", c.friction),
+        );
     }
     if c.grid.elements == 0 {
-        bad("contact.grid.elements".into(), "need at least one contact element (value = 0); 21 is the paper's grid".into());
+        bad(
+            "contact.grid.elements".into(),
+            "need at least one contact element (value = 0); 21 is the paper's grid".into(),
+        );
     }
     if !(c.grid.extent > 1.0 && c.grid.extent.is_finite()) {
         bad(
             "contact.grid.extent".into(),
-            format!("the grid must extend beyond the Hertz contact: extent > 1 (value = {}); 1.3 is typical", c.grid.extent),
+            format!(
+                "the grid must extend beyond the Hertz contact: extent > 1 (value = {}); 1.3 is typical",
+                c.grid.extent
+            ),
         );
     }
     if let Some(h) = c.grid.half_length {
         if !(h > 0.0 && h.is_finite()) {
-            bad("contact.grid.half_length".into(), format!("must be positive (value = {h})"));
+            bad(
+                "contact.grid.half_length".into(),
+                format!("must be positive (value = {h})"),
+            );
         }
     }
 
@@ -98,13 +122,19 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     let normal_force = match case.load.normal() {
         NormalSpec::Force(p) => {
             if !(p > 0.0 && p.is_finite()) {
-                bad("load.normal.force".into(), format!("normal force must be positive (value = {p})"));
+                bad(
+                    "load.normal.force".into(),
+                    format!("normal force must be positive (value = {p})"),
+                );
             }
             Some(p)
         }
         NormalSpec::Overlap(d) => {
             if !(d > 0.0 && d.is_finite()) {
-                bad("load.normal.overlap".into(), format!("overlap must be positive (value = {d})"));
+                bad(
+                    "load.normal.overlap".into(),
+                    format!("overlap must be positive (value = {d})"),
+                );
             }
             None
         }
@@ -112,15 +142,21 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     let full_sliding = "no steady rolling exists (full sliding); use |Q| < muP";
     match case.load.tangential() {
         TangentialSpec::Ratio(r) => {
-            if !(r.abs() < 1.0) {
-                bad("load.tangential.ratio".into(), format!("|Q/(muP)| must be < 1 (value = {r}): {full_sliding}"));
+            if r.is_nan() || r.abs() >= 1.0 {
+                bad(
+                    "load.tangential.ratio".into(),
+                    format!("|Q/(muP)| must be < 1 (value = {r}): {full_sliding}"),
+                );
             } else if c.friction == 0.0 && r != 0.0 {
-                bad("load.tangential.ratio".into(), "a ratio Q/(muP) needs friction > 0".into());
+                bad(
+                    "load.tangential.ratio".into(),
+                    "a ratio Q/(muP) needs friction > 0".into(),
+                );
             }
         }
         TangentialSpec::Force(q) => {
             if let Some(p) = normal_force {
-                if !(q.abs() < c.friction * p) {
+                if q.is_nan() || q.abs() >= c.friction * p {
                     bad(
                         "load.tangential.force".into(),
                         format!("|Q| = {} must be < muP = {} : {full_sliding}", q.abs(), c.friction * p),
@@ -130,21 +166,30 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         }
         TangentialSpec::Creep(x) => {
             if !x.is_finite() {
-                bad("load.tangential.creep".into(), format!("creepage must be finite (value = {x})"));
+                bad(
+                    "load.tangential.creep".into(),
+                    format!("creepage must be finite (value = {x})"),
+                );
             }
         }
     }
 
     let s = &case.solver;
     if !(s.tolerance > 0.0 && s.tolerance < 1.0) {
-        bad("solver.tolerance".into(), format!("must lie in (0, 1) (value = {})", s.tolerance));
+        bad(
+            "solver.tolerance".into(),
+            format!("must lie in (0, 1) (value = {})", s.tolerance),
+        );
     }
     if s.max_iterations == 0 {
         bad("solver.max_iterations".into(), "must be >= 1 (value = 0)".into());
     }
     if let Penalty::Scale(p) = s.penalty {
         if !(p > 0.0 && p.is_finite()) {
-            bad("solver.penalty".into(), format!("penalty scale must be positive or `auto` (value = {p})"));
+            bad(
+                "solver.penalty".into(),
+                format!("penalty scale must be positive or `auto` (value = {p})"),
+            );
         }
     }
     if case.output.interior.is_some() {

@@ -181,6 +181,7 @@ impl System<'_> {
         }
     }
 
+    #[allow(clippy::needless_range_loop)] // several arrays indexed by node: clearer than zips
     fn residual(&self, z: &State) -> Vec<f64> {
         let pb = self.pb;
         let m = self.m();
@@ -241,7 +242,7 @@ impl System<'_> {
     /// singular. The slipping node closest to sticking (smallest (|t| − bound)/bound) then gets
     /// the stick derivative, again a "modified" choice at a near-tie (paper Eq. 60).
     fn ensure_stick_row(&self, z: &State, contact: &[bool], tangential: &mut [Tangential]) {
-        if !self.free_creep || tangential.iter().any(|t| *t == Tangential::Stick) {
+        if !self.free_creep || tangential.contains(&Tangential::Stick) {
             return;
         }
         let excess = |i: usize| {
@@ -317,24 +318,27 @@ impl System<'_> {
         let mut rhs = Mat::<f64>::zeros(n, 1);
 
         // Adds Σ_j (ap_j Δp_j + aq_j Δq_j) to row `row`, moving known parts to the right side.
-        let add_row = |J: &mut Mat<f64>, rhs: &mut Mat<f64>, row: usize, ap: &dyn Fn(usize) -> f64, aq: &dyn Fn(usize) -> f64| {
-            for j in 0..m {
-                let (a_p, a_q) = (ap(j), aq(j));
-                let cp = a_p + a_q * q_pcoef[j];
-                rhs[(row, 0)] -= cp * p_const[j] + a_q * q_const[j];
-                if let Some(c) = p_col[j] {
-                    J[(row, c)] += cp;
+        let add_row =
+            |J: &mut Mat<f64>, rhs: &mut Mat<f64>, row: usize, ap: &dyn Fn(usize) -> f64, aq: &dyn Fn(usize) -> f64| {
+                for j in 0..m {
+                    let (a_p, a_q) = (ap(j), aq(j));
+                    let cp = a_p + a_q * q_pcoef[j];
+                    rhs[(row, 0)] -= cp * p_const[j] + a_q * q_const[j];
+                    if let Some(c) = p_col[j] {
+                        J[(row, c)] += cp;
+                    }
+                    if let Some(c) = q_col[j] {
+                        J[(row, c)] += a_q;
+                    }
                 }
-                if let Some(c) = q_col[j] {
-                    J[(row, c)] += a_q;
-                }
-            }
-        };
+            };
         let mut row = 0;
         for &i in &contact_rows {
             rhs[(row, 0)] = -g3[i] + g1[i];
             let rn = self.rn;
-            add_row(&mut J, &mut rhs, row, &|j| rn * pb.flex.hp[(i, j)], &|j| rn * pb.flex.hq[(i, j)]);
+            add_row(&mut J, &mut rhs, row, &|j| rn * pb.flex.hp[(i, j)], &|j| {
+                rn * pb.flex.hq[(i, j)]
+            });
             if let Some(c) = col_overlap {
                 J[(row, c)] = -rn;
             }
@@ -374,7 +378,9 @@ impl System<'_> {
         if (0..n).any(|r| !y[(r, 0)].is_finite()) {
             return Err(format!("the Newton matrix of size {n} is singular"));
         }
-        let dp: Vec<f64> = (0..m).map(|j| p_const[j] + p_col[j].map_or(0.0, |c| y[(c, 0)])).collect();
+        let dp: Vec<f64> = (0..m)
+            .map(|j| p_const[j] + p_col[j].map_or(0.0, |c| y[(c, 0)]))
+            .collect();
         let dq: Vec<f64> = (0..m)
             .map(|j| q_const[j] + q_col[j].map_or(0.0, |c| y[(c, 0)]) + q_pcoef[j] * dp[j])
             .collect();
@@ -384,7 +390,9 @@ impl System<'_> {
         let db = super::mat_vec2(&pb.bp, &dp, &pb.bq, &dq);
         let dg = (0..m).map(|i| -g1[i] / self.rn - d_overlap + dh[i]).collect();
         let e = &pb.slip_operator.creep_weight;
-        let ds = (0..m).map(|i| -g2[i] / self.rt + pb.flow_sign * d_creep * e[i] + db[i]).collect();
+        let ds = (0..m)
+            .map(|i| -g2[i] / self.rt + pb.flow_sign * d_creep * e[i] + db[i])
+            .collect();
         Ok((
             State {
                 gap: dg,

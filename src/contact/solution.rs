@@ -136,18 +136,32 @@ impl ContactSolution {
     /// line through p² at the two outermost loaded nodes reaches zero, kept between the
     /// outermost loaded node and the first open node (sub-node resolution instead of ±h/2).
     pub fn contact_extent(&self) -> Option<[f64; 2]> {
-        let loaded: Vec<usize> = (0..self.x.len()).filter(|&i| self.state[i] != NodeState::Open).collect();
+        let loaded: Vec<usize> = (0..self.x.len())
+            .filter(|&i| self.state[i] != NodeState::Open)
+            .collect();
         let (&first, &last) = (loaded.first()?, loaded.last()?);
         let h = if self.x.len() > 1 { self.x[1] - self.x[0] } else { 0.0 };
         let edge = |i: usize, j: usize, outward: f64| -> f64 {
             // Extrapolate p² from node j (inner) through node i (outermost) to zero.
             let (pi, pj) = (self.pressure[i].powi(2), self.pressure[j].powi(2));
             let slope = (pi - pj) / (self.x[i] - self.x[j]);
-            let t = if slope * outward < 0.0 { -pi / slope } else { 0.5 * h * outward };
+            let t = if slope * outward < 0.0 {
+                -pi / slope
+            } else {
+                0.5 * h * outward
+            };
             self.x[i] + t.clamp(-h, h).abs().min(h) * outward
         };
-        let x0 = if last > first && self.state[first + 1] != NodeState::Open { edge(first, first + 1, -1.0) } else { self.x[first] - 0.5 * h };
-        let x1 = if last > first && self.state[last - 1] != NodeState::Open { edge(last, last - 1, 1.0) } else { self.x[last] + 0.5 * h };
+        let x0 = if last > first && self.state[first + 1] != NodeState::Open {
+            edge(first, first + 1, -1.0)
+        } else {
+            self.x[first] - 0.5 * h
+        };
+        let x1 = if last > first && self.state[last - 1] != NodeState::Open {
+            edge(last, last - 1, 1.0)
+        } else {
+            self.x[last] + 0.5 * h
+        };
         Some([x0, x1])
     }
 
@@ -238,7 +252,12 @@ pub fn slip_regime(solution: &ContactSolution, leading_edge_sign: f64, min_nodes
 pub fn traction_ripple(solution: &ContactSolution) -> f64 {
     let m = solution.x.len();
     let q = &solution.shear;
-    let key = |i: usize| (solution.state[i], solution.slip[i] >= 0.0 || solution.state[i] != NodeState::Slip);
+    let key = |i: usize| {
+        (
+            solution.state[i],
+            solution.slip[i] >= 0.0 || solution.state[i] != NodeState::Slip,
+        )
+    };
     let inside = |i: usize| solution.state[i] != NodeState::Open && key(i - 1) == key(i) && key(i + 1) == key(i);
     let d2 = |i: usize| q[i - 1] - 2.0 * q[i] + q[i + 1];
     (1..m.saturating_sub(2))

@@ -31,7 +31,15 @@ fn draw(path: &Path, sol: &ContactSolution, mu: f64, title: &str) -> Result<(), 
     let x = &sol.x;
     let (x0, x1) = (x[0], x[x.len() - 1]);
     let bound: Vec<f64> = sol.pressure.iter().map(|p| mu * p).collect();
-    let (y0, y1) = range(sol.pressure.iter().chain(&sol.shear).chain(&bound).copied().chain([0.0, -0.0]).chain(bound.iter().map(|b| -b)));
+    let (y0, y1) = range(
+        sol.pressure
+            .iter()
+            .chain(&sol.shear)
+            .chain(&bound)
+            .copied()
+            .chain([0.0, -0.0])
+            .chain(bound.iter().map(|b| -b)),
+    );
     let mut chart = ChartBuilder::on(&top)
         .margin(10)
         .x_label_area_size(35)
@@ -53,7 +61,11 @@ fn draw(path: &Path, sol: &ContactSolution, mu: f64, title: &str) -> Result<(), 
         .label("±mu p")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
     chart.draw_series(LineSeries::new(series(&neg), BLACK.mix(0.5)))?;
-    chart.configure_series_labels().border_style(BLACK).background_style(WHITE.mix(0.8)).draw()?;
+    chart
+        .configure_series_labels()
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.8))
+        .draw()?;
 
     let in_contact: Vec<usize> = (0..x.len()).filter(|&i| sol.pressure[i] > 0.0).collect();
     let pick = |v: &[f64]| in_contact.iter().map(|&i| (x[i], v[i])).collect::<Vec<_>>();
@@ -78,7 +90,11 @@ fn draw(path: &Path, sol: &ContactSolution, mu: f64, title: &str) -> Result<(), 
             .label("slip (boundary-integral derivative)")
             .legend(|(x, y)| Circle::new((x + 10, y), 2, MAGENTA.filled()));
     }
-    chart.configure_series_labels().border_style(BLACK).background_style(WHITE.mix(0.8)).draw()?;
+    chart
+        .configure_series_labels()
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.8))
+        .draw()?;
     root.present()?;
     Ok(())
 }

@@ -7,7 +7,9 @@ use std::path::PathBuf;
 
 /// Path of a shipped case by its stem.
 pub fn case_path(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases").join(format!("{name}.yaml"))
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("cases")
+        .join(format!("{name}.yaml"))
 }
 
 /// Loads a shipped case with `key=value` overrides and solves it (no files written).
@@ -15,7 +17,11 @@ pub fn solve(name: &str, overrides: &[&str]) -> (LoadedCase, Solved) {
     let set: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
     let case = case::load(&case_path(name), &set).unwrap_or_else(|e| panic!("{name}: {e}"));
     let solved = app::solve(&case).unwrap_or_else(|e| panic!("{name}: {e}"));
-    assert!(solved.newton.converged, "{name} {overrides:?} did not converge: {:?}", solved.newton.history);
+    assert!(
+        solved.newton.converged,
+        "{name} {overrides:?} did not converge: {:?}",
+        solved.newton.history
+    );
     (case, solved)
 }
 
