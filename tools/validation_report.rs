@@ -207,22 +207,39 @@ fn main() {
         );
     }
 
-    println!("\n## Variable friction (Figs 7–9), 21 elements\n");
-    println!("| case | μ | Q/μP | β/μ | regime | slip directions | ripple (μp0) | iterations |");
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("\n## Variable friction (Figs 7–9), 21 and 81 elements\n");
+    println!("| case | μ | elements | Q/μP | β/μ | regime | zones (x/a, nodes) | ripple (μp0) | iterations |");
+    println!("|---|---|---|---|---|---|---|---|---|");
     for name in ["variable_mu_qp_0075", "variable_mu_qp_m0083", "variable_mu_qp_0004"] {
         for mu in [0.1, 0.2, 0.3, 0.4, 0.8] {
-            let (_, s) = solve(name, &set(&[&format!("contact.friction={mu}")]));
-            let e = &s.estimates;
-            let ripple = rollbem::contact::solution::traction_ripple(&s.solution) / (mu * e.hertz_peak_pressure);
-            println!(
-                "| {name} | {mu} | {:.4} | {:.3} | {} | {:?} | {ripple:.2e} | {} |",
-                s.solution.tangential_force / (mu * s.solution.normal_force),
-                e.dundurs_beta / mu,
-                slip_regime(&s.solution, 1.0, 1),
-                s.solution.slip_directions(),
-                s.newton.iterations
-            );
+            for n in [21, 81] {
+                let (_, s) = solve(name, &set(&[&format!("contact.friction={mu}"), &format!("contact.grid.elements={n}")]));
+                let e = &s.estimates;
+                let a = e.hertz_half_width;
+                let ripple = rollbem::contact::solution::traction_ripple(&s.solution) / (mu * e.hertz_peak_pressure);
+                let zones: Vec<String> = s
+                    .solution
+                    .zones
+                    .iter()
+                    .filter(|z| z.state != NodeState::Open)
+                    .map(|z| {
+                        let sign = match z.direction {
+                            1 => "+",
+                            -1 => "−",
+                            _ => "",
+                        };
+                        format!("{}{sign}[{:.2}, {:.2}]({})", &z.state.name()[..2], z.x0 / a, z.x1 / a, z.nodes)
+                    })
+                    .collect();
+                println!(
+                    "| {name} | {mu} | {n} | {:.4} | {:.3} | {} | {} | {ripple:.1e} | {} |",
+                    s.solution.tangential_force / (mu * s.solution.normal_force),
+                    e.dundurs_beta / mu,
+                    slip_regime(&s.solution, 1.0, 1),
+                    zones.join(" "),
+                    s.newton.iterations
+                );
+            }
         }
     }
 }
