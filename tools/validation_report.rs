@@ -213,7 +213,10 @@ fn main() {
     for name in ["variable_mu_qp_0075", "variable_mu_qp_m0083", "variable_mu_qp_0004"] {
         for mu in [0.1, 0.2, 0.3, 0.4, 0.8] {
             for n in [21, 81] {
-                let (_, s) = solve(name, &set(&[&format!("contact.friction={mu}"), &format!("contact.grid.elements={n}")]));
+                let (_, s) = solve(
+                    name,
+                    &set(&[&format!("contact.friction={mu}"), &format!("contact.grid.elements={n}")]),
+                );
                 let e = &s.estimates;
                 let a = e.hertz_half_width;
                 let ripple = rollbem::contact::solution::traction_ripple(&s.solution) / (mu * e.hertz_peak_pressure);
@@ -228,7 +231,13 @@ fn main() {
                             -1 => "−",
                             _ => "",
                         };
-                        format!("{}{sign}[{:.2}, {:.2}]({})", &z.state.name()[..2], z.x0 / a, z.x1 / a, z.nodes)
+                        format!(
+                            "{}{sign}[{:.2}, {:.2}]({})",
+                            &z.state.name()[..2],
+                            z.x0 / a,
+                            z.x1 / a,
+                            z.nodes
+                        )
                     })
                     .collect();
                 println!(
