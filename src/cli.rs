@@ -34,6 +34,37 @@ pub enum Command {
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
     },
+    /// Run a case over the Cartesian product of parameter values, in parallel.
+    ///
+    /// Example (the paper's variable-friction study, Figs 7–9):
+    /// rollbem sweep cases/variable_mu_qp_0075.yaml --vary contact.friction=0.1,0.2,0.3,0.4,0.8
+    ///
+    /// Writes one folder per run (run_0000, …), sweep.csv (varied values, status, forces,
+    /// creepage, zones, timings) and sweep.pvd (the runs' contact lines as ParaView time steps).
+    /// A failed run is recorded as failed and the others go on; exit code 2 if any run failed.
+    /// Large sweeps: `--shard K/N` runs the K-th of N deterministic slices (one per Slurm array
+    /// task), then `rollbem sweep --merge DIR... --out DIR` joins the shards.
+    Sweep {
+        /// Case file (not needed with --merge).
+        #[arg(required_unless_present = "merge")]
+        case: Option<PathBuf>,
+        /// key.path=v1,v2,... — values for one case key (read as YAML, like --set). Repeatable:
+        /// the runs are the Cartesian product, the first --vary varying slowest.
+        #[arg(long = "vary", value_name = "KEY.PATH=V1,V2,...")]
+        vary: Vec<String>,
+        /// Fixed overrides applied to every run. Repeatable.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output folder (default: the case's output folder with `_sweep` appended).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Run only slice K of N (1 <= K <= N) of the runs; writes sweep_shard_K_of_N.csv.
+        #[arg(long, value_name = "K/N", conflicts_with = "merge")]
+        shard: Option<String>,
+        /// Join the sweep_shard_*.csv files of these folders into --out (default: the first).
+        #[arg(long, num_args = 1.., value_name = "DIR")]
+        merge: Vec<PathBuf>,
+    },
     /// Validate a case without solving: print the bodies, materials, Hertz estimates (a, p0),
     /// the grid spacing, the Carter stick-zone estimate and model advice.
     Check {

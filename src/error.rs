@@ -25,6 +25,12 @@ pub enum Error {
         /// The grid extent in Hertz half-widths.
         extent: f64,
     },
+    /// A sweep argument or a merge input is wrong.
+    #[error("sweep: {message}")]
+    Sweep {
+        /// What is wrong and what to do.
+        message: String,
+    },
     /// Writing results failed.
     #[error("cannot write results to {path}: {message}")]
     Output {

@@ -28,3 +28,4 @@ pub mod grid;
 pub mod material;
 pub mod output;
 pub mod quadrature;
+pub mod sweep;

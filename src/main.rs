@@ -41,6 +41,52 @@ fn dispatch(cli: Cli) -> Result<i32> {
                 Ok(EXIT_NOT_CONVERGED)
             }
         }
+        Command::Sweep {
+            case,
+            vary,
+            set,
+            out,
+            shard,
+            merge,
+        } => {
+            if !merge.is_empty() {
+                let out = out.unwrap_or_else(|| merge[0].clone());
+                let path = rollbem::sweep::merge(&merge, &out)?;
+                println!("merged {} folder(s) into {}", merge.len(), path.display());
+                return Ok(0);
+            }
+            let case = case.expect("clap requires CASE without --merge");
+            let varies = vary
+                .iter()
+                .map(|v| rollbem::sweep::Vary::parse(v))
+                .collect::<Result<Vec<_>, _>>()?;
+            let shard = shard.as_deref().map(rollbem::sweep::Shard::parse).transpose()?;
+            let out = match out {
+                Some(o) => o,
+                None => {
+                    let loaded = rollbem::case::load(&case, &set)?;
+                    let dir = loaded.output_dir();
+                    let name = dir
+                        .file_name()
+                        .map_or("sweep".into(), |n| format!("{}_sweep", n.to_string_lossy()));
+                    dir.with_file_name(name)
+                }
+            };
+            let report = rollbem::sweep::run(&case, &set, &varies, shard, &out)?;
+            let failed: Vec<&rollbem::sweep::RunRow> = report.rows.iter().filter(|r| r.status != "ok").collect();
+            println!(
+                "sweep: {} of {} runs here, {} ok, {} failed or not converged; table {}",
+                report.rows.len(),
+                report.total_runs,
+                report.rows.len() - failed.len(),
+                failed.len(),
+                report.csv.display()
+            );
+            for r in &failed {
+                eprintln!("  {} {}: {} {}", r.folder, r.values.join(" "), r.status, r.message);
+            }
+            Ok(if failed.is_empty() { 0 } else { EXIT_NOT_CONVERGED })
+        }
         Command::Check { case, set } => {
             print!("{}", rollbem::app::check_report(&case, &set)?);
             Ok(0)

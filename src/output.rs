@@ -4,6 +4,7 @@
 //! when complete, so a failed run never leaves a half-written result.
 
 pub mod svg;
+pub mod vtk;
 
 use crate::app::{Estimates, Timings};
 use crate::case::LoadedCase;
@@ -94,6 +95,8 @@ pub struct Summary {
     pub solver: SolverSummary,
     /// Notices for the user (requested features not available, adjustments made).
     pub notices: Vec<String>,
+    /// Whether VTK files (contact.vtu, result.pvd) were requested.
+    pub vtk: bool,
     /// The case as resolved after `--set` overrides.
     pub case: serde_json::Value,
 }
@@ -183,21 +186,10 @@ pub fn summary(
             traction_scale: newton.traction_scale,
             history: newton.history.clone(),
         },
-        notices: notices(case),
+        notices: Vec::new(),
+        vtk: case.case.output.vtk,
         case: case.resolved.clone(),
     }
-}
-
-/// Notices about the case that do not stop the run.
-pub fn notices(case: &LoadedCase) -> Vec<String> {
-    let mut out = Vec::new();
-    if case.case.output.vtk {
-        out.push(
-            "output.vtk: VTK output is not available yet for half-space and rigid bodies; wrote JSON, CSV and SVG only"
-                .to_string(),
-        );
-    }
-    out
 }
 
 /// Column names of contact.csv, in order (DESIGN §5 plus the surface displacements).
@@ -281,6 +273,16 @@ pub fn write_run(
         if summary.converged {
             write_csv(&tmp.join("contact.csv"), sol, pb)?;
             svg::write_contact_plot(&tmp.join("contact.svg"), sol, pb.friction, &summary.title)?;
+            if summary.vtk {
+                vtk::write_contact_line(&tmp.join("contact.vtu"), sol, pb)?;
+                let entry = vtk::CollectionEntry {
+                    file: "contact.vtu".into(),
+                    timestep: 0.0,
+                    part: 0,
+                    name: "contact".into(),
+                };
+                vtk::write_collection(&tmp.join("result.pvd"), &[entry])?;
+            }
         }
         summary.timings.total_s = start.elapsed().as_secs_f64();
         let json = serde_json::to_string_pretty(summary).map_err(|e| err(&tmp, &e))?;

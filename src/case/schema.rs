@@ -306,14 +306,31 @@ impl Penalty {
     }
 }
 
+fn default_true() -> bool {
+    true
+}
+
 /// Output settings.
-#[derive(Debug, Clone, Default, Deserialize, Serialize)]
-#[serde(deny_unknown_fields, default)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct OutputSpec {
     /// Output folder, relative to the case file. Default = out/<case file stem> next to the case.
+    #[serde(default)]
     pub dir: Option<String>,
-    /// VTK files for ParaView (not available yet for half-space runs). Default = false.
+    /// VTK files for ParaView: contact.vtu and result.pvd. Default = true.
+    #[serde(default = "default_true")]
     pub vtk: bool,
     /// Interior stress grid (not available yet). Default = null.
+    #[serde(default)]
     pub interior: Option<serde_json::Value>,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        Self {
+            dir: None,
+            vtk: true,
+            interior: None,
+        }
+    }
 }
