@@ -1,0 +1,156 @@
+#!/usr/bin/env python3
+"""Check rollbem outputs with the real clients (meshio and pyvista).
+
+Usage: check_outputs.py DIR [DIR ...]
+
+Each DIR is a run folder (summary.json, contact.csv, contact.vtu, result.pvd) or a sweep folder
+(sweep.csv, sweep.pvd, run_NNNN/). For every file: it opens in meshio and in pyvista, carries the
+documented arrays with the right shapes, and its values equal contact.csv / summary.json to 1e-12
+relative. Exits 1 with one line per defect.
+"""
+import csv
+import json
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import meshio
+import numpy as np
+import pyvista as pv
+
+SCALARS = ["pressure", "shear", "gap", "slip", "state", "u_n_A", "u_t_A", "u_n_B", "u_t_B"]
+VECTORS = ["traction", "displacement_A", "displacement_B"]
+STATE_CODE = {"open": 0, "stick": 1, "slip": 2}
+RTOL = 1e-12
+
+errors = []
+
+
+def fail(where, message):
+    errors.append(f"{where}: {message}")
+
+
+def close(a, b):
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    scale = max(np.max(np.abs(b)) if b.size else 0.0, 1e-300)
+    return a.shape == b.shape and np.max(np.abs(a - b)) <= RTOL * scale
+
+
+def read_contact_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    cols = {}
+    for key in rows[0]:
+        if key == "state":
+            cols[key] = np.array([STATE_CODE[r[key]] for r in rows], float)
+        elif all(r[key] != "" for r in rows):
+            cols[key] = np.array([float(r[key]) for r in rows])
+    return cols
+
+
+def check_vtu(path, cols):
+    expected = SCALARS + VECTORS + (["slip_hbem"] if "slip_hbem" in cols else [])
+    m = meshio.read(path)
+    g = pv.read(path)
+    n = len(cols["x"])
+    for reader, points, data in [("meshio", m.points, m.point_data), ("pyvista", np.asarray(g.points), g.point_data)]:
+        where = f"{path} ({reader})"
+        if sorted(data.keys()) != sorted(expected):
+            fail(where, f"arrays {sorted(data.keys())}, expected {sorted(expected)}")
+            continue
+        if points.shape != (n, 3) or not close(points[:, 0], cols["x"]):
+            fail(where, "points do not match contact.csv x")
+        for name in SCALARS + (["slip_hbem"] if "slip_hbem" in cols else []):
+            arr = np.asarray(data[name]).reshape(-1)
+            if arr.shape != (n,) or not close(arr, cols[name]):
+                fail(where, f"`{name}` differs from contact.csv")
+        for name in VECTORS:
+            if np.asarray(data[name]).shape != (n, 3):
+                fail(where, f"`{name}` has shape {np.asarray(data[name]).shape}, expected ({n}, 3)")
+        t = np.asarray(data["traction"])
+        if not (close(t[:, 0], cols["shear"]) and close(t[:, 1], cols["pressure"]) and np.all(t[:, 2] == 0)):
+            fail(where, "`traction` is not (shear, pressure, 0)")
+        d = np.asarray(data["displacement_B"])
+        if not (close(d[:, 0], cols["u_t_B"]) and close(d[:, 1], -cols["u_n_B"])):
+            fail(where, "`displacement_B` is not (u_t_B, -u_n_B, 0)")
+    if len(m.cells) != 1 or m.cells[0].type != "line" or len(m.cells[0].data) != n - 1:
+        fail(path, f"cells {m.cells}, expected {n - 1} lines")
+
+
+def pvd_files(path):
+    root = ET.parse(path).getroot()
+    return [ds.attrib["file"] for ds in root.iter("DataSet")]
+
+
+def check_pvd(path, expected_count=None):
+    files = pvd_files(path)
+    if expected_count is not None and len(files) != expected_count:
+        fail(path, f"{len(files)} datasets, expected {expected_count}")
+    for f in files:
+        if not (path.parent / f).exists():
+            fail(path, f"lists missing file {f}")
+    # pyvista's PVD reader exposes the datasets as time steps (what ParaView steps through).
+    reader = pv.get_reader(str(path))
+    times = list(reader.time_values)
+    if len(times) != len(files):
+        fail(path, f"pyvista sees {len(times)} time steps, the file lists {len(files)}")
+    for t in times:
+        reader.set_active_time_value(t)
+        block = reader.read()
+        if sum(b.n_points for b in block if b is not None) == 0:
+            fail(path, f"time step {t} reads as empty in pyvista")
+
+
+def check_run(d):
+    summary = json.loads((d / "summary.json").read_text())
+    for key in ["converged", "iterations", "residual", "normal_force", "tangential_force", "overlap", "creep",
+                "contact", "stick_zones", "slip_zones", "timings", "models", "case"]:
+        if key not in summary:
+            fail(d / "summary.json", f"missing `{key}`")
+    if not summary.get("converged"):
+        return
+    cols = read_contact_csv(d / "contact.csv")
+    for name, arr in cols.items():
+        if not np.all(np.isfinite(arr)):
+            fail(d / "contact.csv", f"non-finite values in `{name}`")
+    if not np.isclose(summary["max_pressure"], cols["pressure"].max(), rtol=RTOL, atol=0):
+        fail(d / "summary.json", "max_pressure differs from contact.csv")
+    if summary.get("vtk", True):
+        check_vtu(d / "contact.vtu", cols)
+        check_pvd(d / "result.pvd", expected_count=1)
+
+
+def check_sweep(d):
+    with open(d / "sweep.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    ok = [r for r in rows if r["status"] == "ok"]
+    check_pvd(d / "sweep.pvd", expected_count=len(ok))
+    for r in ok:
+        run = (d / r["folder"]).resolve()
+        summary = json.loads((run / "summary.json").read_text())
+        for key in ["normal_force", "tangential_force", "overlap", "creep", "residual"]:
+            if not np.isclose(float(r[key]), summary[key], rtol=RTOL, atol=0):
+                fail(d / "sweep.csv", f"run {r['run']}: `{key}` {r[key]} differs from {run}/summary.json")
+        check_run(run)
+
+
+def main(dirs):
+    if not dirs:
+        print(__doc__)
+        return 2
+    for name in dirs:
+        d = Path(name)
+        if (d / "sweep.csv").exists():
+            check_sweep(d)
+        elif (d / "summary.json").exists():
+            check_run(d)
+        else:
+            fail(d, "neither a run folder (summary.json) nor a sweep folder (sweep.csv)")
+    for e in errors:
+        print("FAIL", e)
+    print(f"check_outputs: {len(dirs)} folder(s), {len(errors)} defect(s)")
+    return 1 if errors else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
