@@ -24,8 +24,9 @@ fn contact_pipeline(c: &mut Criterion) {
         .warm_up_time(Duration::from_millis(500));
     for n in [21, 41, 81, 161, 321] {
         let case = load(n);
-        let est = app::estimates(&case);
-        let problem = app::build_problem(&case, &est);
+        let bodies = app::prepare_bodies(&case).expect("bodies");
+        let est = app::estimates(&case, &bodies);
+        let problem = app::build_problem(&case, &est, &bodies).expect("problem");
         let settings = app::newton_settings(&case);
         let (_, report) = newton::solve(&problem, &settings);
         eprintln!(
@@ -33,7 +34,7 @@ fn contact_pipeline(c: &mut Criterion) {
             report.iterations, report.converged
         );
         group.bench_with_input(BenchmarkId::new("assembly", n), &n, |b, _| {
-            b.iter(|| app::build_problem(&case, &est))
+            b.iter(|| app::build_problem(&case, &est, &bodies))
         });
         group.bench_with_input(BenchmarkId::new("newton_solve", n), &n, |b, _| {
             b.iter(|| newton::solve(&problem, &settings))

@@ -11,6 +11,7 @@ use crate::contact::{ContactProblem, NormalControl, TangentialControl};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::material::{self, Elastic};
+use crate::mesh::BoundaryMesh;
 use crate::output::{self, Summary};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -41,28 +42,165 @@ pub struct Estimates {
     pub grid_spacing: f64,
 }
 
-/// Elastic constants of a body spec, or None for a rigid body.
-fn body_material(case: &LoadedCase, spec: &BodySpec) -> Option<Elastic> {
-    match spec {
-        BodySpec::HalfSpace { material, .. } => Some(case.material(material)),
-        BodySpec::Rigid { .. } => None,
+/// A boundary mesh loaded for a `bem` body.
+#[derive(Debug, Clone)]
+pub struct LoadedMesh {
+    /// The mesh file.
+    pub path: PathBuf,
+    /// The checked and oriented mesh.
+    pub mesh: BoundaryMesh,
+    /// One notice per loop that was turned round.
+    pub notices: Vec<String>,
+    /// Index of the contact group.
+    pub contact_group: usize,
+}
+
+impl LoadedMesh {
+    /// x-range [x_min, x_max] of the contact segment [length].
+    pub fn contact_range(&self) -> [f64; 2] {
+        let xs = self.contact_nodes().map(|p| p[0]);
+        xs.fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], x| [lo.min(x), hi.max(x)])
+    }
+
+    fn contact_nodes(&self) -> impl Iterator<Item = [f64; 2]> + '_ {
+        self.mesh
+            .elements
+            .iter()
+            .filter(|e| e.group == self.contact_group)
+            .flat_map(|e| e.nodes.iter().map(|&n| self.mesh.nodes[n]))
+    }
+
+    /// Radius of the contact segment's profile [length]: the algebraic least-squares circle
+    /// (Kåsa fit: x² + y² + Dx + Ey + F = 0), exact for nodes on a circle; infinite when the
+    /// segment is straight (the fit's centre then runs away: R > 1e6 times the segment length).
+    pub fn contact_radius(&self) -> f64 {
+        let pts: Vec<[f64; 2]> = self.contact_nodes().collect();
+        // Normal equations of min Σ (D x + E y + F + x² + y²)², centred for conditioning.
+        let n = pts.len() as f64;
+        let (cx, cy) = (
+            pts.iter().map(|p| p[0]).sum::<f64>() / n,
+            pts.iter().map(|p| p[1]).sum::<f64>() / n,
+        );
+        let mut a = nalgebra::Matrix3::<f64>::zeros();
+        let mut b = nalgebra::Vector3::<f64>::zeros();
+        for p in &pts {
+            let (x, y) = (p[0] - cx, p[1] - cy);
+            let row = nalgebra::Vector3::new(x, y, 1.0);
+            a += row * row.transpose();
+            b -= row * (x * x + y * y);
+        }
+        let [x0, x1] = self.contact_range();
+        let span = (x1 - x0).max(f64::MIN_POSITIVE);
+        match a.lu().solve(&b) {
+            Some(s) => {
+                let r2 = 0.25 * (s[0] * s[0] + s[1] * s[1]) - s[2];
+                let r = r2.max(0.0).sqrt();
+                if r.is_finite() && r < 1e6 * span {
+                    r
+                } else {
+                    f64::INFINITY
+                }
+            }
+            None => f64::INFINITY,
+        }
+    }
+
+    /// Total length of the elements of a group (polyline through end, mid, end nodes) [length].
+    pub fn group_length(&self, group: usize) -> f64 {
+        let d = |a: [f64; 2], b: [f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+        self.mesh
+            .elements
+            .iter()
+            .filter(|e| e.group == group)
+            .map(|e| match e.nodes.as_slice() {
+                [a, b, m] => d(self.mesh.nodes[*a], self.mesh.nodes[*m]) + d(self.mesh.nodes[*m], self.mesh.nodes[*b]),
+                [a, b] => d(self.mesh.nodes[*a], self.mesh.nodes[*b]),
+                _ => 0.0,
+            })
+            .sum()
     }
 }
 
-fn body_radius(spec: &BodySpec) -> f64 {
-    match spec {
-        BodySpec::HalfSpace { radius, .. } | BodySpec::Rigid { radius } => *radius,
-    }
+/// A body spec resolved against the case: material, profile radius, and mesh for `bem`.
+#[derive(Debug, Clone)]
+pub struct PreparedBody {
+    /// Elastic constants, None for a rigid body.
+    pub material: Option<Elastic>,
+    /// Profile radius [length] (infinite for a flat profile).
+    pub radius: f64,
+    /// The mesh of a `bem` body.
+    pub mesh: Option<LoadedMesh>,
 }
 
-/// Builds the body model of a spec.
-pub fn body_model(case: &LoadedCase, spec: &BodySpec) -> Box<dyn BodyModel> {
-    match spec {
-        BodySpec::HalfSpace { material, radius } => Box::new(HalfSpace {
-            material: case.material(material),
+/// Resolves a body spec: loads and checks the mesh of a `bem` body (paths relative to the case).
+pub fn prepare_body(case: &LoadedCase, spec: &BodySpec) -> Result<PreparedBody, Error> {
+    Ok(match spec {
+        BodySpec::HalfSpace { material, radius } => PreparedBody {
+            material: Some(case.material(material)),
             radius: *radius,
+            mesh: None,
+        },
+        BodySpec::Rigid { radius } => PreparedBody {
+            material: None,
+            radius: *radius,
+            mesh: None,
+        },
+        BodySpec::Bem {
+            mesh,
+            material,
+            contact,
+            boundaries,
+            radius,
+        } => {
+            let path = case.base_dir().join(mesh);
+            let (m, notices) = crate::mesh::load(&path)?;
+            let contact_group = m.group_index(contact)?;
+            for name in m.group_names() {
+                if name != *contact && !boundaries.contains_key(&name) {
+                    return Err(Error::MissingBoundary {
+                        case: case.path.clone(),
+                        mesh: path.clone(),
+                        group: name,
+                    });
+                }
+            }
+            for name in boundaries.keys() {
+                m.group_index(name)?;
+            }
+            let loaded = LoadedMesh {
+                path,
+                mesh: m,
+                notices,
+                contact_group,
+            };
+            PreparedBody {
+                material: Some(case.material(material)),
+                radius: radius.unwrap_or_else(|| loaded.contact_radius()),
+                mesh: Some(loaded),
+            }
+        }
+    })
+}
+
+/// Both bodies of a case, prepared.
+pub fn prepare_bodies(case: &LoadedCase) -> Result<[PreparedBody; 2], Error> {
+    Ok([
+        prepare_body(case, &case.case.bodies.a)?,
+        prepare_body(case, &case.case.bodies.b)?,
+    ])
+}
+
+/// Builds the body model of a prepared spec.
+pub fn body_model(spec: &BodySpec, prepared: &PreparedBody) -> Result<Box<dyn BodyModel>, Error> {
+    match spec {
+        BodySpec::HalfSpace { .. } => Ok(Box::new(HalfSpace {
+            material: prepared.material.expect("half-space bodies have a material"),
+            radius: prepared.radius,
+        })),
+        BodySpec::Rigid { radius } => Ok(Box::new(Rigid { radius: *radius })),
+        BodySpec::Bem { .. } => Err(Error::Unsupported {
+            what: "solving with `model: bem` (its condensed contact flexibility) is not available yet; `rollbem check` reads and checks the mesh".into(),
         }),
-        BodySpec::Rigid { radius } => Box::new(Rigid { radius: *radius }),
     }
 }
 
@@ -103,20 +241,16 @@ pub fn aligned_half_length(a: f64, extent: f64, elements: usize) -> f64 {
 }
 
 /// Hertz estimates and the grid half-length of a case.
-pub fn estimates(case: &LoadedCase) -> Estimates {
+pub fn estimates(case: &LoadedCase, bodies: &[PreparedBody; 2]) -> Estimates {
     let c = &case.case;
-    let (ma, mb) = (body_material(case, &c.bodies.a), body_material(case, &c.bodies.b));
+    let [ba, bb] = bodies;
+    let (ma, mb) = (ba.material, bb.material);
     let e_star = material::contact_modulus(ma.as_ref(), mb.as_ref());
     let dundurs_beta = material::dundurs_beta(ma.as_ref(), mb.as_ref());
-    let radius = material::effective_radius(body_radius(&c.bodies.a), body_radius(&c.bodies.b));
+    let radius = material::effective_radius(ba.radius, bb.radius);
     let normal_force = match c.load.normal() {
         NormalSpec::Force(p) => p,
-        NormalSpec::Overlap(d) => load_from_overlap(
-            d,
-            [(ma, body_radius(&c.bodies.a)), (mb, body_radius(&c.bodies.b))],
-            radius,
-            e_star,
-        ),
+        NormalSpec::Overlap(d) => load_from_overlap(d, [(ma, ba.radius), (mb, bb.radius)], radius, e_star),
     };
     let a = analytic::hertz_half_width(normal_force, radius, e_star);
     let ratio = match c.load.tangential() {
@@ -160,7 +294,7 @@ pub fn newton_settings(case: &LoadedCase) -> NewtonSettings {
 }
 
 /// Assembles the contact problem of a case.
-pub fn build_problem(case: &LoadedCase, est: &Estimates) -> ContactProblem {
+pub fn build_problem(case: &LoadedCase, est: &Estimates, bodies: &[PreparedBody; 2]) -> Result<ContactProblem, Error> {
     let c = &case.case;
     let grid = ContactGrid::uniform(
         c.contact.grid.element,
@@ -177,8 +311,11 @@ pub fn build_problem(case: &LoadedCase, est: &Estimates) -> ContactProblem {
         TangentialSpec::Force(q) => TangentialControl::Force(q),
         TangentialSpec::Creep(x) => TangentialControl::Creep(x),
     };
-    let (a, b) = (body_model(case, &c.bodies.a), body_model(case, &c.bodies.b));
-    ContactProblem::assemble(
+    let (a, b) = (
+        body_model(&c.bodies.a, &bodies[0])?,
+        body_model(&c.bodies.b, &bodies[1])?,
+    );
+    Ok(ContactProblem::assemble(
         grid,
         a.as_ref(),
         b.as_ref(),
@@ -187,7 +324,7 @@ pub fn build_problem(case: &LoadedCase, est: &Estimates) -> ContactProblem {
         c.contact.rolling_direction,
         normal,
         tangential,
-    )
+    ))
 }
 
 /// Wall-clock time of each stage [s].
@@ -238,8 +375,9 @@ pub struct Solved {
 /// Assembles and solves a loaded case; checks that the grid contains the contact.
 pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
     let start = Instant::now();
-    let estimates = estimates(case);
-    let problem = build_problem(case, &estimates);
+    let bodies = prepare_bodies(case)?;
+    let estimates = estimates(case, &bodies);
+    let problem = build_problem(case, &estimates, &bodies)?;
     let mut timings = Timings {
         assembly_s: start.elapsed().as_secs_f64(),
         ..Timings::default()
@@ -324,7 +462,8 @@ pub fn carter_reference(case: &LoadedCase, est: &Estimates) -> Option<Carter> {
 /// The text printed by `rollbem check`: the case as understood, with Hertz estimates.
 pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Error> {
     let case = case::load(case_path, overrides)?;
-    let est = estimates(&case);
+    let bodies = prepare_bodies(&case)?;
+    let est = estimates(&case, &bodies);
     let c = &case.case;
     let mut t = format!("rollbem check {}: valid\n", case_path.display());
     let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
@@ -341,8 +480,57 @@ pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Er
                 )
             }
             BodySpec::Rigid { radius } => format!("rigid, R = {radius}"),
+            BodySpec::Bem { mesh, material, .. } => {
+                let m = case.material(material);
+                format!(
+                    "bem, mesh {mesh}, material `{material}` (E = {:.6}, G = {:.6}, nu = {})",
+                    m.young,
+                    m.shear(),
+                    m.poisson
+                )
+            }
         };
         line(&format!("body {side}"), text);
+    }
+    let mut ranges = Vec::new();
+    for (side, body) in ["A", "B"].iter().zip(&bodies) {
+        let Some(lm) = &body.mesh else { continue };
+        for (g, group) in lm.mesh.groups.iter().enumerate() {
+            line(
+                &format!("  {side}: group `{}`", group.name),
+                format!(
+                    "{} elements, length {:.6}",
+                    lm.mesh.count_in_group(g),
+                    lm.group_length(g)
+                ),
+            );
+        }
+        let loops = crate::mesh::check::boundary_loops(&lm.mesh)?;
+        let holes = loops.iter().filter(|l| l.is_hole()).count();
+        line(
+            &format!("  {side}: loops"),
+            format!("{} ({} outer, {holes} holes)", loops.len(), loops.len() - holes),
+        );
+        for n in &lm.notices {
+            line(&format!("  {side}: notice"), n.clone());
+        }
+        let [x0, x1] = lm.contact_range();
+        ranges.push([x0, x1]);
+        line(
+            &format!("  {side}: contact segment"),
+            format!("x in [{x0:.6}, {x1:.6}], profile radius {:.6}", body.radius),
+        );
+    }
+    if let [[a0, a1], [b0, b1]] = ranges.as_slice() {
+        let overlap = a1.min(*b1) - a0.max(*b0);
+        line(
+            "contact segments",
+            if overlap > 0.0 {
+                format!("A and B overlap on [{:.6}, {:.6}]", a0.max(*b0), a1.min(*b1))
+            } else {
+                "A and B DO NOT overlap in x: the bodies cannot touch there".to_string()
+            },
+        );
     }
     let (l, f) = (&c.units.length, &c.units.force);
     line("effective radius R", format!("{:.6} {l}", est.effective_radius));

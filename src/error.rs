@@ -10,6 +10,28 @@ pub enum Error {
     /// The case is unreadable or invalid.
     #[error(transparent)]
     Case(#[from] CaseError),
+    /// A mesh is unreadable or inconsistent.
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
+    /// A physical group of a `bem` body's mesh has no boundary condition in the case.
+    #[error(
+        "{case}: physical group `{group}` of {mesh} has no boundary condition: add it under the body's \
+         `boundaries` (fixed, free, {{displacement: [ux, uy]}}, {{traction: [tx, ty]}} or {{pressure: p}})"
+    )]
+    MissingBoundary {
+        /// Case file.
+        case: PathBuf,
+        /// Mesh file.
+        mesh: PathBuf,
+        /// The group.
+        group: String,
+    },
+    /// A feature the case asks for is not available in this version.
+    #[error("not available: {what}")]
+    Unsupported {
+        /// What and what to do instead.
+        what: String,
+    },
     /// The solved contact touches the end of the grid, so the grid does not contain it.
     #[error(
         "{case}: the contact reaches the {end} end of the grid (x = {x:.6}): the grid is too short. \

@@ -26,6 +26,7 @@ pub mod contact;
 pub mod error;
 pub mod grid;
 pub mod material;
+pub mod mesh;
 pub mod output;
 pub mod quadrature;
 pub mod sweep;

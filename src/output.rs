@@ -141,6 +141,7 @@ pub fn summary(
     let model = |s: &crate::case::BodySpec| match s {
         crate::case::BodySpec::HalfSpace { .. } => "half_space".to_string(),
         crate::case::BodySpec::Rigid { .. } => "rigid".to_string(),
+        crate::case::BodySpec::Bem { .. } => "bem".to_string(),
     };
     Summary {
         title: case.case.title.clone(),

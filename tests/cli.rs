@@ -210,3 +210,65 @@ fn check_prints_hertz_estimates_and_set_overrides_apply() {
     let (_, stdout, _) = rollbem(&["check", case.to_str().unwrap(), "--set", "contact.grid.elements=41"]);
     assert!(stdout.contains("41 discontinuous_quadratic"), "{stdout}");
 }
+
+/// A `bem` case: `check` reads both meshes and reports groups, loops, flipped loops and the
+/// overlap of the contact segments; mesh mistakes are input errors naming file and group.
+#[test]
+fn check_reads_bem_meshes_and_reports_mesh_errors() {
+    let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes");
+    let case = |a_bounds: &str, mesh_a: &str| {
+        format!(
+            r#"
+materials:
+  aluminium: {{G: 23000.0, nu: 0.31}}
+  steel: {{G: 82000.0, nu: 0.28}}
+bodies:
+  A: {{model: bem, mesh: {}, material: aluminium, boundaries: {a_bounds}}}
+  B: {{model: bem, mesh: {}, material: steel, boundaries: {{shaft: fixed, free: free}}}}
+contact:
+  friction: 0.2
+load:
+  normal: {{force: 405.05}}
+  tangential: {{ratio: 0.375}}
+"#,
+            meshes.join(mesh_a).display(),
+            meshes.join("roller_r300_shaft30_B.msh").display()
+        )
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let good = write_case(
+        dir.path(),
+        &case("{shaft: fixed, free: free}", "roller_r150_shaft15_A.msh"),
+    );
+    let (code, stdout, stderr) = rollbem(&["check", good.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    for text in [
+        "group `contact`",
+        "21 elements",
+        "group `shaft`",
+        "1 outer, 1 holes",
+        "turned",
+        "profile radius 150.000000",
+        "A and B overlap on [-1.235294, 1.235294]",
+    ] {
+        assert!(stdout.contains(text), "check output lacks `{text}`:\n{stdout}");
+    }
+    let missing_group = write_case(dir.path(), &case("{shaft: fixed}", "roller_r150_shaft15_A.msh"));
+    let (code, _, stderr) = rollbem(&["check", missing_group.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(
+        stderr.contains("`free`") && stderr.contains("roller_r150_shaft15_A.msh"),
+        "{stderr}"
+    );
+    let unknown_group = write_case(
+        dir.path(),
+        &case("{shaft: fixed, free: free, hub: fixed}", "roller_r150_shaft15_A.msh"),
+    );
+    let (code, _, stderr) = rollbem(&["check", unknown_group.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("hub"), "{stderr}");
+    let no_file = write_case(dir.path(), &case("{shaft: fixed, free: free}", "nope.msh"));
+    let (code, _, stderr) = rollbem(&["check", no_file.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("nope.msh"), "{stderr}");
+}

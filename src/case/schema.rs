@@ -94,6 +94,58 @@ pub enum BodySpec {
         /// Profile radius [length].
         radius: f64,
     },
+    /// Boundary element model of the body's true geometry, from a Gmsh boundary mesh.
+    Bem {
+        /// Gmsh MSH 4.1 boundary mesh (line3 or line2 elements), relative to the case file.
+        mesh: String,
+        /// Name of a material under `materials`.
+        material: String,
+        /// Physical group of the contact segment. Default = "contact".
+        #[serde(default = "default_contact_group")]
+        contact: String,
+        /// Boundary condition of every other physical group of the mesh.
+        boundaries: BTreeMap<String, BoundarySpec>,
+        /// Profile radius for the undeformed gap [length]; default = the mesh's own geometry.
+        /// Give it for a block standing in for a half-space (paper Fig. 2).
+        #[serde(default)]
+        radius: Option<f64>,
+    },
+}
+
+fn default_contact_group() -> String {
+    "contact".into()
+}
+
+/// Boundary condition of a physical group of a `bem` body.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum BoundarySpec {
+    /// `fixed` (u = 0, a rigid shaft or bonded core) or `free` (t = 0).
+    Keyword(BoundaryKeyword),
+    /// Prescribed displacement or traction.
+    Prescribed(PrescribedBoundary),
+}
+
+/// The keyword boundary conditions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BoundaryKeyword {
+    /// u = 0.
+    Fixed,
+    /// t = 0.
+    Free,
+}
+
+/// A prescribed vector on a group: exactly one key.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PrescribedBoundary {
+    /// Uniform displacement (u_x, u_y) [length].
+    pub displacement: Option<[f64; 2]>,
+    /// Uniform traction (t_x, t_y) [stress].
+    pub traction: Option<[f64; 2]>,
+    /// Normal pressure p (compressive positive) [stress].
+    pub pressure: Option<f64>,
 }
 
 /// Friction, rolling direction and the contact grid.

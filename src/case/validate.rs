@@ -67,6 +67,41 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 rigid += 1;
                 *radius
             }
+            BodySpec::Bem {
+                material,
+                boundaries,
+                radius,
+                contact,
+                ..
+            } => {
+                if !case.materials.contains_key(material) {
+                    bad(
+                        format!("bodies.{side}.material"),
+                        format!(
+                            "material `{material}` is not defined under `materials` (defined: {})",
+                            defined()
+                        ),
+                    );
+                }
+                if boundaries.contains_key(contact) {
+                    bad(
+                        format!("bodies.{side}.boundaries.{contact}"),
+                        "the contact group takes the contact tractions; do not give it a boundary condition".into(),
+                    );
+                }
+                for (group, spec) in boundaries {
+                    if let BoundarySpec::Prescribed(p) = spec {
+                        let n = [p.displacement.is_some(), p.traction.is_some(), p.pressure.is_some()];
+                        if n.iter().filter(|&&b| b).count() != 1 {
+                            bad(
+                                format!("bodies.{side}.boundaries.{group}"),
+                                "give `fixed`, `free`, or exactly one of {displacement: [ux, uy]}, {traction: [tx, ty]}, {pressure: p}".into(),
+                            );
+                        }
+                    }
+                }
+                radius.unwrap_or(1.0)
+            }
         };
         if !(radius > 0.0 && radius.is_finite()) {
             bad(

@@ -1,0 +1,49 @@
+"""Regenerates the test meshes of tests/msh_reader.rs with the gmsh Python wheel.
+
+    pip install gmsh && python3 tests/data/msh/generate.py
+
+Each `name.geo` gives `name.msh` (MSH 4.1 ASCII); annulus and plate also give `*_bin.msh`
+(MSH 4.1 binary). A few bad files are made on purpose: a version 2.2 file, a file with an
+untagged curve (Mesh.SaveAll), and a zero-length element built through the API.
+"""
+import os
+import gmsh
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def mesh_geo(name, out, binary=False, version=4.1, save_all=False):
+    gmsh.clear()
+    gmsh.open(os.path.join(HERE, name + ".geo"))
+    gmsh.option.setNumber("Mesh.MshFileVersion", version)
+    gmsh.option.setNumber("Mesh.Binary", 1 if binary else 0)
+    gmsh.option.setNumber("Mesh.SaveAll", 1 if save_all else 0)
+    gmsh.model.mesh.generate(1)
+    gmsh.write(os.path.join(HERE, out))
+
+
+def zero_length():
+    """A square of line2 elements in which one element joins two coincident nodes."""
+    gmsh.clear()
+    gmsh.model.add("zero_length")
+    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+    gmsh.option.setNumber("Mesh.Binary", 0)
+    gmsh.option.setNumber("Mesh.SaveAll", 0)
+    c = gmsh.model.addDiscreteEntity(1)
+    xyz = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 0]  # node 5 duplicates node 1
+    gmsh.model.mesh.addNodes(1, c, [1, 2, 3, 4, 5], xyz)
+    gmsh.model.mesh.addElementsByType(c, 1, [1, 2, 3, 4, 5], [1, 2, 2, 3, 3, 4, 4, 5, 5, 1])
+    gmsh.model.addPhysicalGroup(1, [c], 1, "free")
+    gmsh.write(os.path.join(HERE, "zero_length.msh"))
+
+
+gmsh.initialize()
+gmsh.option.setNumber("General.Terminal", 0)
+for name in ["annulus", "plate", "square_linear", "open_loop", "unnamed_group", "cubic"]:
+    mesh_geo(name, name + ".msh")
+mesh_geo("annulus", "annulus_bin.msh", binary=True)
+mesh_geo("plate", "plate_bin.msh", binary=True)
+mesh_geo("annulus", "annulus_v22.msh", version=2.2)
+mesh_geo("open_loop", "untagged.msh", save_all=True)
+zero_length()
+gmsh.finalize()
