@@ -47,19 +47,21 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         }
     }
 
-    let defined = || case.materials.keys().cloned().collect::<Vec<_>>().join(", ");
+    let undefined_material = |side: &str, material: &str| {
+        (!case.materials.contains_key(material)).then(|| Violation {
+            key: format!("bodies.{side}.material"),
+            message: format!(
+                "material `{material}` is not defined under `materials` (defined: {})",
+                case.materials.keys().cloned().collect::<Vec<_>>().join(", ")
+            ),
+        })
+    };
     let mut rigid = 0;
     for (side, body) in [("A", &case.bodies.a), ("B", &case.bodies.b)] {
         let radius = match body {
             BodySpec::HalfSpace { material, radius } => {
-                if !case.materials.contains_key(material) {
-                    bad(
-                        format!("bodies.{side}.material"),
-                        format!(
-                            "material `{material}` is not defined under `materials` (defined: {})",
-                            defined()
-                        ),
-                    );
+                if let Some(v) = undefined_material(side, material) {
+                    bad(v.key, v.message);
                 }
                 *radius
             }
@@ -74,14 +76,8 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 contact,
                 ..
             } => {
-                if !case.materials.contains_key(material) {
-                    bad(
-                        format!("bodies.{side}.material"),
-                        format!(
-                            "material `{material}` is not defined under `materials` (defined: {})",
-                            defined()
-                        ),
-                    );
+                if let Some(v) = undefined_material(side, material) {
+                    bad(v.key, v.message);
                 }
                 if boundaries.contains_key(contact) {
                     bad(
