@@ -15,6 +15,7 @@
 
 pub mod half_space;
 pub mod rigid;
+pub mod transfer;
 
 use crate::grid::ContactGrid;
 use faer::Mat;

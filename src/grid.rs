@@ -1,6 +1,7 @@
 //! The contact grid: traction elements along x on which the contact unknowns live.
 //!
-//! The grid is a row of equal elements on `[x_min, x_max]`. Each element carries either one node
+//! The grid is a row of elements on `[x_min, x_max]`, usually equal ([`ContactGrid::uniform`];
+//! a BEM mesh may give unequal ones, [`ContactGrid::from_edges`]). Each element carries either one node
 //! at its centre (constant element) or three nodes at the intrinsic coordinates ξ = −2/3, 0, +2/3
 //! (discontinuous quadratic element, the paper's choice, §5). With ξ = ±2/3 the nodes of a
 //! discontinuous quadratic grid are equally spaced (spacing L/3), which the slip operator uses.
@@ -85,10 +86,23 @@ impl ContactGrid {
         assert!(n_elements > 0, "a contact grid needs at least one element");
         assert!(x_max > x_min, "empty grid interval [{x_min}, {x_max}]");
         let length = (x_max - x_min) / n_elements as f64;
-        let edges: Vec<f64> = (0..=n_elements).map(|e| x_min + length * e as f64).collect();
+        Self::from_edges(kind, (0..=n_elements).map(|e| x_min + length * e as f64).collect())
+    }
+
+    /// Builds a grid from its element end points, strictly increasing.
+    ///
+    /// Panics on fewer than two edges or non-increasing ones: callers validate first.
+    pub fn from_edges(kind: ElementKind, edges: Vec<f64>) -> Self {
+        assert!(edges.len() >= 2, "a contact grid needs at least one element");
+        assert!(
+            edges.windows(2).all(|w| w[1] > w[0]),
+            "grid edges must increase: {edges:?}"
+        );
+        let n_elements = edges.len() - 1;
         let mut nodes = Vec::with_capacity(n_elements * kind.nodes_per_element());
         let mut weights = Vec::with_capacity(nodes.capacity());
         for e in 0..n_elements {
+            let length = edges[e + 1] - edges[e];
             let centre = 0.5 * (edges[e] + edges[e + 1]);
             for (a, xi) in kind.node_coordinates().iter().enumerate() {
                 nodes.push(centre + 0.5 * length * xi);
@@ -115,14 +129,58 @@ impl ContactGrid {
         self.edges.len() - 1
     }
 
-    /// Element length L [length] (all elements are equal).
+    /// Largest element length [length] (the element length of a uniform grid).
     pub fn element_length(&self) -> f64 {
-        self.edges[1] - self.edges[0]
+        self.edges.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max)
     }
 
-    /// Distance between neighbouring nodes [length] (uniform for both element kinds).
+    /// Smallest distance between neighbouring nodes [length] (the spacing of a uniform grid:
+    /// L/3 for discontinuous quadratic elements, L for constant ones).
     pub fn node_spacing(&self) -> f64 {
-        self.element_length() / self.kind.nodes_per_element() as f64
+        self.nodes
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .fold(f64::INFINITY, f64::min)
+            .min(self.length())
+    }
+
+    /// Whether all elements have the same length (to 1e-12 relative).
+    pub fn is_uniform(&self) -> bool {
+        let l = self.length() / self.n_elements() as f64;
+        self.edges.windows(2).all(|w| ((w[1] - w[0]) - l).abs() <= 1e-12 * l)
+    }
+
+    /// Whether two grids have the same kind and nodes (to 1e-12 of the node spacing).
+    pub fn coincides_with(&self, other: &ContactGrid) -> bool {
+        let tol = 1e-12 * self.node_spacing();
+        self.kind == other.kind
+            && self.nodes.len() == other.nodes.len()
+            && self.edges.iter().zip(&other.edges).all(|(a, b)| (a - b).abs() <= tol)
+    }
+
+    /// Shape-function values at x: (node, N_node(x)) for the nodes of the element holding x;
+    /// empty outside the grid.
+    pub fn interpolation_row(&self, x: f64) -> Vec<(usize, f64)> {
+        let n = self.n_elements();
+        let (x0, x1) = (self.edges[0], self.edges[n]);
+        if x < x0 || x > x1 {
+            return Vec::new();
+        }
+        let e = self
+            .edges
+            .partition_point(|&edge| edge <= x)
+            .saturating_sub(1)
+            .min(n - 1);
+        let length = self.edges[e + 1] - self.edges[e];
+        let centre = 0.5 * (self.edges[e] + self.edges[e + 1]);
+        let xi = 2.0 * (x - centre) / length;
+        let npe = self.kind.nodes_per_element();
+        (0..npe)
+            .map(|a| {
+                let [c0, c1, c2] = self.kind.shape_polynomial(a);
+                (e * npe + a, c0 + c1 * xi + c2 * xi * xi)
+            })
+            .collect()
     }
 
     /// Total length of the grid [length].
@@ -143,22 +201,7 @@ impl ContactGrid {
 
     /// Value at `x` of the piecewise interpolant of nodal values (zero outside the grid).
     pub fn interpolate(&self, values: &[f64], x: f64) -> f64 {
-        let n = self.n_elements();
-        let (x0, x1) = (self.edges[0], self.edges[n]);
-        if x < x0 || x > x1 {
-            return 0.0;
-        }
-        let length = self.element_length();
-        let e = (((x - x0) / length) as usize).min(n - 1);
-        let centre = 0.5 * (self.edges[e] + self.edges[e + 1]);
-        let xi = 2.0 * (x - centre) / length;
-        let npe = self.kind.nodes_per_element();
-        (0..npe)
-            .map(|a| {
-                let [c0, c1, c2] = self.kind.shape_polynomial(a);
-                (c0 + c1 * xi + c2 * xi * xi) * values[e * npe + a]
-            })
-            .sum()
+        self.interpolation_row(x).into_iter().map(|(j, n)| n * values[j]).sum()
     }
 }
 

@@ -134,6 +134,9 @@ fn element_integrals_gauss(
 /// Only (2·n_elements − 1)·npe element integrals are evaluated (O(m) instead of O(m²)), each on
 /// a reference element centred at 0; the matrix is then filled from that table.
 pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
+    if !grid.is_uniform() {
+        return influence_matrix_direct(grid, kernel);
+    }
     let m = grid.n_nodes();
     let ne = grid.n_elements();
     let npe = grid.kind.nodes_per_element();
@@ -163,6 +166,29 @@ pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
         let (ej, aj) = grid.element_of(j);
         table[(ei + ne - 1 - ej) * npe + ai][aj]
     })
+}
+
+/// The influence matrix of a non-uniform grid: every node–element pair integrated (O(m²)).
+fn influence_matrix_direct(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
+    let m = grid.n_nodes();
+    let npe = grid.kind.nodes_per_element();
+    let rule = gauss_legendre(12);
+    let mut k = Mat::zeros(m, m);
+    for (i, &x) in grid.nodes.iter().enumerate() {
+        for e in 0..grid.n_elements() {
+            let (s1, s2) = (grid.edges[e], grid.edges[e + 1]);
+            let far = (0.5 * (s1 + s2) - x).abs() > FAR_FIELD_RATIO * (s2 - s1);
+            let values = if far {
+                element_integrals_gauss(grid.kind, kernel, s1, s2, x, &rule)
+            } else {
+                element_integrals_exact(grid.kind, kernel, s1, s2, x)
+            };
+            for (a, v) in values.into_iter().enumerate() {
+                k[(i, e * npe + a)] = v;
+            }
+        }
+    }
+    k
 }
 
 /// An elastic half-plane standing in for a cylinder of radius `radius`.

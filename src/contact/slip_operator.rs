@@ -58,8 +58,14 @@ impl SlipOperator {
         let rows = (0..m)
             .map(|i| match (scheme, up(i, 1), up(i, 2)) {
                 (SlipDerivative::SecondOrder, Some(u1), Some(u2)) => {
-                    let d = x[u1] - x[i];
-                    vec![(i, -1.5 / d), (u1, 2.0 / d), (u2, -0.5 / d)]
+                    // f'(x_i) of the quadratic through x_i, x_u1, x_u2 (any spacing):
+                    // with h1 = x_u1 − x_i, h2 = x_u2 − x_i; (−1.5, 2, −0.5)/h when uniform.
+                    let (h1, h2) = (x[u1] - x[i], x[u2] - x[i]);
+                    vec![
+                        (i, -(h1 + h2) / (h1 * h2)),
+                        (u1, h2 / (h1 * (h2 - h1))),
+                        (u2, -h1 / (h2 * (h2 - h1))),
+                    ]
                 }
                 (_, Some(u1), _) => two_point(i, u1),
                 (_, None, _) => vec![(i, 1.0 / spacing)],

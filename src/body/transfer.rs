@@ -1,0 +1,178 @@
+//! Moving a body's flexibility from its own contact nodes to the common contact grid.
+//!
+//! When the two bodies' meshes do not share contact-node x-coordinates, each body's
+//! flexibility, known at its own contact nodes (its own elements and interpolation), is carried
+//! to the one contact grid by its own interpolation (DESIGN §4):
+//!
+//! * tractions grid → body: the traction at body node k is the grid's interpolant at x_k,
+//!   T[k, j] = N_j^grid(x_k);
+//! * displacements body → grid: the displacement at grid node i is the body's interpolant at
+//!   x_i, D[i, k] = N_k^body(x_i);
+//!
+//! so F_grid = D · F_body · T for every block. When the grids coincide the transfer is the
+//! identity, and the flexibility is returned unchanged (bit for bit).
+
+use super::{Flexibility, StrainOperator};
+use crate::grid::ContactGrid;
+use faer::Mat;
+
+/// The contact grid reaches beyond the body's contact segment: the body cannot say what its
+/// displacement is there.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "the contact grid [{grid_min:.6}, {grid_max:.6}] reaches beyond the body's contact segment \
+     [{body_min:.6}, {body_max:.6}]: make the mesh's contact group longer or the grid shorter"
+)]
+pub struct TransferError {
+    /// Grid range.
+    pub grid_min: f64,
+    /// Grid range.
+    pub grid_max: f64,
+    /// Body contact range.
+    pub body_min: f64,
+    /// Body contact range.
+    pub body_max: f64,
+}
+
+/// Interpolation matrix M[i, j] = N_j^{from}(x_i^{to}): values at the nodes of `to` of the
+/// interpolant of nodal values on `from`.
+pub fn interpolation_matrix(from: &ContactGrid, to: &ContactGrid) -> Mat<f64> {
+    let mut m = Mat::zeros(to.n_nodes(), from.n_nodes());
+    for (i, &x) in to.nodes.iter().enumerate() {
+        for (j, n) in from.interpolation_row(x) {
+            m[(i, j)] = n;
+        }
+    }
+    m
+}
+
+/// The body's flexibility on its own nodes (`body`) carried to the contact grid (`grid`).
+pub fn transfer_flexibility(
+    flex: &Flexibility,
+    body: &ContactGrid,
+    grid: &ContactGrid,
+) -> Result<Flexibility, TransferError> {
+    if grid.coincides_with(body) {
+        return Ok(flex.clone());
+    }
+    let (d, t) = operators(body, grid)?;
+    let carry = |f: &Mat<f64>| &d * f * &t;
+    Ok(Flexibility {
+        hp: carry(&flex.hp),
+        hq: carry(&flex.hq),
+        wp: carry(&flex.wp),
+        wq: carry(&flex.wq),
+    })
+}
+
+/// The body's surface-strain operator carried to the contact grid, like the flexibility.
+pub fn transfer_strain(
+    op: &StrainOperator,
+    body: &ContactGrid,
+    grid: &ContactGrid,
+) -> Result<StrainOperator, TransferError> {
+    if grid.coincides_with(body) {
+        return Ok(op.clone());
+    }
+    let (d, t) = operators(body, grid)?;
+    Ok(StrainOperator {
+        p: &d * &op.p * &t,
+        q: &d * &op.q * &t,
+    })
+}
+
+/// (D, T): displacement body → grid and traction grid → body.
+fn operators(body: &ContactGrid, grid: &ContactGrid) -> Result<(Mat<f64>, Mat<f64>), TransferError> {
+    let (b0, b1) = (body.edges[0], body.edges[body.n_elements()]);
+    let (g0, g1) = (grid.edges[0], grid.edges[grid.n_elements()]);
+    let tol = 1e-9 * body.length();
+    if g0 < b0 - tol || g1 > b1 + tol {
+        return Err(TransferError {
+            grid_min: g0,
+            grid_max: g1,
+            body_min: b0,
+            body_max: b1,
+        });
+    }
+    Ok((interpolation_matrix(body, grid), interpolation_matrix(grid, body)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::half_space::HalfSpace;
+    use crate::body::{BodyModel, Side};
+    use crate::grid::ElementKind;
+    use crate::material::Elastic;
+
+    fn body() -> HalfSpace {
+        HalfSpace {
+            material: Elastic::new(210_000.0, 0.3),
+            radius: 100.0,
+        }
+    }
+
+    #[test]
+    fn coinciding_grids_are_passed_through_exactly() {
+        let g = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 9, -1.3, 1.3);
+        let f = body().flexibility(&g, Side::A);
+        let t = transfer_flexibility(&f, &g, &g.clone()).unwrap();
+        assert!(f.hp == t.hp && f.wq == t.wq && f.hq == t.hq && f.wp == t.wp);
+    }
+
+    /// A half-plane known on a finer, non-uniform, wider set of body elements and carried to
+    /// the grid reproduces the displacements of the half-plane evaluated on the grid directly,
+    /// for the Hertz pressure and a Carter-like shear: displacement differences (the log datum
+    /// is arbitrary) agree to 1 % of their range, and better as the body mesh is refined.
+    #[test]
+    fn transfer_from_a_finer_nonuniform_body_mesh_matches_direct_evaluation() {
+        let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 15, -1.3, 1.3);
+        let hs = body();
+        let direct = hs.flexibility(&grid, Side::B);
+        let p: Vec<f64> = grid.nodes.iter().map(|x| (1.0 - x * x).max(0.0).sqrt()).collect();
+        let q: Vec<f64> = grid
+            .nodes
+            .iter()
+            .map(|x| 0.3 * (1.0 - x * x).max(0.0).sqrt() * x)
+            .collect();
+        let apply = |f: &Flexibility| {
+            let h = crate::contact::mat_vec2(&f.hp, &p, &f.hq, &q);
+            let w = crate::contact::mat_vec2(&f.wp, &p, &f.wq, &q);
+            let c = h.len() / 2;
+            (
+                h.iter().map(|v| v - h[c]).collect::<Vec<_>>(),
+                w.iter().map(|v| v - w[c]).collect::<Vec<_>>(),
+            )
+        };
+        let (h_ref, w_ref) = apply(&direct);
+        let range = |v: &[f64]| v.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
+        let mut errors = Vec::new();
+        for n in [20, 40, 80] {
+            // Graded, wider body mesh: edges ξ³-stretched on [−1.6, 1.6].
+            let edges: Vec<f64> = (0..=n)
+                .map(|k| {
+                    let t = -1.0 + 2.0 * k as f64 / n as f64;
+                    1.6 * (0.6 * t + 0.4 * t * t * t)
+                })
+                .collect();
+            let own = ContactGrid::from_edges(ElementKind::DiscontinuousQuadratic, edges);
+            let carried = transfer_flexibility(&hs.flexibility(&own, Side::B), &own, &grid).unwrap();
+            let (h, w) = apply(&carried);
+            let eh = h.iter().zip(&h_ref).fold(0.0_f64, |a, (x, y)| a.max((x - y).abs())) / range(&h_ref);
+            let ew = w.iter().zip(&w_ref).fold(0.0_f64, |a, (x, y)| a.max((x - y).abs())) / range(&w_ref);
+            errors.push(eh.max(ew));
+        }
+        println!("transfer errors (20, 40, 80 body elements): {errors:?}");
+        assert!(errors[2] < 0.01, "transfer errors {errors:?}");
+        assert!(errors[2] < errors[0], "transfer errors {errors:?}");
+    }
+
+    #[test]
+    fn a_grid_longer_than_the_body_segment_is_an_error() {
+        let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 5, -1.3, 1.3);
+        let own = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 5, -1.0, 1.0);
+        let f = body().flexibility(&own, Side::A);
+        let e = transfer_flexibility(&f, &own, &grid).unwrap_err();
+        assert!(e.to_string().contains("beyond the body's contact segment"));
+    }
+}
