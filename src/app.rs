@@ -1,10 +1,13 @@
 //! The driver: case → body models → contact problem → solver → solution → outputs.
 
 use crate::analytic::{self, Carter};
+use crate::bem::condense::BemBody;
+use crate::bem::{BemModel, BemOptions, BoundaryCondition};
 use crate::body::half_space::HalfSpace;
 use crate::body::rigid::Rigid;
-use crate::body::BodyModel;
-use crate::case::{self, BodySpec, LoadedCase, NormalSpec, TangentialSpec};
+use crate::body::transfer::Transferred;
+use crate::body::{BodyModel, Side, WithCircularProfile};
+use crate::case::{self, BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase, NormalSpec, TangentialSpec};
 use crate::contact::newton::{self, NewtonReport, NewtonSettings};
 use crate::contact::solution::{slip_regime, ContactSolution};
 use crate::contact::{ContactProblem, NormalControl, TangentialControl};
@@ -105,6 +108,25 @@ impl LoadedMesh {
         }
     }
 
+    /// The contact grid of the mesh's own contact elements: their end points in x, with
+    /// discontinuous quadratic interpolation (the BEM contact elements' field nodes).
+    pub fn contact_grid(&self) -> ContactGrid {
+        let mut edges: Vec<f64> = self
+            .mesh
+            .elements
+            .iter()
+            .filter(|e| e.group == self.contact_group)
+            .flat_map(|e| {
+                let (a, b) = e.ends();
+                [self.mesh.nodes[a][0], self.mesh.nodes[b][0]]
+            })
+            .collect();
+        edges.sort_by(f64::total_cmp);
+        let tol = 1e-9 * self.mesh.size();
+        edges.dedup_by(|a, b| (*a - *b).abs() <= tol);
+        ContactGrid::from_edges(crate::grid::ElementKind::DiscontinuousQuadratic, edges)
+    }
+
     /// Total length of the elements of a group (polyline through end, mid, end nodes) [length].
     pub fn group_length(&self, group: usize) -> f64 {
         let d = |a: [f64; 2], b: [f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
@@ -190,17 +212,85 @@ pub fn prepare_bodies(case: &LoadedCase) -> Result<[PreparedBody; 2], Error> {
     ])
 }
 
-/// Builds the body model of a prepared spec.
-pub fn body_model(spec: &BodySpec, prepared: &PreparedBody) -> Result<Box<dyn BodyModel>, Error> {
+/// The BEM boundary condition of a case's boundary spec.
+fn boundary_condition(spec: &BoundarySpec) -> BoundaryCondition {
+    match spec {
+        BoundarySpec::Keyword(BoundaryKeyword::Fixed) => BoundaryCondition::Fixed,
+        BoundarySpec::Keyword(BoundaryKeyword::Free) => BoundaryCondition::Free,
+        BoundarySpec::Prescribed(p) => match (p.displacement, p.traction, p.pressure) {
+            (Some(u), _, _) => BoundaryCondition::Displacement(u),
+            (_, Some(t), _) => BoundaryCondition::Traction(t),
+            (_, _, Some(pr)) => BoundaryCondition::Pressure(pr),
+            _ => BoundaryCondition::Free,
+        },
+    }
+}
+
+/// Builds the body model of a prepared spec, seen on the contact `grid` from `side`.
+///
+/// A `bem` body is condensed to its own contact nodes; if those differ from the grid's, its
+/// flexibility is carried over by [`Transferred`].
+pub fn body_model(
+    spec: &BodySpec,
+    prepared: &PreparedBody,
+    grid: &ContactGrid,
+    side: Side,
+) -> Result<Box<dyn BodyModel>, Error> {
     match spec {
         BodySpec::HalfSpace { .. } => Ok(Box::new(HalfSpace {
             material: prepared.material.expect("half-space bodies have a material"),
             radius: prepared.radius,
         })),
         BodySpec::Rigid { radius } => Ok(Box::new(Rigid { radius: *radius })),
-        BodySpec::Bem { .. } => Err(Error::Unsupported {
-            what: "solving with `model: bem` (its condensed contact flexibility) is not available yet; `rollbem check` reads and checks the mesh".into(),
-        }),
+        BodySpec::Bem {
+            contact,
+            boundaries,
+            radius,
+            ..
+        } => {
+            let lm = prepared.mesh.as_ref().expect("bem bodies have a mesh");
+            let mut conditions: Vec<(String, BoundaryCondition)> = boundaries
+                .iter()
+                .map(|(g, b)| (g.clone(), boundary_condition(b)))
+                .collect();
+            conditions.push((contact.clone(), BoundaryCondition::Contact));
+            let material = prepared.material.expect("bem bodies have a material");
+            let model = BemModel::new(lm.mesh.clone(), material, conditions, BemOptions::default())?;
+            let own = lm.contact_grid();
+            let body = BemBody::new(model, contact, &own, side)?;
+            let on_grid: Box<dyn BodyModel> = if own.coincides_with(grid) {
+                Box::new(body)
+            } else {
+                let t = Transferred {
+                    inner: Box::new(body),
+                    own_grid: own,
+                    side,
+                };
+                t.check(grid)?;
+                Box::new(t)
+            };
+            Ok(match radius {
+                Some(r) => Box::new(WithCircularProfile {
+                    inner: on_grid,
+                    radius: *r,
+                }),
+                None => on_grid,
+            })
+        }
+    }
+}
+
+/// The contact grid: a `bem` body's own contact elements (A's first), else the uniform grid of
+/// the case around the Hertz contact.
+pub fn contact_grid(case: &LoadedCase, est: &Estimates, bodies: &[PreparedBody; 2]) -> ContactGrid {
+    match bodies.iter().find_map(|b| b.mesh.as_ref()) {
+        Some(lm) => lm.contact_grid(),
+        None => ContactGrid::uniform(
+            case.case.contact.grid.element,
+            case.case.contact.grid.elements,
+            -est.grid_half_length,
+            est.grid_half_length,
+        ),
     }
 }
 
@@ -296,12 +386,7 @@ pub fn newton_settings(case: &LoadedCase) -> NewtonSettings {
 /// Assembles the contact problem of a case.
 pub fn build_problem(case: &LoadedCase, est: &Estimates, bodies: &[PreparedBody; 2]) -> Result<ContactProblem, Error> {
     let c = &case.case;
-    let grid = ContactGrid::uniform(
-        c.contact.grid.element,
-        c.contact.grid.elements,
-        -est.grid_half_length,
-        est.grid_half_length,
-    );
+    let grid = contact_grid(case, est, bodies);
     let normal = match c.load.normal() {
         NormalSpec::Force(p) => NormalControl::Force(p),
         NormalSpec::Overlap(d) => NormalControl::Overlap(d),
@@ -311,10 +396,8 @@ pub fn build_problem(case: &LoadedCase, est: &Estimates, bodies: &[PreparedBody;
         TangentialSpec::Force(q) => TangentialControl::Force(q),
         TangentialSpec::Creep(x) => TangentialControl::Creep(x),
     };
-    let (a, b) = (
-        body_model(&c.bodies.a, &bodies[0])?,
-        body_model(&c.bodies.b, &bodies[1])?,
-    );
+    let a = body_model(&c.bodies.a, &bodies[0], &grid, Side::A)?;
+    let b = body_model(&c.bodies.b, &bodies[1], &grid, Side::B)?;
     Ok(ContactProblem::assemble(
         grid,
         a.as_ref(),

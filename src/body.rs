@@ -108,3 +108,31 @@ pub fn circle_profile(radius: f64, x: f64) -> f64 {
     // x²/(R + √(R²−x²)) avoids the cancellation of R − √(R²−x²) for x ≪ R.
     x * x / (radius + r2.sqrt())
 }
+
+/// A body model whose undeformed profile is replaced by a circle of the given radius, e.g. a
+/// BEM block standing in for a half-space whose gap is that of the real cylinders (paper §2,
+/// Fig. 2: "the initial normal separation … calculated assuming the real cylinder's geometry").
+pub struct WithCircularProfile {
+    /// The model giving the flexibility.
+    pub inner: Box<dyn BodyModel>,
+    /// Profile radius [length].
+    pub radius: f64,
+}
+
+impl BodyModel for WithCircularProfile {
+    fn model_name(&self) -> &'static str {
+        self.inner.model_name()
+    }
+
+    fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
+        self.inner.flexibility(grid, side)
+    }
+
+    fn profile(&self, x: f64) -> f64 {
+        circle_profile(self.radius, x)
+    }
+
+    fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
+        self.inner.strain_operator(grid, side)
+    }
+}

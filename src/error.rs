@@ -26,6 +26,12 @@ pub enum Error {
         /// The group.
         group: String,
     },
+    /// The BEM model of a body could not be built.
+    #[error(transparent)]
+    Bem(#[from] crate::bem::BemError),
+    /// A body's contact segment does not cover the contact grid.
+    #[error(transparent)]
+    Transfer(#[from] crate::body::transfer::TransferError),
     /// A feature the case asks for is not available in this version.
     #[error("not available: {what}")]
     Unsupported {

@@ -19,6 +19,7 @@
 
 pub mod analytic;
 pub mod app;
+pub mod bem;
 pub mod body;
 pub mod case;
 pub mod cli;

@@ -439,7 +439,7 @@ mod tests {
         let runs = product(&v);
         assert_eq!(runs.len(), 6);
         assert_eq!(runs[1], vec![("a".into(), "1".into()), ("b".into(), "y".into())]);
-        let mut seen = vec![0; 6];
+        let mut seen = [0; 6];
         for k in 1..=4 {
             let s = Shard::parse(&format!("{k}/4")).unwrap();
             (0..6).filter(|&n| s.owns(n)).for_each(|n| seen[n] += 1);

@@ -97,6 +97,45 @@ fn operators(body: &ContactGrid, grid: &ContactGrid) -> Result<(Mat<f64>, Mat<f6
     Ok((interpolation_matrix(body, grid), interpolation_matrix(grid, body)))
 }
 
+/// A body model known on its own contact nodes, seen on the common contact grid through the
+/// transfer of this module (identity when the nodes coincide).
+pub struct Transferred {
+    /// The model, whose flexibility is asked on `own_grid`.
+    pub inner: Box<dyn super::BodyModel>,
+    /// The body's own contact grid.
+    pub own_grid: ContactGrid,
+    /// Which body of the pair the inner model was built for.
+    pub side: super::Side,
+}
+
+impl super::BodyModel for Transferred {
+    fn model_name(&self) -> &'static str {
+        self.inner.model_name()
+    }
+
+    /// Panics if the grid reaches beyond the body's segment; [`Transferred::check`] first.
+    fn flexibility(&self, grid: &ContactGrid, side: super::Side) -> Flexibility {
+        let own = self.inner.flexibility(&self.own_grid, side);
+        transfer_flexibility(&own, &self.own_grid, grid).expect("grid checked against the body segment")
+    }
+
+    fn profile(&self, x: f64) -> f64 {
+        self.inner.profile(x)
+    }
+
+    fn strain_operator(&self, grid: &ContactGrid, side: super::Side) -> Option<StrainOperator> {
+        let own = self.inner.strain_operator(&self.own_grid, side)?;
+        transfer_strain(&own, &self.own_grid, grid).ok()
+    }
+}
+
+impl Transferred {
+    /// Checks that `grid` lies within the body's own contact segment.
+    pub fn check(&self, grid: &ContactGrid) -> Result<(), TransferError> {
+        operators(&self.own_grid, grid).map(|_| ())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,450 @@
+//! Collocation assembly of H u = G t, boundary conditions, and the dense solve.
+//!
+//! Row pair (2i, 2i+1) of H and G is the BIE collocated at field node i (Brebbia–Telles–Wrobel
+//! Eq. 4.13): H_ij = ∫ T* N_j dΓ (+ the free term on the diagonal), G_ij = ∫ U* N_j dΓ. The
+//! 2 × 2 diagonal blocks of H (free term + Cauchy principal value) come from rigid-body
+//! translation, H_ii = −Σ_{j≠i} H_ij (their §4.3), valid for bounded bodies. Rows are
+//! assembled in parallel (rayon).
+//!
+//! With the boundary conditions each of the 2N components has one known and one unknown
+//! value; moving the known ones to the right gives A x = b, solved by LU with partial pivoting
+//! (faer). Unknown tractions are scaled by G/L (shear modulus over body size) so that the
+//! columns of A have comparable magnitudes.
+
+use super::discretise::{Discretisation, FieldNode};
+use super::integrate::{Quadrature, QuadratureOptions, SourcePosition};
+use super::kernel::Kelvin;
+use super::{BemError, BoundaryCondition, Component};
+use crate::material::Elastic;
+use crate::mesh::{boundary_loops, validate_and_orient, BoundaryMesh};
+use faer::linalg::solvers::Solve;
+use faer::Mat;
+use rayon::prelude::*;
+
+/// Options of the BEM discretisation and integration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BemOptions {
+    /// Largest tangent jump at an element junction that still counts as smooth [degrees]; sharper junctions are corners with discontinuous element ends. Default = 15.
+    pub corner_angle_deg: f64,
+    /// Length ℓ in the logarithm of U* [length] (see [`super::kernel`]); `None` takes 4 × the mesh's bounding-box diagonal. Default = None.
+    pub log_length_scale: Option<f64>,
+    /// Target relative accuracy of the regular and nearly singular element integrals. Default = 1e-12.
+    pub quadrature_tolerance: f64,
+    /// Smallest Bernstein-ellipse parameter of the nearest kernel singularity accepted without halving the integration interval. Default = 3.
+    pub min_ellipse: f64,
+    /// Fewest Gauss points per (sub)interval. Default = 4.
+    pub min_gauss_points: usize,
+    /// Most Gauss points per (sub)interval. Default = 24.
+    pub max_gauss_points: usize,
+    /// Deepest interval halving for nearly singular integrals. Default = 30.
+    pub max_subdivision_depth: usize,
+    /// Gauss–Legendre points on each side of the source in a singular element. Default = 16.
+    pub singular_gauss_points: usize,
+    /// Log-weighted Gauss points on each side of the source in a singular element. Default = 12.
+    pub log_gauss_points: usize,
+    /// Smallest ratio of the smallest to the largest LU pivot before the system is declared singular; a last resort, since rigid-body motions are caught before the solve (an incompressible body's loop pressure mode lowers the ratio like h³, to ~1e-8 at 128 elements per loop). Default = 1e-13.
+    pub min_pivot_ratio: f64,
+}
+
+impl Default for BemOptions {
+    fn default() -> Self {
+        let q = QuadratureOptions::default();
+        Self {
+            corner_angle_deg: 15.0,
+            log_length_scale: None,
+            quadrature_tolerance: q.tolerance,
+            min_ellipse: q.min_ellipse,
+            min_gauss_points: q.min_points,
+            max_gauss_points: q.max_points,
+            max_subdivision_depth: q.max_depth,
+            singular_gauss_points: q.singular_points,
+            log_gauss_points: q.log_points,
+            min_pivot_ratio: 1e-13,
+        }
+    }
+}
+
+impl BemOptions {
+    /// The element-integration controls.
+    pub fn quadrature(&self) -> QuadratureOptions {
+        QuadratureOptions {
+            tolerance: self.quadrature_tolerance,
+            min_ellipse: self.min_ellipse,
+            min_points: self.min_gauss_points,
+            max_points: self.max_gauss_points,
+            max_depth: self.max_subdivision_depth,
+            singular_points: self.singular_gauss_points,
+            log_points: self.log_gauss_points,
+        }
+    }
+}
+
+/// A point constraint: the displacement component `component` (0 = x, 1 = y) of field node
+/// `node` is prescribed to `value` [length]; its traction becomes an unknown. Used to remove
+/// the rigid-body motion of a body loaded by tractions only.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pin {
+    /// Field node index.
+    pub node: usize,
+    /// 0 for x, 1 for y.
+    pub component: usize,
+    /// Prescribed displacement [length].
+    pub value: f64,
+}
+
+/// Boundary values at every field node after a solve (global axes).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BemSolution {
+    /// Displacement u [length] per field node.
+    pub displacement: Vec<[f64; 2]>,
+    /// Traction t = σ·n [stress] per field node, n out of the material.
+    pub traction: Vec<[f64; 2]>,
+}
+
+/// The collocation matrices of a model.
+#[derive(Debug, Clone)]
+pub struct Assembly {
+    /// H (2N × 2N) [-], rigid-body diagonal included.
+    pub h: Mat<f64>,
+    /// G (2N × 2N) [length/stress].
+    pub g: Mat<f64>,
+}
+
+/// A BEM model of one body: oriented mesh, material, boundary conditions, field nodes.
+#[derive(Debug, Clone)]
+pub struct BemModel {
+    /// The oriented mesh.
+    pub mesh: BoundaryMesh,
+    /// The material.
+    pub material: Elastic,
+    /// Boundary condition of each physical group (same order as `mesh.groups`).
+    pub conditions: Vec<BoundaryCondition>,
+    /// Options.
+    pub options: BemOptions,
+    /// Field nodes and interpolation.
+    pub discretisation: Discretisation,
+    /// Notices from orienting the mesh (one per loop turned round).
+    pub notices: Vec<String>,
+    /// Boundary loop (index into [`crate::mesh::boundary_loops`]) of each field node.
+    pub loop_of_node: Vec<usize>,
+    kernel: Kelvin,
+}
+
+impl BemModel {
+    /// Builds a model: checks the material and the mesh, orients the loops, matches every
+    /// physical group with exactly one boundary condition, and places the field nodes.
+    pub fn new(
+        mut mesh: BoundaryMesh,
+        material: Elastic,
+        conditions: Vec<(String, BoundaryCondition)>,
+        options: BemOptions,
+    ) -> Result<Self, BemError> {
+        let (e, nu) = (material.young, material.poisson);
+        if !(e.is_finite() && e > 0.0 && nu > -1.0 && nu <= 0.5) {
+            return Err(BemError::InvalidMaterial {
+                path: mesh.source.clone(),
+                young: e,
+                poisson: nu,
+            });
+        }
+        let notices = validate_and_orient(&mut mesh)?;
+        let mut per_group: Vec<Option<BoundaryCondition>> = vec![None; mesh.groups.len()];
+        for (name, condition) in conditions {
+            let g = mesh.group_index(&name)?;
+            if per_group[g].is_some() {
+                return Err(BemError::DuplicateCondition {
+                    path: mesh.source.clone(),
+                    group: name,
+                });
+            }
+            per_group[g] = Some(condition);
+        }
+        let given: Vec<String> = mesh
+            .groups
+            .iter()
+            .zip(&per_group)
+            .filter(|(_, c)| c.is_some())
+            .map(|(g, _)| g.name.clone())
+            .collect();
+        let mut conditions = Vec::with_capacity(per_group.len());
+        for (g, c) in per_group.into_iter().enumerate() {
+            conditions.push(c.ok_or_else(|| BemError::MissingCondition {
+                path: mesh.source.clone(),
+                group: mesh.groups[g].name.clone(),
+                given: given.join(", "),
+            })?);
+        }
+        let contact: Vec<bool> = conditions.iter().map(BoundaryCondition::is_contact).collect();
+        let discretisation = Discretisation::new(&mesh, &contact, options.corner_angle_deg.to_radians());
+        let length_scale = options.log_length_scale.unwrap_or(4.0 * mesh.size());
+        let kernel = Kelvin::new(&material, length_scale);
+        let mut loop_of_element = vec![0; mesh.elements.len()];
+        for (k, lp) in boundary_loops(&mesh)?.iter().enumerate() {
+            for &e in &lp.elements {
+                loop_of_element[e] = k;
+            }
+        }
+        let loop_of_node = discretisation
+            .nodes
+            .iter()
+            .map(|n| loop_of_element[n.element.0])
+            .collect();
+        Ok(Self {
+            mesh,
+            material,
+            conditions,
+            options,
+            discretisation,
+            notices,
+            loop_of_node,
+            kernel,
+        })
+    }
+
+    /// The field nodes (unknown locations), in system order: node k owns rows/columns 2k, 2k+1.
+    pub fn field_nodes(&self) -> &[FieldNode] {
+        &self.discretisation.nodes
+    }
+
+    /// Field nodes of the group called `name`.
+    pub fn group_nodes(&self, name: &str) -> Result<Vec<usize>, BemError> {
+        let g = self.mesh.group_index(name)?;
+        Ok(self.discretisation.nodes_of_group(g))
+    }
+
+    /// The Kelvin kernels used (material and logarithm length scale).
+    pub fn kernel(&self) -> &Kelvin {
+        &self.kernel
+    }
+
+    /// Assembles H and G, in parallel over the collocation points.
+    pub fn assemble(&self) -> Assembly {
+        let n = self.discretisation.n_nodes();
+        let m = 2 * n;
+        let quadrature = Quadrature::new(self.options.quadrature());
+        let rows: Vec<Vec<f64>> = (0..n)
+            .into_par_iter()
+            .map(|i| self.collocation_rows(i, &quadrature))
+            .collect();
+        let h = Mat::from_fn(m, m, |r, c| rows[r / 2][(r % 2) * m + c]);
+        let g = Mat::from_fn(m, m, |r, c| rows[r / 2][(2 + r % 2) * m + c]);
+        Assembly { h, g }
+    }
+
+    /// Rows 2i, 2i+1 of H then of G (4 × 2N values, row after row) for collocation at node i.
+    fn collocation_rows(&self, i: usize, quadrature: &Quadrature) -> Vec<f64> {
+        let d = &self.discretisation;
+        let m = 2 * d.n_nodes();
+        let mut rows = vec![0.0; 4 * m];
+        let source = d.nodes[i].position;
+        for (e, ids) in d.element_nodes.iter().enumerate() {
+            let position = match ids.iter().position(|&k| k == i) {
+                Some(local) => SourcePosition::OnNode {
+                    xi: d.interpolation[e].node_coordinates()[local],
+                    local,
+                },
+                None => SourcePosition::Off,
+            };
+            let ints =
+                quadrature.element_integrals(&self.kernel, &d.geometry[e], &d.interpolation[e], source, position);
+            for (a, &col) in ids.iter().enumerate() {
+                for ic in 0..2 {
+                    for jc in 0..2 {
+                        rows[ic * m + 2 * col + jc] += ints.h[a][ic][jc];
+                        rows[(2 + ic) * m + 2 * col + jc] += ints.g[a][ic][jc];
+                    }
+                }
+            }
+        }
+        // Rigid-body translation u = e_j gives zero traction: Σ_k H_(i,k) = 0 for each j.
+        for ic in 0..2 {
+            for jc in 0..2 {
+                let row = &rows[ic * m..(ic + 1) * m];
+                let off: f64 = (0..d.n_nodes()).filter(|&k| k != i).map(|k| row[2 * k + jc]).sum();
+                rows[ic * m + 2 * i + jc] = -off;
+            }
+        }
+        rows
+    }
+
+    /// Known data of every component (2N values) from the group conditions and the pins.
+    pub fn boundary_data(&self, pins: &[Pin]) -> Result<Vec<Component>, BemError> {
+        let d = &self.discretisation;
+        let mut data = Vec::with_capacity(2 * d.n_nodes());
+        for node in &d.nodes {
+            let c = self.conditions[node.group].components(node.position, node.normal);
+            data.extend_from_slice(&c);
+        }
+        for pin in pins {
+            if pin.node >= d.n_nodes() || pin.component > 1 {
+                return Err(BemError::BadPin {
+                    path: self.mesh.source.clone(),
+                    node: pin.node,
+                    count: d.n_nodes(),
+                });
+            }
+            data[2 * pin.node + pin.component] = Component::Displacement(pin.value);
+        }
+        self.check_rigid_body_support(&data)?;
+        self.check_incompressible_loops(&data)?;
+        Ok(data)
+    }
+
+    /// The prescribed displacement components must block both translations and the rotation:
+    /// the 3 × 3 Gram matrix of the rigid modes (1, 0), (0, 1), (−y, x)/L restricted to those
+    /// components must be regular (smallest/largest eigenvalue above 1e-10; a single fixed
+    /// point leaves the rotation about it free and gives exactly 0).
+    fn check_rigid_body_support(&self, data: &[Component]) -> Result<(), BemError> {
+        let nodes = &self.discretisation.nodes;
+        let size = self.mesh.size();
+        let centre = nodes.first().map_or([0.0; 2], |n| n.position);
+        let mut gram = nalgebra::Matrix3::<f64>::zeros();
+        for (k, c) in data.iter().enumerate() {
+            if let Component::Displacement(_) = c {
+                let p = nodes[k / 2].position;
+                let rot = [-(p[1] - centre[1]) / size, (p[0] - centre[0]) / size];
+                let row = if k % 2 == 0 {
+                    nalgebra::Vector3::new(1.0, 0.0, rot[0])
+                } else {
+                    nalgebra::Vector3::new(0.0, 1.0, rot[1])
+                };
+                gram += row * row.transpose();
+            }
+        }
+        let eig = gram.symmetric_eigenvalues();
+        let (lo, hi) = (eig.min(), eig.max());
+        if hi <= 0.0 || lo < 1e-10 * hi {
+            return Err(BemError::RigidBodyMotion {
+                path: self.mesh.source.clone(),
+            });
+        }
+        Ok(())
+    }
+
+    /// At ν = 0.5 the Kelvin displacement field is divergence-free, so ∮ U*·n dΓ = 0 on every
+    /// closed loop: G cannot see a uniform pressure on a loop. With two or more loops loaded
+    /// by tractions, pressurising one of them relative to the others deforms the body without
+    /// changing G t, and the displacement BIE has no unique solution (see the module docs).
+    fn check_incompressible_loops(&self, data: &[Component]) -> Result<(), BemError> {
+        if self.material.poisson < 0.5 - 1e-12 {
+            return Ok(());
+        }
+        let mut loops: Vec<usize> = data
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| matches!(c, Component::Traction(_)))
+            .map(|(k, _)| self.loop_of_node[k / 2])
+            .collect();
+        loops.sort_unstable();
+        loops.dedup();
+        if loops.len() < 2 {
+            return Ok(());
+        }
+        let describe = |l: usize| {
+            let mut groups: Vec<&str> = self
+                .discretisation
+                .nodes
+                .iter()
+                .zip(&self.loop_of_node)
+                .filter(|(_, &lp)| lp == l)
+                .map(|(n, _)| self.mesh.groups[n.group].name.as_str())
+                .collect();
+            groups.sort_unstable();
+            groups.dedup();
+            format!("[{}]", groups.join(", "))
+        };
+        Err(BemError::IncompressibleTractionLoops {
+            path: self.mesh.source.clone(),
+            loops: loops.iter().map(|&l| describe(l)).collect::<Vec<_>>().join(", "),
+        })
+    }
+
+    /// Scale s of the unknown tractions in the system: x = t / s with s = G/L.
+    pub(crate) fn traction_scale(&self) -> f64 {
+        self.material.shear() / self.mesh.size()
+    }
+
+    /// System matrix A and right-hand side b of A x = b for the given data (see module docs).
+    pub(crate) fn linear_system(&self, asm: &Assembly, data: &[Component]) -> (Mat<f64>, Mat<f64>) {
+        let m = data.len();
+        let s = self.traction_scale();
+        let mut a = Mat::zeros(m, m);
+        let mut b = Mat::zeros(m, 1);
+        for (k, c) in data.iter().enumerate() {
+            match *c {
+                Component::Displacement(v) => {
+                    for r in 0..m {
+                        a[(r, k)] = -asm.g[(r, k)] * s;
+                        b[(r, 0)] -= asm.h[(r, k)] * v;
+                    }
+                }
+                Component::Traction(v) => {
+                    for r in 0..m {
+                        a[(r, k)] = asm.h[(r, k)];
+                        b[(r, 0)] += asm.g[(r, k)] * v;
+                    }
+                }
+            }
+        }
+        (a, b)
+    }
+
+    /// Factorises A and solves A X = B in place (B may have several columns); fails when the
+    /// pivots reveal a singular system.
+    pub(crate) fn solve_system(&self, a: &Mat<f64>, b: &mut Mat<f64>) -> Result<(), BemError> {
+        let lu = a.partial_piv_lu();
+        let u = lu.U();
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+        for k in 0..u.nrows() {
+            let p = u[(k, k)].abs();
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        let ratio = if hi > 0.0 { lo / hi } else { 0.0 };
+        // NaN pivots (non-finite input) fail this test too.
+        if ratio.is_nan() || ratio < self.options.min_pivot_ratio {
+            return Err(BemError::SingularSystem {
+                path: self.mesh.source.clone(),
+                pivot_ratio: ratio,
+            });
+        }
+        lu.solve_in_place(b.as_mut());
+        Ok(())
+    }
+
+    /// Solves the model with its group conditions (contact groups traction-free).
+    pub fn solve(&self) -> Result<BemSolution, BemError> {
+        self.solve_pinned(&[])
+    }
+
+    /// Solves the model with point constraints `pins` added to the group conditions.
+    pub fn solve_pinned(&self, pins: &[Pin]) -> Result<BemSolution, BemError> {
+        let data = self.boundary_data(pins)?;
+        let asm = self.assemble();
+        self.solve_assembled(&asm, &data)
+    }
+
+    /// Solves with an existing assembly and explicit per-component data.
+    pub fn solve_assembled(&self, asm: &Assembly, data: &[Component]) -> Result<BemSolution, BemError> {
+        let (a, mut x) = self.linear_system(asm, data);
+        self.solve_system(&a, &mut x)?;
+        let s = self.traction_scale();
+        let n = data.len() / 2;
+        let mut displacement = vec![[0.0; 2]; n];
+        let mut traction = vec![[0.0; 2]; n];
+        for (k, c) in data.iter().enumerate() {
+            let (node, comp) = (k / 2, k % 2);
+            match *c {
+                Component::Displacement(v) => {
+                    displacement[node][comp] = v;
+                    traction[node][comp] = x[(k, 0)] * s;
+                }
+                Component::Traction(v) => {
+                    displacement[node][comp] = x[(k, 0)];
+                    traction[node][comp] = v;
+                }
+            }
+        }
+        Ok(BemSolution { displacement, traction })
+    }
+}

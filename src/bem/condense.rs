@@ -1,0 +1,283 @@
+//! Condensation of a BEM body to its contact nodes, and the BEM [`BodyModel`].
+//!
+//! With the boundary conditions applied, the BEM system is A x = b0 + Σ_k G_k τ_k, where τ_k
+//! are the contact traction components (one per contact node and direction) and G_k the
+//! columns of G that multiply them. One LU factorisation of A and one solve with 1 + 2m
+//! right-hand sides [b0, G_1 … G_2m] give every unknown as an affine function of the contact
+//! tractions; the rows of the contact displacements form the 2m × 2m flexibility
+//! (González & Abascal §3, Eq. 11–13: the body's part of S).
+//!
+//! # Pair convention ([`crate::body`])
+//! Body A lies above the contact (its contact surface faces −y), body B below (+y). The
+//! pressure p ≥ 0 pushes each body away from the other and the shear q acts on A in +x, on B
+//! in −x, so the global traction on the contact surface is t = (q, p) on A and (−q, −p) on B.
+//! The normal share h is the displacement into the body, u_y on A and −u_y on B; the tangential
+//! share w is u_x on A and −u_x on B. The two sign flips cancel in every block, so for both
+//! sides hp = F_yy, hq = F_yx, wp = F_xy, wq = F_xx, with F the global flexibility; the
+//! dissimilar-coupling signs come out of each body's own geometry.
+//!
+//! The contact group must use the contact grid's nodes: discontinuous quadratic elements whose
+//! field nodes lie at the grid's node abscissae (checked in [`BemBody::new`]).
+
+use super::assemble::BemModel;
+use super::{BemError, BoundaryCondition};
+use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
+use crate::grid::{ContactGrid, ElementKind};
+use faer::Mat;
+
+/// Flexibility of a BEM body at the field nodes of its contact group (global axes).
+#[derive(Debug, Clone)]
+pub struct ContactFlexibility {
+    /// Field nodes of the contact group, in increasing x.
+    pub nodes: Vec<usize>,
+    /// Their abscissae x [length].
+    pub x: Vec<f64>,
+    /// F[(2i + a, 2j + b)] = displacement component a at contact node i per unit nodal value
+    /// of the traction component b at contact node j (a, b = 0 for x, 1 for y)
+    /// [length/stress].
+    pub matrix: Mat<f64>,
+    /// Displacement at the contact nodes with zero contact traction, due to the other
+    /// prescribed data [length].
+    pub offset: Vec<[f64; 2]>,
+}
+
+/// Condenses `model` to the field nodes of its contact group `contact_group` (which must have
+/// the [`BoundaryCondition::Contact`] condition): one LU, one multi-column solve.
+pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibility, BemError> {
+    let g = model.mesh.group_index(contact_group)?;
+    if !matches!(model.conditions[g], BoundaryCondition::Contact) {
+        return Err(BemError::ContactGridMismatch {
+            path: model.mesh.source.clone(),
+            group: contact_group.to_string(),
+            problem: format!("its boundary condition is {:?}, not contact", model.conditions[g]),
+        });
+    }
+    let field = model.field_nodes();
+    let mut nodes = model.discretisation.nodes_of_group(g);
+    nodes.sort_by(|&a, &b| field[a].position[0].total_cmp(&field[b].position[0]));
+    let m = nodes.len();
+
+    let data = model.boundary_data(&[])?;
+    let asm = model.assemble();
+    let (a, b0) = model.linear_system(&asm, &data);
+    let n_dof = data.len();
+    // Contact DOFs are traction-type, so each unit contact traction adds its G column to b.
+    let mut rhs = Mat::from_fn(n_dof, 1 + 2 * m, |r, c| {
+        if c == 0 {
+            b0[(r, 0)]
+        } else {
+            let (j, comp) = ((c - 1) / 2, (c - 1) % 2);
+            asm.g[(r, 2 * nodes[j] + comp)]
+        }
+    });
+    model.solve_system(&a, &mut rhs)?;
+    // The unknowns at contact DOFs are the displacements themselves (unscaled).
+    let matrix = Mat::from_fn(2 * m, 2 * m, |r, c| rhs[(2 * nodes[r / 2] + r % 2, 1 + c)]);
+    let offset = nodes.iter().map(|&k| [rhs[(2 * k, 0)], rhs[(2 * k + 1, 0)]]).collect();
+    Ok(ContactFlexibility {
+        x: nodes.iter().map(|&k| field[k].position[0]).collect(),
+        nodes,
+        matrix,
+        offset,
+    })
+}
+
+/// A body modelled by the BEM, condensed to a contact grid whose nodes it shares.
+#[derive(Debug, Clone)]
+pub struct BemBody {
+    /// The BEM model of the body.
+    pub model: BemModel,
+    /// Name of the contact group.
+    pub contact_group: String,
+    /// Which body of the pair this is.
+    pub side: Side,
+    /// The condensed flexibility (global axes).
+    pub condensed: ContactFlexibility,
+    /// Height of the contact surface's touching point: its lowest y on A, highest on B
+    /// [length].
+    touch_y: f64,
+}
+
+impl BemBody {
+    /// Condenses `model` to the nodes of `grid` for a body on `side`.
+    ///
+    /// Fails unless `grid` uses discontinuous quadratic elements, the contact group's field
+    /// nodes lie at the grid's node abscissae (to 1e-3 of the node spacing), and the contact
+    /// surface faces the other body (outward normal −y on A, +y on B, within 25°).
+    ///
+    /// The tolerance admits curved contact elements: Gmsh puts the mid node of an arc at its
+    /// mid-angle, which moves the interior field nodes off the uniform grid by about
+    /// R·θ·δ²/2 (θ the angle from the contact centre, δ the element's half angle), some 1e-5
+    /// of the node spacing for a = 1 mm on R = 100 mm. A pairing offset ε·spacing changes the
+    /// influence coefficients by a relative O(ε), far below the discretisation error.
+    pub fn new(model: BemModel, contact_group: &str, grid: &ContactGrid, side: Side) -> Result<Self, BemError> {
+        let mismatch = |problem: String| BemError::ContactGridMismatch {
+            path: model.mesh.source.clone(),
+            group: contact_group.to_string(),
+            problem,
+        };
+        if grid.kind != ElementKind::DiscontinuousQuadratic {
+            return Err(mismatch(
+                "the contact grid must use discontinuous quadratic elements for a BEM body".to_string(),
+            ));
+        }
+        let g = model.mesh.group_index(contact_group)?;
+        let field = model.field_nodes();
+        let mut xs: Vec<f64> = model
+            .discretisation
+            .nodes_of_group(g)
+            .iter()
+            .map(|&k| field[k].position[0])
+            .collect();
+        xs.sort_by(f64::total_cmp);
+        if xs.len() != grid.n_nodes() {
+            return Err(mismatch(format!(
+                "{} contact nodes in the mesh, {} in the grid ({} elements of length {})",
+                xs.len(),
+                grid.n_nodes(),
+                grid.n_elements(),
+                grid.element_length()
+            )));
+        }
+        let tolerance = 1e-3 * grid.node_spacing();
+        if let Some((x_mesh, x_grid)) = xs.iter().zip(&grid.nodes).find(|(a, b)| (*a - *b).abs() > tolerance) {
+            return Err(mismatch(format!(
+                "mesh node at x = {x_mesh} but grid node at x = {x_grid}: the contact elements \
+                 must coincide with the grid's elements"
+            )));
+        }
+        let facing = match side {
+            Side::A => -1.0,
+            Side::B => 1.0,
+        };
+        let cos_limit = 25f64.to_radians().cos();
+        if let Some(k) = model
+            .discretisation
+            .nodes_of_group(g)
+            .into_iter()
+            .find(|&k| field[k].normal[1] * facing < cos_limit)
+        {
+            return Err(mismatch(format!(
+                "the contact surface at x = {} does not face the other body (outward normal \
+                 {:?}, expected close to (0, {facing}) for body {side:?})",
+                field[k].position[0], field[k].normal
+            )));
+        }
+        let condensed = condense(&model, contact_group)?;
+        let touch_y = contact_heights(&model, g)
+            .into_iter()
+            .map(|(_, y)| y * facing)
+            .fold(f64::NEG_INFINITY, f64::max)
+            * facing;
+        Ok(Self {
+            contact_group: contact_group.to_string(),
+            side,
+            condensed,
+            touch_y,
+            model,
+        })
+    }
+
+    /// Height y(x) of the undeformed contact surface at abscissa x [length], if x lies on
+    /// the contact group.
+    fn surface_height(&self, x: f64) -> Option<f64> {
+        let g = self.model.mesh.group_index(&self.contact_group).ok()?;
+        let d = &self.model.discretisation;
+        for (e, el) in self.model.mesh.elements.iter().enumerate() {
+            if el.group != g {
+                continue;
+            }
+            let geom = &d.geometry[e];
+            // x(ξ) = xm + ξ (x1 − x0)/2 + ξ² ((x0 + x1)/2 − xm): solve for ξ ∈ [−1, 1].
+            let [p0, p1, pm] = geom.nodes;
+            let (c0, c1, c2) = (pm[0] - x, 0.5 * (p1[0] - p0[0]), 0.5 * (p0[0] + p1[0]) - pm[0]);
+            let roots: Vec<f64> = if c2.abs() < 1e-14 * c1.abs() {
+                vec![-c0 / c1]
+            } else {
+                let disc = c1 * c1 - 4.0 * c2 * c0;
+                if disc < 0.0 {
+                    continue;
+                }
+                let s = disc.sqrt();
+                vec![(-c1 + s) / (2.0 * c2), (-c1 - s) / (2.0 * c2)]
+            };
+            if let Some(&xi) = roots.iter().find(|r| r.abs() <= 1.0 + 1e-12) {
+                return Some(geom.point(xi.clamp(-1.0, 1.0))[1]);
+            }
+        }
+        None
+    }
+}
+
+/// Sample points (x, y) of the contact group's geometry (21 per element).
+fn contact_heights(model: &BemModel, group: usize) -> Vec<(f64, f64)> {
+    let d = &model.discretisation;
+    model
+        .mesh
+        .elements
+        .iter()
+        .enumerate()
+        .filter(|(_, el)| el.group == group)
+        .flat_map(|(e, _)| {
+            (0..=20).map(move |s| {
+                let p = d.geometry[e].point(-1.0 + 0.1 * s as f64);
+                (p[0], p[1])
+            })
+        })
+        .collect()
+}
+
+impl BodyModel for BemBody {
+    fn model_name(&self) -> &'static str {
+        "bem"
+    }
+
+    /// The condensed flexibility in the pair convention (module docs).
+    ///
+    /// `grid` and `side` must be the ones given to [`BemBody::new`], which checked the mesh
+    /// against them; anything else is a programming error and panics.
+    fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
+        assert!(
+            side == self.side
+                && grid.n_nodes() == self.condensed.x.len()
+                && grid
+                    .nodes
+                    .iter()
+                    .zip(&self.condensed.x)
+                    .all(|(a, b)| (a - b).abs() <= 1e-3 * grid.node_spacing()),
+            "BemBody::flexibility called with another grid or side than BemBody::new"
+        );
+        let m = grid.n_nodes();
+        let f = &self.condensed.matrix;
+        Flexibility {
+            hp: Mat::from_fn(m, m, |i, j| f[(2 * i + 1, 2 * j + 1)]),
+            hq: Mat::from_fn(m, m, |i, j| f[(2 * i + 1, 2 * j)]),
+            wp: Mat::from_fn(m, m, |i, j| f[(2 * i, 2 * j + 1)]),
+            wq: Mat::from_fn(m, m, |i, j| f[(2 * i, 2 * j)]),
+        }
+    }
+
+    /// Distance of the undeformed contact surface from the common tangent at x [length]
+    /// (y − y_touch on A, y_touch − y on B); beyond the contact group, the value at its
+    /// nearer end.
+    fn profile(&self, x: f64) -> f64 {
+        let (lo, hi) = (
+            self.condensed.x.first().copied().unwrap_or(x),
+            self.condensed.x.last().copied().unwrap_or(x),
+        );
+        let facing = match self.side {
+            Side::A => 1.0,
+            Side::B => -1.0,
+        };
+        let y = self
+            .surface_height(x)
+            .or_else(|| self.surface_height(x.clamp(lo, hi)))
+            .unwrap_or(self.touch_y);
+        ((y - self.touch_y) * facing).max(0.0)
+    }
+
+    /// Not available yet: the hypersingular (HBEM) surface-strain operator is a separate part.
+    fn strain_operator(&self, _grid: &ContactGrid, _side: Side) -> Option<StrainOperator> {
+        None
+    }
+}

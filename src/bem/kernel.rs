@@ -1,0 +1,213 @@
+//! Plane-strain Kelvin fundamental solution: displacement kernel U* and traction kernel T*.
+//!
+//! Convention of Brebbia, Telles & Wrobel, *Boundary Element Techniques* (1984), §3.2
+//! (reference sheet §9): X is the source (collocation) point, x the field point, r⃗ = x − X,
+//! r = |r⃗|, r,i = r_i/r, ∂r/∂n = r,i n_i with n the unit normal at x pointing out of the
+//! material. Entry (i, j) is the j-component at x due to a unit line force in direction i at X:
+//!
+//! ```text
+//! U*_ij = [ (3−4ν) ln(ℓ/r) δij + r,i r,j ] / (8πG(1−ν))
+//! T*_ij = −[ ∂r/∂n ((1−2ν) δij + 2 r,i r,j) − (1−2ν)(r,i n_j − r,j n_i) ] / (4π(1−ν) r)
+//! ```
+//!
+//! U* is in 1/stress (displacement per unit line force, force/length), T* in 1/length. Nothing divides by 1 − 2ν, so ν = 0.5 (incompressible) is valid.
+//!
+//! **Length scale ℓ.** The textbook kernel has ln(1/r): it depends on the length unit. Adding a
+//! constant to U* changes ∫U* t dΓ by the constant times the resultant force, which vanishes
+//! for any equilibrated body, so ℓ does not change the exact solution; it does move the
+//! "degenerate scale" at which the discrete G operator becomes singular (for a circle of
+//! radius a with ℓ = 1 this happens at a = exp(1/(2(3−4ν))) ≈ 1.3 length units for ν = 0.3).
+//! Choosing ℓ several times the body size keeps every body far from it whatever the unit
+//! ([`super::BemOptions::log_length_scale`]).
+
+// Index loops mirror the tensor notation of the formulas.
+#![allow(clippy::needless_range_loop)]
+
+use crate::material::Elastic;
+use std::f64::consts::PI;
+
+/// The Kelvin kernels of one material, with the constants precomputed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kelvin {
+    /// Poisson's ratio ν [-].
+    pub poisson: f64,
+    /// Shear modulus G [stress].
+    pub shear: f64,
+    /// Length scale ℓ of the logarithm [length] (see the module docs).
+    pub length_scale: f64,
+    /// 1/(8πG(1−ν)) [1/stress].
+    c_u: f64,
+    /// 1/(4π(1−ν)) [-].
+    c_t: f64,
+}
+
+impl Kelvin {
+    /// Kernels of `material` with the logarithm measured from `length_scale` [length].
+    pub fn new(material: &Elastic, length_scale: f64) -> Self {
+        let nu = material.poisson;
+        let g = material.shear();
+        Self {
+            poisson: nu,
+            shear: g,
+            length_scale,
+            c_u: 1.0 / (8.0 * PI * g * (1.0 - nu)),
+            c_t: 1.0 / (4.0 * PI * (1.0 - nu)),
+        }
+    }
+
+    /// Coefficient c of the logarithmic part c·ln(1/r)·δij of U* [1/stress]: (3−4ν)/(8πG(1−ν)).
+    pub fn log_coefficient(&self) -> f64 {
+        (3.0 - 4.0 * self.poisson) * self.c_u
+    }
+
+    /// U*_ij(X, x) [1/stress]: displacement j at `field` due to a unit line force i at
+    /// `source`.
+    pub fn displacement(&self, source: [f64; 2], field: [f64; 2]) -> [[f64; 2]; 2] {
+        let d = [field[0] - source[0], field[1] - source[1]];
+        let r = d[0].hypot(d[1]);
+        let g = [d[0] / r, d[1] / r];
+        let log = (3.0 - 4.0 * self.poisson) * (self.length_scale / r).ln();
+        let mut u = [[0.0; 2]; 2];
+        for (i, row) in u.iter_mut().enumerate() {
+            for (j, v) in row.iter_mut().enumerate() {
+                let delta = if i == j { log } else { 0.0 };
+                *v = self.c_u * (delta + g[i] * g[j]);
+            }
+        }
+        u
+    }
+
+    /// T*_ij(X, x, n) [1/length]: traction j on a surface of unit outward normal `normal` at
+    /// `field` due to a unit force i at `source`.
+    pub fn traction(&self, source: [f64; 2], field: [f64; 2], normal: [f64; 2]) -> [[f64; 2]; 2] {
+        let d = [field[0] - source[0], field[1] - source[1]];
+        let r = d[0].hypot(d[1]);
+        let g = [d[0] / r, d[1] / r];
+        let drdn = g[0] * normal[0] + g[1] * normal[1];
+        let c12 = 1.0 - 2.0 * self.poisson;
+        let scale = -self.c_t / r;
+        let mut t = [[0.0; 2]; 2];
+        for (i, row) in t.iter_mut().enumerate() {
+            for (j, v) in row.iter_mut().enumerate() {
+                let delta = if i == j { c12 } else { 0.0 };
+                *v = scale * (drdn * (delta + 2.0 * g[i] * g[j]) - c12 * (g[i] * normal[j] - g[j] * normal[i]));
+            }
+        }
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kernels(nu: f64) -> Kelvin {
+        Kelvin::new(&Elastic::new(210_000.0, nu), 7.0)
+    }
+
+    /// Stress at `x` of the displacement field u_j = U*_ij(X, x) (i fixed), by central
+    /// differences and plane-strain Hooke's law σ = λ tr ε I + 2Gε.
+    fn fd_stress(k: &Kelvin, i: usize, source: [f64; 2], x: [f64; 2], h: f64) -> [[f64; 2]; 2] {
+        let mut grad = [[0.0; 2]; 2]; // grad[j][m] = ∂u_j/∂x_m
+        for m in 0..2 {
+            let mut xp = x;
+            let mut xm = x;
+            xp[m] += h;
+            xm[m] -= h;
+            let (up, um) = (k.displacement(source, xp), k.displacement(source, xm));
+            for j in 0..2 {
+                grad[j][m] = (up[i][j] - um[i][j]) / (2.0 * h);
+            }
+        }
+        let nu = k.poisson;
+        let lambda = 2.0 * k.shear * nu / (1.0 - 2.0 * nu);
+        let tr = grad[0][0] + grad[1][1];
+        let mut s = [[0.0; 2]; 2];
+        for j in 0..2 {
+            for m in 0..2 {
+                let eps = 0.5 * (grad[j][m] + grad[m][j]);
+                s[j][m] = 2.0 * k.shear * eps + if j == m { lambda * tr } else { 0.0 };
+            }
+        }
+        s
+    }
+
+    #[test]
+    fn traction_kernel_is_the_traction_of_the_displacement_kernel() {
+        // T*_ij = σ^(i)_jk n_k with σ^(i) the stress of the field U*_i·: checks the sign, the
+        // (1−2ν) terms and the normalisation of T* against U* (ν = 0.5 is covered by the BEM
+        // tests; Hooke's λ is infinite there).
+        for nu in [0.0, 0.3, 0.45] {
+            let k = kernels(nu);
+            let source = [0.3, -0.2];
+            for (x, n) in [
+                ([1.1, 0.4], [0.6, 0.8]),
+                ([-0.5, -1.7], [-1.0, 0.0]),
+                ([0.35, 0.1], [0.28, -0.96]),
+            ] {
+                let t = k.traction(source, x, n);
+                for i in 0..2 {
+                    let s = fd_stress(&k, i, source, x, 1e-5);
+                    for j in 0..2 {
+                        let fd = s[j][0] * n[0] + s[j][1] * n[1];
+                        assert!(
+                            (fd - t[i][j]).abs() < 1e-7 * t[i][j].abs().max(1e-3),
+                            "nu={nu} x={x:?} ij={i}{j}: fd {fd} vs T* {}",
+                            t[i][j]
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn displacement_kernel_is_symmetric_and_reciprocal() {
+        let k = kernels(0.3);
+        let (a, b) = ([0.2, 0.7], [-1.3, 2.9]);
+        let uab = k.displacement(a, b);
+        let uba = k.displacement(b, a);
+        assert!((uab[0][1] - uab[1][0]).abs() < 1e-20);
+        for i in 0..2 {
+            for j in 0..2 {
+                // Betti: u_j(b) due to force i at a equals u_i(a) due to force j at b.
+                assert!((uab[i][j] - uba[j][i]).abs() < 1e-18);
+            }
+        }
+        // At r = ℓ the logarithm vanishes and U* = r,i r,j / (8πG(1−ν)).
+        let u = k.displacement([0.0, 0.0], [7.0, 0.0]);
+        let c = 1.0 / (8.0 * PI * k.shear * 0.7);
+        assert!((u[0][0] - c).abs() < 1e-15 * c && u[1][1].abs() < 1e-15 * c);
+    }
+
+    #[test]
+    fn traction_kernel_integrates_to_minus_the_unit_force_around_the_source() {
+        // A disc around the load is in equilibrium: ∮ T*_ij dΓ = −δij with n pointing away from
+        // the source; around a circle that does not contain the source the integral is 0.
+        for nu in [0.3, 0.5] {
+            let k = kernels(nu);
+            let n = 720;
+            for (centre, expected) in [([0.0, 0.0], -1.0), ([3.0, 1.0], 0.0)] {
+                let mut sum = [[0.0; 2]; 2];
+                let radius = 0.7;
+                for s in 0..n {
+                    let a = 2.0 * PI * (s as f64 + 0.5) / n as f64;
+                    let nrm = [a.cos(), a.sin()];
+                    let x = [centre[0] + radius * nrm[0], centre[1] + radius * nrm[1]];
+                    let t = k.traction([0.0, 0.0], x, nrm);
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            sum[i][j] += t[i][j] * radius * 2.0 * PI / n as f64;
+                        }
+                    }
+                }
+                for i in 0..2 {
+                    for j in 0..2 {
+                        let e = if i == j { expected } else { 0.0 };
+                        assert!((sum[i][j] - e).abs() < 1e-12, "nu={nu} {i}{j}: {}", sum[i][j]);
+                    }
+                }
+            }
+        }
+    }
+}
