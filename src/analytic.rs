@@ -150,3 +150,85 @@ mod tests {
         assert!((p0 - 103.788).abs() < 2e-3);
     }
 }
+
+/// Shape factor h(ρ, ν) of the approach of an annulus bonded to a rigid shaft (ρ = r_s/R) under
+/// one Hertz contact (reference sheet §6c, Michell series with the n = 1 log terms):
+/// h = t0 + t1 + t2 + t3, t3 = −Σ_{n≥2} [c_n(ρ) − c_n(0)].
+pub fn shaft_roller_shape_factor(rho: f64, nu: f64) -> f64 {
+    let k = 3.0 - 4.0 * nu;
+    let t0 = 0.25 * (1.0 - 2.0 * nu) * ((1.0 - rho * rho) / (1.0 + (1.0 - 2.0 * nu) * rho * rho) - 2.0);
+    let r4 = rho.powi(4);
+    let t1 = -(k * rho.ln()
+        + (nu * k - 2.0 * (1.0 - 2.0 * nu) * rho * rho + (2.0 - 7.0 * nu + 4.0 * nu * nu) * r4) / (1.0 + k * r4))
+        / (8.0 * (1.0 - nu));
+    let t2 = -(1.0 - nu) * std::f64::consts::LN_2 + k / 8.0;
+    let c_zero = |n: f64| (1.0 - 2.0 * nu - 2.0 * n * (1.0 - nu)) / (2.0 * (n * n - 1.0));
+    let mut t3 = 0.0;
+    for n in 2..400 {
+        let term = shaft_series_coefficient(n as f64, rho, nu) - c_zero(n as f64);
+        t3 -= term;
+        if term.abs() < 1e-17 {
+            break;
+        }
+    }
+    t0 + t1 + t2 + t3
+}
+
+/// c_n(ρ) of reference sheet §6c: ½[−(n+4ν−2)b1 − n b2 + (n−4ν+2)b3' ρ^{n−1} + n b4' ρ^{n+1}]
+/// with (b1, b2, b3', b4') from the 4×4 boundary-condition system of the Michell term n.
+fn shaft_series_coefficient(n: f64, x: f64, nu: f64) -> f64 {
+    let (xm, xp) = (x.powf(n - 1.0), x.powf(n + 1.0));
+    let a = nalgebra::Matrix4::new(
+        -(n - 2.0) * (n + 1.0),
+        -n * (n - 1.0),
+        -(n - 1.0) * (n + 2.0) * xm,
+        -n * (n + 1.0) * xp,
+        n * (n + 1.0),
+        n * (n - 1.0),
+        -n * (n - 1.0) * xm,
+        -n * (n + 1.0) * xp,
+        -(n + 4.0 * nu - 2.0) * xp,
+        -n * xm,
+        n - 4.0 * nu + 2.0,
+        n,
+        (n - 4.0 * nu + 4.0) * xp,
+        n * xm,
+        n + 4.0 * nu - 4.0,
+        n,
+    );
+    let b = a.lu().solve(&nalgebra::Vector4::new(-1.0, 0.0, 0.0, 0.0)).unwrap_or_else(nalgebra::Vector4::zeros);
+    0.5 * (-(n + 4.0 * nu - 2.0) * b[0] - n * b[1] + (n - 4.0 * nu + 2.0) * b[2] * xm + n * b[3] * xp)
+}
+
+/// Approach of the contact point towards the centre of a roller of radius R bonded to a rigid
+/// shaft of radius r_s, under one Hertz contact of half-width a and load P per unit length
+/// (reference sheet §6c): δ = (2P(1−ν²)/(πE))(ln(4R/a) − ½) + (P/(πG))·h(r_s/R, ν), up to
+/// O(a/R) [length].
+pub fn shaft_roller_approach(load: f64, radius: f64, shaft_radius: f64, half_width: f64, material: &crate::material::Elastic) -> f64 {
+    let (e, nu) = (material.young, material.poisson);
+    2.0 * load * (1.0 - nu * nu) / (std::f64::consts::PI * e) * ((4.0 * radius / half_width).ln() - 0.5)
+        + load / (std::f64::consts::PI * material.shear()) * shaft_roller_shape_factor(shaft_radius / radius, nu)
+}
+
+#[cfg(test)]
+mod shaft_tests {
+    use super::*;
+
+    #[test]
+    fn shape_factor_matches_the_reference_sheet_table() {
+        for (rho, nu, h) in [(0.1, 0.3, 0.268286), (0.2, 0.3, 0.003146), (0.5, 0.3, -0.538345), (0.1, 0.25, 0.274411)] {
+            let got = shaft_roller_shape_factor(rho, nu);
+            assert!((got - h).abs() < 2e-6, "h({rho}, {nu}) = {got}, sheet {h}");
+        }
+    }
+
+    #[test]
+    fn approach_of_the_steel_rollers_worked_example() {
+        // Reference sheet §6c: R = 150 and 300 mm on shafts ρ = 0.1, steel, a = 1 mm, P = 906.229.
+        let steel = crate::material::Elastic::new(210_000.0, 0.3);
+        let d1 = shaft_roller_approach(906.229, 150.0, 15.0, 1.0, &steel);
+        let d2 = shaft_roller_approach(906.229, 300.0, 30.0, 1.0, &steel);
+        assert!((d1 - 1.570049e-2).abs() < 2e-8, "{d1}");
+        assert!((d2 - 1.743336e-2).abs() < 2e-8, "{d2}");
+    }
+}

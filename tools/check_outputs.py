@@ -8,6 +8,13 @@ Each DIR is a run folder (summary.json, contact.csv, contact.vtu, result.pvd) or
 documented arrays with the right shapes, and its values equal contact.csv / summary.json to 1e-12
 relative. Exits 1 with one line per defect.
 """
+import os
+import sys
+
+# tools/inspect.py is named like the standard library's `inspect`, which numpy and pyvista
+# import: keep this folder off the module path.
+sys.path = [p for p in sys.path if os.path.abspath(p or ".") != os.path.dirname(os.path.abspath(__file__))]
+
 import csv
 import json
 import sys

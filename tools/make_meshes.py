@@ -7,6 +7,13 @@ Usage:
                             .msh files: same node count, element count and physical groups
                             (exit 1 on a difference)
 """
+import os
+import sys
+
+# tools/inspect.py is named like the standard library's `inspect`, which numpy and pyvista
+# import: keep this folder off the module path.
+sys.path = [p for p in sys.path if os.path.abspath(p or ".") != os.path.dirname(os.path.abspath(__file__))]
+
 import sys
 import tempfile
 from pathlib import Path
