@@ -196,7 +196,10 @@ fn shaft_series_coefficient(n: f64, x: f64, nu: f64) -> f64 {
         n + 4.0 * nu - 4.0,
         n,
     );
-    let b = a.lu().solve(&nalgebra::Vector4::new(-1.0, 0.0, 0.0, 0.0)).unwrap_or_else(nalgebra::Vector4::zeros);
+    let b = a
+        .lu()
+        .solve(&nalgebra::Vector4::new(-1.0, 0.0, 0.0, 0.0))
+        .unwrap_or_else(nalgebra::Vector4::zeros);
     0.5 * (-(n + 4.0 * nu - 2.0) * b[0] - n * b[1] + (n - 4.0 * nu + 2.0) * b[2] * xm + n * b[3] * xp)
 }
 
@@ -204,7 +207,13 @@ fn shaft_series_coefficient(n: f64, x: f64, nu: f64) -> f64 {
 /// shaft of radius r_s, under one Hertz contact of half-width a and load P per unit length
 /// (reference sheet §6c): δ = (2P(1−ν²)/(πE))(ln(4R/a) − ½) + (P/(πG))·h(r_s/R, ν), up to
 /// O(a/R) [length].
-pub fn shaft_roller_approach(load: f64, radius: f64, shaft_radius: f64, half_width: f64, material: &crate::material::Elastic) -> f64 {
+pub fn shaft_roller_approach(
+    load: f64,
+    radius: f64,
+    shaft_radius: f64,
+    half_width: f64,
+    material: &crate::material::Elastic,
+) -> f64 {
     let (e, nu) = (material.young, material.poisson);
     2.0 * load * (1.0 - nu * nu) / (std::f64::consts::PI * e) * ((4.0 * radius / half_width).ln() - 0.5)
         + load / (std::f64::consts::PI * material.shear()) * shaft_roller_shape_factor(shaft_radius / radius, nu)
@@ -216,7 +225,12 @@ mod shaft_tests {
 
     #[test]
     fn shape_factor_matches_the_reference_sheet_table() {
-        for (rho, nu, h) in [(0.1, 0.3, 0.268286), (0.2, 0.3, 0.003146), (0.5, 0.3, -0.538345), (0.1, 0.25, 0.274411)] {
+        for (rho, nu, h) in [
+            (0.1, 0.3, 0.268286),
+            (0.2, 0.3, 0.003146),
+            (0.5, 0.3, -0.538345),
+            (0.1, 0.25, 0.274411),
+        ] {
             let got = shaft_roller_shape_factor(rho, nu);
             assert!((got - h).abs() < 2e-6, "h({rho}, {nu}) = {got}, sheet {h}");
         }

@@ -604,6 +604,28 @@ pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Er
             format!("x in [{x0:.6}, {x1:.6}], profile radius {:.6}", body.radius),
         );
     }
+    let grid = contact_grid(&case, &est, &bodies);
+    for (side, body) in ["A", "B"].iter().zip(&bodies) {
+        let Some(lm) = &body.mesh else { continue };
+        let own = lm.contact_grid();
+        if own.coincides_with(&grid) {
+            line(
+                &format!("  {side}: contact nodes"),
+                "paired node to node with the contact grid".into(),
+            );
+        } else {
+            let ratio = own.element_length() / grid.element_length();
+            let advice = if ratio <= 0.5 {
+                "fine enough"
+            } else {
+                "coarser than half the grid's elements: the transferred slip loses accuracy (about 8 % of the creepage at equal size); mesh the contact group at most half the grid's element length, or match the nodes"
+            };
+            line(
+                &format!("  {side}: contact nodes"),
+                format!("transferred to the grid by interpolation (element length ratio {ratio:.2}: {advice})"),
+            );
+        }
+    }
     if let [[a0, a1], [b0, b1]] = ranges.as_slice() {
         let overlap = a1.min(*b1) - a0.max(*b0);
         line(

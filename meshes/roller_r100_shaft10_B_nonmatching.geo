@@ -1,0 +1,46 @@
+// Similar rollers for Carter, body B, contact nodes NOT matching body A: R = 100 mm on a 10 mm shaft
+// Boundary mesh (quadratic line3 elements) of a roller of radius R on a rigid shaft of radius rs,
+// body B (below the contact). The contact segment |x| <= L carries ne elements whose ends have exactly the x of the
+// half-space grid NOT: 54 elements on |x| <= 1.5 mm (over twice as fine), so its flexibility is transferred to body A's
+// contact grid by interpolation (DESIGN §4). Units: mm. Regenerate: python3 tools/make_meshes.py
+R = 100;
+rs = 10;
+ne = 54;
+L = 1.5;
+lc_contact = 2*L/ne;
+lc_far = 2*Pi*R/48;
+lc_shaft = 2*Pi*rs/24;
+s = -1;                 // +1: body A above the contact (centre at y = +R); -1: body B below
+cy = s*R;
+Point(1) = {0, cy, 0};
+For i In {0:ne}
+  x = -L + 2*L*i/ne;
+  Point(10+i) = {x, cy - s*Sqrt(R*R - x*x), 0, lc_contact};
+EndFor
+For i In {0:ne-1}
+  Circle(100+i) = {10+i, 1, 11+i};
+  Transfinite Curve{100+i} = 2;
+EndFor
+// The rest of the outer circle, in four arcs; sizes grade from lc_contact to lc_far.
+Point(200) = {R, cy, 0, lc_far};
+Point(201) = {0, cy + s*R, 0, lc_far};
+Point(202) = {-R, cy, 0, lc_far};
+Circle(300) = {10+ne, 1, 200};
+Circle(301) = {200, 1, 201};
+Circle(302) = {201, 1, 202};
+Circle(303) = {202, 1, 10};
+// Shaft hole.
+Point(400) = {rs, cy, 0, lc_shaft};
+Point(401) = {0, cy + rs, 0, lc_shaft};
+Point(402) = {-rs, cy, 0, lc_shaft};
+Point(403) = {0, cy - rs, 0, lc_shaft};
+Circle(500) = {400, 1, 401};
+Circle(501) = {401, 1, 402};
+Circle(502) = {402, 1, 403};
+Circle(503) = {403, 1, 400};
+Physical Curve("contact") = {100:100+ne-1};
+Physical Curve("free") = {300, 301, 302, 303};
+Physical Curve("shaft") = {500, 501, 502, 503};
+Mesh.ElementOrder = 2;
+Mesh.SecondOrderLinear = 0;
+Mesh.MshFileVersion = 4.1;
