@@ -95,6 +95,12 @@ pub trait BodyModel {
     /// Surface-strain operator for the boundary-integral re-check of the slip, if the model
     /// has one.
     fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator>;
+
+    /// Wall time [s] the model spent (assembling, condensing) when it was built; zero for
+    /// closed-form models.
+    fn stage_seconds(&self) -> (f64, f64) {
+        (0.0, 0.0)
+    }
 }
 
 /// Undeformed height of a circle of radius `radius` above its tangent at horizontal distance x:
@@ -134,5 +140,9 @@ impl BodyModel for WithCircularProfile {
 
     fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
         self.inner.strain_operator(grid, side)
+    }
+
+    fn stage_seconds(&self) -> (f64, f64) {
+        self.inner.stage_seconds()
     }
 }

@@ -39,6 +39,10 @@ pub struct ContactFlexibility {
     /// Displacement at the contact nodes with zero contact traction, due to the other
     /// prescribed data [length].
     pub offset: Vec<[f64; 2]>,
+    /// Wall time of the BEM assembly (H, G) [s].
+    pub assembly_s: f64,
+    /// Wall time of the factorization and the multi-column solve [s].
+    pub condense_s: f64,
 }
 
 /// Condenses `model` to the field nodes of its contact group `contact_group` (which must have
@@ -58,7 +62,10 @@ pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibil
     let m = nodes.len();
 
     let data = model.boundary_data(&[])?;
+    let t_assembly = std::time::Instant::now();
     let asm = model.assemble();
+    let assembly_s = t_assembly.elapsed().as_secs_f64();
+    let t_condense = std::time::Instant::now();
     let (a, b0) = model.linear_system(&asm, &data);
     let n_dof = data.len();
     // Contact DOFs are traction-type, so each unit contact traction adds its G column to b.
@@ -74,10 +81,13 @@ pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibil
     // The unknowns at contact DOFs are the displacements themselves (unscaled).
     let matrix = Mat::from_fn(2 * m, 2 * m, |r, c| rhs[(2 * nodes[r / 2] + r % 2, 1 + c)]);
     let offset = nodes.iter().map(|&k| [rhs[(2 * k, 0)], rhs[(2 * k + 1, 0)]]).collect();
+    let condense_s = t_condense.elapsed().as_secs_f64();
     Ok(ContactFlexibility {
         x: nodes.iter().map(|&k| field[k].position[0]).collect(),
         nodes,
         matrix,
+        assembly_s,
+        condense_s,
         offset,
     })
 }
@@ -274,6 +284,10 @@ impl BodyModel for BemBody {
             .or_else(|| self.surface_height(x.clamp(lo, hi)))
             .unwrap_or(self.touch_y);
         ((y - self.touch_y) * facing).max(0.0)
+    }
+
+    fn stage_seconds(&self) -> (f64, f64) {
+        (self.condensed.assembly_s, self.condensed.condense_s)
     }
 
     /// Not available yet: the hypersingular (HBEM) surface-strain operator is a separate part.

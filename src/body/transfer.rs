@@ -127,6 +127,10 @@ impl super::BodyModel for Transferred {
         let own = self.inner.strain_operator(&self.own_grid, side)?;
         transfer_strain(&own, &self.own_grid, grid).ok()
     }
+
+    fn stage_seconds(&self) -> (f64, f64) {
+        self.inner.stage_seconds()
+    }
 }
 
 impl Transferred {
