@@ -26,7 +26,7 @@ fn contact_pipeline(c: &mut Criterion) {
         let case = load(n);
         let bodies = app::prepare_bodies(&case).expect("bodies");
         let est = app::estimates(&case, &bodies);
-        let (_, problem) = app::build_problem(&case, &est, &bodies).expect("problem");
+        let (_, _, problem) = app::build_problem(&case, &est, &bodies).expect("problem");
         let settings = app::newton_settings(&case);
         let (_, report) = newton::solve(&problem, &settings);
         eprintln!(

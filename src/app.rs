@@ -6,7 +6,7 @@ use crate::bem::{BemModel, BemOptions, BoundaryCondition};
 use crate::body::half_space::HalfSpace;
 use crate::body::rigid::Rigid;
 use crate::body::transfer::Transferred;
-use crate::body::{BodyModel, Side, WithCircularProfile};
+use crate::body::{BodyModel, BoundaryField, Side, WithCircularProfile};
 use crate::case::{self, BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase, NormalSpec, TangentialSpec};
 use crate::contact::newton::{self, NewtonReport, NewtonSettings};
 use crate::contact::solution::{slip_regime, ContactSolution};
@@ -384,12 +384,13 @@ pub fn newton_settings(case: &LoadedCase) -> NewtonSettings {
 }
 
 /// Assembles the contact problem of a case.
-/// Returns the seconds spent condensing BEM bodies (included in the build time) and the problem.
+/// Returns the seconds spent condensing BEM bodies (included in the build time), the two body
+/// models and the problem.
 pub fn build_problem(
     case: &LoadedCase,
     est: &Estimates,
     bodies: &[PreparedBody; 2],
-) -> Result<(f64, ContactProblem), Error> {
+) -> Result<(f64, BodyModels, ContactProblem), Error> {
     let c = &case.case;
     let grid = contact_grid(case, est, bodies);
     let normal = match c.load.normal() {
@@ -404,20 +405,21 @@ pub fn build_problem(
     let a = body_model(&c.bodies.a, &bodies[0], &grid, Side::A)?;
     let b = body_model(&c.bodies.b, &bodies[1], &grid, Side::B)?;
     let condense_s = a.stage_seconds().1 + b.stage_seconds().1;
-    Ok((
-        condense_s,
-        ContactProblem::assemble(
-            grid,
-            a.as_ref(),
-            b.as_ref(),
-            c.contact.slip_derivative,
-            c.contact.friction,
-            c.contact.rolling_direction,
-            normal,
-            tangential,
-        ),
-    ))
+    let problem = ContactProblem::assemble(
+        grid,
+        a.as_ref(),
+        b.as_ref(),
+        c.contact.slip_derivative,
+        c.contact.friction,
+        c.contact.rolling_direction,
+        normal,
+        tangential,
+    );
+    Ok((condense_s, [a, b], problem))
 }
+
+/// The built body models of A and B.
+pub type BodyModels = [Box<dyn BodyModel>; 2];
 
 /// Wall-clock time of each stage [s].
 #[derive(Debug, Clone, Copy, Default, Serialize)]
@@ -462,6 +464,8 @@ pub struct Solved {
     pub timings: Timings,
     /// Slip regime 1–4 (paper §5.2), 0 for none.
     pub regime: u8,
+    /// Whole-boundary fields of A and B (bem bodies, when VTK output is on).
+    pub boundary: [Option<BoundaryField>; 2],
 }
 
 /// Assembles and solves a loaded case; checks that the grid contains the contact.
@@ -469,7 +473,7 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
     let start = Instant::now();
     let bodies = prepare_bodies(case)?;
     let estimates = estimates(case, &bodies);
-    let (condense_s, problem) = build_problem(case, &estimates, &bodies)?;
+    let (condense_s, models, problem) = build_problem(case, &estimates, &bodies)?;
     let mut timings = Timings {
         assembly_s: start.elapsed().as_secs_f64() - condense_s,
         condense_s,
@@ -485,7 +489,20 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
     }
     let leading = -case.case.contact.rolling_direction.flow_sign();
     let regime = slip_regime(&solution, leading, 1);
+    let boundary = if newton.converged && case.case.output.vtk {
+        let field = |m: &Box<dyn BodyModel>| {
+            m.boundary_field(&problem.grid, &solution.pressure, &solution.shear)
+                .transpose()
+                .map_err(|what| Error::Unsupported {
+                    what: format!("the boundary solution of a bem body for output failed: {what}"),
+                })
+        };
+        [field(&models[0])?, field(&models[1])?]
+    } else {
+        [None, None]
+    };
     Ok(Solved {
+        boundary,
         estimates,
         problem,
         solution,
@@ -512,7 +529,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         s.regime,
         s.timings,
     );
-    output::write_run(&output_dir, &mut summary, &s.solution, &s.problem, start)?;
+    output::write_run(&output_dir, &mut summary, &s.solution, &s.problem, &s.boundary, start)?;
     Ok(RunReport {
         summary,
         solution: s.solution,

@@ -101,6 +101,30 @@ pub trait BodyModel {
     fn stage_seconds(&self) -> (f64, f64) {
         (0.0, 0.0)
     }
+
+    /// The body's whole boundary under the nodal contact tractions (p, q) on `grid` (pair
+    /// convention), for output; None for models without a boundary (half-space, rigid).
+    fn boundary_field(&self, _grid: &ContactGrid, _p: &[f64], _q: &[f64]) -> Option<Result<BoundaryField, String>> {
+        None
+    }
+}
+
+/// A body's boundary, element by element, for VTK output (global axes of the mesh, which are
+/// the contact frame). Each element contributes three points in VTK's quadratic-edge order
+/// (start, end, mid); points of neighbouring elements are not shared, because tractions may
+/// jump between elements.
+#[derive(Debug, Clone)]
+pub struct BoundaryField {
+    /// Points [length], three per element.
+    pub points: Vec<[f64; 2]>,
+    /// Displacement at each point [length].
+    pub displacement: Vec<[f64; 2]>,
+    /// Traction t = σ·n at each point, n out of the material [stress].
+    pub traction: Vec<[f64; 2]>,
+    /// Physical group index of each element.
+    pub group: Vec<i32>,
+    /// Names of the groups, by index.
+    pub group_names: Vec<String>,
 }
 
 /// Undeformed height of a circle of radius `radius` above its tangent at horizontal distance x:
@@ -144,5 +168,9 @@ impl BodyModel for WithCircularProfile {
 
     fn stage_seconds(&self) -> (f64, f64) {
         self.inner.stage_seconds()
+    }
+
+    fn boundary_field(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Option<Result<BoundaryField, String>> {
+        self.inner.boundary_field(grid, p, q)
     }
 }

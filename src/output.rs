@@ -253,6 +253,7 @@ pub fn write_run(
     summary: &mut Summary,
     sol: &ContactSolution,
     pb: &ContactProblem,
+    boundary: &[Option<crate::body::BoundaryField>; 2],
     start: Instant,
 ) -> Result<(), Error> {
     let err = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
@@ -276,13 +277,25 @@ pub fn write_run(
             svg::write_contact_plot(&tmp.join("contact.svg"), sol, pb.friction, &summary.title)?;
             if summary.vtk {
                 vtk::write_contact_line(&tmp.join("contact.vtu"), sol, pb)?;
-                let entry = vtk::CollectionEntry {
+                let mut entries = vec![vtk::CollectionEntry {
                     file: "contact.vtu".into(),
                     timestep: 0.0,
                     part: 0,
                     name: "contact".into(),
-                };
-                vtk::write_collection(&tmp.join("result.pvd"), &[entry])?;
+                }];
+                for (side, field) in ["A", "B"].iter().zip(boundary) {
+                    if let Some(f) = field {
+                        let file = format!("boundary_{side}.vtu");
+                        vtk::write_boundary(&tmp.join(&file), f)?;
+                        entries.push(vtk::CollectionEntry {
+                            file,
+                            timestep: 0.0,
+                            part: entries.len(),
+                            name: format!("body {side}"),
+                        });
+                    }
+                }
+                vtk::write_collection(&tmp.join("result.pvd"), &entries)?;
             }
         }
         summary.timings.total_s = start.elapsed().as_secs_f64();

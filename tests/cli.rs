@@ -272,3 +272,23 @@ load:
     assert_eq!(code, 1);
     assert!(stderr.contains("nope.msh"), "{stderr}");
 }
+
+/// A run with bem bodies writes each body's boundary as quadratic edges and lists everything
+/// in result.pvd (issue 5).
+#[test]
+fn bem_runs_write_boundary_vtk_files_and_the_collection() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/carter_051_true.yaml");
+    let out = dir.path().join("out");
+    let (code, _, stderr) = rollbem(&["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    for f in ["boundary_A.vtu", "boundary_B.vtu", "contact.vtu", "result.pvd"] {
+        assert!(out.join(f).exists(), "{f} missing");
+    }
+    let vtu = std::fs::read_to_string(out.join("boundary_A.vtu")).unwrap();
+    assert!(
+        vtu.contains("Name=\"displacement\"") && vtu.contains("Name=\"traction\"") && vtu.contains("Name=\"group\"")
+    );
+    let pvd = std::fs::read_to_string(out.join("result.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 3, "{pvd}");
+}

@@ -84,6 +84,41 @@ def check_vtu(path, cols):
         fail(path, f"cells {m.cells}, expected {n - 1} lines")
 
 
+def check_boundary(path, cols, summary):
+    """A bem body's boundary: quadratic edges, documented arrays, finite values, and on the
+    contact group the traction's normal component equals the pressure of contact.csv (the body
+    is re-solved under the interpolated contact tractions; 1e-3 of the peak pressure)."""
+    m = meshio.read(path)
+    g = pv.read(path)
+    if [c.type for c in m.cells] != ["line3"]:
+        fail(path, f"cells {[c.type for c in m.cells]}, expected line3 (VTK quadratic edges)")
+    n = len(m.points)
+    for reader, data in [("meshio", m.point_data), ("pyvista", g.point_data)]:
+        for name in ["displacement", "traction"]:
+            arr = np.asarray(data.get(name, np.empty(0)))
+            if arr.shape != (n, 3) or not np.all(np.isfinite(arr)):
+                fail(f"{path} ({reader})", f"`{name}` has shape {arr.shape}, expected ({n}, 3), finite")
+    if "group" not in g.cell_data or len(g.cell_data["group"]) != len(m.cells[0].data):
+        fail(path, "cell data `group` missing or of the wrong length")
+        return
+    t = np.asarray(g.point_data["traction"])
+    pts = np.asarray(g.points)
+    sign = 1.0 if path.name.endswith("_A.vtu") else -1.0
+    pmax = cols["pressure"].max()
+    span = cols["x"].max() - cols["x"].min()
+    checked = 0
+    for k in np.arange(2, len(pts), 3):  # element mid points
+        near = np.abs(cols["x"] - pts[k, 0]) <= 1e-6 * span
+        if abs(pts[k, 1]) > 0.05 * span or not near.any():
+            continue  # not on the contact segment, or not at a contact node
+        checked += 1
+        p = cols["pressure"][near][0]
+        if abs(sign * t[k, 1] - p) > 1e-3 * pmax:
+            fail(path, f"normal traction {sign * t[k, 1]:.6g} at x = {pts[k, 0]:.6g} differs from contact.csv pressure {p:.6g}")
+            break
+    del checked
+
+
 def pvd_files(path):
     root = ET.parse(path).getroot()
     return [ds.attrib["file"] for ds in root.iter("DataSet")]
@@ -96,11 +131,14 @@ def check_pvd(path, expected_count=None):
     for f in files:
         if not (path.parent / f).exists():
             fail(path, f"lists missing file {f}")
-    # pyvista's PVD reader exposes the datasets as time steps (what ParaView steps through).
+    # pyvista's PVD reader exposes the time steps (what ParaView steps through); datasets of
+    # one step are its parts.
+    root = ET.parse(path).getroot()
+    steps = sorted({float(ds.attrib["timestep"]) for ds in root.iter("DataSet")})
     reader = pv.get_reader(str(path))
     times = list(reader.time_values)
-    if len(times) != len(files):
-        fail(path, f"pyvista sees {len(times)} time steps, the file lists {len(files)}")
+    if len(times) != len(steps):
+        fail(path, f"pyvista sees {len(times)} time steps, the file lists {len(steps)}")
     for t in times:
         reader.set_active_time_value(t)
         block = reader.read()
@@ -124,7 +162,13 @@ def check_run(d):
         fail(d / "summary.json", "max_pressure differs from contact.csv")
     if summary.get("vtk", True):
         check_vtu(d / "contact.vtu", cols)
-        check_pvd(d / "result.pvd", expected_count=1)
+        bodies = sorted(d.glob("boundary_*.vtu"))
+        expected = [f"boundary_{s}.vtu" for s, key in (("A", "A"), ("B", "B")) if summary["models"][key] == "bem"]
+        if [b.name for b in bodies] != expected:
+            fail(d, f"boundary files {[b.name for b in bodies]}, expected {expected}")
+        for b in bodies:
+            check_boundary(b, cols, summary)
+        check_pvd(d / "result.pvd", expected_count=1 + len(bodies))
 
 
 def check_sweep(d):

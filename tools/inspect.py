@@ -48,10 +48,23 @@ def main():
     plotter.add_mesh(line, scalars="state", line_width=6, cmap=["gray", "royalblue", "orangered"], clim=[0, 2],
                      scalar_bar_args={"title": "state (0 open, 1 stick, 2 slip)"})
     plotter.add_arrows(np.asarray(line.points), tractions, color="black")
-    for body in sorted(d.glob("boundary_*.vtu")):
-        mesh = pv.read(body)
-        plotter.add_mesh(mesh.warp_by_vector("displacement"), color="lightgray", line_width=2)
     plotter.view_xy()
+    bodies = [pv.read(b) for b in sorted(d.glob("boundary_*.vtu"))]
+    if bodies:
+        # The bodies, warped by their (real) displacement magnified so that the largest one is
+        # 3 % of the picture; the factor is printed on the picture.
+        plotter.subplot(0, 0)
+        plotter.clear()
+        size = max(np.ptp(np.asarray(b.points), axis=0).max() for b in bodies)
+        umax = max(np.abs(np.asarray(b["displacement"])).max() for b in bodies)
+        factor = 0.03 * size / max(umax, 1e-300)
+        for b in bodies:
+            plotter.add_mesh(b, color="lightgray", line_width=1)
+            warped = b.warp_by_vector("displacement", factor=factor)
+            warped["|traction|"] = np.linalg.norm(np.asarray(b["traction"]), axis=1)
+            plotter.add_mesh(warped, scalars="|traction|", line_width=4, cmap="viridis")
+        plotter.add_text(f"{summary.get('title', '')}\nbodies warped by displacement x {factor:.3g}", font_size=9)
+        plotter.view_xy()
 
     plotter.subplot(1, 0)
     chart = pv.Chart2D(x_label="x", y_label="traction")

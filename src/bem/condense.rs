@@ -21,7 +21,7 @@
 
 use super::assemble::BemModel;
 use super::{BemError, BoundaryCondition};
-use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
+use crate::body::{BodyModel, BoundaryField, Flexibility, Side, StrainOperator};
 use crate::grid::{ContactGrid, ElementKind};
 use faer::Mat;
 
@@ -237,6 +237,50 @@ fn contact_heights(model: &BemModel, group: usize) -> Vec<(f64, f64)> {
         .collect()
 }
 
+impl BemBody {
+    /// The boundary field under nodal contact tractions on `grid` (see [`BodyModel::boundary_field`]).
+    pub fn boundary_solution(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Result<BoundaryField, BemError> {
+        let g = self.model.mesh.group_index(&self.contact_group)?;
+        let sign = match self.side {
+            Side::A => 1.0,
+            Side::B => -1.0,
+        };
+        let (grid, p, q) = (grid.clone(), p.to_vec(), q.to_vec());
+        let load: super::BoundaryField = std::sync::Arc::new(move |x: [f64; 2], _n: [f64; 2]| {
+            [sign * grid.interpolate(&q, x[0]), sign * grid.interpolate(&p, x[0])]
+        });
+        let mut model = self.model.clone();
+        model.conditions[g] = BoundaryCondition::TractionField(load);
+        let sol = model.solve()?;
+        let d = &model.discretisation;
+        let mut out = BoundaryField {
+            points: Vec::new(),
+            displacement: Vec::new(),
+            traction: Vec::new(),
+            group: Vec::new(),
+            group_names: model.mesh.group_names(),
+        };
+        for (e, nodes) in d.element_nodes.iter().enumerate() {
+            for xi in [-1.0, 1.0, 0.0] {
+                let n = d.interpolation[e].shape(xi);
+                let mix = |v: &[[f64; 2]]| {
+                    let mut r = [0.0; 2];
+                    for (a, &k) in nodes.iter().enumerate() {
+                        r[0] += n[a] * v[k][0];
+                        r[1] += n[a] * v[k][1];
+                    }
+                    r
+                };
+                out.points.push(d.geometry[e].point(xi));
+                out.displacement.push(mix(&sol.displacement));
+                out.traction.push(mix(&sol.traction));
+            }
+            out.group.push(model.mesh.elements[e].group as i32);
+        }
+        Ok(out)
+    }
+}
+
 impl BodyModel for BemBody {
     fn model_name(&self) -> &'static str {
         "bem"
@@ -288,6 +332,12 @@ impl BodyModel for BemBody {
 
     fn stage_seconds(&self) -> (f64, f64) {
         (self.condensed.assembly_s, self.condensed.condense_s)
+    }
+
+    /// Re-solves the body with the contact group loaded by the interpolated contact tractions
+    /// (on A (q, p), on B (−q, −p) in global axes) and samples every element at ξ = −1, 1, 0.
+    fn boundary_field(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Option<Result<BoundaryField, String>> {
+        Some(self.boundary_solution(grid, p, q).map_err(|e| e.to_string()))
     }
 
     /// Not available yet: the hypersingular (HBEM) surface-strain operator is a separate part.

@@ -131,6 +131,13 @@ impl super::BodyModel for Transferred {
     fn stage_seconds(&self) -> (f64, f64) {
         self.inner.stage_seconds()
     }
+
+    /// Tractions are carried to the body's own nodes by the grid's interpolation first.
+    fn boundary_field(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Option<Result<super::BoundaryField, String>> {
+        let t = interpolation_matrix(grid, &self.own_grid);
+        let own = |v: &[f64]| crate::contact::mat_vec2(&t, v, &t, &vec![0.0; v.len()]);
+        self.inner.boundary_field(&self.own_grid, &own(p), &own(q))
+    }
 }
 
 impl Transferred {

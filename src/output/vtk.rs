@@ -107,6 +107,53 @@ pub fn write_contact_line(path: &Path, sol: &ContactSolution, pb: &ContactProble
     })
 }
 
+/// Writes a body's boundary as quadratic edges (VTK type 21) with point data `displacement`
+/// and `traction` (3-vectors, z = 0) and cell data `group` (the physical group's index; the
+/// names are in the field data `group_names` order of the mesh, also listed in summary.json).
+pub fn write_boundary(path: &Path, field: &crate::body::BoundaryField) -> Result<(), Error> {
+    let n = field.points.len();
+    let cells = n / 3;
+    let points: Vec<f64> = field.points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect();
+    let connectivity: Vec<u64> = (0..n as u64).collect();
+    let offsets: Vec<u64> = (1..=cells as u64).map(|k| 3 * k).collect();
+    let split = |v: &[[f64; 2]]| {
+        (
+            v.iter().map(|a| a[0]).collect::<Vec<_>>(),
+            v.iter().map(|a| a[1]).collect::<Vec<_>>(),
+        )
+    };
+    let (ux, uy) = split(&field.displacement);
+    let (tx, ty) = split(&field.traction);
+    let vtk = Vtk {
+        version: Version::new((1, 0)),
+        title: format!("rollbem boundary; groups: {}", field.group_names.join(", ")),
+        byte_order: ByteOrder::LittleEndian,
+        file_path: None,
+        data: DataSet::inline(UnstructuredGridPiece {
+            points: points.into(),
+            cells: Cells {
+                cell_verts: VertexNumbers::XML { connectivity, offsets },
+                types: vec![CellType::QuadraticEdge; cells],
+            },
+            data: Attributes {
+                point: vec![vector("displacement", &ux, &uy), vector("traction", &tx, &ty)],
+                cell: vec![Attribute::DataArray(DataArray {
+                    name: "group".into(),
+                    elem: ElementType::Scalars {
+                        num_comp: 1,
+                        lookup_table: None,
+                    },
+                    data: field.group.clone().into(),
+                })],
+            },
+        }),
+    };
+    vtk.export(path).map_err(|e| Error::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })
+}
+
 /// One dataset of a `.pvd` collection.
 #[derive(Debug, Clone)]
 pub struct CollectionEntry {
