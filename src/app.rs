@@ -490,14 +490,14 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
     let leading = -case.case.contact.rolling_direction.flow_sign();
     let regime = slip_regime(&solution, leading, 1);
     let boundary = if newton.converged && case.case.output.vtk {
-        let field = |m: &Box<dyn BodyModel>| {
+        let field = |m: &dyn BodyModel| {
             m.boundary_field(&problem.grid, &solution.pressure, &solution.shear)
                 .transpose()
                 .map_err(|what| Error::Unsupported {
                     what: format!("the boundary solution of a bem body for output failed: {what}"),
                 })
         };
-        [field(&models[0])?, field(&models[1])?]
+        [field(models[0].as_ref())?, field(models[1].as_ref())?]
     } else {
         [None, None]
     };
