@@ -574,6 +574,7 @@ pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Er
     let case = case::load(case_path, overrides)?;
     let bodies = prepare_bodies(&case)?;
     let est = estimates(&case, &bodies);
+    let grid = contact_grid(&case, &est, &bodies);
     let c = &case.case;
     let mut t = format!("rollbem check {}: valid\n", case_path.display());
     let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
@@ -631,7 +632,6 @@ pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Er
             format!("x in [{x0:.6}, {x1:.6}], profile radius {:.6}", body.radius),
         );
     }
-    let grid = contact_grid(&case, &est, &bodies);
     for (side, body) in ["A", "B"].iter().zip(&bodies) {
         let Some(lm) = &body.mesh else { continue };
         let own = lm.contact_grid();
@@ -696,16 +696,17 @@ pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Er
         "Hertz peak pressure p0",
         format!("{:.6} {f}/{l}^2", est.hertz_peak_pressure),
     );
+    let from_mesh = if bodies.iter().any(|b| b.mesh.is_some()) { " (from the bem mesh)" } else { "" };
     line(
         "contact grid",
         format!(
-            "{} {} elements on [-{:.6}, {:.6}] {l}; node spacing {:.4e} {l} ({:.4} a)",
-            c.contact.grid.elements,
-            c.contact.grid.element.name(),
-            est.grid_half_length,
-            est.grid_half_length,
-            est.grid_spacing,
-            est.grid_spacing / est.hertz_half_width
+            "{} {} elements on [{:.6}, {:.6}] {l}{from_mesh}; node spacing {:.4e} {l} ({:.4} a)",
+            grid.n_elements(),
+            grid.kind.name(),
+            grid.edges[0],
+            grid.edges[grid.n_elements()],
+            grid.node_spacing(),
+            grid.node_spacing() / est.hertz_half_width
         ),
     );
     if let Some(w) = est.carter_stick_width {
