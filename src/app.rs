@@ -466,6 +466,8 @@ pub struct Solved {
     pub regime: u8,
     /// Whole-boundary fields of A and B (bem bodies, when VTK output is on).
     pub boundary: [Option<BoundaryField>; 2],
+    /// Notices for the user (e.g. mesh loops turned round).
+    pub notices: Vec<String>,
 }
 
 /// Assembles and solves a loaded case; checks that the grid contains the contact.
@@ -501,7 +503,13 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
     } else {
         [None, None]
     };
+    let notices = bodies
+        .iter()
+        .filter_map(|b| b.mesh.as_ref())
+        .flat_map(|m| m.notices.clone())
+        .collect();
     Ok(Solved {
+        notices,
         boundary,
         estimates,
         problem,
@@ -529,6 +537,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         s.regime,
         s.timings,
     );
+    summary.notices = s.notices.clone();
     output::write_run(&output_dir, &mut summary, &s.solution, &s.problem, &s.boundary, start)?;
     Ok(RunReport {
         summary,
@@ -696,7 +705,11 @@ pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Er
         "Hertz peak pressure p0",
         format!("{:.6} {f}/{l}^2", est.hertz_peak_pressure),
     );
-    let from_mesh = if bodies.iter().any(|b| b.mesh.is_some()) { " (from the bem mesh)" } else { "" };
+    let from_mesh = if bodies.iter().any(|b| b.mesh.is_some()) {
+        " (from the bem mesh)"
+    } else {
+        ""
+    };
     line(
         "contact grid",
         format!(

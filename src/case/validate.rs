@@ -93,6 +93,20 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                                 format!("bodies.{side}.boundaries.{group}"),
                                 "give `fixed`, `free`, or exactly one of {displacement: [ux, uy]}, {traction: [tx, ty]}, {pressure: p}".into(),
                             );
+                        } else {
+                            let values = p
+                                .displacement
+                                .or(p.traction)
+                                .map_or(vec![p.pressure.unwrap_or(0.0)], |v| v.to_vec());
+                            if values.iter().any(|v| *v != 0.0) {
+                                bad(
+                                    format!("bodies.{side}.boundaries.{group}"),
+                                    "non-zero prescribed data on other groups is not supported in contact runs yet (its \
+                                     displacement of the contact surface is not added to the gap); use fixed, free or \
+                                     zero values, and load the contact by the case's `load`"
+                                        .into(),
+                                );
+                            }
                         }
                     }
                 }
