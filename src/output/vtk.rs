@@ -84,27 +84,17 @@ pub fn write_contact_line(path: &Path, sol: &ContactSolution, pb: &ContactProble
             &disp.normal_b.iter().map(|v| -v).collect::<Vec<_>>(),
         ),
     ]);
-    let vtk = Vtk {
-        version: Version::new((1, 0)),
-        title: "rollbem contact line".into(),
-        byte_order: ByteOrder::LittleEndian,
-        file_path: None,
-        data: DataSet::inline(UnstructuredGridPiece {
-            points: points.into(),
-            cells: Cells {
-                cell_verts: VertexNumbers::XML { connectivity, offsets },
-                types: vec![CellType::Line; m.saturating_sub(1)],
-            },
-            data: Attributes {
-                point,
-                cell: Vec::new(),
-            },
-        }),
-    };
-    vtk.export(path).map_err(|e| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })
+    let cell_types = vec![CellType::Line; m.saturating_sub(1)];
+    export_unstructured(
+        path,
+        "rollbem contact line".into(),
+        points,
+        connectivity,
+        offsets,
+        cell_types,
+        point,
+        Vec::new(),
+    )
 }
 
 /// Writes a body's boundary as quadratic edges (VTK type 21) with point data `displacement`
@@ -124,28 +114,51 @@ pub fn write_boundary(path: &Path, field: &crate::body::BoundaryField) -> Result
     };
     let (ux, uy) = split(&field.displacement);
     let (tx, ty) = split(&field.traction);
+    let group = Attribute::DataArray(DataArray {
+        name: "group".into(),
+        elem: ElementType::Scalars {
+            num_comp: 1,
+            lookup_table: None,
+        },
+        data: field.group.clone().into(),
+    });
+    export_unstructured(
+        path,
+        format!("rollbem boundary; groups: {}", field.group_names.join(", ")),
+        points,
+        connectivity,
+        offsets,
+        vec![CellType::QuadraticEdge; cells],
+        vec![vector("displacement", &ux, &uy), vector("traction", &tx, &ty)],
+        vec![group],
+    )
+}
+
+/// Writes an unstructured grid (XML `.vtu`) from flat points (x, y, z per point), XML-style
+/// connectivity/offsets, one cell type per cell, and point and cell data.
+#[allow(clippy::too_many_arguments)]
+fn export_unstructured(
+    path: &Path,
+    title: String,
+    points: Vec<f64>,
+    connectivity: Vec<u64>,
+    offsets: Vec<u64>,
+    types: Vec<CellType>,
+    point: Vec<Attribute>,
+    cell: Vec<Attribute>,
+) -> Result<(), Error> {
     let vtk = Vtk {
         version: Version::new((1, 0)),
-        title: format!("rollbem boundary; groups: {}", field.group_names.join(", ")),
+        title,
         byte_order: ByteOrder::LittleEndian,
         file_path: None,
         data: DataSet::inline(UnstructuredGridPiece {
             points: points.into(),
             cells: Cells {
                 cell_verts: VertexNumbers::XML { connectivity, offsets },
-                types: vec![CellType::QuadraticEdge; cells],
+                types,
             },
-            data: Attributes {
-                point: vec![vector("displacement", &ux, &uy), vector("traction", &tx, &ty)],
-                cell: vec![Attribute::DataArray(DataArray {
-                    name: "group".into(),
-                    elem: ElementType::Scalars {
-                        num_comp: 1,
-                        lookup_table: None,
-                    },
-                    data: field.group.clone().into(),
-                })],
-            },
+            data: Attributes { point, cell },
         }),
     };
     vtk.export(path).map_err(|e| Error::Output {
