@@ -65,6 +65,10 @@ pub enum Command {
         #[arg(long, num_args = 1.., value_name = "DIR")]
         merge: Vec<PathBuf>,
     },
+    /// Solve the built-in reference problems (Hertz, Carter, dissimilar regimes, free-rolling
+    /// limits) and print each measured error against its closed form and limit; exit code 2 if
+    /// any fails. docs/validation.md has the full tables.
+    Validate,
     /// Validate a case without solving: print the bodies, materials, Hertz estimates (a, p0),
     /// the grid spacing, the Carter stick-zone estimate and model advice.
     Check {

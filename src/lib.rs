@@ -30,4 +30,5 @@ pub mod material;
 pub mod mesh;
 pub mod output;
 pub mod quadrature;
+pub mod reference;
 pub mod sweep;

@@ -87,6 +87,15 @@ fn dispatch(cli: Cli) -> Result<i32> {
             }
             Ok(if failed.is_empty() { 0 } else { EXIT_NOT_CONVERGED })
         }
+        Command::Validate => {
+            let checks = rollbem::reference::run()?;
+            print!("{}", rollbem::reference::render(&checks));
+            Ok(if checks.iter().all(|c| c.passed()) {
+                0
+            } else {
+                EXIT_NOT_CONVERGED
+            })
+        }
         Command::Check { case, set } => {
             print!("{}", rollbem::app::check_report(&case, &set)?);
             Ok(0)

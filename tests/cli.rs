@@ -292,3 +292,15 @@ fn bem_runs_write_boundary_vtk_files_and_the_collection() {
     let pvd = std::fs::read_to_string(out.join("result.pvd")).unwrap();
     assert_eq!(pvd.matches("<DataSet").count(), 3, "{pvd}");
 }
+
+/// `rollbem validate` solves the built-in reference problems and reports each against its limit.
+#[test]
+fn validate_runs_the_reference_problems() {
+    let (code, stdout, stderr) = rollbem(&["validate"]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains("9 passed, 0 failed"), "{stdout}");
+    assert!(
+        stdout.contains("Carter creepage") && stdout.contains("Bufler"),
+        "{stdout}"
+    );
+}
