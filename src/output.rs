@@ -334,22 +334,28 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     );
     line("overlap delta0", format!("{:.6e}", s.overlap));
     line("creepage xi", format!("{:.6e}", s.creep));
+    // Hertz comparisons only mean something when both bodies are half-spaces.
+    let hertzian = s.models.a == "half_space" && s.models.b == "half_space";
     if let Some(c) = &s.contact {
+        let hertz = if hertzian {
+            format!(" (Hertz {:.5})", s.estimates.hertz_half_width)
+        } else {
+            String::new()
+        };
         line(
             "contact",
             format!(
-                "[{:.5}, {:.5}]  half-width {:.5} (Hertz {:.5})",
-                c.x_min, c.x_max, c.half_width, s.estimates.hertz_half_width
+                "[{:.5}, {:.5}]  half-width {:.5}, centre {:+.5}{hertz}",
+                c.x_min, c.x_max, c.half_width, c.centre
             ),
         );
     }
-    line(
-        "max pressure",
-        format!(
-            "{:.6} (Hertz p0 {:.6})",
-            s.max_pressure, s.estimates.hertz_peak_pressure
-        ),
-    );
+    let hertz = if hertzian {
+        format!(" (Hertz p0 {:.6})", s.estimates.hertz_peak_pressure)
+    } else {
+        String::new()
+    };
+    line("max pressure", format!("{:.6}{hertz}", s.max_pressure));
     let zones = |z: &[[f64; 2]]| {
         z.iter()
             .map(|[a, b]| format!("[{a:.4}, {b:.4}]"))
