@@ -468,6 +468,8 @@ pub struct Solved {
     pub boundary: [Option<BoundaryField>; 2],
     /// Notices for the user (e.g. mesh loops turned round).
     pub notices: Vec<String>,
+    /// Interior stresses, when `output.interior` asks for them.
+    pub interior: Option<crate::interior::InteriorField>,
 }
 
 /// Assembles and solves a loaded case; checks that the grid contains the contact.
@@ -508,7 +510,25 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
         .filter_map(|b| b.mesh.as_ref())
         .flat_map(|m| m.notices.clone())
         .collect();
+    let interior = match (&case.case.output.interior, newton.converged) {
+        (Some(g), true) => {
+            let nu = bodies[if g.body == "B" { 1 } else { 0 }]
+                .material
+                .map_or(0.0, |m| m.poisson);
+            Some(crate::interior::interior_field(
+                &problem.grid,
+                &solution.pressure,
+                &solution.shear,
+                nu,
+                &g.body,
+                g.x,
+                g.y,
+            ))
+        }
+        _ => None,
+    };
     Ok(Solved {
+        interior,
         notices,
         boundary,
         estimates,
@@ -538,7 +558,15 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         s.timings,
     );
     summary.notices = s.notices.clone();
-    output::write_run(&output_dir, &mut summary, &s.solution, &s.problem, &s.boundary, start)?;
+    output::write_run(
+        &output_dir,
+        &mut summary,
+        &s.solution,
+        &s.problem,
+        &s.boundary,
+        s.interior.as_ref(),
+        start,
+    )?;
     Ok(RunReport {
         summary,
         solution: s.solution,

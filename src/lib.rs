@@ -26,6 +26,7 @@ pub mod cli;
 pub mod contact;
 pub mod error;
 pub mod grid;
+pub mod interior;
 pub mod material;
 pub mod mesh;
 pub mod output;

@@ -241,6 +241,24 @@ pub fn write_csv(path: &Path, sol: &ContactSolution, pb: &ContactProblem) -> Res
     })
 }
 
+/// Writes interior_<body>.csv: x, y, sxx, syy, szz, txy, von_mises, max_shear (contact frame,
+/// σzz out of plane, tension positive).
+pub fn write_interior_csv(path: &Path, f: &crate::interior::InteriorField) -> Result<(), Error> {
+    let io = |e: &dyn std::fmt::Display| Error::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    let mut w = csv::Writer::from_path(path).map_err(|e| io(&e))?;
+    w.write_record(["x", "y", "sxx", "syy", "szz", "txy", "von_mises", "max_shear"])
+        .map_err(|e| io(&e))?;
+    for (p, s) in f.points.iter().zip(&f.stress) {
+        let (vm, ms) = crate::interior::invariants(s);
+        w.write_record([p[0], p[1], s[0], s[1], s[2], s[3], vm, ms].map(fmt))
+            .map_err(|e| io(&e))?;
+    }
+    w.flush().map_err(|e| io(&e))
+}
+
 /// Full-precision, round-trippable number formatting.
 fn fmt(v: f64) -> String {
     format!("{v:e}")
@@ -254,6 +272,7 @@ pub fn write_run(
     sol: &ContactSolution,
     pb: &ContactProblem,
     boundary: &[Option<crate::body::BoundaryField>; 2],
+    interior: Option<&crate::interior::InteriorField>,
     start: Instant,
 ) -> Result<(), Error> {
     let err = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
@@ -274,6 +293,9 @@ pub fn write_run(
     let result = (|| {
         if summary.converged {
             write_csv(&tmp.join("contact.csv"), sol, pb)?;
+            if let Some(f) = interior {
+                write_interior_csv(&tmp.join(format!("interior_{}.csv", f.body)), f)?;
+            }
             svg::write_contact_plot(&tmp.join("contact.svg"), sol, pb.friction, &summary.title)?;
             if summary.vtk {
                 vtk::write_contact_line(&tmp.join("contact.vtu"), sol, pb)?;
@@ -294,6 +316,16 @@ pub fn write_run(
                             name: format!("body {side}"),
                         });
                     }
+                }
+                if let Some(f) = interior {
+                    let file = format!("interior_{}.vtu", f.body);
+                    vtk::write_interior(&tmp.join(&file), f)?;
+                    entries.push(vtk::CollectionEntry {
+                        file,
+                        timestep: 0.0,
+                        part: entries.len(),
+                        name: format!("interior {}", f.body),
+                    });
                 }
                 vtk::write_collection(&tmp.join("result.pvd"), &entries)?;
             }

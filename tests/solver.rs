@@ -178,3 +178,29 @@ fn variable_friction_cases_have_smooth_tractions() {
         }
     }
 }
+
+/// Interior stresses of half-space bodies (issue 4, half-space part): under the Hertz pressure
+/// the maximum shear is 0.300283 p0 at depth 0.786 a in both bodies (reference sheet §7);
+/// within 2 % and one grid step (0.02 a) on a 161-element contact grid.
+#[test]
+fn interior_maximum_shear_under_hertz_in_both_bodies() {
+    for (body, y) in [("A", "[0.02, 1.6, 80]"), ("B", "[-1.6, -0.02, 80]")] {
+        let interior = format!("output.interior={{body: {body}, x: [-0.5, 0.5, 11], y: {y}}}");
+        let (_, s) = solve("hertz", &["contact.grid.elements=161", &interior]);
+        let f = s.interior.expect("interior field");
+        let p0 = s.estimates.hertz_peak_pressure;
+        let (k, t) = f
+            .stress
+            .iter()
+            .map(|st| rollbem::interior::invariants(st).1)
+            .enumerate()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap();
+        let [x, y] = f.points[k];
+        assert!((t / p0 / 0.300283 - 1.0).abs() < 0.02, "{body}: τ1 = {} p0", t / p0);
+        assert!(
+            x.abs() < 1e-9 && (y.abs() - 0.786151).abs() < 0.025,
+            "{body}: at ({x}, {y})"
+        );
+    }
+}

@@ -119,6 +119,30 @@ def check_boundary(path, cols, summary):
     del checked
 
 
+def check_interior(vtu, csv_path):
+    """Interior grid: `stress` (4 components), `von_mises`, `max_shear` equal the CSV's."""
+    with open(csv_path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    cols = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    m = meshio.read(vtu)
+    g = pv.read(vtu)
+    n = len(rows)
+    for reader, points, data in [("meshio", m.points, m.point_data), ("pyvista", np.asarray(g.points), g.point_data)]:
+        where = f"{vtu} ({reader})"
+        st = np.asarray(data.get("stress", np.empty(0)))
+        if st.shape != (n, 4):
+            fail(where, f"`stress` has shape {st.shape}, expected ({n}, 4)")
+            continue
+        for k, name in enumerate(["sxx", "syy", "szz", "txy"]):
+            if not close(st[:, k], cols[name]):
+                fail(where, f"stress component {name} differs from {csv_path.name}")
+        for name in ["von_mises", "max_shear"]:
+            if not close(np.asarray(data[name]).reshape(-1), cols[name]):
+                fail(where, f"`{name}` differs from {csv_path.name}")
+        if not (close(points[:, 0], cols["x"]) and close(points[:, 1], cols["y"])):
+            fail(where, "points differ from the CSV's x, y")
+
+
 def pvd_files(path):
     root = ET.parse(path).getroot()
     return [ds.attrib["file"] for ds in root.iter("DataSet")]
@@ -168,7 +192,10 @@ def check_run(d):
             fail(d, f"boundary files {[b.name for b in bodies]}, expected {expected}")
         for b in bodies:
             check_boundary(b, cols, summary)
-        check_pvd(d / "result.pvd", expected_count=1 + len(bodies))
+        interiors = sorted(d.glob("interior_*.vtu"))
+        for v in interiors:
+            check_interior(v, v.with_suffix(".csv"))
+        check_pvd(d / "result.pvd", expected_count=1 + len(bodies) + len(interiors))
 
 
 def check_sweep(d):

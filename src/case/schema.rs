@@ -358,6 +358,18 @@ impl Penalty {
     }
 }
 
+/// A grid of interior points in the contact frame: y > 0 lies in A, y < 0 in B.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct InteriorSpec {
+    /// `A` or `B`.
+    pub body: String,
+    /// [x0, x1, nx]: nx points from x0 to x1 [length].
+    pub x: [f64; 3],
+    /// [y0, y1, ny]: ny points from y0 to y1 [length], inside the body.
+    pub y: [f64; 3],
+}
+
 fn default_true() -> bool {
     true
 }
@@ -374,7 +386,7 @@ pub struct OutputSpec {
     pub vtk: bool,
     /// Interior stress grid (not available yet). Default = null.
     #[serde(default)]
-    pub interior: Option<serde_json::Value>,
+    pub interior: Option<InteriorSpec>,
 }
 
 impl Default for OutputSpec {

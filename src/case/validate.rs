@@ -237,11 +237,44 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             );
         }
     }
-    if case.output.interior.is_some() {
-        bad(
-            "output.interior".into(),
-            "interior stress grids are not available yet in this version; remove the key or set it to null".into(),
-        );
+    if let Some(g) = &case.output.interior {
+        let body = match g.body.as_str() {
+            "A" => Some(&case.bodies.a),
+            "B" => Some(&case.bodies.b),
+            _ => None,
+        };
+        match body {
+            None => bad(
+                "output.interior.body".into(),
+                format!("must be A or B (value = {})", g.body),
+            ),
+            Some(BodySpec::HalfSpace { .. }) => {}
+            Some(_) => bad(
+                "output.interior.body".into(),
+                format!(
+                    "interior stresses are available for half_space bodies only in this version (body {} is not)",
+                    g.body
+                ),
+            ),
+        }
+        for (k, v) in [("x", g.x), ("y", g.y)] {
+            if !(v[2] >= 2.0 && v[2].fract() == 0.0 && v[2] <= 10_000.0 && v[1] > v[0]) {
+                bad(
+                    format!("output.interior.{k}"),
+                    format!("give [start, end, points] with end > start and 2..10000 points (value = {v:?})"),
+                );
+            }
+        }
+        let inside = if g.body == "B" { g.y[1] < 0.0 } else { g.y[0] > 0.0 };
+        if !inside {
+            bad(
+                "output.interior.y".into(),
+                format!(
+                    "the points must lie inside body {}: y > 0 for A, y < 0 for B (value = {:?})",
+                    g.body, g.y
+                ),
+            );
+        }
     }
     out
 }

@@ -134,6 +134,41 @@ pub fn write_boundary(path: &Path, field: &crate::body::BoundaryField) -> Result
     )
 }
 
+/// Writes interior stresses as a grid of quadrilaterals: point data `stress` (4 components
+/// σxx, σyy, σzz, τxy), `von_mises`, `max_shear`.
+pub fn write_interior(path: &Path, f: &crate::interior::InteriorField) -> Result<(), Error> {
+    let [nx, ny] = f.shape;
+    let points: Vec<f64> = f.points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect();
+    let mut connectivity = Vec::new();
+    for j in 0..ny - 1 {
+        for i in 0..nx - 1 {
+            let k = (j * nx + i) as u64;
+            connectivity.extend([k, k + 1, k + 1 + nx as u64, k + nx as u64]);
+        }
+    }
+    let cells = (nx - 1) * (ny - 1);
+    let offsets: Vec<u64> = (1..=cells as u64).map(|c| 4 * c).collect();
+    let (vm, ms): (Vec<f64>, Vec<f64>) = f.stress.iter().map(crate::interior::invariants).unzip();
+    let stress = Attribute::DataArray(DataArray {
+        name: "stress".into(),
+        elem: ElementType::Scalars {
+            num_comp: 4,
+            lookup_table: None,
+        },
+        data: f.stress.iter().flatten().copied().collect::<Vec<f64>>().into(),
+    });
+    export_unstructured(
+        path,
+        format!("rollbem interior stresses of body {} (sxx, syy, szz, txy)", f.body),
+        points,
+        connectivity,
+        offsets,
+        vec![CellType::Quad; cells],
+        vec![stress, scalar("von_mises", vm), scalar("max_shear", ms)],
+        Vec::new(),
+    )
+}
+
 /// Writes an unstructured grid (XML `.vtu`) from flat points (x, y, z per point), XML-style
 /// connectivity/offsets, one cell type per cell, and point and cell data.
 #[allow(clippy::too_many_arguments)]
