@@ -35,11 +35,9 @@ fn pvd_entries(path: &Path) -> usize {
 const MU: &str = "contact.friction=0.1,0.2,0.3,0.4,0.8";
 const RATIO: &str = "load.tangential.ratio=0.2,0.5,0.75";
 
-#[test]
-fn fifteen_runs_write_fifteen_rows_and_pvd_entries() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("sw");
-    let (code, stdout, stderr) = rollbem(&[
+/// The 15-run sweep (5 μ × 3 Q/μP) into `out`.
+fn full_sweep(out: &Path) -> (i32, String, String) {
+    rollbem(&[
         "sweep",
         &case(),
         "--vary",
@@ -48,7 +46,14 @@ fn fifteen_runs_write_fifteen_rows_and_pvd_entries() {
         RATIO,
         "--out",
         out.to_str().unwrap(),
-    ]);
+    ])
+}
+
+#[test]
+fn fifteen_runs_write_fifteen_rows_and_pvd_entries() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let (code, stdout, stderr) = full_sweep(&out);
     assert_eq!(code, 0, "{stdout}{stderr}");
     let r = rows(&out.join("sweep.csv"));
     assert_eq!(r.len(), 15);
@@ -94,16 +99,7 @@ fn a_failing_run_is_recorded_and_the_others_complete() {
 fn four_shards_merged_equal_the_unsharded_sweep() {
     let dir = tempfile::tempdir().unwrap();
     let whole = dir.path().join("whole");
-    let (code, _, stderr) = rollbem(&[
-        "sweep",
-        &case(),
-        "--vary",
-        MU,
-        "--vary",
-        RATIO,
-        "--out",
-        whole.to_str().unwrap(),
-    ]);
+    let (code, _, stderr) = full_sweep(&whole);
     assert_eq!(code, 0, "{stderr}");
     // Four separate processes, each into its own folder (as on four machines).
     let children: Vec<_> = (1..=4)

@@ -30,6 +30,10 @@ fn errs(x: &[f64], v: &[f64], f: impl Fn(f64) -> f64, limit: f64, scale: f64) ->
     )
 }
 
+fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
 fn half_width(sol: &ContactSolution) -> f64 {
     let [a, b] = sol.contact_extent().unwrap();
     0.5 * (b - a)
@@ -113,20 +117,8 @@ fn main() {
         let (_, psi) = solve(name, &set(&["solver.formulation=psi"]));
         let pmax = phi.solution.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
         let qmax = phi.solution.shear.iter().fold(1e-300_f64, |m, &q| m.max(q.abs()));
-        let dp = phi
-            .solution
-            .pressure
-            .iter()
-            .zip(&psi.solution.pressure)
-            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
-            / pmax;
-        let dq = phi
-            .solution
-            .shear
-            .iter()
-            .zip(&psi.solution.shear)
-            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
-            / qmax;
+        let dp = max_abs_diff(&phi.solution.pressure, &psi.solution.pressure) / pmax;
+        let dq = max_abs_diff(&phi.solution.shear, &psi.solution.shear) / qmax;
         println!(
             "| {name} | {} | {} | {:.6} | {:.6} | {:.6e} | {:.6e} | {dp:.1e} | {dq:.1e} | {} |",
             phi.newton.iterations,
