@@ -97,6 +97,63 @@ impl Kelvin {
     }
 }
 
+/// Derivatives of U* and T* with respect to the source point X (reference sheet §9; the kernels
+/// of the displacement-gradient identity, paper Eq. 79):
+///
+/// ```text
+/// W_ijk = ∂U*_ij/∂X_k = [ (3−4ν) r,k δij − δik r,j − δjk r,i + 2 r,i r,j r,k ] / (8πG(1−ν) r)
+/// V_ijk = ∂T*_ij/∂X_k = { 2 ∂r/∂n [ δik r,j + δjk r,i − (1−2ν) δij r,k − 4 r,i r,j r,k ]
+///                         + n_k [ (1−2ν) δij + 2 r,i r,j ]
+///                         + 2(1−2ν) r,k (r,i n_j − r,j n_i) − (1−2ν)(δik n_j − δjk n_i) }
+///                       / (4π(1−ν) r²)
+/// ```
+///
+/// so that at an interior point u_i,k(X) = ∫ W_ijk t_j dΓ − ∫ V_ijk u_j dΓ. Indexing is
+/// `[i][j][k]`: force direction i, field component j, derivative direction k. W is in
+/// 1/(stress·length), V in 1/length². Nothing divides by 1 − 2ν.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GradientKernels {
+    /// W_ijk = ∂U*_ij/∂X_k [1/(stress·length)].
+    pub w: [[[f64; 2]; 2]; 2],
+    /// V_ijk = ∂T*_ij/∂X_k [1/length²].
+    pub v: [[[f64; 2]; 2]; 2],
+}
+
+impl Kelvin {
+    /// W and V at `field` (outward normal `normal`) for a source at `source` (see
+    /// [`GradientKernels`]).
+    pub fn gradient(&self, source: [f64; 2], field: [f64; 2], normal: [f64; 2]) -> GradientKernels {
+        let d = [field[0] - source[0], field[1] - source[1]];
+        let r = d[0].hypot(d[1]);
+        let g = [d[0] / r, d[1] / r];
+        let drdn = g[0] * normal[0] + g[1] * normal[1];
+        let nu = self.poisson;
+        let c12 = 1.0 - 2.0 * nu;
+        let kappa = 3.0 - 4.0 * nu;
+        let (cw, cv) = (self.c_u / r, self.c_t / (r * r));
+        let delta = |a: usize, b: usize| if a == b { 1.0 } else { 0.0 };
+        let mut out = GradientKernels {
+            w: [[[0.0; 2]; 2]; 2],
+            v: [[[0.0; 2]; 2]; 2],
+        };
+        for i in 0..2 {
+            for j in 0..2 {
+                for k in 0..2 {
+                    let (dij, dik, djk) = (delta(i, j), delta(i, k), delta(j, k));
+                    let ggg = g[i] * g[j] * g[k];
+                    out.w[i][j][k] = cw * (kappa * g[k] * dij - dik * g[j] - djk * g[i] + 2.0 * ggg);
+                    out.v[i][j][k] = cv
+                        * (2.0 * drdn * (dik * g[j] + djk * g[i] - c12 * dij * g[k] - 4.0 * ggg)
+                            + normal[k] * (c12 * dij + 2.0 * g[i] * g[j])
+                            + 2.0 * c12 * g[k] * (g[i] * normal[j] - g[j] * normal[i])
+                            - c12 * (dik * normal[j] - djk * normal[i]));
+                }
+            }
+        }
+        out
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -205,6 +262,40 @@ mod tests {
                     for j in 0..2 {
                         let e = if i == j { expected } else { 0.0 };
                         assert!((sum[i][j] - e).abs() < 1e-12, "nu={nu} {i}{j}: {}", sum[i][j]);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn gradient_kernels_are_source_derivatives_of_u_and_t() {
+        // Central differences in the source point X, at several ν including 0.5.
+        for nu in [0.0, 0.3, 0.5] {
+            let k = kernels(nu);
+            for (source, x, n) in [
+                ([0.3, -0.2], [1.1, 0.4], [0.6, 0.8]),
+                ([0.0, 0.0], [-0.5, -1.7], [-1.0, 0.0]),
+                ([0.31, 0.05], [0.35, 0.1], [0.28, -0.96]),
+            ] {
+                let gk = k.gradient(source, x, n);
+                let h = 1e-6;
+                for m in 0..2 {
+                    let (mut sp, mut sm) = (source, source);
+                    sp[m] += h;
+                    sm[m] -= h;
+                    let (up, um) = (k.displacement(sp, x), k.displacement(sm, x));
+                    let (tp, tm) = (k.traction(sp, x, n), k.traction(sm, x, n));
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            let fw = (up[i][j] - um[i][j]) / (2.0 * h);
+                            let fv = (tp[i][j] - tm[i][j]) / (2.0 * h);
+                            let (w, v) = (gk.w[i][j][m], gk.v[i][j][m]);
+                            let sw = gk.w.iter().flatten().flatten().fold(0.0f64, |a, b| a.max(b.abs()));
+                            let sv = gk.v.iter().flatten().flatten().fold(0.0f64, |a, b| a.max(b.abs()));
+                            assert!((fw - w).abs() < 1e-6 * sw, "nu={nu} W{i}{j}{m}: fd {fw} vs {w}");
+                            assert!((fv - v).abs() < 1e-6 * sv, "nu={nu} V{i}{j}{m}: fd {fv} vs {v}");
+                        }
                     }
                 }
             }
