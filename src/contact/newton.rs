@@ -226,10 +226,14 @@ impl System<'_> {
     }
 
     /// With δ0 free, at least one node must carry the contact row (δ0 appears nowhere else,
-    /// and the P row would repeat itself): if none does, the node closest to contact (largest
-    /// p − r g) is given the contact derivative, the paper's "modified" choice at a near-tie.
+    /// and the P row would repeat itself); with ξ free, the Q row needs a node in contact to
+    /// stick (see [`System::ensure_stick_row`]). If no node is in contact, the node closest to
+    /// contact (largest p − r g) is given the contact derivative, the paper's "modified" choice
+    /// at a near-tie. An iterate with every node open is met after a full step into tension,
+    /// e.g. on an incompressible layer, whose volume constraint makes the all-contact start
+    /// solve for negative pressures everywhere.
     fn ensure_contact_row(&self, z: &State, mut contact: Vec<bool>) -> Vec<bool> {
-        if self.free_overlap && !contact.iter().any(|&c| c) {
+        if (self.free_overlap || self.free_creep) && !contact.iter().any(|&c| c) {
             let f = |k: usize| z.pressure[k] - self.rn * z.gap[k];
             let k = (0..contact.len()).max_by(|&i, &j| f(i).total_cmp(&f(j))).unwrap_or(0);
             contact[k] = true;
@@ -240,17 +244,22 @@ impl System<'_> {
     /// With ξ free, ξ enters only the stick rows: when every loaded node slips (a full-sliding
     /// active set, met transiently), the Q row becomes a multiple of the P row and the matrix is
     /// singular. The slipping node closest to sticking (smallest (|t| − bound)/bound) then gets
-    /// the stick derivative, again a "modified" choice at a near-tie (paper Eq. 60).
+    /// the stick derivative, again a "modified" choice at a near-tie (paper Eq. 60). A contact
+    /// node whose friction bound is zero (free) qualifies too, after every slipping one.
     fn ensure_stick_row(&self, z: &State, contact: &[bool], tangential: &mut [Tangential]) {
         if !self.free_creep || tangential.contains(&Tangential::Stick) {
             return;
         }
         let excess = |i: usize| {
             let bound = self.pb.friction * self.bound_pressure(z.pressure[i], z.gap[i]);
-            ((z.shear[i] - self.rt * z.slip[i]).abs() - bound) / bound
+            if bound > 0.0 {
+                ((z.shear[i] - self.rt * z.slip[i]).abs() - bound) / bound
+            } else {
+                f64::INFINITY
+            }
         };
         if let Some(k) = (0..tangential.len())
-            .filter(|&i| matches!(tangential[i], Tangential::Slip(_)) && contact[i])
+            .filter(|&i| contact[i])
             .min_by(|&i, &j| excess(i).total_cmp(&excess(j)))
         {
             tangential[k] = Tangential::Stick;
