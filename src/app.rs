@@ -162,9 +162,13 @@ pub fn prepare_body(case: &LoadedCase, spec: &BodySpec) -> Result<PreparedBody, 
             radius: *radius,
             mesh: None,
         },
-        BodySpec::Rigid { radius } => PreparedBody {
+        BodySpec::Rigid { radius, mesh, contact } => PreparedBody {
             material: None,
-            radius: *radius,
+            radius: match (radius, mesh) {
+                (Some(r), _) => *r,
+                (None, Some(mesh)) => rigid_profile_radius(case, mesh, contact)?,
+                (None, None) => unreachable!("validated: a rigid body has a radius or a mesh"),
+            },
             mesh: None,
         },
         BodySpec::Bem {
@@ -204,6 +208,22 @@ pub fn prepare_body(case: &LoadedCase, spec: &BodySpec) -> Result<PreparedBody, 
     })
 }
 
+/// Profile radius of a rigid body given by a mesh: the circle fitted to its contact group
+/// ([`LoadedMesh::contact_radius`]). The mesh is read only for its outline; it does not set the
+/// contact grid.
+fn rigid_profile_radius(case: &LoadedCase, mesh: &str, contact: &str) -> Result<f64, Error> {
+    let path = case.base_dir().join(mesh);
+    let (m, _) = crate::mesh::load(&path)?;
+    let contact_group = m.group_index(contact)?;
+    let loaded = LoadedMesh {
+        path,
+        mesh: m,
+        notices: Vec::new(),
+        contact_group,
+    };
+    Ok(loaded.contact_radius())
+}
+
 /// Both bodies of a case, prepared.
 pub fn prepare_bodies(case: &LoadedCase) -> Result<[PreparedBody; 2], Error> {
     Ok([
@@ -241,7 +261,9 @@ pub fn body_model(
             material: prepared.material.expect("half-space bodies have a material"),
             radius: prepared.radius,
         })),
-        BodySpec::Rigid { radius } => Ok(Box::new(Rigid { radius: *radius })),
+        BodySpec::Rigid { .. } => Ok(Box::new(Rigid {
+            radius: prepared.radius,
+        })),
         BodySpec::Bem {
             contact,
             boundaries,
@@ -627,7 +649,12 @@ pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Er
                     m.poisson
                 )
             }
-            BodySpec::Rigid { radius } => format!("rigid, R = {radius}"),
+            BodySpec::Rigid { radius: Some(r), .. } => format!("rigid, R = {r}"),
+            BodySpec::Rigid { mesh, contact, .. } => format!(
+                "rigid, R = {:.6} (circle fitted to group `{contact}` of {})",
+                bodies[if side == "A" { 0 } else { 1 }].radius,
+                mesh.as_deref().unwrap_or("")
+            ),
             BodySpec::Bem { mesh, material, .. } => {
                 let m = case.material(material);
                 format!(

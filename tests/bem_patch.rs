@@ -48,11 +48,17 @@ fn mesh(quadratic: bool) -> BoundaryMesh {
 }
 
 fn model(material: Elastic, quadratic: bool) -> BemModel {
+    model_on(mesh(quadratic), material)
+}
+
+/// The patch problem on a rectangle mesh with sides bottom, right, top, left: displacements
+/// prescribed on bottom and left, tractions on right and top.
+fn model_on(mesh: BoundaryMesh, material: Elastic) -> BemModel {
     let eps = strain(&material);
     let u = BoundaryCondition::DisplacementField(Arc::new(move |x, _| exact_u(eps, x)));
     let t = BoundaryCondition::TractionField(Arc::new(|_, n| exact_t(n)));
     BemModel::new(
-        mesh(quadratic),
+        mesh,
         material,
         vec![
             ("bottom".into(), u.clone()),
@@ -91,6 +97,33 @@ fn uniform_stress_is_reproduced_to_round_off_with_quadratic_elements() {
             let (eu, et) = errors(&m, &sol.displacement, &sol.traction);
             println!("patch nu={nu} line3={quadratic}: max rel error u {eu:.2e}, t {et:.2e}");
             assert!(eu < 1e-9 && et < 1e-9, "nu={nu} line3={quadratic}: u {eu:e}, t {et:e}");
+        }
+    }
+}
+
+/// Thin strips (a layer thinner than its elements are long, as in the tyre's cover layer): the
+/// patch solution is still exact in the element space, so any error is the nearly singular
+/// integration between the two faces, whose distance b is a small fraction of the element
+/// length h. Same 1e-9 bound as above, for h/b = 2, 10, 50 and ν = 0.3, 0.5.
+#[test]
+fn uniform_stress_in_a_strip_thinner_than_its_elements() {
+    for nu in [0.3, 0.5] {
+        for ratio in [2.0, 10.0, 50.0] {
+            let (length, h) = (4.0, 0.5);
+            let b = h / ratio;
+            let strip = rectangle(
+                [-2.0, -b],
+                length,
+                b,
+                [8, 1, 8, 1],
+                ["bottom", "right", "top", "left"],
+                true,
+            );
+            let m = model_on(strip, Elastic::new(210_000.0, nu));
+            let sol = m.solve().unwrap();
+            let (eu, et) = errors(&m, &sol.displacement, &sol.traction);
+            println!("strip nu={nu} h/b={ratio}: max rel error u {eu:.2e}, t {et:.2e}");
+            assert!(eu < 1e-9 && et < 1e-9, "nu={nu} h/b={ratio}: u {eu:e}, t {et:e}");
         }
     }
 }

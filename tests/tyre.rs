@@ -144,3 +144,45 @@ fn incompressible_thick_layer_converges_from_the_paper_start_vector() {
         assert!(s.solution.normal_force > 0.0);
     }
 }
+
+/// The rigid model (issue 4 item 1): zero flexibility and a circular profile, given by its
+/// radius or fitted to the contact group of a mesh. A rigid R = 100 cylinder on a steel
+/// half-space body of profile radius 100 at Q = 0 is Hertz with 1/E* = (1 − ν²)/E and
+/// 1/R = 1/100 + 1/100 (reference sheet §1): a = √(4PR/(πE*)).
+/// The mesh-fitted radius reproduces the given one (the contact nodes lie on the circle to the
+/// mesh's 1e-9 print precision), so the two runs agree to round-off.
+#[test]
+fn rigid_cylinder_on_a_half_space_is_hertz_and_takes_its_radius_from_a_mesh() {
+    let mut runs = Vec::new();
+    for body in [
+        "{model: rigid, radius: 100.0}",
+        "{model: rigid, mesh: ../meshes/roller_r100_shaft10_A.msh}",
+    ] {
+        let (_, s) = solve(
+            "hertz",
+            &[
+                &format!("bodies.A={body}"),
+                "output.interior=null",
+                "contact.grid.elements=81",
+            ],
+        );
+        runs.push(s.solution);
+    }
+    let (e, nu, radius) = (210_000.0, 0.3, 50.0);
+    let e_star = e / (1.0 - nu * nu);
+    let p_total = runs[0].normal_force;
+    let a = (4.0 * p_total * radius / (std::f64::consts::PI * e_star)).sqrt();
+    let [x0, x1] = runs[0].contact_extent().unwrap();
+    // 81 elements: the half-width is found to a fraction of an element (docs/validation.md, Hertz).
+    assert!(
+        (0.5 * (x1 - x0) / a - 1.0).abs() < 0.01,
+        "a = {} vs Hertz {a}",
+        0.5 * (x1 - x0)
+    );
+    let dp = runs[0]
+        .pressure
+        .iter()
+        .zip(&runs[1].pressure)
+        .fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+    assert!(dp < 1e-6 * p_total, "mesh-fitted radius changes the pressure by {dp}");
+}

@@ -89,10 +89,19 @@ pub enum BodySpec {
         /// Profile radius [length].
         radius: f64,
     },
-    /// Rigid cylinder.
+    /// Rigid cylinder: its profile is a circle, given by `radius` or fitted to the contact
+    /// segment of a Gmsh mesh (exactly one of the two).
     Rigid {
         /// Profile radius [length].
-        radius: f64,
+        #[serde(default)]
+        radius: Option<f64>,
+        /// Gmsh boundary mesh whose contact group's circle gives the profile radius, relative to
+        /// the case file (e.g. the same roller mesh a `bem` run would use).
+        #[serde(default)]
+        mesh: Option<String>,
+        /// Physical group of the contact segment in `mesh`. Default = "contact".
+        #[serde(default = "default_contact_group")]
+        contact: String,
     },
     /// Boundary element model of the body's true geometry, from a Gmsh boundary mesh.
     Bem {

@@ -65,9 +65,21 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 }
                 *radius
             }
-            BodySpec::Rigid { radius } => {
+            BodySpec::Rigid { radius, mesh, .. } => {
                 rigid += 1;
-                *radius
+                match (radius, mesh) {
+                    (Some(r), None) => *r,
+                    (None, Some(_)) => 1.0,
+                    _ => {
+                        bad(
+                            format!("bodies.{side}"),
+                            "a rigid body takes exactly one of `radius` (the profile radius) or `mesh` \
+                             (a Gmsh mesh whose contact group's circle gives it)"
+                                .into(),
+                        );
+                        1.0
+                    }
+                }
             }
             BodySpec::Bem {
                 material,
