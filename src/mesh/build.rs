@@ -85,6 +85,68 @@ impl MeshBuilder {
         self
     }
 
+    /// Adds `n` circular-arc elements of group `group` from the pen to `p` around `centre`,
+    /// counter-clockwise if `counter_clockwise`, with element angles growing by the factor
+    /// `grading` from one element to the next. `p` must lie on the pen's circle (its radius is
+    /// taken from the pen); mid nodes sit at the mid-angle of each element, as Gmsh puts them.
+    pub fn arc_to(
+        &mut self,
+        centre: [f64; 2],
+        p: [f64; 2],
+        n: usize,
+        counter_clockwise: bool,
+        grading: f64,
+        group: &str,
+    ) -> &mut Self {
+        let g = self.group(group);
+        let start = self.pen.expect("move_to before arc_to");
+        let p0 = self.mesh.nodes[start];
+        let radius = (p0[0] - centre[0]).hypot(p0[1] - centre[1]);
+        let a0 = (p0[1] - centre[1]).atan2(p0[0] - centre[0]);
+        let a1 = (p[1] - centre[1]).atan2(p[0] - centre[0]);
+        let tau = 2.0 * std::f64::consts::PI;
+        let mut sweep = if counter_clockwise { a1 - a0 } else { a0 - a1 };
+        sweep = sweep.rem_euclid(tau);
+        if sweep == 0.0 {
+            sweep = tau;
+        }
+        let dir = if counter_clockwise { 1.0 } else { -1.0 };
+        let at = |f: f64| {
+            let a = a0 + dir * f * sweep;
+            [centre[0] + radius * a.cos(), centre[1] + radius * a.sin()]
+        };
+        let lengths: Vec<f64> = (0..n).map(|k| grading.powi(k as i32)).collect();
+        let total: f64 = lengths.iter().sum();
+        let closes = self.loop_start.filter(|&s| {
+            let q = self.mesh.nodes[s];
+            (q[0] - p[0]).hypot(q[1] - p[1]) <= 1e-12 * radius
+        });
+        let mut prev = start;
+        let mut f0 = 0.0;
+        for (k, len) in lengths.iter().enumerate() {
+            let last = k + 1 == n;
+            let f1 = if last { 1.0 } else { f0 + len / total };
+            let next = match (last, closes) {
+                (true, Some(s)) => s,
+                (true, None) => self.add_node(p),
+                _ => self.add_node(at(f1)),
+            };
+            let mut nodes = vec![prev, next];
+            if self.quadratic {
+                nodes.push(self.add_node(at(0.5 * (f0 + f1))));
+            }
+            self.mesh.elements.push(BoundaryElement { nodes, group: g });
+            prev = next;
+            f0 = f1;
+        }
+        self.pen = Some(prev);
+        if closes.is_some() {
+            self.pen = None;
+            self.loop_start = None;
+        }
+        self
+    }
+
     /// The finished mesh.
     pub fn finish(self) -> BoundaryMesh {
         self.mesh
@@ -176,6 +238,64 @@ pub fn annulus(
     b.finish()
 }
 
+/// Mesh sizes of a [`roller_on_shaft`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollerMeshSizes {
+    /// Elements on the contact segment (their ends at x = −L + 2L·i/n).
+    pub contact: usize,
+    /// Elements on the rest of the outer circle, graded from the contact size to the far size.
+    pub free: usize,
+    /// Elements on the shaft hole.
+    pub shaft: usize,
+}
+
+/// A roller of radius `radius` on a rigid shaft of radius `shaft_radius` (groups `contact`,
+/// `free`, `shaft`), the procedural twin of `meshes/roller_r100_shaft10_A.geo`: body A (above
+/// the contact, centre at y = +R) if `above`, else body B (centre at y = −R). The contact
+/// segment |x| ≤ `half_length` carries equal-x elements, so two rollers built with the same
+/// `half_length` and contact count pair node to node; the free arc is graded (each half by the
+/// factor that takes the element from the contact size towards the far size).
+pub fn roller_on_shaft(
+    radius: f64,
+    shaft_radius: f64,
+    half_length: f64,
+    sizes: RollerMeshSizes,
+    above: bool,
+) -> BoundaryMesh {
+    let s = if above { 1.0 } else { -1.0 };
+    let centre = [0.0, s * radius];
+    let surface = |x: f64| [x, s * (radius - (radius * radius - x * x).sqrt())];
+    let mut b = MeshBuilder::new(true, "roller");
+    let n = sizes.contact;
+    b.move_to(surface(-half_length));
+    // Walking the contact in +x is counter-clockwise round A's centre (the contact is A's
+    // bottom) and clockwise round B's; the loop goes on the same way round.
+    let turn = above;
+    for i in 1..=n {
+        let x = -half_length + 2.0 * half_length * i as f64 / n as f64;
+        b.arc_to(centre, surface(x), 1, turn, 1.0, "contact");
+    }
+    // The free arc, from +L back to −L the long way round, in two graded halves.
+    let far_size = 2.0 * std::f64::consts::PI * radius / (sizes.free.max(2) as f64);
+    let contact_size = 2.0 * half_length / n.max(1) as f64;
+    let half = (sizes.free / 2).max(1);
+    let grading = (far_size / contact_size)
+        .max(1.0)
+        .powf(1.0 / (half as f64 - 1.0).max(1.0));
+    let top = [0.0, s * 2.0 * radius];
+    b.arc_to(centre, top, half, turn, grading, "free");
+    b.arc_to(
+        centre,
+        surface(-half_length),
+        sizes.free.max(2) - half,
+        turn,
+        1.0 / grading,
+        "free",
+    );
+    b.circle(centre, shaft_radius, sizes.shaft, "shaft");
+    b.finish()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -197,6 +317,49 @@ mod tests {
         // Quadratic interpolation of a circle: area error O(h^4) ≈ 1e-4 relative at 16 elements.
         assert!((outer.signed_area - std::f64::consts::PI * 4.0).abs() < 2e-3);
         assert!((hole.signed_area + std::f64::consts::PI).abs() < 5e-4);
+    }
+
+    /// The procedural roller is one closed outer loop and the shaft hole, its contact nodes at
+    /// the equal-x stations on the circle, all nodes on the two circles.
+    #[test]
+    fn roller_on_shaft_has_its_contact_nodes_at_equal_x_on_the_circle() {
+        for above in [true, false] {
+            let sizes = RollerMeshSizes {
+                contact: 21,
+                free: 40,
+                shaft: 24,
+            };
+            let mut mesh = roller_on_shaft(100.0, 10.0, 1.3, sizes, above);
+            validate_and_orient(&mut mesh).unwrap();
+            let loops = boundary_loops(&mesh).unwrap();
+            assert_eq!(loops.len(), 2);
+            let cy = if above { 100.0 } else { -100.0 };
+            for p in &mesh.nodes {
+                let r = p[0].hypot(p[1] - cy);
+                assert!(
+                    (r - 100.0).abs() < 1e-9 || (r - 10.0).abs() < 1e-9,
+                    "node {p:?} at r = {r}"
+                );
+            }
+            let contact = mesh.group_index("contact").unwrap();
+            let mut xs: Vec<f64> = mesh
+                .elements
+                .iter()
+                .filter(|e| e.group == contact)
+                .flat_map(|e| [mesh.nodes[e.nodes[0]][0], mesh.nodes[e.nodes[1]][0]])
+                .collect();
+            xs.sort_by(f64::total_cmp);
+            xs.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+            assert_eq!(xs.len(), 22);
+            for (i, x) in xs.iter().enumerate() {
+                assert!((x - (-1.3 + 2.6 * i as f64 / 21.0)).abs() < 1e-12);
+            }
+            // Contact nodes face the other body.
+            for e in mesh.elements.iter().filter(|e| e.group == contact) {
+                let y = mesh.nodes[e.nodes[2]][1];
+                assert!(y.abs() < 0.01, "contact mid node at y = {y}");
+            }
+        }
     }
 
     #[test]
