@@ -498,8 +498,14 @@ pub struct Solved {
 pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
     let start = Instant::now();
     let bodies = prepare_bodies(case)?;
-    let estimates = estimates(case, &bodies);
-    let (condense_s, models, problem) = build_problem(case, &estimates, &bodies)?;
+    solve_prepared(case, &bodies, start)
+}
+
+/// [`solve`] with the bodies already prepared (e.g. with procedural meshes, as the accuracy
+/// study builds them); `start` is when the run began, for the timings.
+pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Instant) -> Result<Solved, Error> {
+    let estimates = estimates(case, bodies);
+    let (condense_s, models, problem) = build_problem(case, &estimates, bodies)?;
     let mut timings = Timings {
         assembly_s: start.elapsed().as_secs_f64() - condense_s,
         condense_s,

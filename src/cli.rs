@@ -69,6 +69,12 @@ pub enum Command {
     /// limits) and print each measured error against its closed form and limit; exit code 2 if
     /// any fails. docs/validation.md has the full tables.
     Validate,
+    /// Studies over many runs of a case's scene (issue 6): speed against accuracy.
+    Study {
+        /// Which study.
+        #[command(subcommand)]
+        study: StudyCommand,
+    },
     /// Validate a case without solving: print the bodies, materials, Hertz estimates (a, p0),
     /// the grid spacing, the Carter stick-zone estimate and model advice.
     Check {
@@ -77,5 +83,45 @@ pub enum Command {
         /// Override a case value (as for `run`). Repeatable.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
+    },
+}
+
+/// The studies.
+#[derive(Debug, Subcommand)]
+pub enum StudyCommand {
+    /// Error against wall time of each body model the scene allows, at a ladder of grids.
+    ///
+    /// The case's cylinders are solved with the analytic half-space model, with BEM blocks
+    /// standing in for half-spaces (paper Fig. 2) and with BEM rollers of their true radius on
+    /// rigid shafts, each at 11 … 321 contact elements. Errors are measured against Carter
+    /// (similar bodies, Q/μP given) or Hertz (Q = 0), else against the finest true-geometry run
+    /// (stated in the output). Writes accuracy.csv, accuracy.json and accuracy.svg (error
+    /// against time on log–log axes, one curve per model, the Pareto front drawn).
+    ///
+    /// Example: rollbem study accuracy cases/carter_051.yaml --quick
+    Accuracy {
+        /// Case file: its materials, radii, friction and load define the scene.
+        case: PathBuf,
+        /// Output folder (default: the case's output folder with `_accuracy` appended).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Override a case value (as for `run`). Repeatable.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// The short ladder 11, 21, 41 contact elements (under a minute), as CI runs it.
+        #[arg(long, conflicts_with = "ladder")]
+        quick: bool,
+        /// Contact elements of each rung, e.g. --ladder 21,41,81 (default 11,21,41,81,161,321).
+        #[arg(long, value_delimiter = ',')]
+        ladder: Vec<usize>,
+        /// Models to run: half_space, half_space_block, true_geometry (default all).
+        #[arg(long, value_delimiter = ',')]
+        models: Vec<String>,
+        /// Shaft radius over roller radius of the true-geometry rollers.
+        #[arg(long, default_value_t = 0.1)]
+        shaft_ratio: f64,
+        /// Runs at once (default: one per core). --jobs 1 gives undisturbed timings.
+        #[arg(long, default_value_t = 0)]
+        jobs: usize,
     },
 }

@@ -32,4 +32,5 @@ pub mod mesh;
 pub mod output;
 pub mod quadrature;
 pub mod reference;
+pub mod study;
 pub mod sweep;

@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use clap::Parser;
-use rollbem::cli::{Cli, Command};
+use rollbem::cli::{Cli, Command, StudyCommand};
 use rollbem::error::EXIT_NOT_CONVERGED;
 use std::process::ExitCode;
 
@@ -96,6 +96,59 @@ fn dispatch(cli: Cli) -> Result<i32> {
                 EXIT_NOT_CONVERGED
             })
         }
+        Command::Study { study } => match study {
+            StudyCommand::Accuracy {
+                case,
+                out,
+                set,
+                quick,
+                ladder,
+                models,
+                shaft_ratio,
+                jobs,
+            } => {
+                use rollbem::study::accuracy::{self, AccuracyOptions, SceneModel};
+                let loaded = rollbem::case::load(&case, &set)?;
+                let mut options = AccuracyOptions {
+                    shaft_ratio,
+                    jobs,
+                    ..AccuracyOptions::default()
+                };
+                if quick {
+                    options.ladder = AccuracyOptions::quick_ladder();
+                } else if !ladder.is_empty() {
+                    options.ladder = ladder;
+                }
+                if !models.is_empty() {
+                    options.models = models
+                        .iter()
+                        .map(|m| {
+                            SceneModel::parse(m).ok_or_else(|| {
+                                anyhow::anyhow!(
+                                    "--models: unknown model `{m}`; choose from half_space, half_space_block, true_geometry"
+                                )
+                            })
+                        })
+                        .collect::<Result<_>>()?;
+                }
+                let out = out.unwrap_or_else(|| {
+                    let dir = loaded.output_dir();
+                    let name = dir
+                        .file_name()
+                        .map_or("accuracy".into(), |n| format!("{}_accuracy", n.to_string_lossy()));
+                    dir.with_file_name(name)
+                });
+                let report = accuracy::run(&loaded, &options, true)?;
+                accuracy::write(&out, &report, &loaded.case.title)?;
+                print!("{}", accuracy::render(&report));
+                println!("  results                {}", out.display());
+                Ok(if report.rows.iter().all(|r| r.converged) {
+                    0
+                } else {
+                    EXIT_NOT_CONVERGED
+                })
+            }
+        },
         Command::Check { case, set } => {
             print!("{}", rollbem::app::check_report(&case, &set)?);
             Ok(0)

@@ -296,6 +296,45 @@ pub fn roller_on_shaft(
     b.finish()
 }
 
+/// A rectangular block standing in for a half-space (paper Fig. 2; the procedural twin of
+/// `meshes/halfspace_block_A.geo`): width 2·`half_width`, depth `depth`, its contact face on
+/// y = 0 (groups `contact` on |x| ≤ `half_length` with `n_contact` equal elements, `free` on the
+/// rest of that face and the sides, `far` on the opposite face). Above y = 0 (body A) if
+/// `above`, else below. Elements grow geometrically by at most 1.2 from the contact size to
+/// `far_size` along the contact face.
+pub fn half_space_block(
+    half_width: f64,
+    depth: f64,
+    half_length: f64,
+    n_contact: usize,
+    far_size: f64,
+    above: bool,
+) -> BoundaryMesh {
+    let s = if above { 1.0 } else { -1.0 };
+    let first = 2.0 * half_length / n_contact.max(1) as f64;
+    let run = half_width - half_length;
+    let grading: f64 = 1.2;
+    // Elements needed to cover `run` growing by `grading` from `first`, capped at far_size.
+    let n_graded = ((1.0 + run * (grading - 1.0) / first).ln() / grading.ln())
+        .ceil()
+        .max(1.0) as usize;
+    let n_free = n_graded
+        .min((run / first).ceil() as usize)
+        .max(((run / far_size).ceil() as usize).max(1));
+    let g = if n_free == n_graded { grading } else { 1.0 };
+    let n_side = ((depth / far_size).ceil() as usize).max(2);
+    let n_far = ((2.0 * half_width / far_size).ceil() as usize).max(2);
+    let mut b = MeshBuilder::new(true, "block");
+    b.move_to([-half_width, 0.0])
+        .graded_line_to([-half_length, 0.0], n_free, 1.0 / g, "free")
+        .line_to([half_length, 0.0], n_contact, "contact")
+        .graded_line_to([half_width, 0.0], n_free, g, "free")
+        .line_to([half_width, s * depth], n_side, "free")
+        .line_to([-half_width, s * depth], n_far, "far")
+        .close(n_side, "free");
+    b.finish()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,104 @@
+//! `rollbem study accuracy` (issue 6): the three body models of the Carter scene against the
+//! closed form, and the command's outputs.
+
+mod common;
+use rollbem::case;
+use rollbem::study::accuracy::{self, AccuracyOptions, SceneModel};
+use std::process::Command;
+
+/// Carter's similar rollers (Q/μP = 0.51), quick ladder 11, 21, 41: every model converges and
+/// its RMS shear error against Carter falls at least like h^(1/2) over the two grid doublings
+/// (measured: half-space 8.6e-3 → 1.3e-3, blocks 8.2e-3 → 1.3e-3, true rollers 8.8e-3 → 1.9e-3,
+/// i.e. ×4.6 to ×6.6; the limit ×2 is what a first-order traction error near the stick/slip kink
+/// can still guarantee), and at 41 elements it is below 0.3 % of μp0 (the max-norm limits of
+/// docs/validation.md are 2 % for the half-space and blocks, 3 % for the true rollers).
+#[test]
+fn accuracy_study_of_the_carter_scene_converges_for_every_model() {
+    let loaded = case::load(&common::case_path("carter_051"), &[]).unwrap();
+    let options = AccuracyOptions {
+        ladder: AccuracyOptions::quick_ladder(),
+        ..AccuracyOptions::default()
+    };
+    let report = accuracy::run(&loaded, &options, false).unwrap();
+    assert!(report.reference.starts_with("Carter"), "{}", report.reference);
+    assert_eq!(report.rows.len(), 9);
+    for model in SceneModel::ALL {
+        let rows: Vec<_> = report.rows.iter().filter(|r| r.model == model).collect();
+        assert!(rows.iter().all(|r| r.converged), "{model:?}: {rows:?}");
+        let (coarse, fine) = (rows[0].error, rows[2].error);
+        assert!(coarse / fine > 2.0, "{model:?}: RMS error {coarse} → {fine}");
+        assert!(fine < 3e-3, "{model:?}: RMS error {fine} at 41 elements");
+        assert!(rows.iter().all(|r| r.creep_error.unwrap().abs() < 0.02));
+        if model != SceneModel::HalfSpace {
+            assert!(rows.iter().all(|r| r.boundary_elements > 0));
+        }
+    }
+    // The Pareto front runs from fast and coarse to slow and accurate.
+    let front = accuracy::pareto_front(&report);
+    assert!(front.len() >= 2);
+    assert!(front.windows(2).all(|w| w[1].0 >= w[0].0 && w[1].1 < w[0].1));
+}
+
+/// A scene without a closed form (dissimilar materials) is measured against its finest
+/// true-geometry run, and says so.
+#[test]
+fn accuracy_study_without_a_closed_form_uses_the_finest_true_geometry_run() {
+    let loaded = case::load(&common::case_path("dissimilar_beta0288_075"), &[]).unwrap();
+    let options = AccuracyOptions {
+        ladder: vec![11, 21],
+        models: vec![SceneModel::HalfSpace],
+        ..AccuracyOptions::default()
+    };
+    let report = accuracy::run(&loaded, &options, false).unwrap();
+    assert!(
+        report.reference.contains("finest true-geometry run (21"),
+        "{}",
+        report.reference
+    );
+    assert_eq!(report.rows.len(), 2, "only the requested model is reported");
+    assert!(report
+        .rows
+        .iter()
+        .all(|r| r.converged && r.error.is_finite() && r.error > 0.0));
+}
+
+fn rollbem(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_rollbem")).args(args).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn study_accuracy_command_writes_the_table_and_the_chart() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("acc");
+    let case = common::case_path("carter_051");
+    let (code, stdout, stderr) = rollbem(&[
+        "study",
+        "accuracy",
+        case.to_str().unwrap(),
+        "--quick",
+        "--models",
+        "half_space,true_geometry",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(
+        stdout.contains("true_geometry") && stdout.contains("RMS error"),
+        "{stdout}"
+    );
+    let csv = std::fs::read_to_string(out.join("accuracy.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 6, "{csv}");
+    assert!(csv.starts_with("model,contact_elements,boundary_elements,converged"));
+    let svg = std::fs::read_to_string(out.join("accuracy.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("Pareto front"));
+    assert!(out.join("accuracy.json").exists());
+
+    let (code, _, stderr) = rollbem(&["study", "accuracy", case.to_str().unwrap(), "--models", "fem"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("unknown model `fem`"), "{stderr}");
+}
