@@ -65,7 +65,8 @@ impl LoadedMesh {
         xs.fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], x| [lo.min(x), hi.max(x)])
     }
 
-    fn contact_nodes(&self) -> impl Iterator<Item = [f64; 2]> + '_ {
+    /// The nodes of the contact group's elements [length].
+    pub fn contact_nodes(&self) -> impl Iterator<Item = [f64; 2]> + '_ {
         self.mesh
             .elements
             .iter()
@@ -635,7 +636,8 @@ pub fn carter_reference(case: &LoadedCase, est: &Estimates) -> Option<Carter> {
 }
 
 /// The text printed by `rollbem check`: the case as understood, with Hertz estimates.
-pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Error> {
+/// `tolerance` is the accuracy the user needs (a fraction of p0 and μp0), for the model advice.
+pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> Result<String, Error> {
     let case = case::load(case_path, overrides)?;
     let bodies = prepare_bodies(&case)?;
     let est = estimates(&case, &bodies);
@@ -793,11 +795,54 @@ pub fn check_report(case_path: &Path, overrides: &[String]) -> Result<String, Er
             ),
         );
     }
-    let advice = if est.half_width_over_radius < 0.05 {
-        "half_space is adequate (a/R < 0.05): the half-plane influence coefficients are the classical model"
+    // The half-space error of the scene: a layer's if a bem body is held fixed closer under
+    // its contact than half its radius (a cover layer on a core), else the rollers'.
+    let layer = [(&c.bodies.a, &bodies[0]), (&c.bodies.b, &bodies[1])]
+        .into_iter()
+        .filter_map(|(spec, body)| layer_thickness(spec, body))
+        .fold(f64::INFINITY, f64::min);
+    let error = if layer.is_finite() {
+        // Under overlap control the half-plane estimate of a means nothing for a layer; the
+        // thin-layer chord a² = 2Rδ0 (compressible) or 6Rδ0 (ν = 0.5) does (reference sheet §5).
+        let a = match c.load.normal() {
+            NormalSpec::Overlap(d) => {
+                let incompressible = bodies.iter().any(|b| b.material.is_some_and(|m| m.poisson > 0.45));
+                ((if incompressible { 6.0 } else { 2.0 }) * est.effective_radius * d).sqrt()
+            }
+            NormalSpec::Force(_) => est.hertz_half_width,
+        };
+        line(
+            "layer thickness b",
+            format!("{layer:.6} {l} (b/a = {:.4}, a = {a:.4} {l})", layer / a),
+        );
+        crate::advice::layer_error(layer / a)
     } else {
-        "a/R >= 0.05: the half-space model loses accuracy; consider a bem model of the true geometry"
+        crate::advice::roller_error(est.half_width_over_radius)
     };
-    line("model advice", advice.to_string());
+    line("model advice", crate::advice::advise(&error, tolerance));
     Ok(t)
+}
+
+/// Depth of a `bem` body's material under its contact when a fixed boundary lies closer below
+/// it than half the body's radius (a cover layer on a rigid core): the distance from the
+/// contact node nearest x = 0 to the nearest node of a `fixed` group [length].
+fn layer_thickness(spec: &BodySpec, body: &PreparedBody) -> Option<f64> {
+    let (BodySpec::Bem { boundaries, .. }, Some(lm)) = (spec, &body.mesh) else {
+        return None;
+    };
+    let m = &lm.mesh;
+    let centre = lm.contact_nodes().min_by(|p, q| p[0].abs().total_cmp(&q[0].abs()))?;
+    let fixed: Vec<usize> = boundaries
+        .iter()
+        .filter(|(_, b)| matches!(b, BoundarySpec::Keyword(BoundaryKeyword::Fixed)))
+        .filter_map(|(g, _)| m.group_index(g).ok())
+        .collect();
+    let depth = m
+        .elements
+        .iter()
+        .filter(|e| fixed.contains(&e.group))
+        .flat_map(|e| e.nodes.iter().map(|&n| m.nodes[n]))
+        .map(|p| (p[0] - centre[0]).hypot(p[1] - centre[1]))
+        .fold(f64::INFINITY, f64::min);
+    (depth < 0.5 * body.radius).then_some(depth)
 }

@@ -77,12 +77,19 @@ pub enum Command {
     },
     /// Validate a case without solving: print the bodies, materials, Hertz estimates (a, p0),
     /// the grid spacing, the Carter stick-zone estimate and model advice.
+    ///
+    /// The model advice estimates the half-space model's error on this scene from measured
+    /// tables (rollers on shafts by a/R, cover layers by b/a; docs/choosing-a-model.md) and says
+    /// whether it meets --tolerance or the BEM true geometry is needed, with the cost of each.
     Check {
         /// Case file.
         case: PathBuf,
         /// Override a case value (as for `run`). Repeatable.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
+        /// Accuracy you need, as a fraction of p0 (pressure) and μp0 (shear): 0.01 is 1 %.
+        #[arg(long, default_value_t = 0.01)]
+        tolerance: f64,
     },
 }
 

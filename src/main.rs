@@ -149,8 +149,11 @@ fn dispatch(cli: Cli) -> Result<i32> {
                 })
             }
         },
-        Command::Check { case, set } => {
-            print!("{}", rollbem::app::check_report(&case, &set)?);
+        Command::Check { case, set, tolerance } => {
+            if !(tolerance > 0.0 && tolerance.is_finite()) {
+                anyhow::bail!("--tolerance must be a positive fraction, e.g. 0.01 for 1 % (value = {tolerance})");
+            }
+            print!("{}", rollbem::app::check_report(&case, &set, tolerance)?);
             Ok(0)
         }
     }

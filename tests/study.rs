@@ -102,3 +102,21 @@ fn study_accuracy_command_writes_the_table_and_the_chart() {
     assert_eq!(code, 1);
     assert!(stderr.contains("unknown model `fem`"), "{stderr}");
 }
+
+/// `rollbem check` advises from the measured half-space error tables (src/advice.rs): the
+/// paper's rollers (a/R = 0.02, error 0.5 % of μp0) meet 1 % but not 0.1 %; a cover layer of
+/// b/a ≈ 0.1 needs the BEM at any usual tolerance.
+#[test]
+fn check_advises_the_model_for_the_tolerance() {
+    let carter = common::case_path("carter_051");
+    let (code, out, _) = rollbem(&["check", carter.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(out.contains("half_space is enough for a tolerance of 1.00 %"), "{out}");
+    let (_, out, _) = rollbem(&["check", carter.to_str().unwrap(), "--tolerance", "0.001"]);
+    assert!(out.contains("use bem"), "{out}");
+    let tyre = common::case_path("tyre_b01_incompressible");
+    let (_, out, _) = rollbem(&["check", tyre.to_str().unwrap(), "--tolerance", "0.1"]);
+    assert!(out.contains("layer thickness b") && out.contains("use bem"), "{out}");
+    let (code, _, err) = rollbem(&["check", carter.to_str().unwrap(), "--tolerance", "0"]);
+    assert_eq!(code, 1, "{err}");
+}

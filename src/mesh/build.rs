@@ -296,6 +296,22 @@ pub fn roller_on_shaft(
     b.finish()
 }
 
+/// (elements, growth factor) of a straight run of length `run` whose elements grow by at most
+/// 1.2 from `first` (the neighbouring contact element) towards `far_size`: geometric growth
+/// while it needs fewer elements than `far_size` would, equal elements otherwise.
+fn graded_run(run: f64, first: f64, far_size: f64) -> (usize, f64) {
+    let grading: f64 = 1.2;
+    let n_graded = ((1.0 + run * (grading - 1.0) / first).ln() / grading.ln())
+        .ceil()
+        .max(1.0) as usize;
+    let n_equal = ((run / far_size).ceil() as usize).max(1);
+    if n_graded >= n_equal {
+        (n_graded, grading)
+    } else {
+        (n_equal, 1.0)
+    }
+}
+
 /// A rectangular block standing in for a half-space (paper Fig. 2; the procedural twin of
 /// `meshes/halfspace_block_A.geo`): width 2·`half_width`, depth `depth`, its contact face on
 /// y = 0 (groups `contact` on |x| ≤ `half_length` with `n_contact` equal elements, `free` on the
@@ -311,17 +327,11 @@ pub fn half_space_block(
     above: bool,
 ) -> BoundaryMesh {
     let s = if above { 1.0 } else { -1.0 };
-    let first = 2.0 * half_length / n_contact.max(1) as f64;
-    let run = half_width - half_length;
-    let grading: f64 = 1.2;
-    // Elements needed to cover `run` growing by `grading` from `first`, capped at far_size.
-    let n_graded = ((1.0 + run * (grading - 1.0) / first).ln() / grading.ln())
-        .ceil()
-        .max(1.0) as usize;
-    let n_free = n_graded
-        .min((run / first).ceil() as usize)
-        .max(((run / far_size).ceil() as usize).max(1));
-    let g = if n_free == n_graded { grading } else { 1.0 };
+    let (n_free, g) = graded_run(
+        half_width - half_length,
+        2.0 * half_length / n_contact.max(1) as f64,
+        far_size,
+    );
     let n_side = ((depth / far_size).ceil() as usize).max(2);
     let n_far = ((2.0 * half_width / far_size).ceil() as usize).max(2);
     let mut b = MeshBuilder::new(true, "block");
@@ -332,6 +342,28 @@ pub fn half_space_block(
         .line_to([half_width, s * depth], n_side, "free")
         .line_to([-half_width, s * depth], n_far, "far")
         .close(n_side, "free");
+    b.finish()
+}
+
+/// A flat layer of thickness `thickness` below y = 0 (body B), the procedural twin of
+/// `meshes/tyre_layer_strip.inc`: groups `contact` (|x| ≤ `half_length`, `n_contact` equal
+/// elements), `free` (the rest of the top face), `ends` (x = ±`half_width`) and `bonded`
+/// (y = −thickness). Far elements are about `far_size` long.
+pub fn layer_strip(thickness: f64, half_width: f64, half_length: f64, n_contact: usize, far_size: f64) -> BoundaryMesh {
+    let (n_free, g) = graded_run(
+        half_width - half_length,
+        2.0 * half_length / n_contact.max(1) as f64,
+        far_size,
+    );
+    let n_bonded = ((2.0 * half_width / far_size).ceil() as usize).max(2);
+    let mut b = MeshBuilder::new(true, "layer");
+    b.move_to([-half_width, 0.0])
+        .graded_line_to([-half_length, 0.0], n_free, 1.0 / g, "free")
+        .line_to([half_length, 0.0], n_contact, "contact")
+        .graded_line_to([half_width, 0.0], n_free, g, "free")
+        .line_to([half_width, -thickness], 2, "ends")
+        .line_to([-half_width, -thickness], n_bonded, "bonded")
+        .close(2, "ends");
     b.finish()
 }
 

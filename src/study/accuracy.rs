@@ -360,18 +360,30 @@ fn half_space_bodies(case: &LoadedCase, scene: &[SceneBody; 2]) -> [PreparedBody
     })
 }
 
-/// What one run produced.
+/// What one run of a scene produced.
 #[derive(Debug, Clone)]
-struct Outcome {
-    solution: ContactSolution,
-    solution_converged: bool,
-    iterations: usize,
-    boundary_elements: usize,
-    build_s: f64,
-    solve_s: f64,
+pub struct Outcome {
+    /// The contact solution (the last iterate if not converged).
+    pub solution: ContactSolution,
+    /// Whether the contact solver converged.
+    pub solution_converged: bool,
+    /// Solver iterations.
+    pub iterations: usize,
+    /// Boundary elements of the larger BEM body (0 for the half-space model).
+    pub boundary_elements: usize,
+    /// Assembly and condensation time [s].
+    pub build_s: f64,
+    /// Contact solve time [s].
+    pub solve_s: f64,
 }
 
-/// Solves the scene with `model` at `n` contact elements.
+/// Solves the scene of `case` (its bodies' materials and radii, its load and friction) with
+/// `model` at `n` contact elements; true-geometry rollers sit on shafts of `shaft_ratio` times
+/// their radius.
+pub fn solve_scene(case: &LoadedCase, model: SceneModel, n: usize, shaft_ratio: f64) -> Result<Outcome, Error> {
+    run_one(case, &scene_bodies(case)?, model, n, shaft_ratio)
+}
+
 fn run_one(
     case: &LoadedCase,
     scene: &[SceneBody; 2],
