@@ -1,7 +1,9 @@
 //! The `rollbem` binary: exit codes, messages, files written (DESIGN §5, §8).
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+
+mod common;
+use common::rollbem;
 
 const BASE: &str = r#"
 title: "cli test"
@@ -23,15 +25,6 @@ fn write_case(dir: &Path, text: &str) -> PathBuf {
     let path = dir.join("case.yaml");
     std::fs::write(&path, text).unwrap();
     path
-}
-
-fn rollbem(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rollbem")).args(args).output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
 }
 
 #[test]

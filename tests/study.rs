@@ -2,9 +2,9 @@
 //! closed form, and the command's outputs.
 
 mod common;
+use common::rollbem;
 use rollbem::case;
 use rollbem::study::accuracy::{self, AccuracyOptions, SceneModel};
-use std::process::Command;
 
 /// Carter's similar rollers (Q/μP = 0.51), quick ladder 11, 21, 41: every model converges and
 /// its RMS shear error against Carter falls at least like h^(1/2) over the two grid doublings
@@ -60,15 +60,6 @@ fn accuracy_study_without_a_closed_form_uses_the_finest_true_geometry_run() {
         .rows
         .iter()
         .all(|r| r.converged && r.error.is_finite() && r.error > 0.0));
-}
-
-fn rollbem(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rollbem")).args(args).output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
 }
 
 #[test]

@@ -115,31 +115,12 @@ impl MeshBuilder {
             let a = a0 + dir * f * sweep;
             [centre[0] + radius * a.cos(), centre[1] + radius * a.sin()]
         };
-        let lengths: Vec<f64> = (0..n).map(|k| grading.powi(k as i32)).collect();
-        let total: f64 = lengths.iter().sum();
         let closes = self.loop_start.filter(|&s| {
             let q = self.mesh.nodes[s];
             (q[0] - p[0]).hypot(q[1] - p[1]) <= 1e-12 * radius
         });
-        let mut prev = start;
-        let mut f0 = 0.0;
-        for (k, len) in lengths.iter().enumerate() {
-            let last = k + 1 == n;
-            let f1 = if last { 1.0 } else { f0 + len / total };
-            let next = match (last, closes) {
-                (true, Some(s)) => s,
-                (true, None) => self.add_node(p),
-                _ => self.add_node(at(f1)),
-            };
-            let mut nodes = vec![prev, next];
-            if self.quadratic {
-                nodes.push(self.add_node(at(0.5 * (f0 + f1))));
-            }
-            self.mesh.elements.push(BoundaryElement { nodes, group: g });
-            prev = next;
-            f0 = f1;
-        }
-        self.pen = Some(prev);
+        let last = self.chain(start, n, grading, g, &at, closes, Some(p));
+        self.pen = Some(last);
         if closes.is_some() {
             self.pen = None;
             self.loop_start = None;
@@ -162,27 +143,48 @@ impl MeshBuilder {
                 (self.mesh.nodes[s], Some(s))
             }
         };
+        let point = |f: f64| [p0[0] + f * (p1[0] - p0[0]), p0[1] + f * (p1[1] - p0[1])];
+        let last = self.chain(start, n, grading, g, &point, end_node, None);
+        self.pen = Some(last);
+    }
+
+    /// Adds `n` elements of group `g` from node `start` along the curve `at(f)`, f ∈ [0, 1],
+    /// with lengths (in f) growing by `grading`; the last node is `end_node` if given, else a
+    /// new node at `end_point` (or at(1)). Mid nodes sit at the mid-parameter. Returns the last
+    /// node.
+    #[allow(clippy::too_many_arguments)]
+    fn chain(
+        &mut self,
+        start: usize,
+        n: usize,
+        grading: f64,
+        g: usize,
+        at: &dyn Fn(f64) -> [f64; 2],
+        end_node: Option<usize>,
+        end_point: Option<[f64; 2]>,
+    ) -> usize {
         // Cumulative fractions of a geometric sequence of element lengths.
         let lengths: Vec<f64> = (0..n).map(|k| grading.powi(k as i32)).collect();
         let total: f64 = lengths.iter().sum();
-        let point = |f: f64| [p0[0] + f * (p1[0] - p0[0]), p0[1] + f * (p1[1] - p0[1])];
         let mut prev = start;
         let mut f0 = 0.0;
         for (k, len) in lengths.iter().enumerate() {
-            let f1 = if k + 1 == n { 1.0 } else { f0 + len / total };
-            let next = match (k + 1 == n, end_node) {
+            let last = k + 1 == n;
+            let f1 = if last { 1.0 } else { f0 + len / total };
+            let next = match (last, end_node) {
                 (true, Some(s)) => s,
-                _ => self.add_node(point(f1)),
+                (true, None) => self.add_node(end_point.unwrap_or_else(|| at(1.0))),
+                _ => self.add_node(at(f1)),
             };
             let mut nodes = vec![prev, next];
             if self.quadratic {
-                nodes.push(self.add_node(point(0.5 * (f0 + f1))));
+                nodes.push(self.add_node(at(0.5 * (f0 + f1))));
             }
             self.mesh.elements.push(BoundaryElement { nodes, group: g });
             prev = next;
             f0 = f1;
         }
-        self.pen = Some(prev);
+        prev
     }
 
     fn add_node(&mut self, p: [f64; 2]) -> usize {

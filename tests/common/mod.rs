@@ -4,6 +4,7 @@
 use rollbem::app::{self, Solved};
 use rollbem::case::{self, LoadedCase};
 use std::path::PathBuf;
+use std::process::Command;
 
 /// Path of a shipped case by its stem.
 pub fn case_path(name: &str) -> PathBuf {
@@ -36,4 +37,14 @@ pub fn nodal_error(x: &[f64], values: &[f64], exact: impl Fn(f64) -> f64, limit:
     let max = errs.iter().fold(0.0_f64, |a, &b| a.max(b));
     let rms = (errs.iter().map(|e| e * e).sum::<f64>() / errs.len() as f64).sqrt();
     (max, rms)
+}
+
+/// Runs the `rollbem` binary: (exit code, stdout, stderr).
+pub fn rollbem(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_rollbem")).args(args).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }
