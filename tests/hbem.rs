@@ -198,3 +198,25 @@ fn points_outside_an_element_are_refused() {
         assert!(err.to_string().contains("strictly inside an element"), "{err}");
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Rolling contact: the HBEM slip against Carter.
+
+#[test]
+fn carter_true_rollers_hbem_slip() {
+    let (loaded, s) = common::solve("carter_051_true", &[]);
+    let c = rollbem::app::carter_reference(&loaded, &s.estimates).unwrap();
+    let r = s.estimates.effective_radius;
+    let sol = &s.solution;
+    let hbem = sol.slip_strain.as_ref().expect("bem bodies have the HBEM strain");
+    for i in 0..sol.x.len() {
+        println!(
+            "{:+.4} {:>5} fd {:+.4e} hbem {:+.4e} carter {:+.4e}",
+            sol.x[i],
+            sol.state[i].name(),
+            sol.slip[i],
+            hbem[i],
+            c.slip(sol.x[i], r)
+        );
+    }
+}
