@@ -7,6 +7,7 @@ mod common;
 
 use rollbem::bem::hypersingular::{GradientEvaluator, GradientPoint, GradientRows};
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition};
+use rollbem::contact::solution::NodeState;
 use rollbem::material::Elastic;
 use rollbem::mesh::build::{annulus, rectangle};
 use std::sync::Arc;
@@ -200,23 +201,254 @@ fn points_outside_an_element_are_refused() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Lamé thick cylinder (reference sheet §8.1): a = 10, b = 20, p_i = 100, p_o = 30, E = 210 000.
+
+const A_IN: f64 = 10.0;
+const B_OUT: f64 = 20.0;
+const P_IN: f64 = 100.0;
+const P_OUT: f64 = 30.0;
+const NS: [usize; 4] = [8, 16, 32, 64];
+
+/// Lamé constants (A, B) of σ_rr = A − B/r², σ_θθ = A + B/r² (sheet §8.1).
+fn lame_constants() -> (f64, f64) {
+    let (a2, b2) = (A_IN * A_IN, B_OUT * B_OUT);
+    (
+        (P_IN * a2 - P_OUT * b2) / (b2 - a2),
+        (P_IN - P_OUT) * a2 * b2 / (b2 - a2),
+    )
+}
+
+/// Exact (u_r, ε_rr = du_r/dr, ε_θθ = u_r/r) at radius r.
+fn lame_exact(m: &Elastic, r: f64) -> (f64, f64, f64) {
+    let (ca, cb) = lame_constants();
+    let f = (1.0 + m.poisson) / m.young;
+    let ur = f * ((1.0 - 2.0 * m.poisson) * ca * r + cb / r);
+    (ur, f * ((1.0 - 2.0 * m.poisson) * ca - cb / (r * r)), ur / r)
+}
+
+/// Normal strain e·∇u·e along the unit vector e from ∇u (`[i][k]` = u_i,k).
+fn normal_strain(g: [[f64; 2]; 2], e: [f64; 2]) -> f64 {
+    (0..2).map(|i| (0..2).map(|k| e[i] * g[i][k] * e[k]).sum::<f64>()).sum()
+}
+
+/// Max errors of ε_θθ and ε_rr over points at ξ = −0.5, 0, 0.5 of every element (both
+/// circles), relative to the largest exact strain, for the pinned pressure-loaded Lamé cylinder
+/// solved by the BEM with `n` continuous quadratic elements per circle; and the error of ε_θθ
+/// from differentiating the interpolated displacement along the element (no HBEM), for
+/// comparison.
+fn lame_strain_errors(n: usize) -> (f64, f64, f64) {
+    let material = Elastic::new(210_000.0, 0.3);
+    let model = BemModel::new(
+        annulus(A_IN, B_OUT, n, n, ["inner", "outer"], true),
+        material,
+        vec![
+            ("inner".into(), BoundaryCondition::Pressure(P_IN)),
+            ("outer".into(), BoundaryCondition::Pressure(P_OUT)),
+        ],
+        BemOptions::default(),
+    )
+    .unwrap();
+    // Pins (as tests/bem_lame.rs): exact (u_x, u_y) at the outer node nearest (b, 0), u_x at the
+    // one nearest (0, b): the pressure-loaded problem without its rigid motion.
+    let nodes = model.field_nodes();
+    let nearest = |target: [f64; 2]| {
+        let d = |k: usize| (nodes[k].position[0] - target[0]).hypot(nodes[k].position[1] - target[1]);
+        (0..nodes.len()).min_by(|&i, &j| d(i).total_cmp(&d(j))).unwrap()
+    };
+    let exact_u = |x: [f64; 2]| {
+        let r = x[0].hypot(x[1]);
+        let ur = lame_exact(&material, r).0;
+        [ur * x[0] / r, ur * x[1] / r]
+    };
+    let (pa, pb) = (nearest([B_OUT, 0.0]), nearest([0.0, B_OUT]));
+    let (ua, ub) = (exact_u(nodes[pa].position), exact_u(nodes[pb].position));
+    let pin = |node, component, value| rollbem::bem::Pin { node, component, value };
+    let sol = model
+        .solve_pinned(&[pin(pa, 0, ua[0]), pin(pa, 1, ua[1]), pin(pb, 0, ub[0])])
+        .unwrap();
+    let scale = [A_IN, B_OUT]
+        .iter()
+        .map(|&r| {
+            let (_, err, ett) = lame_exact(&material, r);
+            err.abs().max(ett.abs())
+        })
+        .fold(0.0, f64::max);
+    let evaluator = GradientEvaluator::new(&model);
+    let d = &model.discretisation;
+    let (mut e_tt, mut e_rr, mut e_shape) = (0.0f64, 0.0f64, 0.0f64);
+    for element in 0..model.mesh.elements.len() {
+        for xi in [-0.5, 0.0, 0.5] {
+            let rows = evaluator.rows(GradientPoint::Boundary { element, xi }).unwrap();
+            let g = rows.apply(&sol.displacement, &sol.traction);
+            let x = rows.point;
+            let r = x[0].hypot(x[1]);
+            let (er, et) = ([x[0] / r, x[1] / r], [-x[1] / r, x[0] / r]);
+            let (_, exact_rr, exact_tt) = lame_exact(&material, r);
+            e_tt = e_tt.max((normal_strain(g, et) - exact_tt).abs());
+            e_rr = e_rr.max((normal_strain(g, er) - exact_rr).abs());
+            // Shape-function derivative: e_t·(du/dξ)/J with the unit tangent e_t.
+            let tangent = d.geometry[element].tangent(xi);
+            let jac = tangent[0].hypot(tangent[1]);
+            let dn = d.interpolation[element].shape_derivative(xi);
+            let mut du = [0.0; 2];
+            for (a, &k) in d.element_nodes[element].iter().enumerate() {
+                du[0] += dn[a] * sol.displacement[k][0];
+                du[1] += dn[a] * sol.displacement[k][1];
+            }
+            let shape_tt = (du[0] * tangent[0] + du[1] * tangent[1]) / (jac * jac);
+            e_shape = e_shape.max((shape_tt - exact_tt).abs());
+        }
+    }
+    (e_tt / scale, e_rr / scale, e_shape / scale)
+}
+
+/// Least-squares slope of ln(error) against ln(h), h ∝ 1/n.
+fn fitted_rate(ns: &[usize], errors: &[f64]) -> f64 {
+    let xs: Vec<f64> = ns.iter().map(|&n| (1.0 / n as f64).ln()).collect();
+    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
+    let k = xs.len() as f64;
+    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
+    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}
+
+/// HBEM boundary strains of the Lamé cylinder converge at third order.
+///
+/// **Expected rate.** The hypersingular identity is exact for the exact boundary data; the
+/// error is that of the BEM's boundary u and t (O(h³): quadratic interpolation and geometry,
+/// tests/bem_lame.rs) seen through W and V. Differentiation can cost one order (an interpolation
+/// error oscillating on the scale h, seen by a 1/r² kernel, gives O(h³)/h), so 2 is the floor
+/// of any sound implementation and 3 is what the data allow. Measured: fitted slopes 3.27
+/// (ε_θθ) and 3.05 (ε_rr) over 8–64 elements per circle; continuing to 128 and 256 (not run
+/// here, docs/hbem.md) the local slopes settle at 2.95–2.97, so third order is the asymptotic
+/// rate on these uniform meshes. The band 2.5 ≤ slope ≤ 3.6 accepts it and rejects a second-
+/// order or worse evaluation (e.g. a wrong F₋₁ in a curved element leaves an O(h)·(1/h)
+/// error that does not converge at all); every refinement must also gain a factor 5
+/// (h³ gives 8; measured 7.1–11.6). Accuracy: below 1e-5 of the largest strain at 64
+/// elements (measured 4.0e-6 and 8.5e-6).
+#[test]
+fn lame_boundary_strains_converge() {
+    let mut table = Vec::new();
+    for &n in &NS {
+        let (tt, rr, shape) = lame_strain_errors(n);
+        println!("Lamé n={n:3} per circle: HBEM eps_tt {tt:.3e}, eps_rr {rr:.3e}; shape-function eps_tt {shape:.3e}");
+        table.push((tt, rr, shape));
+    }
+    let tt: Vec<f64> = table.iter().map(|t| t.0).collect();
+    let rr: Vec<f64> = table.iter().map(|t| t.1).collect();
+    let shape: Vec<f64> = table.iter().map(|t| t.2).collect();
+    let (rate_tt, rate_rr, rate_shape) = (fitted_rate(&NS, &tt), fitted_rate(&NS, &rr), fitted_rate(&NS, &shape));
+    println!("fitted rates: HBEM eps_tt {rate_tt:.2}, eps_rr {rate_rr:.2}; shape-function eps_tt {rate_shape:.2}");
+    for (label, errors, rate) in [("eps_tt", &tt, rate_tt), ("eps_rr", &rr, rate_rr)] {
+        assert!((2.5..=3.6).contains(&rate), "{label}: rate {rate}, errors {errors:?}");
+        assert!(errors.windows(2).all(|w| w[1] < w[0] / 5.0), "{label}: {errors:?}");
+        assert!(errors[3] < 1e-5, "{label}: {errors:?}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
 // Rolling contact: the HBEM slip against Carter.
 
-#[test]
-fn carter_true_rollers_hbem_slip() {
-    let (loaded, s) = common::solve("carter_051_true", &[]);
+/// (max |s_h − s_C|, max |s − s_C|) over the nodes that slip in both the solution and Carter,
+/// (max |s_h| over all stick nodes, over the stick nodes at least one element from the zone's
+/// ends), all relative to Carter's largest |s| at the nodes (next to the trailing edge).
+fn carter_slip_errors(name: &str) -> ([f64; 2], [f64; 2]) {
+    let (loaded, s) = common::solve(name, &[]);
     let c = rollbem::app::carter_reference(&loaded, &s.estimates).unwrap();
     let r = s.estimates.effective_radius;
     let sol = &s.solution;
     let hbem = sol.slip_strain.as_ref().expect("bem bodies have the HBEM strain");
+    let carter: Vec<f64> = sol.x.iter().map(|&x| c.slip(x, r)).collect();
+    let scale = carter.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let (mut hbem_err, mut fd_err) = (0.0f64, 0.0f64);
     for i in 0..sol.x.len() {
-        println!(
-            "{:+.4} {:>5} fd {:+.4e} hbem {:+.4e} carter {:+.4e}",
-            sol.x[i],
-            sol.state[i].name(),
-            sol.slip[i],
-            hbem[i],
-            c.slip(sol.x[i], r)
-        );
+        if sol.state[i] == NodeState::Slip && carter[i] != 0.0 {
+            hbem_err = hbem_err.max((hbem[i] - carter[i]).abs());
+            fd_err = fd_err.max((sol.slip[i] - carter[i]).abs());
+        }
     }
+    let stick: Vec<usize> = (0..sol.x.len()).filter(|&i| sol.state[i] == NodeState::Stick).collect();
+    let all = stick.iter().map(|&i| hbem[i].abs()).fold(0.0, f64::max);
+    // Three nodes per element: skip one element's worth at each end of the stick zone.
+    let inner = stick[3..stick.len() - 3]
+        .iter()
+        .map(|&i| hbem[i].abs())
+        .fold(0.0, f64::max);
+    ([hbem_err / scale, fd_err / scale], [all / scale, inner / scale])
+}
+
+/// The HBEM slip of the true rollers R = 100 mm on shafts (cases/carter_051_true.yaml, 21
+/// contact elements) against Carter's slip (reference sheet §2, in our frame:
+/// [`rollbem::analytic::Carter::slip`]).
+///
+/// * Slip zone: within 5 % of Carter's largest slip (the target; measured 0.80 %). The
+///   finite-difference slip is measured too (2.9 %, largest at the stick/slip transition) and
+///   must be the less accurate of the two: the HBEM differentiates the displacement field
+///   itself, not its nodal values (paper §5.2: "a more accurate slip velocity").
+/// * Stick zone (Carter: exactly 0; the difference slip is 0 by construction): the HBEM slip is
+///   the honest measure of how far the discrete stick condition is from no slip. Largest at the
+///   stick node next to the stick/slip transition, where the shear has a square-root kink that
+///   quadratic elements cannot follow (measured 2.2 %; bound 3 %); one element away from the
+///   zone's ends the traction is smooth and the level drops by a factor 30 (measured 0.075 %;
+///   bound 0.2 %, ten times below the transition value).
+#[test]
+fn carter_slip_by_hbem_on_true_rollers() {
+    let ([hbem, fd], [stick, inner]) = carter_slip_errors("carter_051_true");
+    println!(
+        "carter_051_true, slip zone: max |s_hbem − s_Carter| = {:.2} %, max |s_fd − s_Carter| = {:.2} % of max |s_Carter|",
+        100.0 * hbem,
+        100.0 * fd
+    );
+    println!(
+        "carter_051_true, stick zone: max |s_hbem| = {:.3} % (all stick nodes), {:.4} % (one element from the zone ends)",
+        100.0 * stick,
+        100.0 * inner
+    );
+    assert!(hbem < 0.05, "HBEM slip error {hbem}");
+    assert!(hbem < fd, "HBEM {hbem} vs finite differences {fd}");
+    assert!(stick < 0.03 && inner < 2e-3, "stick levels {stick} {inner}");
+}
+
+/// Non-matching contact nodes: body B's HBEM strain is computed on its own 54 contact nodes
+/// and carried to the grid by [`rollbem::body::transfer`] (as its flexibility). The HBEM slip
+/// must agree with the node-to-node run within 5 % of the largest slip, the accuracy the
+/// transfer has for the tangential problem (tests/true_geometry.rs: shear within 5 % of μp0,
+/// creepage within 3 %); measured 2.4 %, at the stick/slip transition.
+#[test]
+fn transferred_hbem_strain_matches_the_node_to_node_run() {
+    let (_, matched) = common::solve("carter_051_true", &[]);
+    let (_, moved) = common::solve("carter_051_true_nonmatching", &[]);
+    let (a, b) = (
+        matched.solution.slip_strain.as_ref().unwrap(),
+        moved.solution.slip_strain.as_ref().unwrap(),
+    );
+    let loaded = |i: usize| matched.solution.state[i] != NodeState::Open;
+    let scale = (0..a.len())
+        .filter(|&i| loaded(i))
+        .map(|i| a[i].abs())
+        .fold(0.0, f64::max);
+    let diff = (0..a.len())
+        .filter(|&i| loaded(i))
+        .map(|i| (a[i] - b[i]).abs())
+        .fold(0.0, f64::max);
+    println!(
+        "non-matching vs matched HBEM slip: max difference {:.2} % of max |s_hbem|",
+        100.0 * diff / scale
+    );
+    assert!(diff < 0.05 * scale, "{diff} vs {scale}");
+}
+
+/// The friction-law check on a clean converged case reports nothing (its HBEM slip stays
+/// within 2.2 % of the largest slip at stick nodes and has the right sign at slip nodes, see
+/// above), and names its threshold.
+#[test]
+fn friction_check_is_clean_on_carter() {
+    use rollbem::contact::friction_check::{check_friction_law, DEFAULT_THRESHOLD_FRACTION};
+    let (_, s) = common::solve("carter_051_true", &[]);
+    let c = check_friction_law(&s.solution, 0.1, DEFAULT_THRESHOLD_FRACTION).unwrap();
+    assert!(c.violations.is_empty(), "{:?}", c.violations);
+    let limit = c.threshold.unwrap();
+    assert!((limit - DEFAULT_THRESHOLD_FRACTION * c.slip_scale).abs() < 1e-18);
+    assert!(c.max_hbem_slip_stick_nodes.unwrap() < limit);
 }
