@@ -141,28 +141,40 @@ fn unit_load_data(data: &[Component], loaded: usize) -> Vec<Component> {
 }
 
 /// HBEM du_x/dx along the surface at the field nodes `nodes` (strictly inside their elements)
-/// for each boundary response in `responses` (module docs): an m × responses matrix.
+/// for each boundary response in `responses` (module docs): an m × responses matrix. Each node
+/// gives one row on the nodal (u, t), ∇u_x·(1, dy/dx); the responses are stacked as the columns
+/// of a 4N-row matrix and the two multiplied (one dense product instead of m × responses dot
+/// products).
 pub fn surface_strain(model: &BemModel, nodes: &[usize], responses: &[BemSolution]) -> Result<Mat<f64>, BemError> {
     let d = &model.discretisation;
+    let n_dof = 2 * d.n_nodes();
     let evaluator = GradientEvaluator::new(model);
-    let rows: Vec<Vec<f64>> = nodes
+    let rows: Vec<(Vec<f64>, Vec<f64>)> = nodes
         .par_iter()
-        .map(|&k| -> Result<Vec<f64>, BemError> {
+        .map(|&k| {
             let (element, local) = d.nodes[k].element;
             let xi = d.interpolation[element].node_coordinates()[local];
-            let rows = evaluator.rows(GradientPoint::Boundary { element, xi })?;
             let tangent = d.geometry[element].tangent(xi);
-            let slope = tangent[1] / tangent[0];
-            Ok(responses
-                .iter()
-                .map(|r| {
-                    let g = rows.apply(&r.displacement, &r.traction);
-                    g[0][0] + g[0][1] * slope
-                })
-                .collect())
+            let rows = evaluator.rows(GradientPoint::Boundary { element, xi })?;
+            Ok(rows.directional(0, [1.0, tangent[1] / tangent[0]]))
         })
-        .collect::<Result<_, _>>()?;
-    Ok(Mat::from_fn(nodes.len(), responses.len(), |i, c| rows[i][c]))
+        .collect::<Result<_, BemError>>()?;
+    let strain_rows = Mat::from_fn(nodes.len(), 2 * n_dof, |i, c| {
+        if c < n_dof {
+            rows[i].0[c]
+        } else {
+            rows[i].1[c - n_dof]
+        }
+    });
+    let fields = Mat::from_fn(2 * n_dof, responses.len(), |r, c| {
+        let (values, r) = if r < n_dof {
+            (&responses[c].displacement, r)
+        } else {
+            (&responses[c].traction, r - n_dof)
+        };
+        values[r / 2][r % 2]
+    });
+    Ok(&strain_rows * &fields)
 }
 
 /// A body modelled by the BEM, condensed to a contact grid whose nodes it shares.

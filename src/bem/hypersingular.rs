@@ -302,6 +302,18 @@ pub struct GradientRows {
 }
 
 impl GradientRows {
+    /// Coefficients of ∇u_i·d = Σ_k u_i,k d_k, the derivative of the component u_i along the
+    /// vector `d` (per unit of the parameter along d): (on nodal u, 2N values [1/length]; on
+    /// nodal t, 2N values [1/stress]).
+    pub fn directional(&self, i: usize, d: [f64; 2]) -> (Vec<f64>, Vec<f64>) {
+        let combine = |m: &Mat<f64>| -> Vec<f64> {
+            (0..m.ncols())
+                .map(|c| m[(2 * i, c)] * d[0] + m[(2 * i + 1, c)] * d[1])
+                .collect()
+        };
+        (combine(&self.displacement), combine(&self.traction))
+    }
+
     /// u_i,k (`[i][k]`, dimensionless) for nodal displacements `u` [length] and tractions `t`
     /// [stress], one pair per field node.
     pub fn apply(&self, u: &[[f64; 2]], t: &[[f64; 2]]) -> [[f64; 2]; 2] {
