@@ -141,6 +141,9 @@ fn uniform_stress_gradient_is_exact_from_the_bem_solution() {
     }
 }
 
+/// A displacement field u(x).
+type Motion = fn([f64; 2]) -> [f64; 2];
+
 /// Rigid motions on a curved mesh (continuous quadratic arcs of an annulus, 45° per element):
 /// a translation or a rotation is interpolated exactly on curved quadratic elements (u linear
 /// in x, x quadratic in ξ), with zero traction, so the finite-part V integrals alone must give
@@ -161,7 +164,7 @@ fn rigid_motions_have_the_exact_gradient_on_curved_elements() {
     .unwrap();
     let evaluator = GradientEvaluator::new(&model);
     let t = vec![[0.0; 2]; model.field_nodes().len()];
-    let motions: [(fn([f64; 2]) -> [f64; 2], [[f64; 2]; 2]); 3] = [
+    let motions: [(Motion, [[f64; 2]; 2]); 3] = [
         (|_| [1.0, 0.0], [[0.0, 0.0], [0.0, 0.0]]),
         (|_| [0.0, 1.0], [[0.0, 0.0], [0.0, 0.0]]),
         (|x| [-x[1], x[0]], [[0.0, -1.0], [1.0, 0.0]]),

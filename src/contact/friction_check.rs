@@ -3,7 +3,7 @@
 //!
 //! The solver enforces Coulomb's law (docs/theory.md) on the finite-difference slip s:
 //! stick nodes have s = 0 and |q| ≤ μp, slip nodes q = −μp·sgn(s). The HBEM slip s_h
-//! ([`super::ContactSolution::slip_strain`]) differentiates the same displacements without
+//! ([`super::solution::ContactSolution::slip_strain`]) differentiates the same displacements without
 //! the difference operator (González & Abascal §5.2, "Hyp. Deriv."), so it reveals what the
 //! difference operator hid. A contact node contradicts the friction law when
 //!
