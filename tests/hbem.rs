@@ -488,3 +488,36 @@ fn fig4_true_geometry_keeps_the_regime_and_passes_the_friction_check() {
     );
     assert!(c.violations.is_empty(), "{:?}", c.violations);
 }
+
+/// `rollbem run` on a pair of bem bodies fills the `slip_hbem` column at every node with finite
+/// values and writes `hbem_check` (threshold, its scale, no violations) to summary.json.
+#[test]
+fn run_writes_the_hbem_slip_and_the_check_for_bem_bodies() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fig4");
+    let case = common::case_path("fig4_true_geometry");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_rollbem"))
+        .args(["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
+    let csv = std::fs::read_to_string(out.join("contact.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = header.iter().position(|h| *h == "slip_hbem").unwrap();
+    let values: Vec<f64> = lines
+        .map(|l| l.split(',').nth(col).unwrap().parse::<f64>().expect("slip_hbem filled"))
+        .collect();
+    assert_eq!(values.len(), 63);
+    assert!(values.iter().all(|v| v.is_finite()));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let check = &summary["hbem_check"];
+    assert_eq!(check["threshold_fraction"], 0.05);
+    let (threshold, scale) = (
+        check["threshold"].as_f64().unwrap(),
+        check["slip_scale"].as_f64().unwrap(),
+    );
+    assert!((threshold - 0.05 * scale).abs() <= 1e-15 * scale);
+    assert_eq!(check["violations"].as_array().unwrap().len(), 0);
+}

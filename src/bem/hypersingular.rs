@@ -70,7 +70,7 @@
 use super::assemble::BemModel;
 use super::element::{ElementGeometry, FieldInterpolation};
 use super::integrate::Quadrature;
-use super::kernel::Kelvin;
+use super::kernel::{GradientKernels, Kelvin};
 use super::BemError;
 use faer::Mat;
 
@@ -132,8 +132,7 @@ pub fn laurent_coefficients(
     let n0 = geometry.normal(xi0);
     // n1 = dn/dη = 2 rot(c), rot(v) = (v_y, −v_x).
     let n1 = [2.0 * c[1], -2.0 * c[0]];
-    let w_hat = kernel.gradient_angular(a_hat, n0).w;
-    let v_hat = kernel.gradient_angular(a_hat, n0).v;
+    let GradientKernels { w: w_hat, v: v_hat } = kernel.gradient_angular(a_hat, n0);
     let dv_hat = kernel.v_angular_derivative(a_hat, n0, c, n1);
     let shape = field.shape(xi0);
     let dshape = field.shape_derivative(xi0);
