@@ -62,7 +62,7 @@
 //! # Output
 //! [`GradientRows`]: the linear map from the nodal (u, t) of all field nodes to u_i,k(X), so
 //! that it can be applied to one solution or composed with a matrix of solutions (the contact
-//! strain operator of [`super::condense`]).
+//! strain operator of [`mod@super::condense`]).
 
 // Index loops mirror the tensor notation of the formulas (a: shape function, i, j, k: components).
 #![allow(clippy::needless_range_loop)]
