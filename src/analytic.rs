@@ -72,6 +72,19 @@ impl Carter {
         self.ratio.signum() * self.friction * (outer - inner)
     }
 
+    /// Slip s(x) = velocity of A relative to B divided by |V| [-] (reference sheet §2, mirrored
+    /// into the frame of DESIGN §2): zero in the stick zone and outside the contact, and in the
+    /// slip zone s = −sgn(Q)·(μ/R)·√((x − d)² − c²), with d the stick-zone centre, c its
+    /// half-width and R the effective radius. The sign does not depend on the rolling
+    /// direction: Coulomb's q = −μp·sgn(s) with q = sgn(Q)·μp in the slip zone.
+    pub fn slip(&self, x: f64, radius: f64) -> f64 {
+        let (c, d) = (self.stick_half_width(), self.stick_centre());
+        if x.abs() >= self.half_width || (x - d).abs() <= c {
+            return 0.0;
+        }
+        -self.ratio.signum() * self.friction / radius * ((x - d).powi(2) - c * c).sqrt()
+    }
+
     /// Magnitude of the creepage |ξ| = (μa/R)(1 − √(1 − |Q|/(μP))) for effective radius R.
     /// Its sign: ξ has the sign of −Q for material flowing in +x (reference sheet §2) and of Q
     /// for flow in −x, i.e. sgn ξ = sgn(Q)·`leading_edge_sign`.
@@ -132,6 +145,17 @@ mod tests {
             leading_edge_sign: -1.0,
         };
         assert!((c.creep(1.0) + 0.3).abs() < 1e-12);
+        // Slip: sR/(μa) = −2√(1 − c/a) = −1.09545 at the trailing edge (+a here), −0.427083 at
+        // x/a = 0.52 (sheet §2, its trailing edge) and 0 in the stick zone [−1, 0.4].
+        assert!((c.slip(0.999_999_999, 1.0) + 1.09545).abs() < 1e-5);
+        assert!((c.slip(0.52, 1.0) + 0.427083).abs() < 1e-6);
+        assert_eq!(c.slip(0.0, 1.0), 0.0);
+        // Mirrored (leading edge +a): the trailing edge is −a, same sign of the slip.
+        let m = Carter {
+            leading_edge_sign: 1.0,
+            ..c
+        };
+        assert!((m.slip(-0.52, 1.0) + 0.427083).abs() < 1e-6);
         let xs = [-0.9, -0.5, 0.0, 0.5, 0.9];
         let qs = [0.075335, 0.195205, 0.367544, 0.866025, 0.435890];
         for (x, q) in xs.iter().zip(qs) {

@@ -17,6 +17,8 @@
 //!   Gauss) element integrals;
 //! * [`discretise`] — field nodes: where elements share nodes and where they do not (corners,
 //!   changes of boundary condition, contact groups);
+//! * [`hypersingular`] — displacement gradient at boundary points (HBEM, paper Eq. 79) from the
+//!   solved boundary values;
 //! * [`assemble`] — H and G (parallel over collocation points), boundary conditions, solve;
 //! * [`condense`](mod@condense) — flexibility at the contact nodes and the
 //!   [`crate::body::BodyModel`] of a BEM body.
@@ -42,6 +44,7 @@ pub mod assemble;
 pub mod condense;
 pub mod discretise;
 pub mod element;
+pub mod hypersingular;
 pub mod integrate;
 pub mod kernel;
 
@@ -214,6 +217,21 @@ pub enum BemError {
         /// The node index given.
         node: usize,
         /// Number of field nodes.
+        count: usize,
+    },
+    /// A boundary point for the displacement gradient that is not strictly inside an element.
+    #[error(
+        "{path}: the displacement gradient needs a point strictly inside an element (element < \
+         {count}, −1 < ξ < 1), got element {element}, ξ = {xi}"
+    )]
+    BadGradientPoint {
+        /// The mesh.
+        path: String,
+        /// The element index given.
+        element: usize,
+        /// The intrinsic coordinate given.
+        xi: f64,
+        /// Number of elements.
         count: usize,
     },
     /// The contact group does not match the contact grid.

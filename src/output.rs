@@ -8,6 +8,7 @@ pub mod vtk;
 
 use crate::app::{Estimates, Timings};
 use crate::case::LoadedCase;
+use crate::contact::friction_check::{check_friction_law, FrictionCheck, DEFAULT_THRESHOLD_FRACTION};
 use crate::contact::newton::{IterationRecord, NewtonReport};
 use crate::contact::solution::{ContactSolution, NodeState, Zone};
 use crate::contact::ContactProblem;
@@ -93,6 +94,10 @@ pub struct Summary {
     pub grid: GridSummary,
     /// Solver diagnostics (penalties, residual history).
     pub solver: SolverSummary,
+    /// Where the boundary-integral (HBEM) slip contradicts the friction law, with the
+    /// threshold used (null when no HBEM slip exists or μ = 0; see
+    /// [`crate::contact::friction_check`]).
+    pub hbem_check: Option<FrictionCheck>,
     /// Notices for the user (requested features not available, adjustments made).
     pub notices: Vec<String>,
     /// Whether VTK files (contact.vtu, result.pvd) were requested.
@@ -187,6 +192,7 @@ pub fn summary(
             traction_scale: newton.traction_scale,
             history: newton.history.clone(),
         },
+        hbem_check: check_friction_law(sol, mu, DEFAULT_THRESHOLD_FRACTION),
         notices: Vec::new(),
         vtk: case.case.output.vtk,
         case: case.resolved.clone(),
@@ -208,7 +214,8 @@ pub const CSV_COLUMNS: [&str; 11] = [
     "u_t_B",
 ];
 
-/// Writes contact.csv. `slip_hbem` is left empty when no boundary-integral derivative exists.
+/// Writes contact.csv. `slip_hbem` is left empty when no boundary-integral derivative exists
+/// (and, defensively, for a non-finite value: no NaN is ever written).
 /// Surface displacements: u_n positive into the body, u_t along +x of the contact frame.
 pub fn write_csv(path: &Path, sol: &ContactSolution, pb: &ContactProblem) -> Result<(), Error> {
     let io = |e: csv::Error| Error::Output {
@@ -219,7 +226,11 @@ pub fn write_csv(path: &Path, sol: &ContactSolution, pb: &ContactProblem) -> Res
     w.write_record(CSV_COLUMNS).map_err(io)?;
     let disp = pb.surface_displacements(&sol.pressure, &sol.shear);
     for i in 0..sol.x.len() {
-        let hbem = sol.slip_strain.as_ref().map_or(String::new(), |s| fmt(s[i]));
+        let hbem = sol
+            .slip_strain
+            .as_ref()
+            .filter(|s| s[i].is_finite())
+            .map_or(String::new(), |s| fmt(s[i]));
         w.write_record([
             fmt(sol.x[i]),
             fmt(sol.pressure[i]),
@@ -404,6 +415,9 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
             s.slip_regime
         ),
     );
+    if let Some(check) = s.hbem_check.as_ref().and_then(|c| c.summary_line()) {
+        line("HBEM slip check", check);
+    }
     line(
         "grid",
         format!(

@@ -428,6 +428,13 @@ impl BemModel {
     pub fn solve_assembled(&self, asm: &Assembly, data: &[Component]) -> Result<BemSolution, BemError> {
         let (a, mut x) = self.linear_system(asm, data);
         self.solve_system(&a, &mut x)?;
+        Ok(self.boundary_values(data, |k| x[(k, 0)]))
+    }
+
+    /// Boundary values (u, t) at every field node from one solution `x` of A x = b: each
+    /// component's known value from `data`, its unknown one from `x(k)` (an unknown traction
+    /// rescaled by [`Self::traction_scale`], see the module docs).
+    pub(crate) fn boundary_values(&self, data: &[Component], x: impl Fn(usize) -> f64) -> BemSolution {
         let s = self.traction_scale();
         let n = data.len() / 2;
         let mut displacement = vec![[0.0; 2]; n];
@@ -437,14 +444,14 @@ impl BemModel {
             match *c {
                 Component::Displacement(v) => {
                     displacement[node][comp] = v;
-                    traction[node][comp] = x[(k, 0)] * s;
+                    traction[node][comp] = x(k) * s;
                 }
                 Component::Traction(v) => {
-                    displacement[node][comp] = x[(k, 0)];
+                    displacement[node][comp] = x(k);
                     traction[node][comp] = v;
                 }
             }
         }
-        Ok(BemSolution { displacement, traction })
+        BemSolution { displacement, traction }
     }
 }

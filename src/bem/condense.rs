@@ -18,12 +18,31 @@
 //!
 //! The contact group must use the contact grid's nodes: discontinuous quadratic elements whose
 //! field nodes lie at the grid's node abscissae (checked in [`BemBody::new`]).
+//!
+//! # Surface strain by HBEM
+//! The same multi-column solve gives the whole boundary response (u, t at every field node) to
+//! each unit contact traction component. Applying the hypersingular rows of
+//! [`super::hypersingular`] at each contact node (a field node strictly inside its
+//! discontinuous element) gives the derivative of u_x along the contact surface per unit x,
+//!
+//! ```text
+//! du_x/dx|surface = u_x,x + u_x,y · dy/dx        (dy/dx: slope of the element at the node)
+//! ```
+//!
+//! which is what the finite-difference slip differentiates (w at the nodes against their x),
+//! not u_x,x alone. It is linear in the contact tractions: the response to the body's other
+//! prescribed data (its offset) is left out, which is exact while contact runs admit only zero
+//! prescribed data on bem bodies (`fixed`, `free`; the case validation rejects the rest). In
+//! the pair convention both sign flips cancel again: ∂(∂w/∂x)/∂p = S_xy, ∂(∂w/∂x)/∂q = S_xx
+//! on either side, with S the global strain matrix [`ContactFlexibility::surface_strain`].
 
-use super::assemble::BemModel;
-use super::{BemError, BoundaryCondition};
+use super::assemble::{BemModel, BemSolution};
+use super::hypersingular::{GradientEvaluator, GradientPoint};
+use super::{BemError, BoundaryCondition, Component};
 use crate::body::{BodyModel, BoundaryField, Flexibility, Side, StrainOperator};
 use crate::grid::{ContactGrid, ElementKind};
 use faer::Mat;
+use rayon::prelude::*;
 
 /// Flexibility of a BEM body at the field nodes of its contact group (global axes).
 #[derive(Debug, Clone)]
@@ -43,6 +62,12 @@ pub struct ContactFlexibility {
     pub assembly_s: f64,
     /// Wall time of the factorization and the multi-column solve [s].
     pub condense_s: f64,
+    /// HBEM surface strain, m × 2m: S[(i, 2j + b)] = du_x/dx along the surface at contact
+    /// node i per unit nodal value of the traction component b at contact node j (global axes;
+    /// see the module docs) [1/stress].
+    pub surface_strain: Mat<f64>,
+    /// Wall time of the HBEM surface strain [s].
+    pub strain_s: f64,
 }
 
 /// Condenses `model` to the field nodes of its contact group `contact_group` (which must have
@@ -82,6 +107,15 @@ pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibil
     let matrix = Mat::from_fn(2 * m, 2 * m, |r, c| rhs[(2 * nodes[r / 2] + r % 2, 1 + c)]);
     let offset = nodes.iter().map(|&k| [rhs[(2 * k, 0)], rhs[(2 * k + 1, 0)]]).collect();
     let condense_s = t_condense.elapsed().as_secs_f64();
+    let t_strain = std::time::Instant::now();
+    let responses: Vec<BemSolution> = (0..2 * m)
+        .map(|c| {
+            let loaded = 2 * nodes[c / 2] + c % 2;
+            model.boundary_values(&unit_load_data(&data, loaded), |k| rhs[(k, 1 + c)])
+        })
+        .collect();
+    let surface_strain = surface_strain(model, &nodes, &responses)?;
+    let strain_s = t_strain.elapsed().as_secs_f64();
     Ok(ContactFlexibility {
         x: nodes.iter().map(|&k| field[k].position[0]).collect(),
         nodes,
@@ -89,7 +123,58 @@ pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibil
         assembly_s,
         condense_s,
         offset,
+        surface_strain,
+        strain_s,
     })
+}
+
+/// The data of the response to a unit value of the traction component `loaded`: every
+/// prescribed value zero (the other data enter the offset column only), the loaded component 1.
+fn unit_load_data(data: &[Component], loaded: usize) -> Vec<Component> {
+    data.iter()
+        .enumerate()
+        .map(|(k, c)| match c {
+            Component::Displacement(_) => Component::Displacement(0.0),
+            Component::Traction(_) => Component::Traction(if k == loaded { 1.0 } else { 0.0 }),
+        })
+        .collect()
+}
+
+/// HBEM du_x/dx along the surface at the field nodes `nodes` (strictly inside their elements)
+/// for each boundary response in `responses` (module docs): an m × responses matrix. Each node
+/// gives one row on the nodal (u, t), ∇u_x·(1, dy/dx); the responses are stacked as the columns
+/// of a 4N-row matrix and the two multiplied (one dense product instead of m × responses dot
+/// products).
+pub fn surface_strain(model: &BemModel, nodes: &[usize], responses: &[BemSolution]) -> Result<Mat<f64>, BemError> {
+    let d = &model.discretisation;
+    let n_dof = 2 * d.n_nodes();
+    let evaluator = GradientEvaluator::new(model);
+    let rows: Vec<(Vec<f64>, Vec<f64>)> = nodes
+        .par_iter()
+        .map(|&k| {
+            let (element, local) = d.nodes[k].element;
+            let xi = d.interpolation[element].node_coordinates()[local];
+            let tangent = d.geometry[element].tangent(xi);
+            let rows = evaluator.rows(GradientPoint::Boundary { element, xi })?;
+            Ok(rows.directional(0, [1.0, tangent[1] / tangent[0]]))
+        })
+        .collect::<Result<_, BemError>>()?;
+    let strain_rows = Mat::from_fn(nodes.len(), 2 * n_dof, |i, c| {
+        if c < n_dof {
+            rows[i].0[c]
+        } else {
+            rows[i].1[c - n_dof]
+        }
+    });
+    let fields = Mat::from_fn(2 * n_dof, responses.len(), |r, c| {
+        let (values, r) = if r < n_dof {
+            (&responses[c].displacement, r)
+        } else {
+            (&responses[c].traction, r - n_dof)
+        };
+        values[r / 2][r % 2]
+    });
+    Ok(&strain_rows * &fields)
 }
 
 /// A body modelled by the BEM, condensed to a contact grid whose nodes it shares.
@@ -238,6 +323,21 @@ fn contact_heights(model: &BemModel, group: usize) -> Vec<(f64, f64)> {
 }
 
 impl BemBody {
+    /// Panics unless `grid` and `side` are the ones given to [`BemBody::new`] (a programming
+    /// error: the mesh was checked against those).
+    fn assert_same_grid(&self, grid: &ContactGrid, side: Side) {
+        assert!(
+            side == self.side
+                && grid.n_nodes() == self.condensed.x.len()
+                && grid
+                    .nodes
+                    .iter()
+                    .zip(&self.condensed.x)
+                    .all(|(a, b)| (a - b).abs() <= 1e-3 * grid.node_spacing()),
+            "BemBody called with another grid or side than BemBody::new"
+        );
+    }
+
     /// The boundary field under nodal contact tractions on `grid` (see [`BodyModel::boundary_field`]).
     pub fn boundary_solution(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Result<BoundaryField, BemError> {
         let g = self.model.mesh.group_index(&self.contact_group)?;
@@ -291,16 +391,7 @@ impl BodyModel for BemBody {
     /// `grid` and `side` must be the ones given to [`BemBody::new`], which checked the mesh
     /// against them; anything else is a programming error and panics.
     fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
-        assert!(
-            side == self.side
-                && grid.n_nodes() == self.condensed.x.len()
-                && grid
-                    .nodes
-                    .iter()
-                    .zip(&self.condensed.x)
-                    .all(|(a, b)| (a - b).abs() <= 1e-3 * grid.node_spacing()),
-            "BemBody::flexibility called with another grid or side than BemBody::new"
-        );
+        self.assert_same_grid(grid, side);
         let m = grid.n_nodes();
         let f = &self.condensed.matrix;
         Flexibility {
@@ -330,8 +421,12 @@ impl BodyModel for BemBody {
         ((y - self.touch_y) * facing).max(0.0)
     }
 
+    /// (assembly, condensation + HBEM surface strain) [s].
     fn stage_seconds(&self) -> (f64, f64) {
-        (self.condensed.assembly_s, self.condensed.condense_s)
+        (
+            self.condensed.assembly_s,
+            self.condensed.condense_s + self.condensed.strain_s,
+        )
     }
 
     /// Re-solves the body with the contact group loaded by the interpolated contact tractions
@@ -340,8 +435,17 @@ impl BodyModel for BemBody {
         Some(self.boundary_solution(grid, p, q).map_err(|e| e.to_string()))
     }
 
-    /// Not available yet: the hypersingular (HBEM) surface-strain operator is a separate part.
-    fn strain_operator(&self, _grid: &ContactGrid, _side: Side) -> Option<StrainOperator> {
-        None
+    /// The HBEM surface strain ∂w/∂x at the contact nodes (module docs, "Surface strain by
+    /// HBEM") in the pair convention: p ↦ S_xy, q ↦ S_xx on either side (the sign of w and of
+    /// the loads flip together on B). Linear: the prescribed data of a bem body are zero in
+    /// contact runs. Same `grid`/`side` contract as [`BodyModel::flexibility`].
+    fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
+        self.assert_same_grid(grid, side);
+        let m = grid.n_nodes();
+        let s = &self.condensed.surface_strain;
+        Some(StrainOperator {
+            p: Mat::from_fn(m, m, |i, j| s[(i, 2 * j + 1)]),
+            q: Mat::from_fn(m, m, |i, j| s[(i, 2 * j)]),
+        })
     }
 }
