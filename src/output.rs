@@ -241,20 +241,39 @@ pub fn write_csv(path: &Path, sol: &ContactSolution, pb: &ContactProblem) -> Res
     })
 }
 
-/// Writes interior_<body>.csv: x, y, sxx, syy, szz, txy, von_mises, max_shear (contact frame,
-/// σzz out of plane, tension positive).
+/// Writes interior_<body>.csv, one row per grid point (x fastest): `x, y, sxx, syy, szz, txy,
+/// von_mises, max_shear, ux, uy, status` in the contact frame (σzz out of plane, tension
+/// positive; ux, uy the displacement). `status` is `inside` where the body's model evaluated the
+/// point, `outside` (not in the body) or `boundary` (within the boundary layer): those rows
+/// carry zeros.
 pub fn write_interior_csv(path: &Path, f: &crate::interior::InteriorField) -> Result<(), Error> {
     let io = |e: &dyn std::fmt::Display| Error::Output {
         path: path.to_path_buf(),
         message: e.to_string(),
     };
     let mut w = csv::Writer::from_path(path).map_err(|e| io(&e))?;
-    w.write_record(["x", "y", "sxx", "syy", "szz", "txy", "von_mises", "max_shear"])
-        .map_err(|e| io(&e))?;
-    for (p, s) in f.points.iter().zip(&f.stress) {
+    w.write_record([
+        "x",
+        "y",
+        "sxx",
+        "syy",
+        "szz",
+        "txy",
+        "von_mises",
+        "max_shear",
+        "ux",
+        "uy",
+        "status",
+    ])
+    .map_err(|e| io(&e))?;
+    for (k, (p, s)) in f.points.iter().zip(&f.stress).enumerate() {
         let (vm, ms) = crate::interior::invariants(s);
-        w.write_record([p[0], p[1], s[0], s[1], s[2], s[3], vm, ms].map(fmt))
-            .map_err(|e| io(&e))?;
+        let u = f.displacement[k];
+        let mut row: Vec<String> = [p[0], p[1], s[0], s[1], s[2], s[3], vm, ms, u[0], u[1]]
+            .map(fmt)
+            .to_vec();
+        row.push(f.status[k].name().to_string());
+        w.write_record(&row).map_err(|e| io(&e))?;
     }
     w.flush().map_err(|e| io(&e))
 }

@@ -428,23 +428,31 @@ impl BemModel {
     pub fn solve_assembled(&self, asm: &Assembly, data: &[Component]) -> Result<BemSolution, BemError> {
         let (a, mut x) = self.linear_system(asm, data);
         self.solve_system(&a, &mut x)?;
+        let unknowns: Vec<f64> = (0..data.len()).map(|k| x[(k, 0)]).collect();
+        Ok(self.solution_from_unknowns(data, &unknowns))
+    }
+
+    /// The boundary values from the known `data` and the solved `unknowns` x of A x = b (one
+    /// per component: a displacement where a traction is known, a scaled traction t/s where a
+    /// displacement is known; see [`Self::traction_scale`]).
+    pub(crate) fn solution_from_unknowns(&self, data: &[Component], unknowns: &[f64]) -> BemSolution {
         let s = self.traction_scale();
         let n = data.len() / 2;
         let mut displacement = vec![[0.0; 2]; n];
         let mut traction = vec![[0.0; 2]; n];
-        for (k, c) in data.iter().enumerate() {
+        for (k, (c, &x)) in data.iter().zip(unknowns).enumerate() {
             let (node, comp) = (k / 2, k % 2);
             match *c {
                 Component::Displacement(v) => {
                     displacement[node][comp] = v;
-                    traction[node][comp] = x[(k, 0)] * s;
+                    traction[node][comp] = x * s;
                 }
                 Component::Traction(v) => {
-                    displacement[node][comp] = x[(k, 0)];
+                    displacement[node][comp] = x;
                     traction[node][comp] = v;
                 }
             }
         }
-        Ok(BemSolution { displacement, traction })
+        BemSolution { displacement, traction }
     }
 }

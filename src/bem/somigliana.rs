@@ -1,0 +1,257 @@
+//! Interior displacement and stress of a solved BEM body by Somigliana's identity.
+//!
+//! At a point X inside the body, from the boundary displacements u and tractions t (reference
+//! sheet §9; Brebbia–Telles–Wrobel, *Boundary Element Techniques*, Eq. 3.54 and 3.60):
+//!
+//! ```text
+//! u_i(X)  = ∫_Γ U*_ij t_j dΓ − ∫_Γ T*_ij u_j dΓ                              (S1)
+//! σ_ij(X) = ∫_Γ D_kij t_k dΓ − ∫_Γ S_kij u_k dΓ                              (S2)
+//! σ_zz    = ν (σ_xx + σ_yy)                                                  (plane strain)
+//! ```
+//!
+//! with the kernels of [`super::kernel`] (D and S stay finite at ν = 0.5, so incompressible
+//! bodies work) and u, t interpolated by each element's own shape functions from the nodal
+//! solution ([`super::BemSolution`]). The integrands are smooth for X off the boundary, but
+//! nearly singular (1/r, 1/r²) when X is close to it: every element is integrated with the
+//! adaptive Gauss rule of [`Quadrature::off_element_points`] (intervals halved until the nearest
+//! complex singularity lies outside a Bernstein ellipse, points chosen for the target
+//! accuracy), so the integration error stays at the quadrature tolerance down to points a small
+//! fraction of an element from the boundary; what remains there is the discretisation error of
+//! the boundary data, amplified like h/d (docs/validation.md, "Interior stresses").
+//!
+//! **Where a point lies.** Each point is first located against the boundary loops:
+//! * *outside* — the ray from X towards +x crosses the boundary an even number of times (the
+//!   elements are followed as polylines of 16 chords each, which leave the exact quadratic
+//!   curve by at most 1/256 of its sagitta, inside the boundary layer below);
+//! * *boundary* — X is closer to some element than [`InteriorOptions::boundary_layer`] times
+//!   that element's length (distance to the exact quadratic curve by Newton's method);
+//! * *inside* otherwise: only these are evaluated.
+//!
+//! Points are evaluated in parallel (rayon). Units: the mesh's length, the material's stress;
+//! fields in the mesh's global axes.
+
+use super::assemble::{BemModel, BemSolution};
+use super::element::ElementGeometry;
+use super::integrate::Quadrature;
+use crate::interior::{InteriorOptions, InteriorSample, InteriorValue};
+use rayon::prelude::*;
+
+/// Chords per element of the polyline used by the ray-crossing test.
+const CHORDS: usize = 16;
+
+/// One element's geometry for locating points.
+#[derive(Debug, Clone)]
+struct LocatedElement {
+    /// The quadratic geometry.
+    geometry: ElementGeometry,
+    /// Arc length [length].
+    length: f64,
+    /// Bounding box (lower, upper corner) of the curve [length].
+    lower: [f64; 2],
+    /// See `lower`.
+    upper: [f64; 2],
+    /// Points x(ξ_k), ξ_k = −1 + 2k/CHORDS.
+    polyline: [[f64; 2]; CHORDS + 1],
+}
+
+impl LocatedElement {
+    fn new(geometry: ElementGeometry) -> Self {
+        let mut polyline = [[0.0; 2]; CHORDS + 1];
+        for (k, p) in polyline.iter_mut().enumerate() {
+            *p = geometry.point(-1.0 + 2.0 * k as f64 / CHORDS as f64);
+        }
+        // The curve lies in the convex hull of its Bézier control points x0, 2xm − (x0 + x1)/2,
+        // x1, so their bounding box bounds it.
+        let [p0, p1, pm] = geometry.nodes;
+        let control = [2.0 * pm[0] - 0.5 * (p0[0] + p1[0]), 2.0 * pm[1] - 0.5 * (p0[1] + p1[1])];
+        let mut lower = [f64::INFINITY; 2];
+        let mut upper = [f64::NEG_INFINITY; 2];
+        for p in [p0, p1, control] {
+            for c in 0..2 {
+                lower[c] = lower[c].min(p[c]);
+                upper[c] = upper[c].max(p[c]);
+            }
+        }
+        Self {
+            length: geometry.length(),
+            geometry,
+            lower,
+            upper,
+            polyline,
+        }
+    }
+
+    /// Whether X is within `margin` of the bounding box.
+    fn near_box(&self, x: [f64; 2], margin: f64) -> bool {
+        (0..2).all(|c| x[c] >= self.lower[c] - margin && x[c] <= self.upper[c] + margin)
+    }
+
+    /// Distance from X to the curve [length]: the nearest polyline point, refined by Newton's
+    /// method on (x(ξ) − X)·x'(ξ) = 0 within [−1, 1].
+    fn distance(&self, x: [f64; 2]) -> f64 {
+        let d2 = |p: [f64; 2]| (p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2);
+        let k = (0..=CHORDS)
+            .min_by(|&a, &b| d2(self.polyline[a]).total_cmp(&d2(self.polyline[b])))
+            .unwrap_or(0);
+        let mut xi = -1.0 + 2.0 * k as f64 / CHORDS as f64;
+        let second = self.geometry.curvature_vector();
+        for _ in 0..8 {
+            let p = self.geometry.point(xi);
+            let t = self.geometry.tangent(xi);
+            let r = [p[0] - x[0], p[1] - x[1]];
+            let f = r[0] * t[0] + r[1] * t[1];
+            let df = t[0] * t[0] + t[1] * t[1] + r[0] * second[0] + r[1] * second[1];
+            if df <= 0.0 {
+                break;
+            }
+            let next = (xi - f / df).clamp(-1.0, 1.0);
+            let done = (next - xi).abs() < 1e-14;
+            xi = next;
+            if done {
+                break;
+            }
+        }
+        d2(self.geometry.point(xi))
+            .min(d2(self.polyline[k]))
+            .sqrt()
+    }
+
+    /// Crossings of the ray from X towards +x with the polyline (half-open rule on y, so a
+    /// vertex on the ray is counted once).
+    fn crossings(&self, x: [f64; 2]) -> usize {
+        if x[1] < self.lower[1] || x[1] > self.upper[1] || x[0] > self.upper[0] {
+            return 0;
+        }
+        self.polyline
+            .windows(2)
+            .filter(|w| {
+                let (a, b) = (w[0], w[1]);
+                if (a[1] > x[1]) == (b[1] > x[1]) {
+                    return false;
+                }
+                let at = a[0] + (x[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+                at > x[0]
+            })
+            .count()
+    }
+}
+
+/// Where a point lies relative to the body (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Location {
+    /// Inside the material, farther than the boundary layer from every element.
+    Inside,
+    /// Outside the body.
+    Outside,
+    /// Within the boundary layer.
+    Boundary,
+}
+
+/// Locates points against the boundary of a BEM model.
+#[derive(Debug, Clone)]
+pub struct PointLocator {
+    elements: Vec<LocatedElement>,
+    boundary_layer: f64,
+}
+
+impl PointLocator {
+    /// A locator for the elements of `model` with the boundary layer of `options`.
+    pub fn new(model: &BemModel, options: &InteriorOptions) -> Self {
+        Self {
+            elements: model
+                .discretisation
+                .geometry
+                .iter()
+                .map(|&g| LocatedElement::new(g))
+                .collect(),
+            boundary_layer: options.boundary_layer,
+        }
+    }
+
+    /// Where X lies.
+    pub fn locate(&self, x: [f64; 2]) -> Location {
+        let near_boundary = self.elements.iter().any(|e| {
+            let layer = self.boundary_layer * e.length;
+            e.near_box(x, layer) && e.distance(x) <= layer
+        });
+        if near_boundary {
+            return Location::Boundary;
+        }
+        let crossings: usize = self.elements.iter().map(|e| e.crossings(x)).sum();
+        if crossings % 2 == 1 {
+            Location::Inside
+        } else {
+            Location::Outside
+        }
+    }
+}
+
+/// Fields at interior `points` (the mesh's global axes) of `model` with the boundary solution
+/// `solution`: displacement by Eq. S1, stress by Eq. S2 (module docs). Points outside the body
+/// or within the boundary layer of `options` are reported as such, not evaluated.
+pub fn interior_fields(
+    model: &BemModel,
+    solution: &BemSolution,
+    points: &[[f64; 2]],
+    options: &InteriorOptions,
+) -> Vec<InteriorSample> {
+    let locator = PointLocator::new(model, options);
+    let quadrature = Quadrature::new(model.options.quadrature());
+    points
+        .par_iter()
+        .map(|&x| match locator.locate(x) {
+            Location::Inside => InteriorSample::Inside(somigliana(model, solution, &quadrature, x)),
+            Location::Outside => InteriorSample::Outside,
+            Location::Boundary => InteriorSample::Boundary,
+        })
+        .collect()
+}
+
+/// Eq. S1–S2 at one interior point X.
+fn somigliana(model: &BemModel, solution: &BemSolution, quadrature: &Quadrature, source: [f64; 2]) -> InteriorValue {
+    let d = &model.discretisation;
+    let kernel = model.kernel();
+    let mut u = [0.0; 2];
+    // σxx, σyy, τxy.
+    let mut s = [0.0; 3];
+    for (e, ids) in d.element_nodes.iter().enumerate() {
+        let geometry = &d.geometry[e];
+        let interpolation = &d.interpolation[e];
+        let nodal_u = ids.map(|k| solution.displacement[k]);
+        let nodal_t = ids.map(|k| solution.traction[k]);
+        quadrature.off_element_points(geometry, source, |xi, weight| {
+            let x = geometry.point(xi);
+            let tangent = geometry.tangent(xi);
+            let jac = tangent[0].hypot(tangent[1]);
+            let normal = [tangent[1] / jac, -tangent[0] / jac];
+            let n = interpolation.shape(xi);
+            let mut ub = [0.0; 2];
+            let mut tb = [0.0; 2];
+            for a in 0..3 {
+                for c in 0..2 {
+                    ub[c] += n[a] * nodal_u[a][c];
+                    tb[c] += n[a] * nodal_t[a][c];
+                }
+            }
+            let w = weight * jac;
+            let us = kernel.displacement(source, x);
+            let ts = kernel.traction(source, x, normal);
+            let sk = kernel.stress(source, x, normal);
+            for i in 0..2 {
+                for j in 0..2 {
+                    u[i] += w * (us[i][j] * tb[j] - ts[i][j] * ub[j]);
+                }
+            }
+            for (slot, (i, j)) in [(0, 0), (1, 1), (0, 1)].into_iter().enumerate() {
+                for k in 0..2 {
+                    s[slot] += w * (sk.d[k][i][j] * tb[k] - sk.s[k][i][j] * ub[k]);
+                }
+            }
+        });
+    }
+    let szz = kernel.poisson * (s[0] + s[1]);
+    InteriorValue {
+        displacement: u,
+        stress: [s[0], s[1], szz, s[2]],
+    }
+}
