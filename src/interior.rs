@@ -293,7 +293,11 @@ impl InteriorField {
     /// Numbers of points (inside, outside, in the boundary layer).
     pub fn counts(&self) -> [usize; 3] {
         let n = |s: PointStatus| self.status.iter().filter(|&&x| x == s).count();
-        [n(PointStatus::Inside), n(PointStatus::Outside), n(PointStatus::Boundary)]
+        [
+            n(PointStatus::Inside),
+            n(PointStatus::Outside),
+            n(PointStatus::Boundary),
+        ]
     }
 }
 
@@ -483,7 +487,11 @@ mod tests {
             material: Elastic::new(210_000.0, 0.3),
             radius: 100.0,
         };
-        let p: Vec<f64> = grid.nodes.iter().map(|x| 1000.0 * (1.0 - x * x).max(0.0).sqrt()).collect();
+        let p: Vec<f64> = grid
+            .nodes
+            .iter()
+            .map(|x| 1000.0 * (1.0 - x * x).max(0.0).sqrt())
+            .collect();
         let q: Vec<f64> = grid.nodes.iter().zip(&p).map(|(x, p)| 0.1 * p * x).collect();
         let z = 1e-3 * grid.element_length();
         for side in [Side::A, Side::B] {

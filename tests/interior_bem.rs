@@ -85,7 +85,14 @@ fn uniform_stress_is_exact_at_interior_points() {
         let mut points: Vec<[f64; 2]> = (0..9)
             .flat_map(|i| (0..7).map(move |j| [-0.8 + 3.6 * i as f64 / 8.0, -0.3 + 1.6 * j as f64 / 6.0]))
             .collect();
-        points.extend([[1.0, -0.4], [2.9, 0.5], [0.3, 1.4], [-0.9, 0.0], [-0.9, -0.4], [2.9, 1.4]]);
+        points.extend([
+            [1.0, -0.4],
+            [2.9, 0.5],
+            [0.3, 1.4],
+            [-0.9, 0.0],
+            [-0.9, -0.4],
+            [2.9, 1.4],
+        ]);
         let samples = interior_fields(&m, &sol, &points, &InteriorOptions::default());
         let sigma_zz = nu * (SIGMA[0][0] + SIGMA[1][1]);
         let (mut es, mut eu) = (0.0f64, 0.0f64);
@@ -141,5 +148,118 @@ fn points_outside_or_on_the_boundary_are_flagged() {
             InteriorSample::Boundary => "boundary",
         };
         assert_eq!(got, *want, "point {x:?}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lamé thick cylinder (reference sheet §8.1)
+
+mod common;
+use common::lame::{self, A_IN, B_OUT};
+
+/// The pressure-loaded Lamé cylinder with `n` elements per circle, its rigid motion removed by
+/// the exact displacement at three components (as tests/bem_lame.rs), solved.
+fn lame_solution(nu: f64, n: usize) -> (BemModel, rollbem::bem::BemSolution) {
+    let model = lame::pressure_loaded_lame(nu, n);
+    let sol = model.solve_pinned(&lame::lame_pins(&model)).unwrap();
+    (model, sol)
+}
+
+/// Max relative stress and displacement errors at points `fraction` element lengths inside the
+/// bore and inside the outer surface, at 7 angles (on element end nodes, mid nodes, quarter
+/// points and a generic angle); a distance beyond half the wall thickness (the outer circle's
+/// h at 16 elements) is left out on that side. Stress errors relative to the largest exact stress (p_i = 100),
+/// displacement errors to the largest exact |u|.
+fn lame_errors_at(model: &BemModel, sol: &rollbem::bem::BemSolution, n: usize, fraction: f64) -> (f64, f64) {
+    let pi = std::f64::consts::PI;
+    let step = 2.0 * pi / n as f64;
+    let angles = [0.0, 0.5 * step, 0.25 * step, 0.75 * step, 0.37, 2.0, 4.0 + 0.5 * step];
+    let (h_in, h_out) = (A_IN * step, B_OUT * step);
+    let mut points = Vec::new();
+    for &t in &angles {
+        // Only points in the half of the wall next to their boundary.
+        for (r, ok) in [
+            (A_IN + fraction * h_in, fraction * h_in <= 0.5 * (B_OUT - A_IN)),
+            (B_OUT - fraction * h_out, fraction * h_out <= 0.5 * (B_OUT - A_IN)),
+        ] {
+            if ok {
+                points.push([r * t.cos(), r * t.sin()]);
+            }
+        }
+    }
+    let samples = interior_fields(model, sol, &points, &InteriorOptions { boundary_layer: 0.01 });
+    let (mut es, mut eu) = (0.0f64, 0.0f64);
+    let u_scale = lame::u_scale(&model.material);
+    for (x, s) in points.iter().zip(&samples) {
+        let v = inside(s);
+        let exact = lame::stress(&model.material, *x);
+        for c in 0..4 {
+            es = es.max((v.stress[c] - exact[c]).abs() / lame::P_IN);
+        }
+        let ue = lame::displacement(&model.material, *x);
+        eu = eu.max((v.displacement[0] - ue[0]).hypot(v.displacement[1] - ue[1]) / u_scale);
+    }
+    (es, eu)
+}
+
+/// Least-squares slope of ln(error) against ln(h), h ∝ 1/n.
+fn fitted_rate(ns: &[usize], errors: &[f64]) -> f64 {
+    let xs: Vec<f64> = ns.iter().map(|&n| (1.0 / n as f64).ln()).collect();
+    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
+    let k = xs.len() as f64;
+    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
+    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}
+
+/// Lamé interior stresses and displacements against the exact solution, by mesh (elements per
+/// circle) and distance from the boundary (in element lengths h of the nearer circle).
+///
+/// * at d = h, 32 elements per circle are the mesh "fine enough" for the 1e-4 target
+///   (measured 8.4e-6; 16 elements give 1.0e-4, just above it);
+/// * down to d = h/10 the stresses stay accurate: below 1e-4 from 32 elements on (measured
+///   2.7e-5 there), and they converge: the fitted rate over 16–128 elements must lie in the band
+///   2.5–4.5 of tests/bem_lame.rs (quadratic elements: h³, nodal superconvergence up to h⁴;
+///   measured 3.8 at d = h and 3.1 at d = h/10), so a lost order or an under-integrated
+///   near-singular element would fail;
+/// * interior displacements converge like the boundary ones (rate in the same band).
+#[test]
+fn lame_interior_stresses_converge_and_stay_accurate_near_the_boundary() {
+    let ns = [16, 32, 64, 128];
+    let distances = [1.0, 0.5, 0.2, 0.1, 0.05];
+    // errors[d][n] = (stress, displacement)
+    let mut errors = vec![Vec::new(); distances.len()];
+    for &n in &ns {
+        let (model, sol) = lame_solution(0.3, n);
+        for (k, &f) in distances.iter().enumerate() {
+            errors[k].push(lame_errors_at(&model, &sol, n, f));
+        }
+    }
+    println!(
+        "| d / h | {} |",
+        ns.map(|n| format!("n = {n}: σ error, u error")).join(" | ")
+    );
+    for (k, f) in distances.iter().enumerate() {
+        let row: Vec<String> = errors[k].iter().map(|(s, u)| format!("{s:.2e}, {u:.2e}")).collect();
+        println!("| {f} | {} |", row.join(" | "));
+    }
+    let at = |f: f64| &errors[distances.iter().position(|&d| d == f).unwrap()];
+    let stress = |f: f64| at(f).iter().map(|e| e.0).collect::<Vec<_>>();
+    let disp = |f: f64| at(f).iter().map(|e| e.1).collect::<Vec<_>>();
+    assert!(stress(1.0)[1] < 1e-4, "d = h, 32 elements: {:?}", stress(1.0));
+    assert!(
+        stress(0.1)[1..].iter().all(|&e| e < 1e-4),
+        "d = h/10: {:?}",
+        stress(0.1)
+    );
+    for (label, e) in [
+        ("stress at d = h", stress(1.0)),
+        ("stress at d = h/10", stress(0.1)),
+        ("displacement at d = h", disp(1.0)),
+    ] {
+        let rate = fitted_rate(&ns, &e);
+        println!("Lamé interior {label}: fitted rate {rate:.2}");
+        assert!((2.5..=4.5).contains(&rate), "{label}: rate {rate}, errors {e:?}");
     }
 }

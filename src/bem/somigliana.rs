@@ -22,9 +22,12 @@
 //! **Where a point lies.** Each point is first located against the boundary loops:
 //! * *outside* — the ray from X towards +x crosses the boundary an even number of times (the
 //!   elements are followed as polylines of 16 chords each, which leave the exact quadratic
-//!   curve by at most 1/256 of its sagitta, inside the boundary layer below);
+//!   curve by at most 1/256 of its sagitta, inside the boundary layer below, so the count is
+//!   exact for every point outside that layer);
 //! * *boundary* — X is closer to some element than [`InteriorOptions::boundary_layer`] times
-//!   that element's length (distance to the exact quadratic curve by Newton's method);
+//!   that element's length (distance to the exact quadratic curve by Newton's method), or than
+//!   twice the polyline's deviation from the curve (|x''|/1024, about 1/256 of the element's
+//!   sagitta: 1e-3 of the element length for a 30° arc), whichever is larger;
 //! * *inside* otherwise: only these are evaluated.
 //!
 //! Points are evaluated in parallel (rayon). Units: the mesh's length, the material's stress;
@@ -46,6 +49,9 @@ struct LocatedElement {
     geometry: ElementGeometry,
     /// Arc length [length].
     length: f64,
+    /// Bound on the distance between the curve and its polyline [length]: |x''|·Δξ²/8 with
+    /// Δξ = 2/CHORDS the chords' parameter length (x'' is constant on a quadratic element).
+    deviation: f64,
     /// Bounding box (lower, upper corner) of the curve [length].
     lower: [f64; 2],
     /// See `lower`.
@@ -72,8 +78,11 @@ impl LocatedElement {
                 upper[c] = upper[c].max(p[c]);
             }
         }
+        let second = geometry.curvature_vector();
+        let step = 2.0 / CHORDS as f64;
         Self {
             length: geometry.length(),
+            deviation: second[0].hypot(second[1]) * step * step / 8.0,
             geometry,
             lower,
             upper,
@@ -111,9 +120,7 @@ impl LocatedElement {
                 break;
             }
         }
-        d2(self.geometry.point(xi))
-            .min(d2(self.polyline[k]))
-            .sqrt()
+        d2(self.geometry.point(xi)).min(d2(self.polyline[k])).sqrt()
     }
 
     /// Crossings of the ray from X towards +x with the polyline (half-open rule on y, so a
@@ -170,8 +177,10 @@ impl PointLocator {
 
     /// Where X lies.
     pub fn locate(&self, x: [f64; 2]) -> Location {
+        // The layer is at least twice the polyline's deviation, so that the ray-crossing test
+        // below only sees points on the right side of both the curve and its polyline.
         let near_boundary = self.elements.iter().any(|e| {
-            let layer = self.boundary_layer * e.length;
+            let layer = (self.boundary_layer * e.length).max(2.0 * e.deviation);
             e.near_box(x, layer) && e.distance(x) <= layer
         });
         if near_boundary {

@@ -151,7 +151,8 @@ impl super::BodyModel for Transferred {
     ) -> Result<Vec<crate::interior::InteriorSample>, crate::interior::InteriorError> {
         let t = interpolation_matrix(grid, &self.own_grid);
         let own = |v: &[f64]| crate::contact::mat_vec2(&t, v, &t, &vec![0.0; v.len()]);
-        self.inner.interior(&self.own_grid, side, &own(p), &own(q), points, options)
+        self.inner
+            .interior(&self.own_grid, side, &own(p), &own(q), points, options)
     }
 }
 

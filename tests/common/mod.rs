@@ -37,3 +37,5 @@ pub fn nodal_error(x: &[f64], values: &[f64], exact: impl Fn(f64) -> f64, limit:
     let rms = (errs.iter().map(|e| e * e).sum::<f64>() / errs.len() as f64).sqrt();
     (max, rms)
 }
+
+pub mod lame;
