@@ -48,6 +48,10 @@ pub struct ContactFlexibility {
     /// rebuilds the whole boundary solution from it without a second solve
     /// ([`BemBody::contact_solution`]). Size 2N × (1 + 2m).
     pub response: Mat<f64>,
+    /// The known data of every component that `response` was solved with (the contact
+    /// components traction-type, zero), so that post-processing does not re-evaluate the
+    /// boundary conditions.
+    pub data: Vec<Component>,
     /// Wall time of the BEM assembly (H, G) [s].
     pub assembly_s: f64,
     /// Wall time of the factorization and the multi-column solve [s].
@@ -99,6 +103,7 @@ pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibil
         condense_s,
         offset,
         response: rhs,
+        data,
     })
 }
 
@@ -263,7 +268,7 @@ impl BemBody {
             });
         }
         let sign = self.side.sign();
-        let mut data = self.model.boundary_data(&[])?;
+        let mut data = c.data.clone();
         let n_dof = data.len();
         let mut unknowns: Vec<f64> = (0..n_dof).map(|r| c.response[(r, 0)]).collect();
         for (j, &k) in c.nodes.iter().enumerate() {
