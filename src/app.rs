@@ -430,6 +430,8 @@ pub struct Timings {
     pub condense_s: f64,
     /// Contact solve.
     pub solve_s: f64,
+    /// Interior fields of `output.interior` (post-processing; 0 when not asked).
+    pub interior_s: f64,
     /// Whole run including output.
     pub total_s: f64,
 }
@@ -510,10 +512,12 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
         .filter_map(|b| b.mesh.as_ref())
         .flat_map(|m| m.notices.clone())
         .collect();
+    let t_interior = Instant::now();
     let interior = match (&case.case.output.interior, newton.converged) {
         (Some(spec), true) => Some(interior_field(case, spec, &models, &problem, &solution)?),
         _ => None,
     };
+    timings.interior_s = t_interior.elapsed().as_secs_f64();
     if let Some(f) = &interior {
         let [_, outside, boundary] = f.counts();
         if outside + boundary > 0 {
@@ -594,6 +598,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         s.timings,
     );
     summary.notices = s.notices.clone();
+    summary.interior = s.interior.as_ref().map(crate::interior::InteriorField::summary);
     output::write_run(
         &output_dir,
         &mut summary,

@@ -301,6 +301,68 @@ impl InteriorField {
     }
 }
 
+/// A maximum over the evaluated points of an [`InteriorField`].
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Peak {
+    /// The value [stress].
+    pub value: f64,
+    /// Where: x [length], contact frame.
+    pub x: f64,
+    /// Where: y [length], contact frame.
+    pub y: f64,
+}
+
+/// What summary.json and the run table say about the interior grid.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct InteriorSummary {
+    /// `A` or `B`.
+    pub body: String,
+    /// The body's model.
+    pub model: String,
+    /// Points of the grid.
+    pub points: usize,
+    /// Points evaluated (status `inside`).
+    pub inside: usize,
+    /// Points outside the body.
+    pub outside: usize,
+    /// Points within the boundary layer.
+    pub boundary: usize,
+    /// Largest principal shear stress τ1 over the evaluated points (null if none).
+    pub max_shear: Option<Peak>,
+    /// Largest von Mises stress over the evaluated points (null if none).
+    pub max_von_mises: Option<Peak>,
+}
+
+impl InteriorField {
+    /// Counts and maxima of the grid.
+    pub fn summary(&self) -> InteriorSummary {
+        let [inside, outside, boundary] = self.counts();
+        let peak = |which: fn((f64, f64)) -> f64| {
+            self.points
+                .iter()
+                .zip(&self.stress)
+                .zip(&self.status)
+                .filter(|(_, &st)| st == PointStatus::Inside)
+                .map(|((p, s), _)| Peak {
+                    value: which(invariants(s)),
+                    x: p[0],
+                    y: p[1],
+                })
+                .max_by(|a, b| a.value.total_cmp(&b.value))
+        };
+        InteriorSummary {
+            body: self.body.clone(),
+            model: self.model.clone(),
+            points: self.points.len(),
+            inside,
+            outside,
+            boundary,
+            max_shear: peak(|(_, ms)| ms),
+            max_von_mises: peak(|(vm, _)| vm),
+        }
+    }
+}
+
 impl InteriorValue {
     /// All fields zero (written at points that are not evaluated).
     pub const ZERO: Self = Self {

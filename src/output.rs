@@ -95,6 +95,9 @@ pub struct Summary {
     pub solver: SolverSummary,
     /// Notices for the user (requested features not available, adjustments made).
     pub notices: Vec<String>,
+    /// The interior grid of `output.interior` (null when not asked): body, model, point
+    /// counts by status, and the maxima of the principal shear and von Mises stress.
+    pub interior: Option<crate::interior::InteriorSummary>,
     /// Whether VTK files (contact.vtu, result.pvd) were requested.
     pub vtk: bool,
     /// The case as resolved after `--set` overrides.
@@ -188,6 +191,7 @@ pub fn summary(
             history: newton.history.clone(),
         },
         notices: Vec::new(),
+        interior: None,
         vtk: case.case.output.vtk,
         case: case.resolved.clone(),
     }
@@ -433,11 +437,28 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
             s.grid.spacing
         ),
     );
+    if let Some(i) = &s.interior {
+        let peak = |p: &Option<crate::interior::Peak>| {
+            p.map_or("-".to_string(), |p| {
+                format!("{:.6} at ({:.4}, {:.4})", p.value, p.x, p.y)
+            })
+        };
+        line(
+            &format!("interior {} ({})", i.body, i.model),
+            format!(
+                "{} of {} points evaluated; max shear {}; max von Mises {}",
+                i.inside,
+                i.points,
+                peak(&i.max_shear),
+                peak(&i.max_von_mises)
+            ),
+        );
+    }
     line(
         "time [s]",
         format!(
-            "assembly {:.4}  condense {:.4}  solve {:.4}  total {:.4}",
-            s.timings.assembly_s, s.timings.condense_s, s.timings.solve_s, s.timings.total_s
+            "assembly {:.4}  condense {:.4}  solve {:.4}  interior {:.4}  total {:.4}",
+            s.timings.assembly_s, s.timings.condense_s, s.timings.solve_s, s.timings.interior_s, s.timings.total_s
         ),
     );
     line("results", output_dir.display().to_string());

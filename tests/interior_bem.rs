@@ -116,8 +116,9 @@ fn uniform_stress_is_exact_at_interior_points() {
     }
 }
 
-/// Points outside the body, on its boundary and within the boundary layer are reported as such
-/// and never evaluated.
+/// Points outside the body, on its boundary and inside within the boundary layer (0.05 element
+/// lengths) are reported as such and never evaluated; outside points stay `outside` however
+/// close they are, unless exactly on the boundary.
 #[test]
 fn points_outside_or_on_the_boundary_are_flagged() {
     let m = patch_model(0.3);
@@ -134,6 +135,9 @@ fn points_outside_or_on_the_boundary_are_flagged() {
         ([-1.0, -0.5], "boundary"),
         ([1.0, 1.5], "boundary"),
         ([1.0, 1.6], "outside"),
+        // Outside but within the layer's distance: still outside.
+        ([1.0, 1.52], "outside"),
+        ([3.02, 0.5], "outside"),
         ([1.0, 0.5], "inside"),
     ];
     let points: Vec<[f64; 2]> = cases.iter().map(|c| c.0).collect();

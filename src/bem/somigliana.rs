@@ -20,14 +20,15 @@
 //! the boundary data, amplified like h/d (docs/validation.md, "Interior stresses").
 //!
 //! **Where a point lies.** Each point is first located against the boundary loops:
-//! * *outside* — the ray from X towards +x crosses the boundary an even number of times (the
+//! * *outside* — the ray from X towards +x crosses the boundary an even number of times. The
 //!   elements are followed as polylines of 16 chords each, which leave the exact quadratic
-//!   curve by at most 1/256 of its sagitta, inside the boundary layer below, so the count is
-//!   exact for every point outside that layer);
-//! * *boundary* — X is closer to some element than [`InteriorOptions::boundary_layer`] times
-//!   that element's length (distance to the exact quadratic curve by Newton's method), or than
-//!   twice the polyline's deviation from the curve (|x''|/1024, about 1/256 of the element's
-//!   sagitta: 1e-3 of the element length for a 30° arc), whichever is larger;
+//!   curve by at most |x''|/512 (1/256 of its sagitta), so the count is exact for every point
+//!   farther than that from the boundary;
+//! * *boundary* — X lies inside and closer to some element than
+//!   [`InteriorOptions::boundary_layer`] times that element's length (distance to the exact
+//!   quadratic curve by Newton's method), or, inside or not, within twice the polyline's
+//!   deviation of an element (1e-3 of the element length for a 30° arc), where the count could
+//!   be wrong;
 //! * *inside* otherwise: only these are evaluated.
 //!
 //! Points are evaluated in parallel (rayon). Units: the mesh's length, the material's stress;
@@ -150,7 +151,7 @@ pub enum Location {
     Inside,
     /// Outside the body.
     Outside,
-    /// Within the boundary layer.
+    /// Inside within the boundary layer, or on the boundary.
     Boundary,
 }
 
@@ -177,20 +178,29 @@ impl PointLocator {
 
     /// Where X lies.
     pub fn locate(&self, x: [f64; 2]) -> Location {
-        // The layer is at least twice the polyline's deviation, so that the ray-crossing test
-        // below only sees points on the right side of both the curve and its polyline.
-        let near_boundary = self.elements.iter().any(|e| {
-            let layer = (self.boundary_layer * e.length).max(2.0 * e.deviation);
-            e.near_box(x, layer) && e.distance(x) <= layer
-        });
-        if near_boundary {
+        // Within `band` of an element (twice its polyline's deviation from the curve, and at
+        // least 1e-9 of its length for a straight one) the crossing count may be wrong: the
+        // point is on the boundary whatever the count. Beyond it the count is exact, and an
+        // inside point within the layer is on the boundary too.
+        let (mut in_band, mut in_layer) = (false, false);
+        for e in &self.elements {
+            let band = (2.0 * e.deviation).max(1e-9 * e.length);
+            let layer = self.boundary_layer * e.length;
+            if !e.near_box(x, band.max(layer)) {
+                continue;
+            }
+            let d = e.distance(x);
+            in_band |= d <= band;
+            in_layer |= d <= layer;
+        }
+        if in_band {
             return Location::Boundary;
         }
         let crossings: usize = self.elements.iter().map(|e| e.crossings(x)).sum();
-        if crossings % 2 == 1 {
-            Location::Inside
-        } else {
-            Location::Outside
+        match (crossings % 2 == 1, in_layer) {
+            (false, _) => Location::Outside,
+            (true, true) => Location::Boundary,
+            (true, false) => Location::Inside,
         }
     }
 }
