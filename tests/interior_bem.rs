@@ -299,24 +299,11 @@ fn shipped_block(side: Side) -> (Box<dyn BodyModel>, ContactGrid) {
 }
 
 /// A block of half-width `w` and depth `h` [mm] standing in for a half-plane on `side`, its
-/// contact face on y = 0 with the 21 elements of the contact grid on |x| ≤ 21/17 (groups
-/// `contact`; `free`: the rest of the face and the sides; `far`: the opposite face); the face
-/// elements grow by 1.25 from the contact's 0.118 mm, the sides have about 10 elements.
+/// contact face on y = 0 with the 21 elements of the contact grid on |x| ≤ 21/17, the face
+/// elements growing by 1.25 from the contact's 0.118 mm, about 10 elements per side.
 fn block_mesh(w: f64, h: f64, side: Side) -> rollbem::mesh::BoundaryMesh {
-    let l = 21.0 / 17.0;
-    let (l0, g) = (2.0 * l / 21.0, 1.25f64);
-    let n_face = ((1.0 + (w - l) * (g - 1.0) / l0).ln() / g.ln()).round() as usize;
     let n_side = ((h / (0.1 * w)).ceil() as usize).max(4);
-    let y = side.sign() * h;
-    let mut b = rollbem::mesh::build::MeshBuilder::new(true, "block");
-    b.move_to([-w, 0.0])
-        .graded_line_to([-l, 0.0], n_face, 1.0 / g, "free")
-        .line_to([l, 0.0], 21, "contact")
-        .graded_line_to([w, 0.0], n_face, g, "free")
-        .line_to([w, y], n_side, "free")
-        .line_to([-w, y], 2 * n_side, "far")
-        .close(n_side, "free");
-    b.finish()
+    rollbem::mesh::build::half_plane_block(w, h, 21.0 / 17.0, 21, 1.25, n_side, side == Side::A)
 }
 
 /// A steel block body on the contact grid with the given conditions on `free` and `far`.

@@ -213,6 +213,93 @@ impl Kelvin {
     }
 }
 
+/// The integrands of Somigliana's identities for displacement and stress at an interior
+/// point, contracted with the boundary data: for boundary displacement u and traction t at the
+/// field point,
+///
+/// ```text
+/// du_i  = U*_ij t_j − T*_ij u_j                  (integrand of u_i(X), Eq. S1 of super::somigliana)
+/// dσ_ij = D_kij t_k − S_kij u_k                  (integrand of σ_ij(X), Eq. S2)
+/// ```
+///
+/// written out with g = r⃗/r, so that no kernel array is formed (this is the inner loop of an
+/// interior grid):
+///
+/// ```text
+/// U*_ij t_j = c_u [ (3−4ν) ln(ℓ/r) t_i + g_i (g·t) ]
+/// T*_ij u_j = −(c_t/r) [ ∂r/∂n ((1−2ν) u_i + 2 g_i (g·u)) − (1−2ν)(g_i (n·u) − n_i (g·u)) ]
+/// D_kij t_k = (c_t/r) [ (1−2ν)(t_i g_j + t_j g_i − δij (g·t)) + 2 g_i g_j (g·t) ]
+/// S_kij u_k = (2G c_t/r²) { 2 ∂r/∂n [ (1−2ν) δij (g·u) + ν(u_i g_j + u_j g_i) − 4 g_i g_j (g·u) ]
+///             + 2ν (n_i g_j + n_j g_i)(g·u) + (1−2ν)(2 (n·u) g_i g_j + n_j u_i + n_i u_j)
+///             − (1−4ν)(n·u) δij }
+/// ```
+///
+/// with c_u = 1/(8πG(1−ν)), c_t = 1/(4π(1−ν)). Returns (du [length/length], [dσxx, dσyy, dτxy]
+/// [stress/length]); multiply by dΓ.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SomiglianaIntegrand {
+    /// du_i [1/length × length].
+    pub displacement: [f64; 2],
+    /// (dσxx, dσyy, dτxy) [stress/length].
+    pub stress: [f64; 3],
+}
+
+impl Kelvin {
+    /// The contracted integrands at `field` (outward normal `normal`, boundary displacement `u`
+    /// and traction `t`) for the interior point `source` (see [`SomiglianaIntegrand`]).
+    #[inline]
+    pub fn somigliana_integrand(
+        &self,
+        source: [f64; 2],
+        field: [f64; 2],
+        normal: [f64; 2],
+        u: [f64; 2],
+        t: [f64; 2],
+    ) -> SomiglianaIntegrand {
+        let d = [field[0] - source[0], field[1] - source[1]];
+        // sqrt rather than hypot (several times slower): r is never near over- or underflow.
+        let r2 = d[0] * d[0] + d[1] * d[1];
+        let inv_r = 1.0 / r2.sqrt();
+        let g = [d[0] * inv_r, d[1] * inv_r];
+        let n = normal;
+        let nu = self.poisson;
+        let c12 = 1.0 - 2.0 * nu;
+        let drdn = g[0] * n[0] + g[1] * n[1];
+        let (gu, gt, nu_n) = (
+            g[0] * u[0] + g[1] * u[1],
+            g[0] * t[0] + g[1] * t[1],
+            n[0] * u[0] + n[1] * u[1],
+        );
+        // Displacement.
+        let log = (3.0 - 4.0 * nu) * (self.length_scale * inv_r).ln();
+        let ct_r = self.c_t * inv_r;
+        let mut du = [0.0; 2];
+        for i in 0..2 {
+            let ut = self.c_u * (log * t[i] + g[i] * gt);
+            let tu = -ct_r * (drdn * (c12 * u[i] + 2.0 * g[i] * gu) - c12 * (g[i] * nu_n - n[i] * gu));
+            du[i] = ut - tu;
+        }
+        // Stress, components (0,0), (1,1), (0,1).
+        let cs = 2.0 * self.shear * self.c_t * inv_r * inv_r;
+        let mut ds = [0.0; 3];
+        for (slot, (i, j)) in [(0usize, 0usize), (1, 1), (0, 1)].into_iter().enumerate() {
+            let dij = if i == j { 1.0 } else { 0.0 };
+            let gg = g[i] * g[j];
+            let dt = ct_r * (c12 * (t[i] * g[j] + t[j] * g[i] - dij * gt) + 2.0 * gg * gt);
+            let su = cs
+                * (2.0 * drdn * (c12 * dij * gu + nu * (u[i] * g[j] + u[j] * g[i]) - 4.0 * gg * gu)
+                    + 2.0 * nu * (n[i] * g[j] + n[j] * g[i]) * gu
+                    + c12 * (2.0 * nu_n * gg + n[j] * u[i] + n[i] * u[j])
+                    - (1.0 - 4.0 * nu) * nu_n * dij);
+            ds[slot] = dt - su;
+        }
+        SomiglianaIntegrand {
+            displacement: du,
+            stress: ds,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -443,6 +530,39 @@ mod tests {
         assert!(fa.iter().all(|v| v.is_finite()) && scale > 0.0);
         for (p, q) in fa.iter().zip(&fb) {
             assert!((p - q).abs() < 1e-5 * scale, "{p} vs {q}");
+        }
+    }
+
+    #[test]
+    fn contracted_somigliana_integrand_equals_the_kernel_contractions() {
+        for nu in [0.0, 0.3, 0.5] {
+            let k = kernels(nu);
+            for (source, x, n, u, t) in [
+                ([0.3, -0.2], [1.1, 0.4], [0.6, 0.8], [1e-3, -2e-3], [50.0, -20.0]),
+                ([0.0, 0.0], [-0.5, -1.7], [-1.0, 0.0], [-3e-4, 1e-4], [7.0, 3.0]),
+                ([0.31, 0.05], [0.35, 0.1], [0.28, -0.96], [2e-3, 5e-4], [-1.0, 30.0]),
+            ] {
+                let f = k.somigliana_integrand(source, x, n, u, t);
+                let (us, ts, sk) = (
+                    k.displacement(source, x),
+                    k.traction(source, x, n),
+                    k.stress(source, x, n),
+                );
+                for i in 0..2 {
+                    let want: f64 = (0..2).map(|j| us[i][j] * t[j] - ts[i][j] * u[j]).sum();
+                    let scale = (0..2)
+                        .map(|j| (us[i][j] * t[j]).abs() + (ts[i][j] * u[j]).abs())
+                        .sum::<f64>();
+                    assert!((f.displacement[i] - want).abs() <= 1e-13 * scale, "nu={nu} u{i}");
+                }
+                for (slot, (i, j)) in [(0, 0), (1, 1), (0, 1)].into_iter().enumerate() {
+                    let want: f64 = (0..2).map(|c| sk.d[c][i][j] * t[c] - sk.s[c][i][j] * u[c]).sum();
+                    let scale = (0..2)
+                        .map(|c| (sk.d[c][i][j] * t[c]).abs() + (sk.s[c][i][j] * u[c]).abs())
+                        .sum::<f64>();
+                    assert!((f.stress[slot] - want).abs() <= 1e-13 * scale, "nu={nu} s{i}{j}");
+                }
+            }
         }
     }
 }

@@ -35,8 +35,8 @@
 //! fields in the mesh's global axes.
 
 use super::assemble::{BemModel, BemSolution};
-use super::element::ElementGeometry;
-use super::integrate::Quadrature;
+use super::element::{ElementGeometry, FieldInterpolation};
+use super::integrate::{FarFieldRules, Quadrature};
 use crate::interior::{InteriorOptions, InteriorSample, InteriorValue};
 use rayon::prelude::*;
 
@@ -205,9 +205,104 @@ impl PointLocator {
     }
 }
 
+/// Largest Gauss rule tabulated per element for the far field.
+const FAR_MAX_POINTS: usize = 12;
+
+/// One tabulated quadrature point of an element: everything the integrand needs.
+#[derive(Debug, Clone, Copy)]
+struct TabulatedPoint {
+    /// x(ξ) [length].
+    x: [f64; 2],
+    /// Outward normal.
+    normal: [f64; 2],
+    /// Gauss weight × Jacobian [length].
+    weight: f64,
+    /// Interpolated boundary displacement [length].
+    u: [f64; 2],
+    /// Interpolated boundary traction [stress].
+    t: [f64; 2],
+}
+
+/// Per-element data of one evaluation: nodal values, the far-field singularity bound and the
+/// tabulated whole-element Gauss rules with n = min_points … FAR_MAX_POINTS points.
+struct ElementData {
+    nodal_u: [[f64; 2]; 3],
+    nodal_t: [[f64; 2]; 3],
+    far: FarFieldRules,
+    /// rules[n − first] for n points.
+    rules: Vec<Vec<TabulatedPoint>>,
+    first: usize,
+}
+
+impl ElementData {
+    fn new(model: &BemModel, solution: &BemSolution, quadrature: &Quadrature, e: usize) -> Self {
+        let d = &model.discretisation;
+        let ids = d.element_nodes[e];
+        let nodal_u = ids.map(|k| solution.displacement[k]);
+        let nodal_t = ids.map(|k| solution.traction[k]);
+        let first = quadrature.options.min_points.max(2);
+        let rules = (first..=FAR_MAX_POINTS)
+            .map(|n| {
+                let (xs, ws) = quadrature.legendre(n);
+                xs.iter()
+                    .zip(ws)
+                    .map(|(&xi, &w)| {
+                        let p = boundary_point(&d.geometry[e], &d.interpolation[e], &nodal_u, &nodal_t, xi);
+                        TabulatedPoint {
+                            weight: w * p.weight,
+                            ..p
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        Self {
+            nodal_u,
+            nodal_t,
+            far: quadrature.far_field_rules(&d.geometry[e], FAR_MAX_POINTS),
+            rules,
+            first,
+        }
+    }
+}
+
+/// Position, normal, Jacobian (as `weight`) and interpolated u, t at ξ of an element.
+#[inline]
+fn boundary_point(
+    geometry: &ElementGeometry,
+    interpolation: &FieldInterpolation,
+    nodal_u: &[[f64; 2]; 3],
+    nodal_t: &[[f64; 2]; 3],
+    xi: f64,
+) -> TabulatedPoint {
+    let tangent = geometry.tangent(xi);
+    let jac = (tangent[0] * tangent[0] + tangent[1] * tangent[1]).sqrt();
+    let n = interpolation.shape(xi);
+    let mut u = [0.0; 2];
+    let mut t = [0.0; 2];
+    for a in 0..3 {
+        for c in 0..2 {
+            u[c] += n[a] * nodal_u[a][c];
+            t[c] += n[a] * nodal_t[a][c];
+        }
+    }
+    TabulatedPoint {
+        x: geometry.point(xi),
+        normal: [tangent[1] / jac, -tangent[0] / jac],
+        weight: jac,
+        u,
+        t,
+    }
+}
+
 /// Fields at interior `points` (the mesh's global axes) of `model` with the boundary solution
 /// `solution`: displacement by Eq. S1, stress by Eq. S2 (module docs). Points outside the body
 /// or within the boundary layer of `options` are reported as such, not evaluated.
+///
+/// Cost: every element is integrated for every point. Elements whose singularities are provably
+/// far from the point ([`FarFieldRules`]) use a whole-element Gauss rule tabulated once per
+/// element (positions, normals, u and t at the points), with as many points as the bound asks
+/// for the quadrature tolerance; the others use the adaptive rule.
 pub fn interior_fields(
     model: &BemModel,
     solution: &BemSolution,
@@ -216,10 +311,13 @@ pub fn interior_fields(
 ) -> Vec<InteriorSample> {
     let locator = PointLocator::new(model, options);
     let quadrature = Quadrature::new(model.options.quadrature());
+    let elements: Vec<ElementData> = (0..model.discretisation.geometry.len())
+        .map(|e| ElementData::new(model, solution, &quadrature, e))
+        .collect();
     points
         .par_iter()
         .map(|&x| match locator.locate(x) {
-            Location::Inside => InteriorSample::Inside(somigliana(model, solution, &quadrature, x)),
+            Location::Inside => InteriorSample::Inside(somigliana(model, &elements, &quadrature, x)),
             Location::Outside => InteriorSample::Outside,
             Location::Boundary => InteriorSample::Boundary,
         })
@@ -227,46 +325,35 @@ pub fn interior_fields(
 }
 
 /// Eq. S1–S2 at one interior point X.
-fn somigliana(model: &BemModel, solution: &BemSolution, quadrature: &Quadrature, source: [f64; 2]) -> InteriorValue {
+fn somigliana(model: &BemModel, elements: &[ElementData], quadrature: &Quadrature, source: [f64; 2]) -> InteriorValue {
     let d = &model.discretisation;
     let kernel = model.kernel();
     let mut u = [0.0; 2];
     // σxx, σyy, τxy.
     let mut s = [0.0; 3];
-    for (e, ids) in d.element_nodes.iter().enumerate() {
-        let geometry = &d.geometry[e];
-        let interpolation = &d.interpolation[e];
-        let nodal_u = ids.map(|k| solution.displacement[k]);
-        let nodal_t = ids.map(|k| solution.traction[k]);
-        quadrature.off_element_points(geometry, source, |xi, weight| {
-            let x = geometry.point(xi);
-            let tangent = geometry.tangent(xi);
-            let jac = tangent[0].hypot(tangent[1]);
-            let normal = [tangent[1] / jac, -tangent[0] / jac];
-            let n = interpolation.shape(xi);
-            let mut ub = [0.0; 2];
-            let mut tb = [0.0; 2];
-            for a in 0..3 {
-                for c in 0..2 {
-                    ub[c] += n[a] * nodal_u[a][c];
-                    tb[c] += n[a] * nodal_t[a][c];
-                }
+    let mut add = |p: &TabulatedPoint| {
+        let f = kernel.somigliana_integrand(source, p.x, p.normal, p.u, p.t);
+        for c in 0..2 {
+            u[c] += p.weight * f.displacement[c];
+        }
+        for c in 0..3 {
+            s[c] += p.weight * f.stress[c];
+        }
+    };
+    for (e, data) in elements.iter().enumerate() {
+        match data.far.points(source) {
+            Some(n) if n >= data.first && n <= FAR_MAX_POINTS => data.rules[n - data.first].iter().for_each(&mut add),
+            _ => {
+                let (geometry, interpolation) = (&d.geometry[e], &d.interpolation[e]);
+                quadrature.off_element_points(geometry, source, |xi, weight| {
+                    let p = boundary_point(geometry, interpolation, &data.nodal_u, &data.nodal_t, xi);
+                    add(&TabulatedPoint {
+                        weight: weight * p.weight,
+                        ..p
+                    });
+                });
             }
-            let w = weight * jac;
-            let us = kernel.displacement(source, x);
-            let ts = kernel.traction(source, x, normal);
-            let sk = kernel.stress(source, x, normal);
-            for i in 0..2 {
-                for j in 0..2 {
-                    u[i] += w * (us[i][j] * tb[j] - ts[i][j] * ub[j]);
-                }
-            }
-            for (slot, (i, j)) in [(0, 0), (1, 1), (0, 1)].into_iter().enumerate() {
-                for k in 0..2 {
-                    s[slot] += w * (sk.d[k][i][j] * tb[k] - sk.s[k][i][j] * ub[k]);
-                }
-            }
-        });
+        }
     }
     let szz = kernel.poisson * (s[0] + s[1]);
     InteriorValue {

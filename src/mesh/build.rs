@@ -1,5 +1,5 @@
-//! Procedural boundary meshes (rectangles, blocks with a refined segment, annuli), for tests,
-//! benchmarks and quick studies without Gmsh.
+//! Procedural boundary meshes (rectangles, half-plane blocks with a refined contact segment,
+//! annuli), for tests, benchmarks and quick studies without Gmsh.
 //!
 //! A [`MeshBuilder`] draws loops like a pen: [`MeshBuilder::move_to`] starts a loop,
 //! [`MeshBuilder::line_to`] adds a straight run of elements, [`MeshBuilder::close`] returns to
@@ -173,6 +173,43 @@ pub fn annulus(
     let mut b = MeshBuilder::new(quadratic, "annulus");
     b.circle([0.0, 0.0], r_outer, n_outer, groups[1]);
     b.circle([0.0, 0.0], r_inner, n_inner, groups[0]);
+    b.finish()
+}
+
+/// A rectangular block standing in for a half-plane (the paper's Fig. 2 block): [−w, w] × [0, h]
+/// for a body above the contact (`above`, body A) or [−w, w] × [−h, 0] below it (body B).
+/// Its face y = 0 carries `contact_elements` equal elements on |x| ≤ `contact_half_length`
+/// (group `contact`), then elements growing geometrically by `growth` towards the corners,
+/// starting from the contact elements' length (group `free`); the sides have `side_elements`
+/// equal elements each (group `free`), the far face 2·`side_elements` (group `far`).
+/// Lengths in the case's unit.
+pub fn half_plane_block(
+    w: f64,
+    h: f64,
+    contact_half_length: f64,
+    contact_elements: usize,
+    growth: f64,
+    side_elements: usize,
+    above: bool,
+) -> BoundaryMesh {
+    let l = contact_half_length;
+    let first = 2.0 * l / contact_elements as f64;
+    // First + first·g + … + first·g^(n−1) ≈ w − l.
+    let n_face = if growth > 1.0 {
+        ((1.0 + (w - l) * (growth - 1.0) / first).ln() / growth.ln()).round() as usize
+    } else {
+        ((w - l) / first).round() as usize
+    }
+    .max(1);
+    let y = if above { h } else { -h };
+    let mut b = MeshBuilder::new(true, "half-plane block");
+    b.move_to([-w, 0.0])
+        .graded_line_to([-l, 0.0], n_face, 1.0 / growth, "free")
+        .line_to([l, 0.0], contact_elements, "contact")
+        .graded_line_to([w, 0.0], n_face, growth, "free")
+        .line_to([w, y], side_elements, "free")
+        .line_to([-w, y], 2 * side_elements, "far")
+        .close(side_elements, "free");
     b.finish()
 }
 
