@@ -167,9 +167,10 @@ def check_interior(vtu, csv_path, summary):
             fail(where, f"`status` differs from {csv_path.name}")
         if not (close(points[:, 0], cols["x"]) and close(points[:, 1], cols["y"])):
             fail(where, "points differ from the CSV's x, y")
-    quads = [c.data for c in m.cells if c.type == "quad"]
-    if [c.type for c in m.cells] not in (["quad"], []) or (quads and np.any(status[quads[0]] != 1)):
-        fail(vtu, "cells must be quads joining evaluated (status 1) points only")
+    types = [c.type for c in m.cells]
+    quads = np.concatenate([np.asarray(c.data, dtype=np.int64).reshape(-1) for c in m.cells]) if types else np.empty(0, int)
+    if set(types) - {"quad"} or np.any(status[quads] != 1):
+        fail(vtu, f"cells must be quads joining evaluated (status 1) points only (types {types})")
     info = summary.get("interior")
     if info is None:
         fail(Path(vtu).parent / "summary.json", "`interior` missing although interior files were written")
