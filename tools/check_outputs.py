@@ -87,7 +87,7 @@ def check_vtu(path, cols):
 def check_boundary(path, cols, summary):
     """A bem body's boundary: quadratic edges, documented arrays, finite values, and on the
     contact group the traction's normal component equals the pressure of contact.csv (the body
-    is re-solved under the interpolated contact tractions; 1e-3 of the peak pressure)."""
+    carries the nodal contact tractions through its condensed response; 1e-3 of the peak pressure)."""
     m = meshio.read(path)
     g = pv.read(path)
     if [c.type for c in m.cells] != ["line3"]:

@@ -42,7 +42,8 @@ pub struct ContactFlexibility {
     /// prescribed data [length].
     pub offset: Vec<[f64; 2]>,
     /// Every unknown of the BEM system as an affine function of the contact tractions:
-    /// column 0 holds the unknowns x of A x = b (see [`BemModel::linear_system`]) with zero
+    /// column 0 holds the unknowns x of the collocation system A x = b (a displacement where a
+    /// traction is known, a traction scaled by G/L where a displacement is known) with zero
     /// contact traction, column 1 + 2j + b their change per unit traction component b
     /// (0 = x, 1 = y, global axes) at contact node j (the order of `nodes`). Post-processing
     /// rebuilds the whole boundary solution from it without a second solve
@@ -417,8 +418,9 @@ impl BodyModel for BemBody {
         (self.condensed.assembly_s, self.condensed.condense_s)
     }
 
-    /// Re-solves the body with the contact group loaded by the interpolated contact tractions
-    /// (on A (q, p), on B (−q, −p) in global axes) and samples every element at ξ = −1, 1, 0.
+    /// The boundary solution under the nodal contact tractions (on A (q, p), on B (−q, −p) in
+    /// global axes), from the condensed response ([`BemBody::contact_solution`]), sampled at
+    /// ξ = −1, 1, 0 of every element.
     fn boundary_field(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Option<Result<BoundaryField, String>> {
         Some(self.boundary_solution(grid, p, q).map_err(|e| e.to_string()))
     }

@@ -206,7 +206,7 @@ impl PointLocator {
 }
 
 /// Largest Gauss rule tabulated per element for the far field.
-const FAR_MAX_POINTS: usize = 12;
+const FAR_MAX_POINTS: usize = 16;
 
 /// One tabulated quadrature point of an element: everything the integrand needs.
 #[derive(Debug, Clone, Copy)]
