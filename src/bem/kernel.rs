@@ -263,36 +263,36 @@ impl Kelvin {
         let g = [d[0] * inv_r, d[1] * inv_r];
         let n = normal;
         let nu = self.poisson;
-        let c12 = 1.0 - 2.0 * nu;
+        let (c12, c14) = (1.0 - 2.0 * nu, 1.0 - 4.0 * nu);
         let drdn = g[0] * n[0] + g[1] * n[1];
         let (gu, gt, nu_n) = (
             g[0] * u[0] + g[1] * u[1],
             g[0] * t[0] + g[1] * t[1],
             n[0] * u[0] + n[1] * u[1],
         );
-        // Displacement.
-        let log = (3.0 - 4.0 * nu) * (self.length_scale * inv_r).ln();
-        let ct_r = self.c_t * inv_r;
-        let mut du = [0.0; 2];
-        for i in 0..2 {
-            let ut = self.c_u * (log * t[i] + g[i] * gt);
-            let tu = -ct_r * (drdn * (c12 * u[i] + 2.0 * g[i] * gu) - c12 * (g[i] * nu_n - n[i] * gu));
-            du[i] = ut - tu;
-        }
-        // Stress, components (0,0), (1,1), (0,1).
-        let cs = 2.0 * self.shear * self.c_t * inv_r * inv_r;
-        let mut ds = [0.0; 3];
-        for (slot, (i, j)) in [(0usize, 0usize), (1, 1), (0, 1)].into_iter().enumerate() {
-            let dij = if i == j { 1.0 } else { 0.0 };
-            let gg = g[i] * g[j];
-            let dt = ct_r * (c12 * (t[i] * g[j] + t[j] * g[i] - dij * gt) + 2.0 * gg * gt);
-            let su = cs
-                * (2.0 * drdn * (c12 * dij * gu + nu * (u[i] * g[j] + u[j] * g[i]) - 4.0 * gg * gu)
-                    + 2.0 * nu * (n[i] * g[j] + n[j] * g[i]) * gu
-                    + c12 * (2.0 * nu_n * gg + n[j] * u[i] + n[i] * u[j])
-                    - (1.0 - 4.0 * nu) * nu_n * dij);
-            ds[slot] = dt - su;
-        }
+        // a = c_t/r, b = 2G c_t/r².
+        let a = self.c_t * inv_r;
+        let b = 2.0 * self.shear * a * inv_r;
+        // Displacement, the formulas above regrouped:
+        // du_i = c_u κ ln(ℓ/r) t_i + g_i (c_u (g·t) + 2a ∂r/∂n (g·u) − a(1−2ν)(n·u))
+        //        + a(1−2ν)(∂r/∂n u_i + n_i (g·u)).
+        let log_term = self.c_u * (3.0 - 4.0 * nu) * (self.length_scale * inv_r).ln();
+        let along_g = self.c_u * gt + 2.0 * a * drdn * gu - a * c12 * nu_n;
+        let du = [0, 1].map(|i| log_term * t[i] + along_g * g[i] + a * c12 * (drdn * u[i] + n[i] * gu));
+        // Stress, regrouped with sym(p, q)_ij = p_i q_j + p_j q_i:
+        // dσ_ij = sym(v, g) − b(1−2ν) sym(n, u) + c_g g_i g_j − c_δ δij, where
+        // v = a(1−2ν) t − 2bν (∂r/∂n u + (g·u) n),
+        // c_g = 2a (g·t) + b (8 ∂r/∂n (g·u) − 2(1−2ν)(n·u)),
+        // c_δ = a(1−2ν)(g·t) + b (2(1−2ν) ∂r/∂n (g·u) − (1−4ν)(n·u)).
+        let v = [0, 1].map(|i| a * c12 * t[i] - 2.0 * b * nu * (drdn * u[i] + gu * n[i]));
+        let cg = 2.0 * a * gt + b * (8.0 * drdn * gu - 2.0 * c12 * nu_n);
+        let cd = a * c12 * gt + b * (2.0 * c12 * drdn * gu - c14 * nu_n);
+        let bn = b * c12;
+        let ds = [
+            2.0 * (v[0] * g[0] - bn * n[0] * u[0]) + cg * g[0] * g[0] - cd,
+            2.0 * (v[1] * g[1] - bn * n[1] * u[1]) + cg * g[1] * g[1] - cd,
+            v[0] * g[1] + v[1] * g[0] - bn * (n[0] * u[1] + n[1] * u[0]) + cg * g[0] * g[1],
+        ];
         SomiglianaIntegrand {
             displacement: du,
             stress: ds,
