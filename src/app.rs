@@ -568,7 +568,7 @@ fn interior_field(
         .map_err(|source| Error::Interior {
             case: case.path.clone(),
             body: spec.body.clone(),
-            source,
+            source: Box::new(source),
         })?;
     let shape = [spec.x[2] as usize, spec.y[2] as usize];
     Ok(crate::interior::InteriorField::from_samples(

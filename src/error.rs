@@ -36,9 +36,9 @@ pub enum Error {
         case: PathBuf,
         /// The body asked for.
         body: String,
-        /// Why.
+        /// Why (boxed: a BEM error is large, and errors travel by value).
         #[source]
-        source: crate::interior::InteriorError,
+        source: Box<crate::interior::InteriorError>,
     },
     /// A body's contact segment does not cover the contact grid.
     #[error(transparent)]

@@ -103,13 +103,17 @@ fn uniform_stress_is_exact_at_interior_points() {
         for (x, s) in points.iter().zip(&samples) {
             let v = inside(s);
             let exact = [SIGMA[0][0], SIGMA[1][1], sigma_zz, SIGMA[0][1]];
-            for c in 0..4 {
-                es = es.max((v.stress[c] - exact[c]).abs() / 50.0);
-            }
+            es = v
+                .stress
+                .iter()
+                .zip(exact)
+                .fold(es, |m, (a, b)| m.max((a - b).abs() / 50.0));
             let ue = exact_u(eps, *x);
-            for c in 0..2 {
-                eu = eu.max((v.displacement[c] - ue[c]).abs() / u_scale);
-            }
+            eu = v
+                .displacement
+                .iter()
+                .zip(ue)
+                .fold(eu, |m, (a, b)| m.max((a - b).abs() / u_scale));
         }
         println!("interior patch nu={nu}: max rel error sigma {es:.2e}, u {eu:.2e}");
         assert!(es < 1e-9 && eu < 1e-9, "nu={nu}: sigma {es:e}, u {eu:e}");
@@ -197,9 +201,11 @@ fn lame_errors_at(model: &BemModel, sol: &rollbem::bem::BemSolution, n: usize, f
     for (x, s) in points.iter().zip(&samples) {
         let v = inside(s);
         let exact = lame::stress(&model.material, *x);
-        for c in 0..4 {
-            es = es.max((v.stress[c] - exact[c]).abs() / lame::P_IN);
-        }
+        es = v
+            .stress
+            .iter()
+            .zip(exact)
+            .fold(es, |m, (a, b)| m.max((a - b).abs() / lame::P_IN));
         let ue = lame::displacement(&model.material, *x);
         eu = eu.max((v.displacement[0] - ue[0]).hypot(v.displacement[1] - ue[1]) / u_scale);
     }

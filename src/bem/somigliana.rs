@@ -333,11 +333,11 @@ fn somigliana(model: &BemModel, elements: &[ElementData], quadrature: &Quadratur
     let mut s = [0.0; 3];
     let mut add = |p: &TabulatedPoint| {
         let f = kernel.somigliana_integrand(source, p.x, p.normal, p.u, p.t);
-        for c in 0..2 {
-            u[c] += p.weight * f.displacement[c];
+        for (sum, v) in u.iter_mut().zip(f.displacement) {
+            *sum += p.weight * v;
         }
-        for c in 0..3 {
-            s[c] += p.weight * f.stress[c];
+        for (sum, v) in s.iter_mut().zip(f.stress) {
+            *sum += p.weight * v;
         }
     };
     for (e, data) in elements.iter().enumerate() {
