@@ -470,7 +470,7 @@ pub struct Solved {
     pub boundary: [Option<BoundaryField>; 2],
     /// Notices for the user (e.g. mesh loops turned round).
     pub notices: Vec<String>,
-    /// Interior stresses, when `output.interior` asks for them.
+    /// Interior displacements and stresses, when `output.interior` asks for them.
     pub interior: Option<crate::interior::InteriorField>,
 }
 

@@ -206,7 +206,7 @@ pub struct InteriorOptions {
     /// Points closer to the boundary than this fraction of the local element length (the BEM
     /// element nearest to the point; the contact grid's element for a half-space) are reported
     /// as [`InteriorSample::Boundary`] and not evaluated. Default = 0.05 (docs/validation.md,
-    /// "Interior stresses", measures the accuracy down to this distance).
+    /// "Interior stresses (issue 4)", measures the accuracy down to this distance).
     pub boundary_layer: f64,
 }
 

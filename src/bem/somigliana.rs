@@ -12,12 +12,14 @@
 //! with the kernels of [`super::kernel`] (D and S stay finite at ν = 0.5, so incompressible
 //! bodies work) and u, t interpolated by each element's own shape functions from the nodal
 //! solution ([`super::BemSolution`]). The integrands are smooth for X off the boundary, but
-//! nearly singular (1/r, 1/r²) when X is close to it: every element is integrated with the
+//! nearly singular (1/r, 1/r²) when X is close to it. Elements near X are integrated with the
 //! adaptive Gauss rule of [`Quadrature::off_element_points`] (intervals halved until the nearest
 //! complex singularity lies outside a Bernstein ellipse, points chosen for the target
 //! accuracy), so the integration error stays at the quadrature tolerance down to points a small
 //! fraction of an element from the boundary; what remains there is the discretisation error of
-//! the boundary data, amplified like h/d (docs/validation.md, "Interior stresses").
+//! the boundary data, amplified like h/d (docs/validation.md, "Interior stresses (issue 4)").
+//! Elements provably far from X ([`FarFieldRules`]) use a whole-element Gauss rule with at
+//! least as many points as the adaptive rule would take, tabulated once per element.
 //!
 //! **Where a point lies.** Each point is first located against the boundary loops:
 //! * *outside* — the ray from X towards +x crosses the boundary an even number of times. The
@@ -27,7 +29,7 @@
 //! * *boundary* — X lies inside and closer to some element than
 //!   [`InteriorOptions::boundary_layer`] times that element's length (distance to the exact
 //!   quadratic curve by Newton's method), or, inside or not, within twice the polyline's
-//!   deviation of an element (1e-3 of the element length for a 30° arc), where the count could
+//!   deviation of an element (5e-4 of the element length for a 30° arc), where the count could
 //!   be wrong;
 //! * *inside* otherwise: only these are evaluated.
 //!
