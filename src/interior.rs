@@ -203,10 +203,11 @@ impl PointStatus {
 /// Accuracy controls shared by the interior evaluations of all models.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InteriorOptions {
-    /// Points closer to the boundary than this fraction of the local element length (the BEM
-    /// element nearest to the point; the contact grid's element for a half-space) are reported
-    /// as [`InteriorSample::Boundary`] and not evaluated. Default = 0.05 (docs/validation.md,
-    /// "Interior stresses (issue 4)", measures the accuracy down to this distance).
+    /// Points inside the body but closer to a boundary element than this fraction of that
+    /// element's length (for a half-space: closer to the surface than this fraction of the
+    /// contact grid's longest element) are reported as [`InteriorSample::Boundary`] and not
+    /// evaluated. Default = 0.05 (docs/validation.md, "Interior stresses (issue 4)", measures
+    /// the accuracy down to this distance).
     pub boundary_layer: f64,
 }
 
