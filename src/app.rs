@@ -453,6 +453,8 @@ pub struct Timings {
     pub condense_s: f64,
     /// Contact solve.
     pub solve_s: f64,
+    /// Interior fields of `output.interior` (post-processing; 0 when not asked).
+    pub interior_s: f64,
     /// Whole run including output.
     pub total_s: f64,
 }
@@ -491,7 +493,7 @@ pub struct Solved {
     pub boundary: [Option<BoundaryField>; 2],
     /// Notices for the user (e.g. mesh loops turned round).
     pub notices: Vec<String>,
-    /// Interior stresses, when `output.interior` asks for them.
+    /// Interior displacements and stresses, when `output.interior` asks for them.
     pub interior: Option<crate::interior::InteriorField>,
 }
 
@@ -534,28 +536,30 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
     } else {
         [None, None]
     };
-    let notices = bodies
+    let mut notices: Vec<String> = bodies
         .iter()
         .filter_map(|b| b.mesh.as_ref())
         .flat_map(|m| m.notices.clone())
         .collect();
+    let t_interior = Instant::now();
     let interior = match (&case.case.output.interior, newton.converged) {
-        (Some(g), true) => {
-            let nu = bodies[if g.body == "B" { 1 } else { 0 }]
-                .material
-                .map_or(0.0, |m| m.poisson);
-            Some(crate::interior::interior_field(
-                &problem.grid,
-                &solution.pressure,
-                &solution.shear,
-                nu,
-                &g.body,
-                g.x,
-                g.y,
-            ))
-        }
+        (Some(spec), true) => Some(interior_field(case, spec, &models, &problem, &solution)?),
         _ => None,
     };
+    timings.interior_s = t_interior.elapsed().as_secs_f64();
+    if let Some(f) = &interior {
+        let [_, outside, boundary] = f.counts();
+        if outside + boundary > 0 {
+            notices.push(format!(
+                "output.interior: of {} points of body {}, {outside} lie outside the body and \
+                 {boundary} on its boundary (closer than {} element lengths); they are not \
+                 evaluated: status `outside`/`boundary`, fields written as 0",
+                f.points.len(),
+                f.body,
+                crate::interior::InteriorOptions::default().boundary_layer
+            ));
+        }
+    }
     Ok(Solved {
         interior,
         notices,
@@ -567,6 +571,42 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
         timings,
         regime,
     })
+}
+
+/// The interior fields that `output.interior` asks for, from the body's own model (Somigliana
+/// for a bem body, Flamant superposition for a half-space) under the solved contact tractions.
+fn interior_field(
+    case: &LoadedCase,
+    spec: &crate::case::InteriorSpec,
+    models: &BodyModels,
+    problem: &ContactProblem,
+    solution: &ContactSolution,
+) -> Result<crate::interior::InteriorField, Error> {
+    let (k, side) = if spec.body == "B" { (1, Side::B) } else { (0, Side::A) };
+    let model = models[k].as_ref();
+    let points = crate::interior::grid_points(spec.x, spec.y);
+    let samples = model
+        .interior(
+            &problem.grid,
+            side,
+            &solution.pressure,
+            &solution.shear,
+            &points,
+            &crate::interior::InteriorOptions::default(),
+        )
+        .map_err(|source| Error::Interior {
+            case: case.path.clone(),
+            body: spec.body.clone(),
+            source: Box::new(source),
+        })?;
+    let shape = [spec.x[2] as usize, spec.y[2] as usize];
+    Ok(crate::interior::InteriorField::from_samples(
+        &spec.body,
+        model.model_name(),
+        shape,
+        points,
+        &samples,
+    ))
 }
 
 /// Loads a case, solves it and writes its outputs (DESIGN §5). A run that does not converge
@@ -587,6 +627,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         s.timings,
     );
     summary.notices = s.notices.clone();
+    summary.interior = s.interior.as_ref().map(crate::interior::InteriorField::summary);
     output::write_run(
         &output_dir,
         &mut summary,

@@ -10,7 +10,8 @@
 //! is collocated at every field node X of a quadratic boundary mesh, giving H u = G t with H
 //! (2N × 2N, dimensionless) and G (2N × 2N, length/stress). The modules follow the data flow:
 //!
-//! * [`kernel`] — Kelvin kernels U*, T* (valid for ν = 0.5);
+//! * [`kernel`] — Kelvin kernels U*, T*, their source derivatives, and the interior stress
+//!   kernels D, S (all valid for ν = 0.5);
 //! * [`element`] — quadratic/linear geometry, continuous / discontinuous / partially
 //!   discontinuous quadratic field interpolation;
 //! * [`integrate`] — regular, nearly singular (adaptive subdivision) and singular (log-weighted
@@ -21,7 +22,9 @@
 //!   solved boundary values;
 //! * [`assemble`] — H and G (parallel over collocation points), boundary conditions, solve;
 //! * [`condense`](mod@condense) — flexibility at the contact nodes and the
-//!   [`crate::body::BodyModel`] of a BEM body.
+//!   [`crate::body::BodyModel`] of a BEM body;
+//! * [`somigliana`] — interior displacement and stress from the boundary solution (kernels
+//!   U*, T*, D, S).
 //!
 //! **Incompressible material (ν = 0.5).** The kernels stay finite, but the Kelvin displacement
 //! field is then divergence-free, so ∮ U*_ij n_j dΓ = 0 around every closed loop: G annihilates
@@ -47,6 +50,7 @@ pub mod element;
 pub mod hypersingular;
 pub mod integrate;
 pub mod kernel;
+pub mod somigliana;
 
 pub use assemble::{BemModel, BemOptions, BemSolution, Pin};
 pub use condense::{condense, BemBody, ContactFlexibility};

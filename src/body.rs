@@ -3,6 +3,8 @@
 //! A body model gives exactly one thing to the contact problem: its [`Flexibility`] at the
 //! contact grid, plus its undeformed profile and (where it has one) an operator for the surface
 //! strain used to re-check the slip. The contact solver never knows which model it talks to.
+//! Post-processing asks the model for what it can show under the solved tractions: its
+//! boundary ([`BodyModel::boundary_field`]) and its interior fields ([`BodyModel::interior`]).
 //!
 //! # Pair convention
 //! All quantities are written so that the two bodies' contributions simply add:
@@ -18,6 +20,7 @@ pub mod rigid;
 pub mod transfer;
 
 use crate::grid::ContactGrid;
+use crate::interior::{InteriorError, InteriorOptions, InteriorSample};
 use faer::Mat;
 use serde::Serialize;
 
@@ -107,6 +110,26 @@ pub trait BodyModel {
     fn boundary_field(&self, _grid: &ContactGrid, _p: &[f64], _q: &[f64]) -> Option<Result<BoundaryField, String>> {
         None
     }
+
+    /// Displacement and stress at `points` (contact frame: y > 0 inside A, y < 0 inside B)
+    /// of this body placed on `side`, under the nodal contact tractions (p, q) on `grid` (pair
+    /// convention), for post-processing. One [`InteriorSample`] per point: the fields in the
+    /// contact frame, or why the point was not evaluated (outside the body, or within the
+    /// boundary layer of `options`). Models without an interior field (rigid) return
+    /// [`InteriorError::NoInteriorField`].
+    fn interior(
+        &self,
+        _grid: &ContactGrid,
+        _side: Side,
+        _p: &[f64],
+        _q: &[f64],
+        _points: &[[f64; 2]],
+        _options: &InteriorOptions,
+    ) -> Result<Vec<InteriorSample>, InteriorError> {
+        Err(InteriorError::NoInteriorField {
+            model: self.model_name(),
+        })
+    }
 }
 
 /// A body's boundary, element by element, for VTK output (global axes of the mesh, which are
@@ -172,5 +195,17 @@ impl BodyModel for WithCircularProfile {
 
     fn boundary_field(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Option<Result<BoundaryField, String>> {
         self.inner.boundary_field(grid, p, q)
+    }
+
+    fn interior(
+        &self,
+        grid: &ContactGrid,
+        side: Side,
+        p: &[f64],
+        q: &[f64],
+        points: &[[f64; 2]],
+        options: &InteriorOptions,
+    ) -> Result<Vec<InteriorSample>, InteriorError> {
+        self.inner.interior(grid, side, p, q, points, options)
     }
 }

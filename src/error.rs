@@ -29,6 +29,17 @@ pub enum Error {
     /// The BEM model of a body could not be built.
     #[error(transparent)]
     Bem(#[from] crate::bem::BemError),
+    /// The interior fields asked by `output.interior` cannot be computed.
+    #[error("{case}: output.interior.body = {body}: {source}")]
+    Interior {
+        /// Case file.
+        case: PathBuf,
+        /// The body asked for.
+        body: String,
+        /// Why (boxed: a BEM error is large, and errors travel by value).
+        #[source]
+        source: Box<crate::interior::InteriorError>,
+    },
     /// A body's contact segment does not cover the contact grid.
     #[error(transparent)]
     Transfer(#[from] crate::body::transfer::TransferError),

@@ -6,9 +6,11 @@
 //!
 //! ## Data flow
 //! ```text
-//! case (YAML) ─▶ body models (half_space | rigid) ─▶ Flexibility at the contact grid
+//! case (YAML) ─▶ body models (half_space | bem | rigid) ─▶ Flexibility at the contact grid
 //!            ─▶ ContactProblem (gap and slip affine in the tractions, paper Eq. 21)
-//!            ─▶ contact::newton::solve ─▶ ContactSolution ─▶ output (JSON, CSV, SVG)
+//!            ─▶ contact::newton::solve ─▶ ContactSolution
+//!            ─▶ post-processing by each body model (boundary, interior fields)
+//!            ─▶ output (JSON, CSV, SVG, VTK)
 //! ```
 //!
 //! ## Conventions (DESIGN §2)

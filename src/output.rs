@@ -100,6 +100,9 @@ pub struct Summary {
     pub hbem_check: Option<FrictionCheck>,
     /// Notices for the user (requested features not available, adjustments made).
     pub notices: Vec<String>,
+    /// The interior grid of `output.interior` (null when not asked): body, model, point
+    /// counts by status, and the maxima of the principal shear and von Mises stress.
+    pub interior: Option<crate::interior::InteriorSummary>,
     /// Whether VTK files (contact.vtu, result.pvd) were requested.
     pub vtk: bool,
     /// The case as resolved after `--set` overrides.
@@ -194,6 +197,7 @@ pub fn summary(
         },
         hbem_check: check_friction_law(sol, mu, DEFAULT_THRESHOLD_FRACTION),
         notices: Vec::new(),
+        interior: None,
         vtk: case.case.output.vtk,
         case: case.resolved.clone(),
     }
@@ -252,20 +256,39 @@ pub fn write_csv(path: &Path, sol: &ContactSolution, pb: &ContactProblem) -> Res
     })
 }
 
-/// Writes interior_<body>.csv: x, y, sxx, syy, szz, txy, von_mises, max_shear (contact frame,
-/// σzz out of plane, tension positive).
+/// Writes interior_<body>.csv, one row per grid point (x fastest): `x, y, sxx, syy, szz, txy,
+/// von_mises, max_shear, ux, uy, status` in the contact frame (σzz out of plane, tension
+/// positive; ux, uy the displacement). `status` is `inside` where the body's model evaluated the
+/// point, `outside` (not in the body) or `boundary` (within the boundary layer): those rows
+/// carry zeros.
 pub fn write_interior_csv(path: &Path, f: &crate::interior::InteriorField) -> Result<(), Error> {
     let io = |e: &dyn std::fmt::Display| Error::Output {
         path: path.to_path_buf(),
         message: e.to_string(),
     };
     let mut w = csv::Writer::from_path(path).map_err(|e| io(&e))?;
-    w.write_record(["x", "y", "sxx", "syy", "szz", "txy", "von_mises", "max_shear"])
-        .map_err(|e| io(&e))?;
-    for (p, s) in f.points.iter().zip(&f.stress) {
+    w.write_record([
+        "x",
+        "y",
+        "sxx",
+        "syy",
+        "szz",
+        "txy",
+        "von_mises",
+        "max_shear",
+        "ux",
+        "uy",
+        "status",
+    ])
+    .map_err(|e| io(&e))?;
+    for (k, (p, s)) in f.points.iter().zip(&f.stress).enumerate() {
         let (vm, ms) = crate::interior::invariants(s);
-        w.write_record([p[0], p[1], s[0], s[1], s[2], s[3], vm, ms].map(fmt))
-            .map_err(|e| io(&e))?;
+        let u = f.displacement[k];
+        let mut row: Vec<String> = [p[0], p[1], s[0], s[1], s[2], s[3], vm, ms, u[0], u[1]]
+            .map(fmt)
+            .to_vec();
+        row.push(f.status[k].name().to_string());
+        w.write_record(&row).map_err(|e| io(&e))?;
     }
     w.flush().map_err(|e| io(&e))
 }
@@ -428,11 +451,28 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
             s.grid.spacing
         ),
     );
+    if let Some(i) = &s.interior {
+        let peak = |p: &Option<crate::interior::Peak>| {
+            p.map_or("-".to_string(), |p| {
+                format!("{:.6} at ({:.4}, {:.4})", p.value, p.x, p.y)
+            })
+        };
+        line(
+            &format!("interior {} ({})", i.body, i.model),
+            format!(
+                "{} of {} points evaluated; max shear {}; max von Mises {}",
+                i.inside,
+                i.points,
+                peak(&i.max_shear),
+                peak(&i.max_von_mises)
+            ),
+        );
+    }
     line(
         "time [s]",
         format!(
-            "assembly {:.4}  condense {:.4}  solve {:.4}  total {:.4}",
-            s.timings.assembly_s, s.timings.condense_s, s.timings.solve_s, s.timings.total_s
+            "assembly {:.4}  condense {:.4}  solve {:.4}  interior {:.4}  total {:.4}",
+            s.timings.assembly_s, s.timings.condense_s, s.timings.solve_s, s.timings.interior_s, s.timings.total_s
         ),
     );
     line("results", output_dir.display().to_string());

@@ -23,7 +23,7 @@
 //! both and rejects a first- or second-order method (a lost geometry order, a wrong free term,
 //! under-integrated near-singular neighbours). Errors are max-norms over all field nodes.
 
-use rollbem::bem::{BemError, BemModel, BemOptions, BoundaryCondition, Pin};
+use rollbem::bem::{BemError, BemModel, BemOptions, BoundaryCondition};
 use rollbem::material::Elastic;
 use rollbem::mesh::build::annulus;
 use std::sync::Arc;
@@ -63,29 +63,11 @@ fn modulo_uniform_pressure(d: &[[f64; 2]], n: &[[f64; 2]]) -> f64 {
 // ---------------------------------------------------------------------------------------------
 // §8.1 Lamé: a = 10, b = 20, p_i = 100, p_o = 30, E = 210 000.
 
-const A_IN: f64 = 10.0;
-const B_OUT: f64 = 20.0;
-const P_IN: f64 = 100.0;
-const P_OUT: f64 = 30.0;
-
-/// Exact Lamé radial displacement u_r(r) [mm] (sheet §8.1).
-fn lame_ur(m: &Elastic, r: f64) -> f64 {
-    let (a2, b2) = (A_IN * A_IN, B_OUT * B_OUT);
-    let ca = (P_IN * a2 - P_OUT * b2) / (b2 - a2);
-    let cb = (P_IN - P_OUT) * a2 * b2 / (b2 - a2);
-    (1.0 + m.poisson) / m.young * ((1.0 - 2.0 * m.poisson) * ca * r + cb / r)
-}
-
-fn lame_u(m: &Elastic, x: [f64; 2]) -> [f64; 2] {
-    let r = x[0].hypot(x[1]);
-    let ur = lame_ur(m, r);
-    [ur * x[0] / r, ur * x[1] / r]
-}
-
-/// Largest exact |u| on the boundary, the scale of the relative displacement errors.
-fn lame_u_scale(m: &Elastic) -> f64 {
-    lame_ur(m, A_IN).abs().max(lame_ur(m, B_OUT).abs())
-}
+mod common;
+use common::lame::{
+    displacement as lame_u, lame_pins, pressure_loaded_lame, radial_displacement as lame_ur, u_scale as lame_u_scale,
+    A_IN, B_OUT, P_IN, P_OUT,
+};
 
 #[test]
 fn lame_formula_matches_the_reference_sheet_table() {
@@ -93,50 +75,6 @@ fn lame_formula_matches_the_reference_sheet_table() {
     for (r, ur) in [(10.0, 5.612698e-3), (15.0, 3.604233e-3), (20.0, 2.558730e-3)] {
         assert!((lame_ur(&m, r) / ur - 1.0).abs() < 1e-6, "r = {r}");
     }
-}
-
-fn pressure_loaded_lame(nu: f64, n: usize) -> BemModel {
-    BemModel::new(
-        annulus(A_IN, B_OUT, n, n, ["inner", "outer"], true),
-        Elastic::new(210_000.0, nu),
-        vec![
-            ("inner".into(), BoundaryCondition::Pressure(P_IN)),
-            ("outer".into(), BoundaryCondition::Pressure(P_OUT)),
-        ],
-        BemOptions::default(),
-    )
-    .unwrap()
-}
-
-/// Pins: exact (u_x, u_y) at the outer node nearest (b, 0) and u_x at the one nearest (0, b).
-fn lame_pins(model: &BemModel) -> [Pin; 3] {
-    let nodes = model.field_nodes();
-    let nearest = |target: [f64; 2]| {
-        let d = |k: usize| (nodes[k].position[0] - target[0]).hypot(nodes[k].position[1] - target[1]);
-        (0..nodes.len()).min_by(|&i, &j| d(i).total_cmp(&d(j))).unwrap()
-    };
-    let (pa, pb) = (nearest([B_OUT, 0.0]), nearest([0.0, B_OUT]));
-    let (ua, ub) = (
-        lame_u(&model.material, nodes[pa].position),
-        lame_u(&model.material, nodes[pb].position),
-    );
-    [
-        Pin {
-            node: pa,
-            component: 0,
-            value: ua[0],
-        },
-        Pin {
-            node: pa,
-            component: 1,
-            value: ua[1],
-        },
-        Pin {
-            node: pb,
-            component: 0,
-            value: ub[0],
-        },
-    ]
 }
 
 /// Max relative boundary displacement error of the pinned Lamé cylinder.

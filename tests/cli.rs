@@ -297,3 +297,73 @@ fn validate_runs_the_reference_problems() {
         "{stdout}"
     );
 }
+
+/// `output.interior` of a bem body (issue 4): Somigliana fields written as CSV and VTU with the
+/// displacement and the point status, listed in result.pvd and summarised in summary.json and
+/// the run table; points outside the body or on its boundary are flagged and announced; a rigid
+/// body is refused before anything is solved, naming the key.
+#[test]
+fn interior_of_bem_bodies_is_written_and_rigid_bodies_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");
+    let out = dir.path().join("block");
+    let block = cases.join("carter_051_block.yaml");
+    let (code, stdout, stderr) = rollbem(&["run", block.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("interior A (bem)"), "{stdout}");
+    let csv = std::fs::read_to_string(out.join("interior_A.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("x,y,sxx,syy,szz,txy,von_mises,max_shear,ux,uy,status")
+    );
+    assert_eq!(lines.clone().count(), 31 * 40);
+    assert!(lines.all(|l| l.ends_with(",inside")));
+    let vtu = std::fs::read_to_string(out.join("interior_A.vtu")).unwrap();
+    for name in ["stress", "von_mises", "max_shear", "displacement", "status"] {
+        assert!(vtu.contains(&format!("Name=\"{name}\"")), "{name} missing");
+    }
+    let pvd = std::fs::read_to_string(out.join("result.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 4, "{pvd}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let interior = &summary["interior"];
+    assert_eq!(interior["model"], "bem");
+    assert_eq!(interior["inside"], 31 * 40);
+    assert!(interior["max_shear"]["value"].as_f64().unwrap() > 0.0);
+
+    let tyre = cases.join("tyre_b01_incompressible.yaml");
+    let rigid = dir.path().join("rigid");
+    let (code, _, stderr) = rollbem(&[
+        "run",
+        tyre.to_str().unwrap(),
+        "--out",
+        rigid.to_str().unwrap(),
+        "--set",
+        "output.interior={body: A, x: [-1, 1, 5], y: [0.1, 0.5, 3]}",
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("output.interior.body") && stderr.contains("rigid"),
+        "{stderr}"
+    );
+    assert!(!rigid.exists());
+
+    // The 0.1 mm incompressible layer (y from −0.1 to 0): rows at y = −0.12 and −0.109 lie
+    // below it, the row at y = −0.001 within its boundary layer.
+    let layer = dir.path().join("layer");
+    let (code, _, stderr) = rollbem(&[
+        "run",
+        tyre.to_str().unwrap(),
+        "--out",
+        layer.to_str().unwrap(),
+        "--set",
+        "output.interior={body: B, x: [-1.2, 1.2, 25], y: [-0.12, -0.001, 12]}",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stderr.contains("lie outside the body"), "{stderr}");
+    let csv = std::fs::read_to_string(layer.join("interior_B.csv")).unwrap();
+    let count = |s: &str| csv.lines().filter(|l| l.ends_with(s)).count();
+    assert!(count(",outside") >= 50 && count(",boundary") >= 25 && count(",inside") > 0);
+    assert!(!csv.contains("NaN") && !csv.contains("inf"));
+}

@@ -87,7 +87,7 @@ def check_vtu(path, cols):
 def check_boundary(path, cols, summary):
     """A bem body's boundary: quadratic edges, documented arrays, finite values, and on the
     contact group the traction's normal component equals the pressure of contact.csv (the body
-    is re-solved under the interpolated contact tractions; 1e-3 of the peak pressure)."""
+    carries the nodal contact tractions through its condensed response; 1e-3 of the peak pressure)."""
     m = meshio.read(path)
     g = pv.read(path)
     if [c.type for c in m.cells] != ["line3"]:
@@ -119,11 +119,31 @@ def check_boundary(path, cols, summary):
     del checked
 
 
-def check_interior(vtu, csv_path):
-    """Interior grid: `stress` (4 components), `von_mises`, `max_shear` equal the CSV's."""
+INTERIOR_STATUS = {"outside": 0, "inside": 1, "boundary": 2}
+
+
+def check_interior(vtu, csv_path, summary):
+    """Interior grid: `stress` (4 components), `von_mises`, `max_shear`, `displacement` (3-vector,
+    z = 0) and `status` (0 outside, 1 inside, 2 boundary) equal the CSV's; every value is finite,
+    points not evaluated carry zeros, the quad cells join evaluated points only, and
+    summary.json's `interior` counts and maxima agree with the CSV."""
     with open(csv_path, newline="") as f:
         rows = list(csv.DictReader(f))
-    cols = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    expected_cols = ["x", "y", "sxx", "syy", "szz", "txy", "von_mises", "max_shear", "ux", "uy", "status"]
+    if list(rows[0].keys()) != expected_cols:
+        fail(csv_path, f"columns {list(rows[0].keys())}, expected {expected_cols}")
+        return
+    status_names = [r["status"] for r in rows]
+    if not set(status_names) <= set(INTERIOR_STATUS):
+        fail(csv_path, f"unknown status values {sorted(set(status_names) - set(INTERIOR_STATUS))}")
+        return
+    status = np.array([INTERIOR_STATUS[s] for s in status_names])
+    cols = {k: np.array([float(r[k]) for r in rows]) for k in expected_cols if k != "status"}
+    for name, arr in cols.items():
+        if not np.all(np.isfinite(arr)):
+            fail(csv_path, f"non-finite values in `{name}`")
+        if name not in ("x", "y") and np.any(arr[status != 1] != 0.0):
+            fail(csv_path, f"`{name}` is not 0 at points that were not evaluated")
     m = meshio.read(vtu)
     g = pv.read(vtu)
     n = len(rows)
@@ -139,8 +159,29 @@ def check_interior(vtu, csv_path):
         for name in ["von_mises", "max_shear"]:
             if not close(np.asarray(data[name]).reshape(-1), cols[name]):
                 fail(where, f"`{name}` differs from {csv_path.name}")
+        u = np.asarray(data.get("displacement", np.empty(0)))
+        if u.shape != (n, 3) or not (close(u[:, 0], cols["ux"]) and close(u[:, 1], cols["uy"]) and np.all(u[:, 2] == 0)):
+            fail(where, f"`displacement` is not (ux, uy, 0) of {csv_path.name} (shape {u.shape})")
+        code = np.asarray(data.get("status", np.empty(0))).reshape(-1)
+        if code.shape != (n,) or np.any(code != status):
+            fail(where, f"`status` differs from {csv_path.name}")
         if not (close(points[:, 0], cols["x"]) and close(points[:, 1], cols["y"])):
             fail(where, "points differ from the CSV's x, y")
+    types = [c.type for c in m.cells]
+    quads = np.concatenate([np.asarray(c.data, dtype=np.int64).reshape(-1) for c in m.cells]) if types else np.empty(0, int)
+    if set(types) - {"quad"} or np.any(status[quads] != 1):
+        fail(vtu, f"cells must be quads joining evaluated (status 1) points only (types {types})")
+    info = summary.get("interior")
+    if info is None:
+        fail(Path(vtu).parent / "summary.json", "`interior` missing although interior files were written")
+        return
+    counts = [int(np.sum(status == INTERIOR_STATUS[k])) for k in ("inside", "outside", "boundary")]
+    if [info["inside"], info["outside"], info["boundary"]] != counts or info["points"] != n:
+        fail(Path(vtu).parent / "summary.json", f"interior counts {info} differ from the CSV's {counts}")
+    for key, col in [("max_shear", "max_shear"), ("max_von_mises", "von_mises")]:
+        peak = info.get(key)
+        if counts[0] and (peak is None or not np.isclose(peak["value"], cols[col][status == 1].max(), rtol=RTOL, atol=0)):
+            fail(Path(vtu).parent / "summary.json", f"interior `{key}` differs from the CSV's maximum")
 
 
 def pvd_files(path):
@@ -194,7 +235,7 @@ def check_run(d):
             check_boundary(b, cols, summary)
         interiors = sorted(d.glob("interior_*.vtu"))
         for v in interiors:
-            check_interior(v, v.with_suffix(".csv"))
+            check_interior(v, v.with_suffix(".csv"), summary)
         check_pvd(d / "result.pvd", expected_count=1 + len(bodies) + len(interiors))
 
 

@@ -38,9 +38,11 @@
 
 use super::assemble::{BemModel, BemSolution};
 use super::hypersingular::{GradientEvaluator, GradientPoint};
+use super::somigliana::interior_fields;
 use super::{BemError, BoundaryCondition, Component};
 use crate::body::{BodyModel, BoundaryField, Flexibility, Side, StrainOperator};
 use crate::grid::{ContactGrid, ElementKind};
+use crate::interior::{InteriorError, InteriorOptions, InteriorSample};
 use faer::Mat;
 use rayon::prelude::*;
 
@@ -58,6 +60,18 @@ pub struct ContactFlexibility {
     /// Displacement at the contact nodes with zero contact traction, due to the other
     /// prescribed data [length].
     pub offset: Vec<[f64; 2]>,
+    /// Every unknown of the BEM system as an affine function of the contact tractions:
+    /// column 0 holds the unknowns x of the collocation system A x = b (a displacement where a
+    /// traction is known, a traction scaled by G/L where a displacement is known) with zero
+    /// contact traction, column 1 + 2j + b their change per unit traction component b
+    /// (0 = x, 1 = y, global axes) at contact node j (the order of `nodes`). Post-processing
+    /// rebuilds the whole boundary solution from it without a second solve
+    /// ([`BemBody::contact_solution`]). Size 2N × (1 + 2m).
+    pub response: Mat<f64>,
+    /// The known data of every component that `response` was solved with (the contact
+    /// components traction-type, zero), so that post-processing does not re-evaluate the
+    /// boundary conditions.
+    pub data: Vec<Component>,
     /// Wall time of the BEM assembly (H, G) [s].
     pub assembly_s: f64,
     /// Wall time of the factorization and the multi-column solve [s].
@@ -125,6 +139,8 @@ pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibil
         offset,
         surface_strain,
         strain_s,
+        response: rhs,
+        data,
     })
 }
 
@@ -338,20 +354,46 @@ impl BemBody {
         );
     }
 
-    /// The boundary field under nodal contact tractions on `grid` (see [`BodyModel::boundary_field`]).
+    /// The whole boundary solution (u and t at every field node, global axes) under the nodal
+    /// contact tractions `p`, `q` at this body's contact nodes (pair convention: the traction on
+    /// the contact group is (q, p) on A and (−q, −p) on B), from the condensed response: no
+    /// second assembly or solve, and exactly the state the flexibility describes.
+    pub fn contact_solution(&self, p: &[f64], q: &[f64]) -> Result<BemSolution, BemError> {
+        let c = &self.condensed;
+        let m = c.nodes.len();
+        if p.len() != m || q.len() != m {
+            return Err(BemError::ContactGridMismatch {
+                path: self.model.mesh.source.clone(),
+                group: self.contact_group.clone(),
+                problem: format!("{} contact tractions given for {m} contact nodes", p.len().min(q.len())),
+            });
+        }
+        let sign = self.side.sign();
+        let mut data = c.data.clone();
+        let n_dof = data.len();
+        let mut unknowns: Vec<f64> = (0..n_dof).map(|r| c.response[(r, 0)]).collect();
+        for (j, &k) in c.nodes.iter().enumerate() {
+            let traction = [sign * q[j], sign * p[j]];
+            for (b, &tb) in traction.iter().enumerate() {
+                data[2 * k + b] = Component::Traction(tb);
+                if tb != 0.0 {
+                    let col = 1 + 2 * j + b;
+                    for (r, x) in unknowns.iter_mut().enumerate() {
+                        *x += c.response[(r, col)] * tb;
+                    }
+                }
+            }
+        }
+        Ok(self.model.boundary_values(&data, |k| unknowns[k]))
+    }
+
+    /// The boundary field under nodal contact tractions on `grid` (see
+    /// [`BodyModel::boundary_field`]): [`Self::contact_solution`] sampled at ξ = −1, 1, 0 of
+    /// every element.
     pub fn boundary_solution(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Result<BoundaryField, BemError> {
-        let g = self.model.mesh.group_index(&self.contact_group)?;
-        let sign = match self.side {
-            Side::A => 1.0,
-            Side::B => -1.0,
-        };
-        let (grid, p, q) = (grid.clone(), p.to_vec(), q.to_vec());
-        let load: super::BoundaryField = std::sync::Arc::new(move |x: [f64; 2], _n: [f64; 2]| {
-            [sign * grid.interpolate(&q, x[0]), sign * grid.interpolate(&p, x[0])]
-        });
-        let mut model = self.model.clone();
-        model.conditions[g] = BoundaryCondition::TractionField(load);
-        let sol = model.solve()?;
+        self.check_grid(grid)?;
+        let sol = self.contact_solution(p, q)?;
+        let model = &self.model;
         let d = &model.discretisation;
         let mut out = BoundaryField {
             points: Vec::new(),
@@ -378,6 +420,48 @@ impl BemBody {
             out.group.push(model.mesh.elements[e].group as i32);
         }
         Ok(out)
+    }
+
+    /// Interior displacement and stress at `points` of the contact frame under the nodal
+    /// contact tractions (see [`BodyModel::interior`]), by Somigliana's identity
+    /// ([`super::somigliana`]) from [`Self::contact_solution`]. The mesh's axes are the contact
+    /// frame up to the height of the touching point (zero for meshes drawn touching the
+    /// origin, as the shipped ones): a point (x, y) is evaluated at (x, y + y_touch) of the mesh.
+    pub fn interior_samples(
+        &self,
+        grid: &ContactGrid,
+        p: &[f64],
+        q: &[f64],
+        points: &[[f64; 2]],
+        options: &InteriorOptions,
+    ) -> Result<Vec<InteriorSample>, BemError> {
+        self.check_grid(grid)?;
+        let sol = self.contact_solution(p, q)?;
+        let mesh_points: Vec<[f64; 2]> = points.iter().map(|&[x, y]| [x, y + self.touch_y]).collect();
+        Ok(interior_fields(&self.model, &sol, &mesh_points, options))
+    }
+
+    /// The grid must be the one the body was built on (its contact nodes at the grid's nodes).
+    fn check_grid(&self, grid: &ContactGrid) -> Result<(), BemError> {
+        let same = grid.n_nodes() == self.condensed.x.len()
+            && grid
+                .nodes
+                .iter()
+                .zip(&self.condensed.x)
+                .all(|(a, b)| (a - b).abs() <= 1e-3 * grid.node_spacing());
+        if same {
+            Ok(())
+        } else {
+            Err(BemError::ContactGridMismatch {
+                path: self.model.mesh.source.clone(),
+                group: self.contact_group.clone(),
+                problem: format!(
+                    "post-processing asked on a grid of {} nodes that is not the body's own ({} nodes)",
+                    grid.n_nodes(),
+                    self.condensed.x.len()
+                ),
+            })
+        }
     }
 }
 
@@ -429,8 +513,9 @@ impl BodyModel for BemBody {
         )
     }
 
-    /// Re-solves the body with the contact group loaded by the interpolated contact tractions
-    /// (on A (q, p), on B (−q, −p) in global axes) and samples every element at ξ = −1, 1, 0.
+    /// The boundary solution under the nodal contact tractions (on A (q, p), on B (−q, −p) in
+    /// global axes), from the condensed response ([`BemBody::contact_solution`]), sampled at
+    /// ξ = −1, 1, 0 of every element.
     fn boundary_field(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Option<Result<BoundaryField, String>> {
         Some(self.boundary_solution(grid, p, q).map_err(|e| e.to_string()))
     }
@@ -447,5 +532,25 @@ impl BodyModel for BemBody {
             p: Mat::from_fn(m, m, |i, j| s[(i, 2 * j + 1)]),
             q: Mat::from_fn(m, m, |i, j| s[(i, 2 * j)]),
         })
+    }
+
+    /// Somigliana's identity, see [`BemBody::interior_samples`]; `side` must be the body's own.
+    fn interior(
+        &self,
+        grid: &ContactGrid,
+        side: Side,
+        p: &[f64],
+        q: &[f64],
+        points: &[[f64; 2]],
+        options: &InteriorOptions,
+    ) -> Result<Vec<InteriorSample>, InteriorError> {
+        if side != self.side {
+            return Err(InteriorError::Bem(BemError::ContactGridMismatch {
+                path: self.model.mesh.source.clone(),
+                group: self.contact_group.clone(),
+                problem: format!("body built for side {:?}, asked for side {side:?}", self.side),
+            }));
+        }
+        Ok(self.interior_samples(grid, p, q, points, options)?)
     }
 }

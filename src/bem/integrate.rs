@@ -102,6 +102,8 @@ pub struct Quadrature {
     legendre: Vec<(Vec<f64>, Vec<f64>)>,
     /// Log-weighted rule on [0, 1] for the weight ln(1/t).
     log: (Vec<f64>, Vec<f64>),
+    /// ln(1/tolerance).
+    log_inv_tolerance: f64,
 }
 
 impl Quadrature {
@@ -112,6 +114,7 @@ impl Quadrature {
             options,
             legendre: (1..=top).map(gauss_legendre).collect(),
             log: log_gauss(options.log_points.max(1)),
+            log_inv_tolerance: (1.0 / options.tolerance).ln(),
         }
     }
 
@@ -161,19 +164,30 @@ impl Quadrature {
     /// 1/r² kernels (T*, V, S) as well, whose Gauss error decays at the same geometric rate.
     /// Any kernel can be integrated with it: the caller evaluates its integrand at x(ξ) and
     /// multiplies by J(ξ) and the weight.
+    ///
+    /// Nothing is allocated (this runs once per element and source point: millions of times
+    /// for an interior grid); the subdivision depth is capped at [`MAX_DEPTH`], below which
+    /// intervals are finer than the resolution of ξ in double precision.
     pub fn off_element_points(&self, geometry: &ElementGeometry, source: [f64; 2], mut visit: impl FnMut(f64, f64)) {
         let o = &self.options;
         let poles = complex_singularities(geometry, source);
-        let mut stack = vec![(-1.0, 1.0, 0usize)];
-        while let Some((lo, hi, depth)) = stack.pop() {
-            let rho = bernstein_parameter(&poles, lo, hi);
-            if rho < o.min_ellipse && depth < o.max_depth {
+        let max_depth = o.max_depth.min(MAX_DEPTH);
+        // Depth-first: at most one pending sibling per level, so max_depth + 1 entries.
+        let mut stack = [(0.0, 0.0, 0usize); MAX_DEPTH + 1];
+        stack[0] = (-1.0, 1.0, 0);
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (lo, hi, depth) = stack[top];
+            let rho = bernstein_parameter(poles.as_slice(), lo, hi);
+            if rho < o.min_ellipse && depth < max_depth {
                 let mid = 0.5 * (lo + hi);
-                stack.push((lo, mid, depth + 1));
-                stack.push((mid, hi, depth + 1));
+                stack[top] = (lo, mid, depth + 1);
+                stack[top + 1] = (mid, hi, depth + 1);
+                top += 2;
                 continue;
             }
-            let n = points_for(rho, o.tolerance).clamp(o.min_points, o.max_points);
+            let n = points_for(rho, self.log_inv_tolerance).clamp(o.min_points, o.max_points);
             let (x, w) = self.legendre(n);
             let half = 0.5 * (hi - lo);
             for (&s, &wk) in x.iter().zip(w) {
@@ -274,45 +288,80 @@ fn accumulate(
     }
 }
 
-/// Gauss points needed for relative accuracy `tol` when the nearest singularity has Bernstein
+/// Gauss points needed for relative accuracy tol when the nearest singularity has Bernstein
 /// parameter ρ: error ≈ ρ^(−2n).
-fn points_for(rho: f64, tol: f64) -> usize {
+/// `log_inv_tol` = ln(1/tol), computed once per [`Quadrature`].
+fn points_for(rho: f64, log_inv_tol: f64) -> usize {
     if !rho.is_finite() {
         return 1;
     }
-    let n = (1.0 / tol).ln() / (2.0 * rho.max(1.0 + 1e-12).ln());
+    let n = log_inv_tol / (2.0 * rho.max(1.0 + 1e-12).ln());
     n.ceil() as usize + 1
+}
+
+/// Deepest interval halving of [`Quadrature::off_element_points`] whatever the options: 2^−50
+/// of the element is at the resolution of ξ ∈ [−1, 1] in double precision.
+pub const MAX_DEPTH: usize = 50;
+
+/// Up to `N` complex numbers, without allocation.
+#[derive(Debug, Clone, Copy)]
+struct Few<const N: usize> {
+    values: [Complex<f64>; N],
+    len: usize,
+}
+
+impl<const N: usize> Few<N> {
+    fn new() -> Self {
+        Self {
+            values: [Complex::new(0.0, 0.0); N],
+            len: 0,
+        }
+    }
+
+    fn push(&mut self, z: Complex<f64>) {
+        self.values[self.len] = z;
+        self.len += 1;
+    }
+
+    fn as_slice(&self) -> &[Complex<f64>] {
+        &self.values[..self.len]
+    }
 }
 
 /// Complex ξ where the integrand is singular: r² = 0 (roots of P±(ξ) = (x_x − X_x) ± i(x_y − X_y))
 /// and J = 0 (roots of x'_x ± i x'_y), for the quadratic map x(ξ) = a + bξ + cξ².
-fn complex_singularities(geometry: &ElementGeometry, source: [f64; 2]) -> Vec<Complex<f64>> {
+fn complex_singularities(geometry: &ElementGeometry, source: [f64; 2]) -> Few<6> {
     let [p0, p1, pm] = geometry.nodes;
     // x(ξ) = pm + ξ (p1 − p0)/2 + ξ² ((p0 + p1)/2 − pm)
     let a = [pm[0] - source[0], pm[1] - source[1]];
     let b = [0.5 * (p1[0] - p0[0]), 0.5 * (p1[1] - p0[1])];
     let c = [0.5 * (p0[0] + p1[0]) - pm[0], 0.5 * (p0[1] + p1[1]) - pm[1]];
-    let mut roots = Vec::with_capacity(6);
+    let mut roots = Few::new();
     for sign in [1.0, -1.0] {
         let z = |v: [f64; 2]| Complex::new(v[0], sign * v[1]);
-        roots.extend(quadratic_roots(z(c), z(b), z(a)));
+        for r in quadratic_roots(z(c), z(b), z(a)).as_slice() {
+            roots.push(*r);
+        }
         // J² = x'·x' = (x'_x + i x'_y)(x'_x − i x'_y), x' = b + 2cξ.
-        roots.extend(quadratic_roots(Complex::new(0.0, 0.0), z(c) * 2.0, z(b)));
+        for r in quadratic_roots(Complex::new(0.0, 0.0), z(c) * 2.0, z(b)).as_slice() {
+            roots.push(*r);
+        }
     }
     roots
 }
 
 /// Roots of c2 ξ² + c1 ξ + c0 (complex coefficients); degenerate leading terms drop roots.
-fn quadratic_roots(c2: Complex<f64>, c1: Complex<f64>, c0: Complex<f64>) -> Vec<Complex<f64>> {
+fn quadratic_roots(c2: Complex<f64>, c1: Complex<f64>, c0: Complex<f64>) -> Few<2> {
+    let mut r = Few::new();
     let scale = c0.norm().max(c1.norm()).max(c2.norm());
     if scale == 0.0 {
-        return Vec::new();
+        return r;
     }
     if c2.norm() <= 1e-14 * scale {
-        if c1.norm() <= 1e-14 * scale {
-            return Vec::new();
+        if c1.norm() > 1e-14 * scale {
+            r.push(-c0 / c1);
         }
-        return vec![-c0 / c1];
+        return r;
     }
     let disc = (c1 * c1 - c2 * c0 * 4.0).sqrt();
     // Numerically stable pair: q = −(c1 + sgn·disc)/2, roots q/c2 and c0/q.
@@ -321,7 +370,7 @@ fn quadratic_roots(c2: Complex<f64>, c1: Complex<f64>, c0: Complex<f64>) -> Vec<
     } else {
         -(c1 - disc) * 0.5
     };
-    let mut r = vec![q / c2];
+    r.push(q / c2);
     if q.norm() > 0.0 {
         r.push(c0 / q);
     }
@@ -338,10 +387,136 @@ fn bernstein_parameter(poles: &[Complex<f64>], lo: f64, hi: f64) -> f64 {
         .iter()
         .map(|p| {
             let s = (p - mid) / half;
-            let a = 0.5 * ((s - 1.0).norm() + (s + 1.0).norm());
+            // |z| as √(z·z̄): Complex::norm calls hypot, several times slower.
+            let a = 0.5 * ((s - 1.0).norm_sqr().sqrt() + (s + 1.0).norm_sqr().sqrt());
             a + (a * a - 1.0).max(0.0).sqrt()
         })
         .fold(f64::INFINITY, f64::min)
+}
+
+/// A lower bound, cheap to evaluate, on the Bernstein-ellipse parameter ρ (relative to the
+/// whole element ξ ∈ [−1, 1]) of every complex singularity of an off-element integrand, for
+/// far-field sources: it spares the root finding of [`Quadrature::off_element_points`] for the
+/// many elements far from an interior point.
+///
+/// With x(ξ) = x_m + bξ + cξ² (x_m the mid node), a singularity of 1/r, r² = 0 at complex ξ*,
+/// satisfies x_m − X = −(bξ* + cξ*²), so D = |X − x_m| ≤ |b||ξ*| + |c||ξ*|² (the triangle
+/// inequality in ℂ², b and c real vectors): |ξ*| ≥ R(D) = 2D/(|b| + √(|b|² + 4|c|D)). The zeros
+/// of the Jacobian, (b + 2cξ)·(b + 2cξ) = 0, a real quadratic with complex-conjugate roots, have
+/// |ξ| = |b|/(2|c|). A point s with |s| = R ≥ 1 has ρ(s) = a + √(a² − 1) with
+/// a = (|s − 1| + |s + 1|)/2 ≥ R, hence ρ ≥ R + √(R² − 1) for both kinds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SingularityBound {
+    /// x_m [length].
+    centre: [f64; 2],
+    /// |b| [length].
+    b: f64,
+    /// |c| [length].
+    c: f64,
+    /// The bound on ρ from the Jacobian's zeros (infinite for a straight element).
+    rho_jacobian: f64,
+}
+
+impl SingularityBound {
+    /// The bound of an element.
+    pub fn new(geometry: &ElementGeometry) -> Self {
+        let [p0, p1, pm] = geometry.nodes;
+        let b = (0.5 * (p1[0] - p0[0])).hypot(0.5 * (p1[1] - p0[1]));
+        let c = (0.5 * (p0[0] + p1[0]) - pm[0]).hypot(0.5 * (p0[1] + p1[1]) - pm[1]);
+        let rho_jacobian = if c > 0.0 {
+            ellipse_of_radius(b / (2.0 * c))
+        } else {
+            f64::INFINITY
+        };
+        Self {
+            centre: pm,
+            b,
+            c,
+            rho_jacobian,
+        }
+    }
+
+    /// A lower bound on ρ of every singularity for a source at `source` (see the type's docs).
+    pub fn rho_lower_bound(&self, source: [f64; 2]) -> f64 {
+        let (dx, dy) = (source[0] - self.centre[0], source[1] - self.centre[1]);
+        let d = (dx * dx + dy * dy).sqrt();
+        let radius = 2.0 * d / (self.b + (self.b * self.b + 4.0 * self.c * d).sqrt());
+        ellipse_of_radius(radius).min(self.rho_jacobian)
+    }
+}
+
+/// R + √(R² − 1) for R ≥ 1, else 1: the smallest ρ of a point at distance R from 0.
+fn ellipse_of_radius(radius: f64) -> f64 {
+    if radius > 1.0 {
+        radius + (radius * radius - 1.0).sqrt()
+    } else {
+        1.0
+    }
+}
+
+impl SingularityBound {
+    /// The distance D from the mid node beyond which the bound reaches ρ: the inverse of
+    /// [`Self::rho_lower_bound`], D = |c|R² + |b|R with R = (ρ + 1/ρ)/2 [length]; infinite when
+    /// the Jacobian's zeros keep the bound below ρ at any distance.
+    fn distance_for(&self, rho: f64) -> f64 {
+        if self.rho_jacobian < rho {
+            return f64::INFINITY;
+        }
+        let radius = 0.5 * (rho + 1.0 / rho);
+        self.c * radius * radius + self.b * radius
+    }
+}
+
+/// Far-field Gauss rules of one element for a [`Quadrature`]: the squared distances from the mid
+/// node beyond which n = first, first + 1, … points on the whole element meet the tolerance by
+/// the [`SingularityBound`] (without subdivision), so that choosing the rule for a source costs
+/// a few comparisons.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FarFieldRules {
+    /// The mid node [length].
+    centre: [f64; 2],
+    /// Fewest points ([`QuadratureOptions::min_points`]).
+    first: usize,
+    /// distance2[n − first]: squared distance [length²] from which n points suffice
+    /// (non-increasing in n).
+    distance2: Vec<f64>,
+}
+
+impl FarFieldRules {
+    /// The number of Gauss–Legendre points on the whole element [−1, 1] that meet the tolerance
+    /// for `source`, or `None` when the source may be near (then use
+    /// [`Quadrature::off_element_points`]). When it is `Some(n)`, the adaptive rule would not
+    /// subdivide and would use at most n points, so this rule is at least as accurate.
+    #[inline]
+    pub fn points(&self, source: [f64; 2]) -> Option<usize> {
+        let (dx, dy) = (source[0] - self.centre[0], source[1] - self.centre[1]);
+        let d2 = dx * dx + dy * dy;
+        self.distance2.iter().position(|&t| d2 >= t).map(|k| self.first + k)
+    }
+}
+
+impl Quadrature {
+    /// The far-field rules of an element with up to `max_points` points (see
+    /// [`FarFieldRules`]): n points need ρ ≥ max(min_ellipse, tol^(−1/(2(n − 1)))), the
+    /// inverse of the point count n = ⌈ln(1/tol)/(2 ln ρ)⌉ + 1 of the adaptive rule.
+    pub fn far_field_rules(&self, geometry: &ElementGeometry, max_points: usize) -> FarFieldRules {
+        let bound = SingularityBound::new(geometry);
+        let o = &self.options;
+        let first = o.min_points.max(2);
+        let distance2 = (first..=max_points.min(o.max_points))
+            .map(|n| {
+                let rho = (self.log_inv_tolerance / (2.0 * (n - 1) as f64))
+                    .exp()
+                    .max(o.min_ellipse);
+                bound.distance_for(rho).powi(2)
+            })
+            .collect();
+        FarFieldRules {
+            centre: bound.centre,
+            first,
+            distance2,
+        }
+    }
 }
 
 /// n-point Gauss rule for ∫₀¹ f(t) ln(1/t) dt, exact for polynomials of degree 2n − 1.
@@ -558,6 +733,102 @@ mod tests {
             // On a straight element ∂r/∂n = 0 and T*_ij N_b is odd about ξ0 only through
             // (r,i n_j − r,j n_i)/r: the skipped diagonal node has h = 0.
             assert_eq!(ints.h[local], [[0.0; 2]; 2]);
+        }
+    }
+
+    #[test]
+    fn singularity_bound_is_below_every_singularity() {
+        // Arcs of 10°, 30° and 90°, a straight element and an unevenly parametrised parabola;
+        // sources on a grid around each: the bound never exceeds the exact smallest ρ (the
+        // roots of complex_singularities), and it is tight far away (within 25 % at 20 lengths).
+        let arc = |deg: f64| {
+            let h = 0.5 * deg.to_radians();
+            ElementGeometry {
+                nodes: [[-(h.sin()), h.cos()], [h.sin(), h.cos()], [0.0, 1.0]],
+            }
+        };
+        let elements = [
+            arc(10.0),
+            arc(30.0),
+            arc(90.0),
+            ElementGeometry {
+                nodes: [[0.0, 0.0], [2.0, 0.0], [1.0, 0.0]],
+            },
+            ElementGeometry {
+                nodes: [[0.0, 0.0], [2.0, 0.3], [0.8, 0.4]],
+            },
+        ];
+        for g in &elements {
+            let bound = SingularityBound::new(g);
+            let length = g.length();
+            for i in -20..=20 {
+                for j in -20..=20 {
+                    let source = [0.37 * length * i as f64, 0.41 * length * j as f64 + 0.013];
+                    let exact = bernstein_parameter(complex_singularities(g, source).as_slice(), -1.0, 1.0);
+                    let lower = bound.rho_lower_bound(source);
+                    assert!(lower <= exact * (1.0 + 1e-12), "{g:?} at {source:?}: {lower} > {exact}");
+                }
+            }
+            let far = [20.0 * length, 3.0];
+            let (lower, exact) = (
+                bound.rho_lower_bound(far),
+                bernstein_parameter(complex_singularities(g, far).as_slice(), -1.0, 1.0),
+            );
+            assert!(
+                lower > 0.75 * exact.min(bound.rho_jacobian),
+                "{g:?}: {lower} vs {exact}"
+            );
+        }
+    }
+
+    #[test]
+    fn far_field_rules_never_use_fewer_points_than_the_adaptive_rule() {
+        // For sources all around three elements: whenever the far-field rule applies, the
+        // adaptive rule does not subdivide and uses at most as many points. On the 30° arc and
+        // the straight element it serves most sources; on the strongly curved parabola (mid node
+        // a quarter of the chord off it) the Jacobian's complex zeros are too close to [−1, 1]
+        // for 12 points, so the far-field rule never applies there.
+        let q = Quadrature::new(QuadratureOptions::default());
+        let h = 15f64.to_radians();
+        for g in [
+            ElementGeometry {
+                nodes: [[-(h.sin()), h.cos()], [h.sin(), h.cos()], [0.0, 1.0]],
+            },
+            ElementGeometry {
+                nodes: [[0.0, 0.0], [2.0, 0.0], [1.0, 0.0]],
+            },
+            ElementGeometry {
+                nodes: [[0.0, 0.0], [2.0, 0.3], [0.8, 0.4]],
+            },
+        ] {
+            let rules = q.far_field_rules(&g, 12);
+            let mut used = 0;
+            for i in -30..=30 {
+                for j in -30..=30 {
+                    let source = [0.9 * i as f64 + 0.01, 0.7 * j as f64 + 0.02];
+                    let Some(n) = rules.points(source) else { continue };
+                    used += 1;
+                    let mut intervals = 0;
+                    let mut adaptive = 0;
+                    let mut last = f64::NAN;
+                    q.off_element_points(&g, source, |xi, _| {
+                        adaptive += 1;
+                        if xi < last {
+                            intervals += 1;
+                        }
+                        last = xi;
+                    });
+                    assert!(
+                        intervals == 0 && adaptive <= n,
+                        "{source:?}: far {n}, adaptive {adaptive}"
+                    );
+                }
+            }
+            let curved = g.nodes[2] == [0.8, 0.4];
+            assert!(
+                if curved { used == 0 } else { used > 3000 },
+                "{g:?} {rules:?}: far-field rule used for {used} of 3721 sources"
+            );
         }
     }
 }

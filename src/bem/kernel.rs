@@ -209,6 +209,152 @@ fn delta(a: usize, b: usize) -> f64 {
     }
 }
 
+/// Kernels of the interior stress identity (Somigliana's identity differentiated and passed
+/// through Hooke's law; reference sheet §9, Brebbia–Telles–Wrobel Eq. 3.60):
+///
+/// ```text
+/// σ_ij(X) = ∫ D_kij t_k dΓ − ∫ S_kij u_k dΓ
+/// D_kij = [ (1−2ν)(δki r,j + δkj r,i − δij r,k) + 2 r,i r,j r,k ] / (4π(1−ν) r)
+/// S_kij = G/(2π(1−ν) r²) · { 2 ∂r/∂n [ (1−2ν) δij r,k + ν(δik r,j + δjk r,i) − 4 r,i r,j r,k ]
+///                            + 2ν(n_i r,j r,k + n_j r,i r,k)
+///                            + (1−2ν)(2 n_k r,i r,j + n_j δik + n_i δjk) − (1−4ν) n_k δij }
+/// ```
+///
+/// D_kij = C_ijlm ∂U*_lk/∂X_m and S_kij = C_ijlm ∂T*_lk/∂X_m (C the plane-strain stiffness), but
+/// written out so that nothing divides by 1 − 2ν: both stay finite at ν = 0.5, where Hooke's λ
+/// is infinite. Indexing is `[k][i][j]`: boundary component k, stress component ij (symmetric
+/// in i, j). D is in 1/length, S in stress/length².
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StressKernels {
+    /// D_kij [1/length].
+    pub d: [[[f64; 2]; 2]; 2],
+    /// S_kij [stress/length²].
+    pub s: [[[f64; 2]; 2]; 2],
+}
+
+impl Kelvin {
+    /// D and S at `field` (outward normal `normal`) for an interior point at `source` (see
+    /// [`StressKernels`]).
+    pub fn stress(&self, source: [f64; 2], field: [f64; 2], normal: [f64; 2]) -> StressKernels {
+        let d = [field[0] - source[0], field[1] - source[1]];
+        let r = d[0].hypot(d[1]);
+        let g = [d[0] / r, d[1] / r];
+        let drdn = g[0] * normal[0] + g[1] * normal[1];
+        let nu = self.poisson;
+        let c12 = 1.0 - 2.0 * nu;
+        let c14 = 1.0 - 4.0 * nu;
+        // 1/(4π(1−ν) r) and G/(2π(1−ν) r²) = 2G·c_t/r².
+        let (cd, cs) = (self.c_t / r, 2.0 * self.shear * self.c_t / (r * r));
+        let delta = |a: usize, b: usize| if a == b { 1.0 } else { 0.0 };
+        let mut out = StressKernels {
+            d: [[[0.0; 2]; 2]; 2],
+            s: [[[0.0; 2]; 2]; 2],
+        };
+        for k in 0..2 {
+            for i in 0..2 {
+                for j in 0..2 {
+                    let (dij, dik, djk) = (delta(i, j), delta(i, k), delta(j, k));
+                    let ggg = g[i] * g[j] * g[k];
+                    out.d[k][i][j] = cd * (c12 * (dik * g[j] + djk * g[i] - dij * g[k]) + 2.0 * ggg);
+                    out.s[k][i][j] = cs
+                        * (2.0 * drdn * (c12 * dij * g[k] + nu * (dik * g[j] + djk * g[i]) - 4.0 * ggg)
+                            + 2.0 * nu * (normal[i] * g[j] * g[k] + normal[j] * g[i] * g[k])
+                            + c12 * (2.0 * normal[k] * g[i] * g[j] + normal[j] * dik + normal[i] * djk)
+                            - c14 * normal[k] * dij);
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The integrands of Somigliana's identities for displacement and stress at an interior
+/// point, contracted with the boundary data: for boundary displacement u and traction t at the
+/// field point,
+///
+/// ```text
+/// du_i  = U*_ij t_j − T*_ij u_j                  (integrand of u_i(X), Eq. S1 of super::somigliana)
+/// dσ_ij = D_kij t_k − S_kij u_k                  (integrand of σ_ij(X), Eq. S2)
+/// ```
+///
+/// written out with g = r⃗/r, so that no kernel array is formed (this is the inner loop of an
+/// interior grid):
+///
+/// ```text
+/// U*_ij t_j = c_u [ (3−4ν) ln(ℓ/r) t_i + g_i (g·t) ]
+/// T*_ij u_j = −(c_t/r) [ ∂r/∂n ((1−2ν) u_i + 2 g_i (g·u)) − (1−2ν)(g_i (n·u) − n_i (g·u)) ]
+/// D_kij t_k = (c_t/r) [ (1−2ν)(t_i g_j + t_j g_i − δij (g·t)) + 2 g_i g_j (g·t) ]
+/// S_kij u_k = (2G c_t/r²) { 2 ∂r/∂n [ (1−2ν) δij (g·u) + ν(u_i g_j + u_j g_i) − 4 g_i g_j (g·u) ]
+///             + 2ν (n_i g_j + n_j g_i)(g·u) + (1−2ν)(2 (n·u) g_i g_j + n_j u_i + n_i u_j)
+///             − (1−4ν)(n·u) δij }
+/// ```
+///
+/// with c_u = 1/(8πG(1−ν)), c_t = 1/(4π(1−ν)). Returns (du [length/length], [dσxx, dσyy, dτxy]
+/// [stress/length]); multiply by dΓ.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SomiglianaIntegrand {
+    /// du_i [1/length × length].
+    pub displacement: [f64; 2],
+    /// (dσxx, dσyy, dτxy) [stress/length].
+    pub stress: [f64; 3],
+}
+
+impl Kelvin {
+    /// The contracted integrands at `field` (outward normal `normal`, boundary displacement `u`
+    /// and traction `t`) for the interior point `source` (see [`SomiglianaIntegrand`]).
+    #[inline]
+    pub fn somigliana_integrand(
+        &self,
+        source: [f64; 2],
+        field: [f64; 2],
+        normal: [f64; 2],
+        u: [f64; 2],
+        t: [f64; 2],
+    ) -> SomiglianaIntegrand {
+        let d = [field[0] - source[0], field[1] - source[1]];
+        // sqrt rather than hypot (several times slower): r is never near over- or underflow.
+        let r2 = d[0] * d[0] + d[1] * d[1];
+        let inv_r = 1.0 / r2.sqrt();
+        let g = [d[0] * inv_r, d[1] * inv_r];
+        let n = normal;
+        let nu = self.poisson;
+        let (c12, c14) = (1.0 - 2.0 * nu, 1.0 - 4.0 * nu);
+        let drdn = g[0] * n[0] + g[1] * n[1];
+        let (gu, gt, nu_n) = (
+            g[0] * u[0] + g[1] * u[1],
+            g[0] * t[0] + g[1] * t[1],
+            n[0] * u[0] + n[1] * u[1],
+        );
+        // a = c_t/r, b = 2G c_t/r².
+        let a = self.c_t * inv_r;
+        let b = 2.0 * self.shear * a * inv_r;
+        // Displacement, the formulas above regrouped:
+        // du_i = c_u κ ln(ℓ/r) t_i + g_i (c_u (g·t) + 2a ∂r/∂n (g·u) − a(1−2ν)(n·u))
+        //        + a(1−2ν)(∂r/∂n u_i + n_i (g·u)).
+        let log_term = self.c_u * (3.0 - 4.0 * nu) * (self.length_scale * inv_r).ln();
+        let along_g = self.c_u * gt + 2.0 * a * drdn * gu - a * c12 * nu_n;
+        let du = [0, 1].map(|i| log_term * t[i] + along_g * g[i] + a * c12 * (drdn * u[i] + n[i] * gu));
+        // Stress, regrouped with sym(p, q)_ij = p_i q_j + p_j q_i:
+        // dσ_ij = sym(v, g) − b(1−2ν) sym(n, u) + c_g g_i g_j − c_δ δij, where
+        // v = a(1−2ν) t − 2bν (∂r/∂n u + (g·u) n),
+        // c_g = 2a (g·t) + b (8 ∂r/∂n (g·u) − 2(1−2ν)(n·u)),
+        // c_δ = a(1−2ν)(g·t) + b (2(1−2ν) ∂r/∂n (g·u) − (1−4ν)(n·u)).
+        let v = [0, 1].map(|i| a * c12 * t[i] - 2.0 * b * nu * (drdn * u[i] + gu * n[i]));
+        let cg = 2.0 * a * gt + b * (8.0 * drdn * gu - 2.0 * c12 * nu_n);
+        let cd = a * c12 * gt + b * (2.0 * c12 * drdn * gu - c14 * nu_n);
+        let bn = b * c12;
+        let ds = [
+            2.0 * (v[0] * g[0] - bn * n[0] * u[0]) + cg * g[0] * g[0] - cd,
+            2.0 * (v[1] * g[1] - bn * n[1] * u[1]) + cg * g[1] * g[1] - cd,
+            v[0] * g[1] + v[1] * g[0] - bn * (n[0] * u[1] + n[1] * u[0]) + cg * g[0] * g[1],
+        ];
+        SomiglianaIntegrand {
+            displacement: du,
+            stress: ds,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -387,6 +533,124 @@ mod tests {
                             d[i][j][c]
                         );
                     }
+                }
+            }
+        }
+    }
+
+    /// Hooke's law (plane strain) applied to a displacement gradient grad[l][m] = ∂u_l/∂X_m.
+    fn hooke(k: &Kelvin, grad: [[f64; 2]; 2]) -> [[f64; 2]; 2] {
+        let nu = k.poisson;
+        let lambda = 2.0 * k.shear * nu / (1.0 - 2.0 * nu);
+        let tr = grad[0][0] + grad[1][1];
+        let mut s = [[0.0; 2]; 2];
+        for i in 0..2 {
+            for j in 0..2 {
+                s[i][j] = k.shear * (grad[i][j] + grad[j][i]) + if i == j { lambda * tr } else { 0.0 };
+            }
+        }
+        s
+    }
+
+    #[test]
+    fn stress_kernels_are_hooke_of_the_source_derivatives_of_u_and_t() {
+        // D_kij = C_ijlm ∂U*_lk/∂X_m, S_kij = C_ijlm ∂T*_lk/∂X_m, by central differences in the
+        // source point X (step 1e-6 on r ≈ 0.06 … 1.8: truncation ~1e-9, round-off ~1e-10,
+        // relative to the largest entry); Hooke needs ν < 0.5.
+        for nu in [0.0, 0.3, 0.45] {
+            let k = kernels(nu);
+            for (source, x, n) in [
+                ([0.3, -0.2], [1.1, 0.4], [0.6, 0.8]),
+                ([0.0, 0.0], [-0.5, -1.7], [-1.0, 0.0]),
+                ([0.31, 0.05], [0.35, 0.1], [0.28, -0.96]),
+            ] {
+                let sk = k.stress(source, x, n);
+                let h = 1e-6;
+                // fd_u[l][k][m] = ∂U*_lk/∂X_m, same for T*.
+                let (mut fd_u, mut fd_t) = ([[[0.0; 2]; 2]; 2], [[[0.0; 2]; 2]; 2]);
+                for m in 0..2 {
+                    let (mut sp, mut sm) = (source, source);
+                    sp[m] += h;
+                    sm[m] -= h;
+                    let (up, um) = (k.displacement(sp, x), k.displacement(sm, x));
+                    let (tp, tm) = (k.traction(sp, x, n), k.traction(sm, x, n));
+                    for l in 0..2 {
+                        for c in 0..2 {
+                            fd_u[l][c][m] = (up[l][c] - um[l][c]) / (2.0 * h);
+                            fd_t[l][c][m] = (tp[l][c] - tm[l][c]) / (2.0 * h);
+                        }
+                    }
+                }
+                let sd = sk.d.iter().flatten().flatten().fold(0.0f64, |a, b| a.max(b.abs()));
+                let ss = sk.s.iter().flatten().flatten().fold(0.0f64, |a, b| a.max(b.abs()));
+                for c in 0..2 {
+                    // The field u_l = U*_lc (c fixed) and its stress.
+                    let grad = |f: &[[[f64; 2]; 2]; 2]| [[f[0][c][0], f[0][c][1]], [f[1][c][0], f[1][c][1]]];
+                    let (hd, hs) = (hooke(&k, grad(&fd_u)), hooke(&k, grad(&fd_t)));
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            let (d, s) = (sk.d[c][i][j], sk.s[c][i][j]);
+                            assert!(
+                                (hd[i][j] - d).abs() < 1e-6 * sd,
+                                "nu={nu} D{c}{i}{j}: fd {} vs {d}",
+                                hd[i][j]
+                            );
+                            assert!(
+                                (hs[i][j] - s).abs() < 1e-6 * ss,
+                                "nu={nu} S{c}{i}{j}: fd {} vs {s}",
+                                hs[i][j]
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn stress_kernels_are_finite_and_continuous_at_the_incompressible_limit() {
+        // At ν = 0.5 Hooke's λ is infinite but D and S are polynomials in ν: they must be finite
+        // and differ from ν = 0.5 − 1e-6 by O(1e-6) of their size.
+        let (source, x, n) = ([0.3, -0.2], [1.1, 0.4], [0.6, 0.8]);
+        let at = |nu: f64| kernels(nu).stress(source, x, n);
+        let (a, b) = (at(0.5), at(0.5 - 1e-6));
+        let flat = |s: &StressKernels| -> Vec<f64> { s.d.iter().chain(&s.s).flatten().flatten().copied().collect() };
+        let (fa, fb) = (flat(&a), flat(&b));
+        let scale = fa.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(fa.iter().all(|v| v.is_finite()) && scale > 0.0);
+        for (p, q) in fa.iter().zip(&fb) {
+            assert!((p - q).abs() < 1e-5 * scale, "{p} vs {q}");
+        }
+    }
+
+    #[test]
+    fn contracted_somigliana_integrand_equals_the_kernel_contractions() {
+        for nu in [0.0, 0.3, 0.5] {
+            let k = kernels(nu);
+            for (source, x, n, u, t) in [
+                ([0.3, -0.2], [1.1, 0.4], [0.6, 0.8], [1e-3, -2e-3], [50.0, -20.0]),
+                ([0.0, 0.0], [-0.5, -1.7], [-1.0, 0.0], [-3e-4, 1e-4], [7.0, 3.0]),
+                ([0.31, 0.05], [0.35, 0.1], [0.28, -0.96], [2e-3, 5e-4], [-1.0, 30.0]),
+            ] {
+                let f = k.somigliana_integrand(source, x, n, u, t);
+                let (us, ts, sk) = (
+                    k.displacement(source, x),
+                    k.traction(source, x, n),
+                    k.stress(source, x, n),
+                );
+                for i in 0..2 {
+                    let want: f64 = (0..2).map(|j| us[i][j] * t[j] - ts[i][j] * u[j]).sum();
+                    let scale = (0..2)
+                        .map(|j| (us[i][j] * t[j]).abs() + (ts[i][j] * u[j]).abs())
+                        .sum::<f64>();
+                    assert!((f.displacement[i] - want).abs() <= 1e-13 * scale, "nu={nu} u{i}");
+                }
+                for (slot, (i, j)) in [(0, 0), (1, 1), (0, 1)].into_iter().enumerate() {
+                    let want: f64 = (0..2).map(|c| sk.d[c][i][j] * t[c] - sk.s[c][i][j] * u[c]).sum();
+                    let scale = (0..2)
+                        .map(|c| (sk.d[c][i][j] * t[c]).abs() + (sk.s[c][i][j] * u[c]).abs())
+                        .sum::<f64>();
+                    assert!((f.stress[slot] - want).abs() <= 1e-13 * scale, "nu={nu} s{i}{j}");
                 }
             }
         }

@@ -26,6 +26,7 @@
 
 use super::{circle_profile, BodyModel, Flexibility, Side, StrainOperator};
 use crate::grid::{ContactGrid, ElementKind};
+use crate::interior::{halfplane_interior, InteriorError, InteriorOptions, InteriorSample};
 use crate::material::Elastic;
 use crate::quadrature::gauss_legendre;
 use faer::Mat;
@@ -245,6 +246,31 @@ impl BodyModel for HalfSpace {
             p: Mat::from_fn(m, m, |i, j| if i == j { -side.sign() * 2.0 * a_coef } else { 0.0 }),
             q: Mat::from_fn(m, m, |i, j| -b_coef * cauchy[(i, j)]),
         })
+    }
+
+    /// Flamant / Boussinesq–Cerruti superposition ([`crate::interior`], Eq. H1–H2), the
+    /// displacement measured from this model's datum [`HalfSpace::datum_length`], so that at
+    /// the surface it equals the displacement the flexibility gives.
+    fn interior(
+        &self,
+        grid: &ContactGrid,
+        side: Side,
+        p: &[f64],
+        q: &[f64],
+        points: &[[f64; 2]],
+        options: &InteriorOptions,
+    ) -> Result<Vec<InteriorSample>, InteriorError> {
+        Ok(halfplane_interior(
+            grid,
+            p,
+            q,
+            self.material.shear(),
+            self.material.poisson,
+            self.datum_length(),
+            side,
+            points,
+            options,
+        ))
     }
 }
 

@@ -138,6 +138,22 @@ impl super::BodyModel for Transferred {
         let own = |v: &[f64]| crate::contact::mat_vec2(&t, v, &t, &vec![0.0; v.len()]);
         self.inner.boundary_field(&self.own_grid, &own(p), &own(q))
     }
+
+    /// Tractions are carried to the body's own nodes by the grid's interpolation first.
+    fn interior(
+        &self,
+        grid: &ContactGrid,
+        side: super::Side,
+        p: &[f64],
+        q: &[f64],
+        points: &[[f64; 2]],
+        options: &crate::interior::InteriorOptions,
+    ) -> Result<Vec<crate::interior::InteriorSample>, crate::interior::InteriorError> {
+        let t = interpolation_matrix(grid, &self.own_grid);
+        let own = |v: &[f64]| crate::contact::mat_vec2(&t, v, &t, &vec![0.0; v.len()]);
+        self.inner
+            .interior(&self.own_grid, side, &own(p), &own(q), points, options)
+    }
 }
 
 impl Transferred {

@@ -367,7 +367,10 @@ impl Penalty {
     }
 }
 
-/// A grid of interior points in the contact frame: y > 0 lies in A, y < 0 in B.
+/// A grid of interior points in the contact frame: y > 0 lies in A, y < 0 in B. The body's
+/// model gives the fields (`half_space`: Flamant superposition; `bem`: Somigliana's identity);
+/// a rigid body has none. Points outside the body or within the boundary layer are flagged in
+/// the output's `status` and not evaluated.
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InteriorSpec {
@@ -393,7 +396,7 @@ pub struct OutputSpec {
     /// VTK files for ParaView: contact.vtu and result.pvd. Default = true.
     #[serde(default = "default_true")]
     pub vtk: bool,
-    /// Interior stress grid (not available yet). Default = null.
+    /// Interior displacement and stress grid (interior_<body>.csv / .vtu). Default = null.
     #[serde(default)]
     pub interior: Option<InteriorSpec>,
 }

@@ -260,11 +260,12 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 "output.interior.body".into(),
                 format!("must be A or B (value = {})", g.body),
             ),
-            Some(BodySpec::HalfSpace { .. }) => {}
-            Some(_) => bad(
+            Some(BodySpec::HalfSpace { .. } | BodySpec::Bem { .. }) => {}
+            Some(BodySpec::Rigid { .. }) => bad(
                 "output.interior.body".into(),
                 format!(
-                    "interior stresses are available for half_space bodies only in this version (body {} is not)",
+                    "body {} is rigid: it does not deform and has no interior stresses; ask for a \
+                     half_space or bem body",
                     g.body
                 ),
             ),

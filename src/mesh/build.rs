@@ -1,5 +1,5 @@
-//! Procedural boundary meshes (rectangles, blocks with a refined segment, annuli), for tests,
-//! benchmarks and quick studies without Gmsh.
+//! Procedural boundary meshes (rectangles, half-plane blocks with a refined contact segment,
+//! annuli), for tests, benchmarks and quick studies without Gmsh.
 //!
 //! A [`MeshBuilder`] draws loops like a pen: [`MeshBuilder::move_to`] starts a loop,
 //! [`MeshBuilder::line_to`] adds a straight run of elements, [`MeshBuilder::close`] returns to
@@ -328,7 +328,6 @@ pub fn half_space_block(
     far_size: f64,
     above: bool,
 ) -> BoundaryMesh {
-    let s = if above { 1.0 } else { -1.0 };
     let (n_free, g) = graded_run(
         half_width - half_length,
         2.0 * half_length / n_contact.max(1) as f64,
@@ -336,14 +335,38 @@ pub fn half_space_block(
     );
     let n_side = ((depth / far_size).ceil() as usize).max(2);
     let n_far = ((2.0 * half_width / far_size).ceil() as usize).max(2);
+    let faces = BlockFaces {
+        n_free,
+        growth: g,
+        n_side,
+        n_far,
+    };
+    block(half_width, depth, half_length, n_contact, faces, above)
+}
+
+/// Element counts of a block's faces other than its contact segment.
+struct BlockFaces {
+    /// Elements on each free part of the contact face, growing by `growth` away from contact.
+    n_free: usize,
+    growth: f64,
+    /// Elements on each side face.
+    n_side: usize,
+    /// Elements on the far face.
+    n_far: usize,
+}
+
+/// The rectangle [−w, w] × [0, ±h] of [`half_space_block`] and [`half_plane_block`].
+fn block(w: f64, h: f64, half_length: f64, n_contact: usize, faces: BlockFaces, above: bool) -> BoundaryMesh {
+    let y = if above { h } else { -h };
+    let (l, g) = (half_length, faces.growth);
     let mut b = MeshBuilder::new(true, "block");
-    b.move_to([-half_width, 0.0])
-        .graded_line_to([-half_length, 0.0], n_free, 1.0 / g, "free")
-        .line_to([half_length, 0.0], n_contact, "contact")
-        .graded_line_to([half_width, 0.0], n_free, g, "free")
-        .line_to([half_width, s * depth], n_side, "free")
-        .line_to([-half_width, s * depth], n_far, "far")
-        .close(n_side, "free");
+    b.move_to([-w, 0.0])
+        .graded_line_to([-l, 0.0], faces.n_free, 1.0 / g, "free")
+        .line_to([l, 0.0], n_contact, "contact")
+        .graded_line_to([w, 0.0], faces.n_free, g, "free")
+        .line_to([w, y], faces.n_side, "free")
+        .line_to([-w, y], faces.n_far, "far")
+        .close(faces.n_side, "free");
     b.finish()
 }
 
@@ -367,6 +390,40 @@ pub fn layer_strip(thickness: f64, half_width: f64, half_length: f64, n_contact:
         .line_to([-half_width, -thickness], n_bonded, "bonded")
         .close(2, "ends");
     b.finish()
+}
+
+/// A rectangular block standing in for a half-plane (the paper's Fig. 2 block): [−w, w] × [0, h]
+/// for a body above the contact (`above`, body A) or [−w, w] × [−h, 0] below it (body B).
+/// Its face y = 0 carries `contact_elements` equal elements on |x| ≤ `contact_half_length`
+/// (group `contact`), then elements growing geometrically by `growth` towards the corners,
+/// starting from the contact elements' length (group `free`); the sides have `side_elements`
+/// equal elements each (group `free`), the far face 2·`side_elements` (group `far`).
+/// Lengths in the case's unit.
+pub fn half_plane_block(
+    w: f64,
+    h: f64,
+    contact_half_length: f64,
+    contact_elements: usize,
+    growth: f64,
+    side_elements: usize,
+    above: bool,
+) -> BoundaryMesh {
+    let l = contact_half_length;
+    let first = 2.0 * l / contact_elements as f64;
+    // First + first·g + … + first·g^(n−1) ≈ w − l.
+    let n_face = if growth > 1.0 {
+        ((1.0 + (w - l) * (growth - 1.0) / first).ln() / growth.ln()).round() as usize
+    } else {
+        ((w - l) / first).round() as usize
+    }
+    .max(1);
+    let faces = BlockFaces {
+        n_free: n_face,
+        growth,
+        n_side: side_elements,
+        n_far: 2 * side_elements,
+    };
+    block(w, h, l, contact_elements, faces, above)
 }
 
 #[cfg(test)]

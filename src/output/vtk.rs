@@ -134,19 +134,27 @@ pub fn write_boundary(path: &Path, field: &crate::body::BoundaryField) -> Result
     )
 }
 
-/// Writes interior stresses as a grid of quadrilaterals: point data `stress` (4 components
-/// σxx, σyy, σzz, τxy), `von_mises`, `max_shear`.
+/// Writes interior fields as a grid of quadrilaterals: point data `stress` (4 components
+/// σxx, σyy, σzz, τxy), `von_mises`, `max_shear`, `displacement` (3-vector, z = 0) and `status`
+/// (0 outside the body, 1 inside, 2 within the boundary layer; fields are 0 where not inside).
+/// Only quadrilaterals whose four corners are inside are written as cells, so ParaView never
+/// interpolates across points that were not evaluated; every point is kept.
 pub fn write_interior(path: &Path, f: &crate::interior::InteriorField) -> Result<(), Error> {
+    use crate::interior::PointStatus;
     let [nx, ny] = f.shape;
     let points: Vec<f64> = f.points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect();
+    let inside = |k: usize| f.status[k] == PointStatus::Inside;
     let mut connectivity = Vec::new();
     for j in 0..ny - 1 {
         for i in 0..nx - 1 {
-            let k = (j * nx + i) as u64;
-            connectivity.extend([k, k + 1, k + 1 + nx as u64, k + nx as u64]);
+            let k = j * nx + i;
+            let quad = [k, k + 1, k + 1 + nx, k + nx];
+            if quad.iter().all(|&c| inside(c)) {
+                connectivity.extend(quad.map(|c| c as u64));
+            }
         }
     }
-    let cells = (nx - 1) * (ny - 1);
+    let cells = connectivity.len() / 4;
     let offsets: Vec<u64> = (1..=cells as u64).map(|c| 4 * c).collect();
     let (vm, ms): (Vec<f64>, Vec<f64>) = f.stress.iter().map(crate::interior::invariants).unzip();
     let stress = Attribute::DataArray(DataArray {
@@ -157,14 +165,32 @@ pub fn write_interior(path: &Path, f: &crate::interior::InteriorField) -> Result
         },
         data: f.stress.iter().flatten().copied().collect::<Vec<f64>>().into(),
     });
+    let (ux, uy): (Vec<f64>, Vec<f64>) = f.displacement.iter().map(|u| (u[0], u[1])).unzip();
+    let status = Attribute::DataArray(DataArray {
+        name: "status".into(),
+        elem: ElementType::Scalars {
+            num_comp: 1,
+            lookup_table: None,
+        },
+        data: f.status.iter().map(|s| s.code()).collect::<Vec<i32>>().into(),
+    });
     export_unstructured(
         path,
-        format!("rollbem interior stresses of body {} (sxx, syy, szz, txy)", f.body),
+        format!(
+            "rollbem interior of body {} ({} model): stress (sxx, syy, szz, txy), displacement; status 0 outside, 1 inside, 2 boundary",
+            f.body, f.model
+        ),
         points,
         connectivity,
         offsets,
         vec![CellType::Quad; cells],
-        vec![stress, scalar("von_mises", vm), scalar("max_shear", ms)],
+        vec![
+            stress,
+            scalar("von_mises", vm),
+            scalar("max_shear", ms),
+            vector("displacement", &ux, &uy),
+            status,
+        ],
         Vec::new(),
     )
 }

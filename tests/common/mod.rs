@@ -48,3 +48,4 @@ pub fn rollbem(args: &[&str]) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
 }
+pub mod lame;
