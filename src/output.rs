@@ -115,6 +115,8 @@ pub struct Models {
 /// Solver diagnostics.
 #[derive(Debug, Clone, Serialize)]
 pub struct SolverSummary {
+    /// Solution method used.
+    pub method: crate::contact::Method,
     /// Formulation used.
     pub formulation: crate::contact::newton::Formulation,
     /// Normal penalty r_n [stress/length].
@@ -181,6 +183,7 @@ pub fn summary(
             slip_derivative: pb.slip_operator.scheme,
         },
         solver: SolverSummary {
+            method: newton.method,
             formulation: case.case.solver.formulation,
             penalty_normal: newton.penalty_normal,
             penalty_tangential: newton.penalty_tangential,
