@@ -69,12 +69,51 @@ pub enum Command {
     /// limits) and print each measured error against its closed form and limit; exit code 2 if
     /// any fails. docs/validation.md has the full tables.
     Validate,
+    /// Studies over many variants of a case (parallel, with a progress bar).
+    Study {
+        /// Which study.
+        #[command(subcommand)]
+        study: StudyCommand,
+    },
     /// Validate a case without solving: print the bodies, materials, Hertz estimates (a, p0),
     /// the grid spacing, the Carter stick-zone estimate and model advice.
     Check {
         /// Case file.
         case: PathBuf,
         /// Override a case value (as for `run`). Repeatable.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+    },
+}
+
+/// The studies.
+#[derive(Debug, Subcommand)]
+pub enum StudyCommand {
+    /// Convergence map of every solution method: newton (Φ), newton_psi, newton_plain,
+    /// norm_tang, gauss_seidel, over 2D slices through the case.
+    ///
+    /// Slices: friction μ 0.05–10 × Q/μP −1…1 (incl. ±0.99) for each Dundurs β in {0, 0.144,
+    /// 0.288, 0.45} (set through A's material against B's); penalty scale c 1e-3–1e3 × Q/μP at
+    /// β = 0.288; grid 11–161 elements × element type (constant, continuous and discontinuous
+    /// quadratic); friction × element type at β = 0.288 with the traction ripple. Cells with
+    /// |Q/μP| ≥ 1 have no steady rolling solution: marked n/a, not solved.
+    ///
+    /// Example: rollbem study stability cases/carter_051.yaml --quick
+    ///
+    /// Writes stability.csv (one row per cell and method: status, iterations, residual, solve
+    /// time, ripple, creepage), summary.txt and img/*.svg heat maps (one per slice and method,
+    /// one overview per slice). Exit code 0 when the default method (newton) converged in every
+    /// cell with a solution, 2 otherwise, 1 for bad input. docs/stability.md reads the map.
+    Stability {
+        /// Base case file (e.g. cases/carter_051.yaml).
+        case: PathBuf,
+        /// Small ladder for CI (under a minute): fewer values on every axis, 21-element grids.
+        #[arg(long)]
+        quick: bool,
+        /// Output folder (default: the case's output folder with `_stability` appended).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Fixed overrides of the base case, as for `run`. Repeatable.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
     },

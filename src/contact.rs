@@ -29,8 +29,8 @@ pub mod solution;
 use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;
 use faer::Mat;
-use serde::{Deserialize, Serialize};
 pub use methods::{Method, SolveReport, SolverSettings};
+use serde::{Deserialize, Serialize};
 pub use slip_operator::{SlipDerivative, SlipOperator};
 
 /// Direction in which the contact moves over the bodies (DESIGN §2).

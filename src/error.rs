@@ -59,6 +59,12 @@ pub enum Error {
         /// What is wrong and what to do.
         message: String,
     },
+    /// A study cannot be set up on this case.
+    #[error("study: {message}")]
+    Study {
+        /// What is wrong and what to do.
+        message: String,
+    },
     /// Writing results failed.
     #[error("cannot write results to {path}: {message}")]
     Output {

@@ -264,6 +264,27 @@ mod tests {
     }
 
     #[test]
+    fn continuous_quadratic_grid_shares_end_nodes_and_integrates_quadratics() {
+        let kind = ElementKind::ContinuousQuadratic;
+        let g = ContactGrid::uniform(kind, 4, 0.0, 2.0);
+        assert_eq!(g.n_nodes(), 9);
+        for (j, x) in g.nodes.iter().enumerate() {
+            assert!((x - 0.25 * j as f64).abs() < 1e-15, "node {j} at {x}");
+        }
+        // Simpson weights: L/6 at the grid ends, L/3 at shared nodes, 2L/3 at midpoints.
+        assert!((g.weights[0] - 0.5 / 6.0).abs() < 1e-15 && (g.weights[2] - 0.5 / 3.0).abs() < 1e-15);
+        let f = |x: f64| 3.0 - 2.0 * x + x * x;
+        let vals: Vec<f64> = g.nodes.iter().map(|&x| f(x)).collect();
+        for x in [0.1, 0.5, 0.77, 1.999] {
+            assert!((g.interpolate(&vals, x) - f(x)).abs() < 1e-13);
+        }
+        assert!((g.integrate(&vals) - (6.0 - 4.0 + 8.0 / 3.0)).abs() < 1e-13);
+        assert_eq!(g.element_of(2), (1, 0));
+        assert_eq!(g.element_of(8), (3, 2));
+        assert_eq!(g.global_node(1, 2), 4);
+    }
+
+    #[test]
     fn shape_functions_are_cardinal_and_reproduce_quadratics() {
         let kind = ElementKind::DiscontinuousQuadratic;
         for (a, xa) in kind.node_coordinates().iter().enumerate() {

@@ -8,7 +8,8 @@
 //! ```text
 //! case (YAML) ─▶ body models (half_space | rigid) ─▶ Flexibility at the contact grid
 //!            ─▶ ContactProblem (gap and slip affine in the tractions, paper Eq. 21)
-//!            ─▶ contact::newton::solve ─▶ ContactSolution ─▶ output (JSON, CSV, SVG)
+//!            ─▶ contact::methods::solve (newton | newton_plain | norm_tang | gauss_seidel)
+//!            ─▶ ContactSolution ─▶ output (JSON, CSV, SVG)
 //! ```
 //!
 //! ## Conventions (DESIGN §2)
@@ -32,4 +33,5 @@ pub mod mesh;
 pub mod output;
 pub mod quadrature;
 pub mod reference;
+pub mod study;
 pub mod sweep;

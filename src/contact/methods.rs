@@ -124,6 +124,9 @@ pub struct SolveReport {
     pub traction_scale: f64,
     /// Wall-clock time of the solve [s].
     pub wall_time_s: f64,
+    /// Restarts the default method needed, in order (empty when the first Newton run converged):
+    /// `penalty/10`, `penalty/100`, `psi` (or `phi`), `gauss_seidel start (omega ω, N sweeps)`.
+    pub fallbacks: Vec<String>,
 }
 
 /// Solves the contact problem with the chosen method from the paper's start vector.

@@ -14,6 +14,13 @@
 //! first k with Θ(z + αΔz) ≤ (1 − 2σα)Θ(z). With `max_backtracks = 0` every full step is taken:
 //! that is the method `newton_plain` of [`super::methods`].
 //!
+//! **Restarts** (line-search method only, [`solve_with`]): when the iteration stalls without
+//! converging, it is restarted with the penalties divided by 10 and 100, then with the other
+//! formulation, and last from the
+//! iterate of projected Gauss–Seidel sweeps ([`super::gauss_seidel`]) run to a scaled residual
+//! of 1e-4 (relaxation 0.5, then 0.25). Runs that converge directly (every shipped case) never restart; the report lists the
+//! restarts used (`fallbacks`).
+//!
 //! **Blocks.** The same Newton solves the two halves of the problem for the NORM/TANG
 //! alternation ([`super::norm_tang`]): [`Block::Normal`] keeps q and ξ frozen and solves rows
 //! G1, G3, G5 for (g, p, δ0); [`Block::Tangential`] keeps p and δ0 frozen and solves rows G2, G4,
@@ -21,10 +28,10 @@
 //! a given traction bound). The elastic rows are kept satisfied in both, so g and s follow the
 //! tractions. [`Block::Coupled`] is the full problem.
 
-use super::methods::{Method, SolveReport};
 pub use super::methods::IterationRecord;
-use super::residual::{axpy, merit, scaled_residual, ConvergenceMeasure, System};
+use super::methods::{Method, SolveReport};
 pub use super::residual::{automatic_penalties, start_vector, Formulation, State};
+use super::residual::{axpy, merit, scaled_residual, ConvergenceMeasure, System};
 use super::ContactProblem;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
@@ -66,6 +73,19 @@ impl Default for NewtonSettings {
         }
     }
 }
+
+/// Penalty divisors of the restarts of a stalled line-search Newton (see [`solve_with`]).
+pub const RESTART_PENALTY_DIVISORS: [f64; 2] = [10.0, 100.0];
+
+/// Relaxations ω of the Gauss–Seidel sweeps that give the last restarts their start: at large
+/// μβ the sweeps oscillate at ω = 1 and some still at 0.5 (docs/stability.md).
+pub const FALLBACK_GS_RELAXATIONS: [f64; 2] = [0.5, 0.25];
+
+/// The sweeps stop at this scaled residual: Newton finishes from there.
+pub const FALLBACK_GS_TOLERANCE: f64 = 1e-4;
+
+/// Sweep budget of each Gauss–Seidel start.
+pub const FALLBACK_GS_SWEEPS: usize = 10_000;
 
 /// Which unknowns a Newton solve updates (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -131,7 +151,6 @@ impl System<'_> {
             Tangential::Slip(t.signum())
         }
     }
-
 
     /// With δ0 free, at least one node must carry the contact row (δ0 appears nowhere else,
     /// and the P row would repeat itself); with ξ free, the Q row needs a node in contact to
@@ -384,9 +403,14 @@ pub(crate) fn damped_newton(
             system_size: size,
             inner_iterations: 0,
         });
+        // A full step without line search can overflow: keep the last finite iterate.
+        let next = measure(&g_trial, &trial);
+        if !next.is_finite() {
+            break;
+        }
         z = trial;
         g = g_trial;
-        converged = measure(&g, &z) <= settings.tolerance;
+        converged = next <= settings.tolerance;
     }
     let residual = measure(&g, &z);
     BlockOutcome {
@@ -417,10 +441,77 @@ pub(crate) fn solve_with(
     settings: &NewtonSettings,
     measure: &ConvergenceMeasure,
 ) -> (State, SolveReport) {
-    let sys = System::new(pb, settings.formulation, settings.penalty_scale);
-    let out = damped_newton(&sys, Block::Coupled, start_vector(pb), settings, &|g, z| {
+    let mut sys = System::new(pb, settings.formulation, settings.penalty_scale);
+    let mut out = damped_newton(&sys, Block::Coupled, start_vector(pb), settings, &|g, z| {
         measure.of_with(&sys, g, z)
     });
+    // Globalization of the line-search method (not of newton_plain). A stalled Newton (the
+    // Armijo search finds no decrease along the pseudo-Newton direction at a non-solution: met at
+    // large μ with strong coupling β, where the contact shifts far from Hertz) is restarted from
+    // the start vector with the penalties divided by 10, then by 100 (the projections then change
+    // branch more gradually), then with the other formulation (Ψ for Φ and conversely, whose
+    // friction bound switches elsewhere); if that fails too, from the iterate of projected Gauss–Seidel
+    // sweeps (relaxation 0.5, then 0.25), which find the contact and stick sets without a merit
+    // function. A run that converges on the first try is untouched.
+    let mut fallbacks = Vec::new();
+    if settings.max_backtracks > 0 {
+        for divisor in RESTART_PENALTY_DIVISORS {
+            if out.converged {
+                break;
+            }
+            sys = System::new(pb, settings.formulation, settings.penalty_scale / divisor);
+            let retry = damped_newton(&sys, Block::Coupled, start_vector(pb), settings, &|g, z| {
+                measure.of_with(&sys, g, z)
+            });
+            fallbacks.push(format!("penalty/{divisor}"));
+            out = BlockOutcome {
+                history: [out.history, retry.history.clone()].concat(),
+                ..retry
+            };
+        }
+        if !out.converged {
+            // The other formulation: its friction bound changes branch elsewhere.
+            let other = match settings.formulation {
+                Formulation::Phi => Formulation::Psi,
+                Formulation::Psi => Formulation::Phi,
+            };
+            sys = System::new(pb, other, settings.penalty_scale);
+            let retry = damped_newton(&sys, Block::Coupled, start_vector(pb), settings, &|g, z| {
+                measure.of_with(&sys, g, z)
+            });
+            fallbacks.push(format!("{other:?}").to_lowercase());
+            out = BlockOutcome {
+                history: [out.history, retry.history.clone()].concat(),
+                ..retry
+            };
+        }
+        for omega in FALLBACK_GS_RELAXATIONS {
+            if out.converged {
+                break;
+            }
+            let gs = NewtonSettings {
+                penalty_scale: omega,
+                tolerance: FALLBACK_GS_TOLERANCE.max(settings.tolerance),
+                max_iterations: FALLBACK_GS_SWEEPS,
+                ..*settings
+            };
+            let (start, gs_report) = super::gauss_seidel::solve(pb, &gs, measure);
+            if gs_report.residual.is_finite() {
+                sys = System::new(pb, settings.formulation, settings.penalty_scale);
+                let retry = damped_newton(&sys, Block::Coupled, start, settings, &|g, z| {
+                    measure.of_with(&sys, g, z)
+                });
+                fallbacks.push(format!(
+                    "gauss_seidel start (omega {omega}, {} sweeps)",
+                    gs_report.iterations
+                ));
+                out = BlockOutcome {
+                    history: [out.history, retry.history.clone()].concat(),
+                    ..retry
+                };
+            }
+        }
+    }
     let iterations = out.history.len();
     let report = SolveReport {
         method: Method::Newton,
@@ -434,6 +525,7 @@ pub(crate) fn solve_with(
         penalty_tangential: sys.rt,
         traction_scale: measure.traction_scale(),
         wall_time_s: 0.0,
+        fallbacks,
     };
     (out.state, report)
 }

@@ -42,7 +42,11 @@ pub const INNER_ITERATIONS: usize = 50;
 pub const INNER_TOLERANCE_RATIO: f64 = 0.1;
 
 /// Solves the contact problem by alternating NORM and TANG from the paper's start vector.
-pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (crate::contact::residual::State, SolveReport) {
+pub fn solve(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+) -> (crate::contact::residual::State, SolveReport) {
     let inner = NewtonSettings {
         max_iterations: INNER_ITERATIONS,
         tolerance: INNER_TOLERANCE_RATIO * settings.tolerance,
@@ -53,7 +57,7 @@ pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &Convergen
     let mut converged = residual <= settings.tolerance;
     let mut history = Vec::new();
     while !converged && history.len() < settings.max_iterations {
-        let normal = solve_block(pb, Block::Normal, z, &inner);
+        let normal = solve_block(pb, Block::Normal, z.clone(), &inner);
         let tangential = solve_block(pb, Block::Tangential, normal.state, &inner);
         let steps = normal.history.iter().chain(&tangential.history);
         history.push(IterationRecord {
@@ -62,11 +66,13 @@ pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &Convergen
             system_size: steps.clone().map(|h| h.system_size).max().unwrap_or(0),
             inner_iterations: steps.count(),
         });
-        z = tangential.state;
-        residual = measure.of(&z);
-        if !residual.is_finite() {
+        // A diverging alternation keeps its last finite iterate (no NaN in outputs).
+        let next = measure.of(&tangential.state);
+        if !next.is_finite() {
             break;
         }
+        z = tangential.state;
+        residual = next;
         converged = residual <= settings.tolerance;
     }
     let (rn, rt) = automatic_penalties(pb, settings.penalty_scale);
@@ -82,6 +88,7 @@ pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &Convergen
         penalty_tangential: rt,
         traction_scale: measure.traction_scale(),
         wall_time_s: 0.0,
+        fallbacks: Vec::new(),
     };
     (z, report)
 }
