@@ -14,8 +14,9 @@
 //! first k with Θ(z + αΔz) ≤ (1 − 2σα)Θ(z). With `max_backtracks = 0` every full step is taken:
 //! that is the method `newton_plain` of [`super::methods`].
 //!
-//! **Restarts** (line-search method only, [`solve_with`]): when the iteration stalls without
-//! converging, it is restarted with the penalties divided by 10 and 100, then with the other
+//! **Restarts** (line-search method only, [`solve_with`]): when an attempt stalls (spends a
+//! budget of at least 10 steps without converging, or meets a singular Newton matrix), it is
+//! restarted with the penalties divided by 10 and 100, then with the other
 //! formulation, and last from the
 //! iterate of projected Gauss–Seidel sweeps ([`super::gauss_seidel`]) run to a scaled residual
 //! of 1e-4 (relaxation 0.5, then 0.25). Runs that converge directly (every shipped case) never restart; the report lists the
@@ -364,7 +365,15 @@ pub(crate) struct BlockOutcome {
     pub residual: f64,
     /// One record per Newton step.
     pub history: Vec<IterationRecord>,
+    /// Not converged although the attempt had a real budget: the Newton matrix was singular,
+    /// an iterate overflowed, or at least [`MIN_RESTART_BUDGET`] steps did not reach the
+    /// tolerance. A run cut short on purpose (`max_iterations` below that) is not stalled, so it
+    /// is not restarted.
+    pub stalled: bool,
 }
+
+/// Smallest iteration budget for which a non-converged attempt counts as stalled.
+pub const MIN_RESTART_BUDGET: usize = 10;
 
 /// Generalized Newton with Armijo line search on `block` from `z`, stopping when
 /// `measure(G_block(z), z) ≤ settings.tolerance` or after `settings.max_iterations` steps, or when
@@ -379,11 +388,15 @@ pub(crate) fn damped_newton(
     let mut g = sys.block_residual(&z, block);
     let mut history = Vec::new();
     let mut converged = measure(&g, &z) <= settings.tolerance;
+    let (mut singular, mut overflow) = (false, false);
     while !converged && history.len() < settings.max_iterations {
         let residual = measure(&g, &z);
         let (dz, size) = match sys.newton_direction(&z, &g, block) {
             Ok(d) => d,
-            Err(_) => break,
+            Err(_) => {
+                singular = true;
+                break;
+            }
         };
         let theta = merit(&g);
         let mut alpha = 1.0;
@@ -406,6 +419,7 @@ pub(crate) fn damped_newton(
         // A full step without line search can overflow: keep the last finite iterate.
         let next = measure(&g_trial, &trial);
         if !next.is_finite() {
+            overflow = true;
             break;
         }
         z = trial;
@@ -413,11 +427,13 @@ pub(crate) fn damped_newton(
         converged = next <= settings.tolerance;
     }
     let residual = measure(&g, &z);
+    let exhausted = history.len() >= settings.max_iterations.max(MIN_RESTART_BUDGET);
     BlockOutcome {
         state: z,
         converged,
         residual,
         history,
+        stalled: !converged && (singular || overflow || exhausted),
     }
 }
 
@@ -445,8 +461,9 @@ pub(crate) fn solve_with(
     let mut out = damped_newton(&sys, Block::Coupled, start_vector(pb), settings, &|g, z| {
         measure.of_with(&sys, g, z)
     });
-    // Globalization of the line-search method (not of newton_plain). A stalled Newton (the
-    // Armijo search finds no decrease along the pseudo-Newton direction at a non-solution: met at
+    // Globalization of the line-search method (not of newton_plain). A stalled Newton (its
+    // budget spent without converging, typically because the Armijo search finds no decrease
+    // along the pseudo-Newton direction at a non-solution, or a singular Newton matrix; met at
     // large μ with strong coupling β, where the contact shifts far from Hertz) is restarted from
     // the start vector with the penalties divided by 10, then by 100 (the projections then change
     // branch more gradually), then with the other formulation (Ψ for Φ and conversely, whose
@@ -456,7 +473,7 @@ pub(crate) fn solve_with(
     let mut fallbacks = Vec::new();
     if settings.max_backtracks > 0 {
         for divisor in RESTART_PENALTY_DIVISORS {
-            if out.converged {
+            if !out.stalled {
                 break;
             }
             sys = System::new(pb, settings.formulation, settings.penalty_scale / divisor);
@@ -469,7 +486,7 @@ pub(crate) fn solve_with(
                 ..retry
             };
         }
-        if !out.converged {
+        if out.stalled {
             // The other formulation: its friction bound changes branch elsewhere.
             let other = match settings.formulation {
                 Formulation::Phi => Formulation::Psi,
@@ -486,7 +503,7 @@ pub(crate) fn solve_with(
             };
         }
         for omega in FALLBACK_GS_RELAXATIONS {
-            if out.converged {
+            if !out.stalled {
                 break;
             }
             let gs = NewtonSettings {
