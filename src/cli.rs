@@ -95,8 +95,11 @@ pub enum StudyCommand {
     /// Slices: friction μ 0.05–10 × Q/μP −1…1 (incl. ±0.99) for each Dundurs β in {0, 0.144,
     /// 0.288, 0.45} (set through A's material against B's); penalty scale c 1e-3–1e3 × Q/μP at
     /// β = 0.288; grid 11–161 elements × element type (constant, continuous and discontinuous
-    /// quadratic); friction × element type at β = 0.288 with the traction ripple. Cells with
-    /// |Q/μP| ≥ 1 have no steady rolling solution: marked n/a, not solved.
+    /// quadratic); friction × element type at β = 0.288 with the traction ripple. The friction,
+    /// penalty and ripple slices use a ±4a grid of 65 elements (large μβ moves the contact).
+    /// Cells with |Q/μP| ≥ 1 have no steady rolling solution: marked n/a, not solved. Each
+    /// method gets its budget: 100 Newton steps (per restart), 100 NORM/TANG pairs, 20 000
+    /// Gauss–Seidel sweeps. About 3 minutes on 2 cores (--quick: seconds).
     ///
     /// Example: rollbem study stability cases/carter_051.yaml --quick
     ///
@@ -107,7 +110,8 @@ pub enum StudyCommand {
     Stability {
         /// Base case file (e.g. cases/carter_051.yaml).
         case: PathBuf,
-        /// Small ladder for CI (under a minute): fewer values on every axis, 21-element grids.
+        /// Small ladder for CI: 3 frictions, 7 load ratios, β = 0 and 0.288, 11 and 21 elements
+        /// (seconds instead of minutes).
         #[arg(long)]
         quick: bool,
         /// Output folder (default: the case's output folder with `_stability` appended).

@@ -127,6 +127,8 @@ pub struct SolverSummary {
     pub traction_scale: f64,
     /// Residual, step length and system size per iteration.
     pub history: Vec<IterationRecord>,
+    /// Restarts the default method needed (empty when its first attempt converged).
+    pub fallbacks: Vec<String>,
 }
 
 /// Builds the summary of a run.
@@ -189,6 +191,7 @@ pub fn summary(
             penalty_tangential: newton.penalty_tangential,
             traction_scale: newton.traction_scale,
             history: newton.history.clone(),
+            fallbacks: newton.fallbacks.clone(),
         },
         notices: Vec::new(),
         vtk: case.case.output.vtk,

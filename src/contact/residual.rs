@@ -55,22 +55,6 @@ pub struct State {
     pub creep: f64,
 }
 
-impl State {
-    /// A state with the given tractions and load scalars, whose gap and slip are computed from
-    /// them (rows G1 and G2 of the residual vanish): the form in which tractions-only methods
-    /// (Gauss–Seidel, NORM/TANG) hand over their iterates.
-    pub fn from_tractions(pb: &ContactProblem, pressure: Vec<f64>, shear: Vec<f64>, overlap: f64, creep: f64) -> Self {
-        Self {
-            gap: pb.gap(&pressure, &shear, overlap),
-            slip: pb.slip(&pressure, &shear, creep),
-            pressure,
-            shear,
-            overlap,
-            creep,
-        }
-    }
-}
-
 /// The projection Proj[−b, b](z) onto the friction interval (paper Eq. 29); zero for b ≤ 0.
 pub fn projection(z: f64, bound: f64) -> f64 {
     if bound <= 0.0 {
