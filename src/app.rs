@@ -8,7 +8,8 @@ use crate::body::rigid::Rigid;
 use crate::body::transfer::Transferred;
 use crate::body::{BodyModel, BoundaryField, Side, WithCircularProfile};
 use crate::case::{self, BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase, NormalSpec, TangentialSpec};
-use crate::contact::newton::{self, NewtonReport, NewtonSettings};
+use crate::contact::methods::{self, SolverSettings};
+use crate::contact::newton::{NewtonReport, NewtonSettings};
 use crate::contact::solution::{slip_regime, ContactSolution};
 use crate::contact::{ContactProblem, NormalControl, TangentialControl};
 use crate::error::Error;
@@ -377,7 +378,8 @@ pub fn estimates(case: &LoadedCase, bodies: &[PreparedBody; 2]) -> Estimates {
         None if g.align_edges => aligned_half_length(a, g.extent, g.elements),
         None => g.extent * a,
     };
-    let npe = c.contact.grid.element.nodes_per_element();
+    // Node intervals per element: shared end nodes count once.
+    let npe = c.contact.grid.element.node_stride();
     Estimates {
         e_star,
         dundurs_beta,
@@ -403,6 +405,14 @@ pub fn newton_settings(case: &LoadedCase) -> NewtonSettings {
         tolerance: s.tolerance,
         max_iterations: s.max_iterations,
         ..NewtonSettings::default()
+    }
+}
+
+/// The solver settings of a case: its method and the Newton settings it shares.
+pub fn solver_settings(case: &LoadedCase) -> SolverSettings {
+    SolverSettings {
+        method: case.case.solver.method,
+        newton: newton_settings(case),
     }
 }
 
@@ -515,7 +525,7 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
         ..Timings::default()
     };
     let t_solve = Instant::now();
-    let (state, newton) = newton::solve(&problem, &newton_settings(case));
+    let (state, newton) = methods::solve(&problem, &solver_settings(case));
     timings.solve_s = t_solve.elapsed().as_secs_f64();
     timings.total_s = start.elapsed().as_secs_f64();
     let solution = ContactSolution::from_state(&problem, &state);

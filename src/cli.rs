@@ -69,7 +69,8 @@ pub enum Command {
     /// limits) and print each measured error against its closed form and limit; exit code 2 if
     /// any fails. docs/validation.md has the full tables.
     Validate,
-    /// Studies over many runs of a case's scene (issue 6): speed against accuracy.
+    /// Studies over many runs of a case's scene (issue 6): speed against accuracy of the body
+    /// models, and where each solution method converges (parallel, with a progress bar).
     Study {
         /// Which study.
         #[command(subcommand)]
@@ -130,5 +131,37 @@ pub enum StudyCommand {
         /// Runs at once (default: one per core). --jobs 1 gives undisturbed timings.
         #[arg(long, default_value_t = 0)]
         jobs: usize,
+    },
+    /// Convergence map of every solution method: newton (Φ), newton_psi, newton_plain,
+    /// norm_tang, gauss_seidel, over 2D slices through the case.
+    ///
+    /// Slices: friction μ 0.05–10 × Q/μP −1…1 (incl. ±0.99) for each Dundurs β in {0, 0.144,
+    /// 0.288, 0.45} (set through A's material against B's); penalty scale c 1e-3–1e3 × Q/μP at
+    /// β = 0.288; grid 11–161 elements × element type (constant, continuous and discontinuous
+    /// quadratic); friction × element type at β = 0.288 with the traction ripple. The friction,
+    /// penalty and ripple slices use a ±4a grid of 65 elements (large μβ moves the contact).
+    /// Cells with |Q/μP| ≥ 1 have no steady rolling solution: marked n/a, not solved. Each
+    /// method gets its budget: 100 Newton steps (per restart), 100 NORM/TANG pairs, 20 000
+    /// Gauss–Seidel sweeps. About 3 minutes on 2 cores (--quick: seconds).
+    ///
+    /// Example: rollbem study stability cases/carter_051.yaml --quick
+    ///
+    /// Writes stability.csv (one row per cell and method: status, iterations, residual, solve
+    /// time, ripple, creepage), summary.txt and img/*.svg heat maps (one per slice and method,
+    /// one overview per slice). Exit code 0 when the default method (newton) converged in every
+    /// cell with a solution, 2 otherwise, 1 for bad input. docs/stability.md reads the map.
+    Stability {
+        /// Base case file (e.g. cases/carter_051.yaml).
+        case: PathBuf,
+        /// Small ladder for CI: 3 frictions, 7 load ratios, β = 0 and 0.288, 11 and 21 elements
+        /// (seconds instead of minutes).
+        #[arg(long)]
+        quick: bool,
+        /// Output folder (default: the case's output folder with `_stability` appended).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Fixed overrides of the base case, as for `run`. Repeatable.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
     },
 }

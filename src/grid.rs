@@ -2,9 +2,12 @@
 //!
 //! The grid is a row of elements on `[x_min, x_max]`, usually equal ([`ContactGrid::uniform`];
 //! a BEM mesh may give unequal ones, [`ContactGrid::from_edges`]). Each element carries either one node
-//! at its centre (constant element) or three nodes at the intrinsic coordinates ξ = −2/3, 0, +2/3
-//! (discontinuous quadratic element, the paper's choice, §5). With ξ = ±2/3 the nodes of a
-//! discontinuous quadratic grid are equally spaced (spacing L/3), which the slip operator uses.
+//! at its centre (constant element), three nodes at the intrinsic coordinates ξ = −2/3, 0, +2/3
+//! (discontinuous quadratic element, the paper's choice, §5), or three nodes at ξ = −1, 0, +1
+//! whose end nodes are shared with the neighbouring elements (continuous quadratic element: the
+//! traction is continuous along the grid, the choice Man & Aliabadi reported ripples with).
+//! With ξ = ±2/3 the nodes of a discontinuous quadratic grid are equally spaced (spacing L/3),
+//! and those of a continuous one too (spacing L/2), which the slip operator uses.
 //! Nodes are numbered in increasing x.
 
 use serde::Serialize;
@@ -18,6 +21,9 @@ pub enum ElementKind {
     /// Three interior nodes at ξ = −2/3, 0, +2/3; traction quadratic over the element and
     /// discontinuous between elements (González & Abascal §5).
     DiscontinuousQuadratic,
+    /// Nodes at ξ = −1, 0, +1, the end nodes shared with the neighbours; traction quadratic over
+    /// the element and continuous along the grid. Half-space and rigid bodies only.
+    ContinuousQuadratic,
 }
 
 /// Intrinsic coordinate of the outer nodes of a discontinuous quadratic element.
@@ -29,22 +35,38 @@ impl ElementKind {
         match self {
             ElementKind::Constant => "constant",
             ElementKind::DiscontinuousQuadratic => "discontinuous_quadratic",
+            ElementKind::ContinuousQuadratic => "continuous_quadratic",
         }
     }
 
-    /// Number of nodes per element.
+    /// Number of nodes (shape functions) per element.
     pub fn nodes_per_element(self) -> usize {
         match self {
             ElementKind::Constant => 1,
-            ElementKind::DiscontinuousQuadratic => 3,
+            ElementKind::DiscontinuousQuadratic | ElementKind::ContinuousQuadratic => 3,
         }
     }
 
-    /// Intrinsic coordinates ξ ∈ (−1, 1) of the element's nodes.
+    /// Step in global node number from one element to the next: nodes per element, less the
+    /// shared end node of continuous elements (also the node intervals per element).
+    pub fn node_stride(self) -> usize {
+        match self {
+            ElementKind::ContinuousQuadratic => 2,
+            other => other.nodes_per_element(),
+        }
+    }
+
+    /// Whether neighbouring elements share their end nodes.
+    pub fn shares_nodes(self) -> bool {
+        self == ElementKind::ContinuousQuadratic
+    }
+
+    /// Intrinsic coordinates ξ ∈ [−1, 1] of the element's nodes.
     pub fn node_coordinates(self) -> &'static [f64] {
         match self {
             ElementKind::Constant => &[0.0],
             ElementKind::DiscontinuousQuadratic => &[-DQE_NODE, 0.0, DQE_NODE],
+            ElementKind::ContinuousQuadratic => &[-1.0, 0.0, 1.0],
         }
     }
 
@@ -61,6 +83,12 @@ impl ElementKind {
                     _ => [0.0, 0.5 / c, 0.5 / (c * c)],
                 }
             }
+            // Lagrange polynomials through ξ = −1, 0, +1.
+            ElementKind::ContinuousQuadratic => match a {
+                0 => [0.0, -0.5, 0.5],
+                1 => [1.0, 0.0, -1.0],
+                _ => [0.0, 0.5, 0.5],
+            },
         }
     }
 }
@@ -99,16 +127,24 @@ impl ContactGrid {
             "grid edges must increase: {edges:?}"
         );
         let n_elements = edges.len() - 1;
-        let mut nodes = Vec::with_capacity(n_elements * kind.nodes_per_element());
-        let mut weights = Vec::with_capacity(nodes.capacity());
+        let stride = kind.node_stride();
+        let n_nodes = n_elements * stride + usize::from(kind.shares_nodes());
+        let mut nodes = vec![0.0; n_nodes];
+        let mut weights = vec![0.0; n_nodes];
         for e in 0..n_elements {
             let length = edges[e + 1] - edges[e];
             let centre = 0.5 * (edges[e] + edges[e + 1]);
             for (a, xi) in kind.node_coordinates().iter().enumerate() {
-                nodes.push(centre + 0.5 * length * xi);
+                let j = e * stride + a;
+                // A shared end node gets the same x from both elements (exactly, at the edge).
+                nodes[j] = match (kind.shares_nodes(), a) {
+                    (true, 0) => edges[e],
+                    (true, 2) => edges[e + 1],
+                    _ => centre + 0.5 * length * xi,
+                };
                 let [c0, _, c2] = kind.shape_polynomial(a);
-                // ∫_{-1}^{1} (c0 + c1 ξ + c2 ξ²) dξ · L/2
-                weights.push((2.0 * c0 + 2.0 * c2 / 3.0) * 0.5 * length);
+                // ∫_{-1}^{1} (c0 + c1 ξ + c2 ξ²) dξ · L/2, summed over the elements of the node.
+                weights[j] += (2.0 * c0 + 2.0 * c2 / 3.0) * 0.5 * length;
             }
         }
         Self {
@@ -178,7 +214,7 @@ impl ContactGrid {
         (0..npe)
             .map(|a| {
                 let [c0, c1, c2] = self.kind.shape_polynomial(a);
-                (e * npe + a, c0 + c1 * xi + c2 * xi * xi)
+                (self.global_node(e, a), c0 + c1 * xi + c2 * xi * xi)
             })
             .collect()
     }
@@ -188,10 +224,17 @@ impl ContactGrid {
         self.edges[self.edges.len() - 1] - self.edges[0]
     }
 
-    /// Element index and local node index of node `j`.
+    /// Element index and local node index of node `j` (for a shared end node of continuous
+    /// elements: the element on its right, except at the right end of the grid).
     pub fn element_of(&self, j: usize) -> (usize, usize) {
-        let npe = self.kind.nodes_per_element();
-        (j / npe, j % npe)
+        let stride = self.kind.node_stride();
+        let e = (j / stride).min(self.n_elements() - 1);
+        (e, j - e * stride)
+    }
+
+    /// Global node number of local node `a` of element `e`.
+    pub fn global_node(&self, e: usize, a: usize) -> usize {
+        e * self.kind.node_stride() + a
     }
 
     /// Integral Σ w_j v_j of a nodal field over the grid (force from a traction) [length·field].
@@ -218,6 +261,27 @@ mod tests {
         }
         let total: f64 = g.weights.iter().sum();
         assert!((total - 2.6).abs() < 1e-14);
+    }
+
+    #[test]
+    fn continuous_quadratic_grid_shares_end_nodes_and_integrates_quadratics() {
+        let kind = ElementKind::ContinuousQuadratic;
+        let g = ContactGrid::uniform(kind, 4, 0.0, 2.0);
+        assert_eq!(g.n_nodes(), 9);
+        for (j, x) in g.nodes.iter().enumerate() {
+            assert!((x - 0.25 * j as f64).abs() < 1e-15, "node {j} at {x}");
+        }
+        // Simpson weights: L/6 at the grid ends, L/3 at shared nodes, 2L/3 at midpoints.
+        assert!((g.weights[0] - 0.5 / 6.0).abs() < 1e-15 && (g.weights[2] - 0.5 / 3.0).abs() < 1e-15);
+        let f = |x: f64| 3.0 - 2.0 * x + x * x;
+        let vals: Vec<f64> = g.nodes.iter().map(|&x| f(x)).collect();
+        for x in [0.1, 0.5, 0.77, 1.999] {
+            assert!((g.interpolate(&vals, x) - f(x)).abs() < 1e-13);
+        }
+        assert!((g.integrate(&vals) - (6.0 - 4.0 + 8.0 / 3.0)).abs() < 1e-13);
+        assert_eq!(g.element_of(2), (1, 0));
+        assert_eq!(g.element_of(8), (3, 2));
+        assert_eq!(g.global_node(1, 2), 4);
     }
 
     #[test]

@@ -8,7 +8,8 @@
 //! ```text
 //! case (YAML) ─▶ body models (half_space | bem | rigid) ─▶ Flexibility at the contact grid
 //!            ─▶ ContactProblem (gap and slip affine in the tractions, paper Eq. 21)
-//!            ─▶ contact::newton::solve ─▶ ContactSolution
+//!            ─▶ contact::methods::solve (newton | newton_plain | norm_tang | gauss_seidel)
+//!            ─▶ ContactSolution
 //!            ─▶ post-processing by each body model (boundary, interior fields)
 //!            ─▶ output (JSON, CSV, SVG, VTK)
 //! ```

@@ -32,8 +32,9 @@ fn dispatch(cli: Cli) -> Result<i32> {
             } else {
                 eprintln!(
                     "error: the solver did not converge in {} iterations (scaled residual {:.3e}); \
-                     the residual history is in {}. Try solver.formulation: psi, a different \
-                     solver.penalty scale, or more solver.max_iterations.",
+                     the residual history is in {}. Try solver.method: newton (the default), \
+                     solver.formulation: psi, a different solver.penalty scale, or more \
+                     solver.max_iterations (gauss_seidel counts sweeps and needs thousands).",
                     report.summary.iterations,
                     report.summary.residual,
                     report.output_dir.join("summary.json").display()
@@ -147,6 +148,37 @@ fn dispatch(cli: Cli) -> Result<i32> {
                 } else {
                     EXIT_NOT_CONVERGED
                 })
+            }
+            StudyCommand::Stability { case, quick, out, set } => {
+                let out = match out {
+                    Some(o) => o,
+                    None => {
+                        let dir = rollbem::case::load(&case, &set)?.output_dir();
+                        let name = dir
+                            .file_name()
+                            .map_or("stability".into(), |n| format!("{}_stability", n.to_string_lossy()));
+                        dir.with_file_name(name)
+                    }
+                };
+                let preset = if quick {
+                    rollbem::study::stability::Preset::Quick
+                } else {
+                    rollbem::study::stability::Preset::Default
+                };
+                let report = rollbem::study::stability::run(&case, &set, preset, &out)?;
+                print!("{}", rollbem::study::stability::render_summary(&report));
+                println!("results in {}", report.dir.display());
+                let failures = report.default_failures();
+                for c in &failures {
+                    let (x, y) = report.coordinates(c);
+                    eprintln!(
+                        "  default method failed: {} at ({x}, {y}): {} {}",
+                        report.slices[c.slice].name,
+                        c.status.name(),
+                        c.message
+                    );
+                }
+                Ok(if failures.is_empty() { 0 } else { EXIT_NOT_CONVERGED })
             }
         },
         Command::Check { case, set, tolerance } => {

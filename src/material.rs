@@ -69,6 +69,29 @@ pub fn dundurs_beta(a: Option<&Elastic>, b: Option<&Elastic>) -> f64 {
     0.5 * (dil(a) - dil(b)) / (dev(a) + dev(b))
 }
 
+/// Material A that gives Dundurs' β (A first, as in [`dundurs_beta`]) against material B.
+///
+/// A's Poisson's ratio is ν_A = ν_B·(1 − 2|β|) (so β = 0 gives A = B, and a large β gets the
+/// more compressible A it needs), and its shear modulus follows from β's definition solved for
+/// 1/G_A: with d(ν) = (1 − 2ν) and e(ν) = 2(1 − ν),
+/// 1/G_A = (1/G_B)·(d(ν_B) + β e(ν_B)) / (d(ν_A) − β e(ν_A)).
+/// β > 0 makes A the softer body (aluminium on steel: β ≈ 0.144).
+///
+/// Returns `None` when no elastic A reaches β against B: both bracketed factors must be positive
+/// (β < 0 needs d(ν_B) − |β| e(ν_B) > 0: a body B of ν = 0.3 admits β > −0.2857 only, the value
+/// of a rigid A).
+pub fn material_for_beta(b: &Elastic, beta: f64) -> Option<Elastic> {
+    let d = |nu: f64| 1.0 - 2.0 * nu;
+    let e = |nu: f64| 2.0 * (1.0 - nu);
+    let nu_a = b.poisson * (1.0 - 2.0 * beta.abs());
+    let (num, den) = (d(b.poisson) + beta * e(b.poisson), d(nu_a) - beta * e(nu_a));
+    if !(beta.abs() < 0.5 && num > 0.0 && den > 0.0) {
+        return None;
+    }
+    let shear_a = b.shear() * den / num;
+    Some(Elastic::from_shear(shear_a, nu_a))
+}
+
 /// Combined radius R with 1/R = 1/R_A + 1/R_B [length] (both convex).
 pub fn effective_radius(radius_a: f64, radius_b: f64) -> f64 {
     1.0 / (1.0 / radius_a + 1.0 / radius_b)
@@ -89,6 +112,20 @@ mod tests {
         // E* = 51 572.3 MPa (reference sheet §4.4).
         let e_star = contact_modulus(Some(&al), Some(&st));
         assert!((e_star - 51_572.3).abs() < 0.1, "E* = {e_star}");
+    }
+
+    #[test]
+    fn material_for_beta_reaches_the_target_beta() {
+        let steel = Elastic::new(210_000.0, 0.3);
+        for beta in [-0.2, 0.0, 0.144, 0.288, 0.45] {
+            let a = material_for_beta(&steel, beta).expect("reachable");
+            let got = dundurs_beta(Some(&a), Some(&steel));
+            assert!((got - beta).abs() < 1e-12, "β = {beta}: got {got}");
+            assert!(a.young > 0.0 && a.poisson > -1.0 && a.poisson <= 0.5);
+        }
+        let same = material_for_beta(&steel, 0.0).expect("β = 0");
+        assert!((same.young / steel.young - 1.0).abs() < 1e-14 && same.poisson == steel.poisson);
+        assert!(material_for_beta(&steel, -0.3).is_none() && material_for_beta(&steel, 0.5).is_none());
     }
 
     #[test]

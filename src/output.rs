@@ -123,6 +123,8 @@ pub struct Models {
 /// Solver diagnostics.
 #[derive(Debug, Clone, Serialize)]
 pub struct SolverSummary {
+    /// Solution method used.
+    pub method: crate::contact::Method,
     /// Formulation used.
     pub formulation: crate::contact::newton::Formulation,
     /// Normal penalty r_n [stress/length].
@@ -133,6 +135,8 @@ pub struct SolverSummary {
     pub traction_scale: f64,
     /// Residual, step length and system size per iteration.
     pub history: Vec<IterationRecord>,
+    /// Restarts the default method needed (empty when its first attempt converged).
+    pub fallbacks: Vec<String>,
 }
 
 /// Builds the summary of a run.
@@ -189,11 +193,13 @@ pub fn summary(
             slip_derivative: pb.slip_operator.scheme,
         },
         solver: SolverSummary {
+            method: newton.method,
             formulation: case.case.solver.formulation,
             penalty_normal: newton.penalty_normal,
             penalty_tangential: newton.penalty_tangential,
             traction_scale: newton.traction_scale,
             history: newton.history.clone(),
+            fallbacks: newton.fallbacks.clone(),
         },
         hbem_check: check_friction_law(sol, mu, DEFAULT_THRESHOLD_FRACTION),
         notices: Vec::new(),

@@ -367,3 +367,34 @@ fn interior_of_bem_bodies_is_written_and_rigid_bodies_are_refused() {
     assert!(count(",outside") >= 50 && count(",boundary") >= 25 && count(",inside") > 0);
     assert!(!csv.contains("NaN") && !csv.contains("inf"));
 }
+
+/// `rollbem study stability --quick` (the CI step): exit code 0 (the default method converged
+/// everywhere a solution exists), the table on stdout, stability.csv and the heat maps written.
+#[test]
+fn study_stability_quick_writes_the_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/carter_051.yaml");
+    let out = dir.path().join("stab");
+    let (code, stdout, stderr) = rollbem(&[
+        "study",
+        "stability",
+        case.to_str().unwrap(),
+        "--quick",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(
+        stdout.contains("gauss_seidel") && stdout.contains("wall time"),
+        "{stdout}"
+    );
+    assert!(out.join("stability.csv").exists() && out.join("img/penalty_load.svg").exists());
+    let (code, _, stderr) = rollbem(&[
+        "study",
+        "stability",
+        dir.path().join("nope.yaml").to_str().unwrap(),
+        "--quick",
+    ]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("nope.yaml"), "{stderr}");
+}

@@ -3,8 +3,8 @@
 
 Usage: check_outputs.py DIR [DIR ...]
 
-Each DIR is a run folder (summary.json, contact.csv, contact.vtu, result.pvd) or a sweep folder
-(sweep.csv, sweep.pvd, run_NNNN/). For every file: it opens in meshio and in pyvista, carries the
+Each DIR is a run folder (summary.json, contact.csv, contact.vtu, result.pvd), a sweep folder
+(sweep.csv, sweep.pvd, run_NNNN/) or a stability-study folder (stability.csv, img/*.svg). For every file: it opens in meshio and in pyvista, carries the
 documented arrays with the right shapes, and its values equal contact.csv / summary.json to 1e-12
 relative. Exits 1 with one line per defect.
 """
@@ -253,6 +253,41 @@ def check_sweep(d):
         check_run(run)
 
 
+STUDY_STATUS = {"converged", "not_converged", "out_of_domain", "error"}
+
+
+def check_stability(d):
+    """A stability map: known statuses; out-of-domain exactly where |Q/muP| >= 1; the default
+    method converged in every other cell; finite numbers; one heat map per slice and method."""
+    with open(d / "stability.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        fail(d / "stability.csv", "no rows")
+        return
+    for r in rows:
+        where = f"{d / 'stability.csv'} {r['slice']} {r['method']} ({r['x']}, {r['y']})"
+        if r["status"] not in STUDY_STATUS:
+            fail(where, f"unknown status {r['status']}")
+        ratio = [float(r[k]) for k in ("x", "y") if r[k + "_key"] == "loadratio"]
+        outside = any(abs(v) >= 1 for v in ratio)
+        if outside != (r["status"] == "out_of_domain"):
+            fail(where, "out_of_domain does not match |Q/muP| >= 1")
+        if r["method"] == "newton" and not outside and r["status"] != "converged":
+            fail(where, f"default method: {r['status']} {r['message']}")
+        for key in ("residual", "solve_s", "ripple", "creep"):
+            if r[key] != "" and not np.isfinite(float(r[key])):
+                fail(where, f"`{key}` is not finite")
+        if r["status"] == "converged" and float(r["residual"]) > 1e-10:
+            fail(where, f"converged with residual {r['residual']}")
+    for s in sorted({r["slice"] for r in rows}):
+        for m in sorted({r["method"] for r in rows}):
+            svg = d / "img" / f"{s}__{m}.svg"
+            if not svg.exists() or not svg.read_text().startswith("<svg"):
+                fail(svg, "missing or not an SVG")
+        if not (d / "img" / f"{s}.svg").exists():
+            fail(d / "img" / f"{s}.svg", "overview missing")
+
+
 def main(dirs):
     if not dirs:
         print(__doc__)
@@ -261,10 +296,12 @@ def main(dirs):
         d = Path(name)
         if (d / "sweep.csv").exists():
             check_sweep(d)
+        elif (d / "stability.csv").exists():
+            check_stability(d)
         elif (d / "summary.json").exists():
             check_run(d)
         else:
-            fail(d, "neither a run folder (summary.json) nor a sweep folder (sweep.csv)")
+            fail(d, "neither a run folder (summary.json), a sweep folder (sweep.csv) nor a study folder (stability.csv)")
     for e in errors:
         print("FAIL", e)
     print(f"check_outputs: {len(dirs)} folder(s), {len(errors)} defect(s)")

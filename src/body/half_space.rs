@@ -135,7 +135,7 @@ fn element_integrals_gauss(
 /// Only (2·n_elements − 1)·npe element integrals are evaluated (O(m) instead of O(m²)), each on
 /// a reference element centred at 0; the matrix is then filled from that table.
 pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
-    if !grid.is_uniform() {
+    if !grid.is_uniform() || grid.kind.shares_nodes() {
         return influence_matrix_direct(grid, kernel);
     }
     let m = grid.n_nodes();
@@ -169,10 +169,10 @@ pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
     })
 }
 
-/// The influence matrix of a non-uniform grid: every node–element pair integrated (O(m²)).
+/// The influence matrix of a non-uniform grid or of continuous elements: every node–element
+/// pair integrated (O(m²)).
 fn influence_matrix_direct(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
     let m = grid.n_nodes();
-    let npe = grid.kind.nodes_per_element();
     let rule = gauss_legendre(12);
     let mut k = Mat::zeros(m, m);
     for (i, &x) in grid.nodes.iter().enumerate() {
@@ -184,8 +184,9 @@ fn influence_matrix_direct(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
             } else {
                 element_integrals_exact(grid.kind, kernel, s1, s2, x)
             };
+            // Shared end nodes (continuous elements) collect both elements' integrals.
             for (a, v) in values.into_iter().enumerate() {
-                k[(i, e * npe + a)] = v;
+                k[(i, grid.global_node(e, a))] += v;
             }
         }
     }

@@ -1,7 +1,8 @@
 //! The case file schema (DESIGN §5). Every struct rejects unknown keys; each field documents its
 //! unit and default. Lengths, forces and stresses are in the case's consistent units.
 
-use crate::contact::newton::Formulation;
+pub use crate::contact::newton::Formulation;
+pub use crate::contact::Method;
 use crate::contact::{RollingDirection, SlipDerivative};
 use crate::grid::ElementKind;
 use serde::{Deserialize, Serialize};
@@ -307,15 +308,19 @@ impl LoadSpec {
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSpec {
-    /// Solution method. Default = newton (generalized Newton with line search).
+    /// Solution method: `newton` (generalized Newton with line search, the default),
+    /// `newton_plain` (no line search), `norm_tang` (Kalker's NORM/TANG alternation) or
+    /// `gauss_seidel` (projected Gauss–Seidel sweeps). See docs/stability.md. Default = newton.
     pub method: Method,
     /// Projection formulation: phi (paper Eq. 43) or psi (Eq. 44). Default = phi.
     pub formulation: Formulation,
-    /// `auto` (scale 1) or a positive scale c of the automatic penalties. Default = auto.
+    /// `auto` (scale 1) or a positive scale c of the automatic penalties (for `gauss_seidel` the
+    /// relaxation factor ω of its local updates). Default = auto.
     pub penalty: Penalty,
     /// Scaled residual at which the solver stops. Default = 1e-10.
     pub tolerance: f64,
-    /// Maximum number of Newton iterations. Default = 100.
+    /// Maximum number of iterations, in the method's own unit: Newton steps, NORM/TANG
+    /// alternations, or Gauss–Seidel sweeps (which need thousands). Default = 100.
     pub max_iterations: usize,
 }
 
@@ -329,14 +334,6 @@ impl Default for SolverSpec {
             max_iterations: 100,
         }
     }
-}
-
-/// Solution methods.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Method {
-    /// Generalized Newton with Armijo line search (González & Abascal §4).
-    Newton,
 }
 
 /// Penalty choice: the word `auto` or a positive scale.

@@ -1,22 +1,7 @@
 //! Generalized Newton method with Armijo line search (Pang 1990; González & Abascal §4).
 //!
-//! Unknowns z = (g, s, p, q, δ0, ξ) (paper Eq. 42; δ0 and ξ only when they are not prescribed).
-//! The residual G(z), in the signs of [`crate::contact`], is (paper Eq. 43 Φ / Eq. 44 Ψ):
-//!
-//! ```text
-//! G1 = r_n (g − h0 + δ0 − H_p p − H_q q)        elastic normal equations (Eq. 12)
-//! G2 = r_t (s − σξ − B_p p − B_q q)             elastic slip equations (Eq. 19)
-//! G3 = p − max(0, p − r_n g)          [Φ]       Signorini as a projection (Eq. 24)
-//!    = min(p, r_n g)                  [Ψ]       (Eq. 25)
-//! G4 = q − Proj[−μp̂, μp̂](q − r_t s)             Coulomb as a projection (Eq. 34)
-//!      p̂ = max(0, p − r_n g) [Φ],  max(0, p) [Ψ]
-//! G5 = (Σ w_j p_j − P)/L,  G6 = (Σ w_j q_j − Q)/L   load control (Eq. 39), L the grid length
-//! ```
-//!
-//! The elastic rows are scaled by the penalties so that every component of G is a traction:
-//! the merit ½‖G‖² is then balanced and the convergence test ‖G‖∞ ≤ tol·p_ref is scale-free.
-//! The penalties are dimensionally sound: r_n = c / mean diag(H_p) and r_t = c / mean |diag(B_q)|
-//! (stress/length and stress), with the user's scale c (default 1).
+//! The unknowns z = (g, s, p, q, δ0, ξ) and the residual G(z) (paper Eq. 43 Φ / Eq. 44 Ψ) are
+//! those of [`super::residual`].
 //!
 //! **Newton step.** The B-derivative pseudo-Jacobian is that of paper Eq. 54–73 (the "modified"
 //! choices at ties: a tie counts as open in the normal direction and as stick in the tangential
@@ -24,21 +9,37 @@
 //! slipping nodes give Δq = μ·sgn·Δp̂ − G4. Substituting all of these leaves a dense system in the
 //! pressures of contact nodes, the shears of stick nodes and the free load scalars, solved by LU
 //! (faer). Its size is #contact + #stick + #free ≤ 2m + 2, much smaller than the paper's 4m + 2.
+//!
+//! **Line search.** Armijo backtracking on the merit Θ = ½‖G‖² (paper Eq. 49–51): α = β^k, the
+//! first k with Θ(z + αΔz) ≤ (1 − 2σα)Θ(z). With `max_backtracks = 0` every full step is taken:
+//! that is the method `newton_plain` of [`super::methods`].
+//!
+//! **Restarts** (line-search method only, [`solve_with`]): when an attempt stalls (spends a
+//! budget of at least 10 steps without converging, or meets a singular Newton matrix), it is
+//! restarted with the penalties divided by 10 and 100, then with the other
+//! formulation, and last from the
+//! iterate of projected Gauss–Seidel sweeps ([`super::gauss_seidel`]) run to a scaled residual
+//! of 1e-4 (relaxation 0.5, then 0.25). Runs that converge directly (every shipped case) never restart; the report lists the
+//! restarts used (`fallbacks`).
+//!
+//! **Blocks.** The same Newton solves the two halves of the problem for the NORM/TANG
+//! alternation ([`super::norm_tang`]): [`Block::Normal`] keeps q and ξ frozen and solves rows
+//! G1, G3, G5 for (g, p, δ0); [`Block::Tangential`] keeps p and δ0 frozen and solves rows G2, G4,
+//! G6 for (s, q, ξ) with the friction bound μ max(0, p) of the frozen pressure (Kalker's TANG with
+//! a given traction bound). The elastic rows are kept satisfied in both, so g and s follow the
+//! tractions. [`Block::Coupled`] is the full problem.
 
-use super::{ContactProblem, NormalControl, TangentialControl};
+pub use super::methods::IterationRecord;
+use super::methods::{Method, SolveReport};
+pub use super::residual::{automatic_penalties, start_vector, Formulation, State};
+use super::residual::{axpy, merit, scaled_residual, ConvergenceMeasure, System};
+use super::ContactProblem;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 use serde::{Deserialize, Serialize};
 
-/// The two projection formulations of the contact conditions.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Formulation {
-    /// Paper Eq. 43: the friction bound uses the augmented pressure max(0, p − r g).
-    Phi,
-    /// Paper Eq. 44: the friction bound uses max(0, p).
-    Psi,
-}
+/// The report of a Newton solve (the common report of all methods).
+pub type NewtonReport = SolveReport;
 
 /// Settings of the generalized Newton method.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -74,51 +75,38 @@ impl Default for NewtonSettings {
     }
 }
 
-/// One Newton iteration in the history.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct IterationRecord {
-    /// Scaled residual ‖G‖∞ / p_ref before the step.
-    pub residual: f64,
-    /// Accepted step length α.
-    pub step: f64,
-    /// Size of the reduced linear system solved.
-    pub system_size: usize,
+/// Penalty divisors of the restarts of a stalled line-search Newton (see [`solve_with`]).
+pub const RESTART_PENALTY_DIVISORS: [f64; 2] = [10.0, 100.0];
+
+/// Relaxations ω of the Gauss–Seidel sweeps that give the last restarts their start: at large
+/// μβ the sweeps oscillate at ω = 1 and some still at 0.5 (docs/stability.md).
+pub const FALLBACK_GS_RELAXATIONS: [f64; 2] = [0.5, 0.25];
+
+/// The sweeps stop at this scaled residual: Newton finishes from there.
+pub const FALLBACK_GS_TOLERANCE: f64 = 1e-4;
+
+/// Sweep budget of each Gauss–Seidel start.
+pub const FALLBACK_GS_SWEEPS: usize = 10_000;
+
+/// Which unknowns a Newton solve updates (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Block {
+    /// The coupled problem: every unknown.
+    Coupled,
+    /// The normal problem: (g, p, δ0) with q and ξ frozen (Kalker's NORM).
+    Normal,
+    /// The tangential problem: (s, q, ξ) with p and δ0 frozen (Kalker's TANG).
+    Tangential,
 }
 
-/// Outcome of a solve: the final iterate and how we got there.
-#[derive(Debug, Clone, Serialize)]
-pub struct NewtonReport {
-    /// Whether the scaled residual reached the tolerance.
-    pub converged: bool,
-    /// Number of Newton steps taken.
-    pub iterations: usize,
-    /// Final scaled residual ‖G‖∞ / p_ref.
-    pub residual: f64,
-    /// Residual and step length of every iteration.
-    pub history: Vec<IterationRecord>,
-    /// Normal penalty r_n [stress/length].
-    pub penalty_normal: f64,
-    /// Tangential penalty r_t [stress].
-    pub penalty_tangential: f64,
-    /// Traction scale p_ref of the convergence test [stress].
-    pub traction_scale: f64,
-}
+impl Block {
+    fn solves_normal(self) -> bool {
+        self != Block::Tangential
+    }
 
-/// The unknowns z of the paper (Eq. 42).
-#[derive(Debug, Clone, PartialEq)]
-pub struct State {
-    /// Gap g [length].
-    pub gap: Vec<f64>,
-    /// Slip s [-].
-    pub slip: Vec<f64>,
-    /// Pressure p [stress].
-    pub pressure: Vec<f64>,
-    /// Shear q [stress].
-    pub shear: Vec<f64>,
-    /// Overlap δ0 [length].
-    pub overlap: f64,
-    /// Creepage ξ [-].
-    pub creep: f64,
+    fn solves_tangential(self) -> bool {
+        self != Block::Normal
+    }
 }
 
 /// Tangential state of a node for the pseudo-Jacobian.
@@ -129,42 +117,26 @@ enum Tangential {
     Slip(f64),
 }
 
-/// The problem together with its penalties: evaluates G and its Newton step.
-struct System<'a> {
-    pb: &'a ContactProblem,
-    form: Formulation,
-    rn: f64,
-    rt: f64,
-    length: f64,
-    free_overlap: bool,
-    free_creep: bool,
-}
-
-fn projection(z: f64, bound: f64) -> f64 {
-    if bound <= 0.0 {
-        0.0
-    } else {
-        z.clamp(-bound, bound)
-    }
-}
-
 impl System<'_> {
-    fn m(&self) -> usize {
-        self.pb.n_nodes()
-    }
-
-    fn bound_pressure(&self, p: f64, g: f64) -> f64 {
-        match self.form {
-            Formulation::Phi => (p - self.rn * g).max(0.0),
-            Formulation::Psi => p.max(0.0),
+    /// G(z) restricted to a block: the rows the block does not solve are set to zero (the
+    /// layout, and so the indexing of the Newton step, stays that of the full residual).
+    fn block_residual(&self, z: &State, block: Block) -> Vec<f64> {
+        let mut r = self.residual(z);
+        let m = self.m();
+        if !block.solves_tangential() {
+            r[3 * m..4 * m].fill(0.0);
+            if self.free_creep {
+                let k = r.len() - 1;
+                r[k] = 0.0;
+            }
         }
-    }
-
-    fn is_contact(&self, p: f64, g: f64) -> bool {
-        match self.form {
-            Formulation::Phi => p - self.rn * g > 0.0,
-            Formulation::Psi => p > self.rn * g,
+        if !block.solves_normal() {
+            r[2 * m..3 * m].fill(0.0);
+            if self.free_overlap {
+                r[4 * m] = 0.0;
+            }
         }
+        r
     }
 
     fn tangential_state(&self, z: &State, i: usize) -> Tangential {
@@ -181,50 +153,6 @@ impl System<'_> {
         }
     }
 
-    #[allow(clippy::needless_range_loop)] // several arrays indexed by node: clearer than zips
-    fn residual(&self, z: &State) -> Vec<f64> {
-        let pb = self.pb;
-        let m = self.m();
-        let mut r = Vec::with_capacity(4 * m + 2);
-        let h = pb.compression(&z.pressure, &z.shear);
-        for i in 0..m {
-            r.push(self.rn * (z.gap[i] - pb.h0[i] + z.overlap - h[i]));
-        }
-        let b = super::mat_vec2(&pb.bp, &z.pressure, &pb.bq, &z.shear);
-        for i in 0..m {
-            let e = pb.slip_operator.creep_weight[i];
-            r.push(self.rt * (z.slip[i] - pb.flow_sign * z.creep * e - b[i]));
-        }
-        for i in 0..m {
-            let (p, g) = (z.pressure[i], z.gap[i]);
-            r.push(match self.form {
-                Formulation::Phi => p - (p - self.rn * g).max(0.0),
-                Formulation::Psi => p.min(self.rn * g),
-            });
-        }
-        for i in 0..m {
-            let bound = pb.friction * self.bound_pressure(z.pressure[i], z.gap[i]);
-            r.push(z.shear[i] - projection(z.shear[i] - self.rt * z.slip[i], bound));
-        }
-        if let NormalControl::Force(p_total) = pb.normal {
-            r.push((pb.grid.integrate(&z.pressure) - p_total) / self.length);
-        }
-        if let Some((ratio, q_total)) = self.tangential_load() {
-            let f_p = pb.grid.integrate(&z.pressure);
-            r.push((pb.grid.integrate(&z.shear) - ratio * pb.friction * f_p - q_total) / self.length);
-        }
-        r
-    }
-
-    /// (c_p, Q0) of the tangential load equation Σ w q − c_p μ Σ w p − Q0 = 0, if Q is controlled.
-    fn tangential_load(&self) -> Option<(f64, f64)> {
-        match self.pb.tangential {
-            TangentialControl::Force(q) => Some((0.0, q)),
-            TangentialControl::Ratio(ratio) => Some((ratio, 0.0)),
-            TangentialControl::Creep(_) => None,
-        }
-    }
-
     /// With δ0 free, at least one node must carry the contact row (δ0 appears nowhere else,
     /// and the P row would repeat itself); with ξ free, the Q row needs a node in contact to
     /// stick (see [`System::ensure_stick_row`]). If no node is in contact, the node closest to
@@ -232,8 +160,9 @@ impl System<'_> {
     /// at a near-tie. An iterate with every node open is met after a full step into tension,
     /// e.g. on an incompressible layer, whose volume constraint makes the all-contact start
     /// solve for negative pressures everywhere.
-    fn ensure_contact_row(&self, z: &State, mut contact: Vec<bool>) -> Vec<bool> {
-        if (self.free_overlap || self.free_creep) && !contact.iter().any(|&c| c) {
+    fn ensure_contact_row(&self, z: &State, mut contact: Vec<bool>, block: Block) -> Vec<bool> {
+        let needed = (self.free_overlap && block.solves_normal()) || (self.free_creep && block.solves_tangential());
+        if needed && !contact.iter().any(|&c| c) {
             let f = |k: usize| z.pressure[k] - self.rn * z.gap[k];
             let k = (0..contact.len()).max_by(|&i, &j| f(i).total_cmp(&f(j))).unwrap_or(0);
             contact[k] = true;
@@ -246,8 +175,8 @@ impl System<'_> {
     /// singular. The slipping node closest to sticking (smallest (|t| − bound)/bound) then gets
     /// the stick derivative, again a "modified" choice at a near-tie (paper Eq. 60). A contact
     /// node whose friction bound is zero (free) qualifies too, after every slipping one.
-    fn ensure_stick_row(&self, z: &State, contact: &[bool], tangential: &mut [Tangential]) {
-        if !self.free_creep || tangential.contains(&Tangential::Stick) {
+    fn ensure_stick_row(&self, z: &State, contact: &[bool], tangential: &mut [Tangential], block: Block) {
+        if !(self.free_creep && block.solves_tangential()) || tangential.contains(&Tangential::Stick) {
             return;
         }
         let excess = |i: usize| {
@@ -268,7 +197,7 @@ impl System<'_> {
 
     /// Solves the linearized equations BG(z)Δz = −G(z) by the reduction in the module docs.
     #[allow(non_snake_case)]
-    fn newton_direction(&self, z: &State, G: &[f64]) -> Result<(State, usize), String> {
+    fn newton_direction(&self, z: &State, G: &[f64], block: Block) -> Result<(State, usize), String> {
         let pb = self.pb;
         let m = self.m();
         let (g1, g2, g3, g4) = (&G[0..m], &G[m..2 * m], &G[2 * m..3 * m], &G[3 * m..4 * m]);
@@ -281,9 +210,16 @@ impl System<'_> {
         let mut contact_rows = Vec::new();
         let normal_contact: Vec<bool> = (0..m).map(|i| self.is_contact(z.pressure[i], z.gap[i])).collect();
         let mut tangential: Vec<Tangential> = (0..m).map(|i| self.tangential_state(z, i)).collect();
-        let normal_contact = self.ensure_contact_row(z, normal_contact);
-        self.ensure_stick_row(z, &normal_contact, &mut tangential);
+        let normal_contact = self.ensure_contact_row(z, normal_contact, block);
+        self.ensure_stick_row(z, &normal_contact, &mut tangential, block);
+        // Frozen unknowns of a block: Δp = 0 (Tangential) or Δq = 0 (Normal), no rows or columns.
+        let (solve_p, solve_q) = (block.solves_normal(), block.solves_tangential());
+        let free_overlap = self.free_overlap && solve_p;
+        let free_creep = self.free_creep && solve_q;
         for i in 0..m {
+            if !solve_p {
+                continue;
+            }
             if normal_contact[i] {
                 p_col[i] = Some(n_cols);
                 n_cols += 1;
@@ -297,6 +233,9 @@ impl System<'_> {
         let mut q_pcoef = vec![0.0; m];
         let mut stick_rows = Vec::new();
         for i in 0..m {
+            if !solve_q {
+                continue;
+            }
             match tangential[i] {
                 Tangential::Free => q_const[i] = -g4[i],
                 Tangential::Stick => {
@@ -314,11 +253,11 @@ impl System<'_> {
                 }
             }
         }
-        let col_overlap = self.free_overlap.then(|| {
+        let col_overlap = free_overlap.then(|| {
             n_cols += 1;
             n_cols - 1
         });
-        let col_creep = self.free_creep.then(|| {
+        let col_creep = free_creep.then(|| {
             n_cols += 1;
             n_cols - 1
         });
@@ -363,14 +302,14 @@ impl System<'_> {
             row += 1;
         }
         let w = &pb.grid.weights;
-        let mut k = 4 * m;
-        if self.free_overlap {
-            rhs[(row, 0)] = -self.length * G[k];
+        // G5 sits at 4m whenever δ0 is free, G6 after it: the layout of the full residual.
+        let k = 4 * m + usize::from(self.free_overlap);
+        if free_overlap {
+            rhs[(row, 0)] = -self.length * G[4 * m];
             add_row(&mut J, &mut rhs, row, &|j| w[j], &|_| 0.0);
-            k += 1;
             row += 1;
         }
-        if let Some((ratio, _)) = self.tangential_load() {
+        if let (true, Some((ratio, _))) = (free_creep, self.tangential_load()) {
             rhs[(row, 0)] = -self.length * G[k];
             add_row(&mut J, &mut rhs, row, &|j| -ratio * mu * w[j], &|j| w[j]);
             row += 1;
@@ -416,110 +355,206 @@ impl System<'_> {
     }
 }
 
-fn axpy(z: &State, alpha: f64, dz: &State) -> State {
-    let comb = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, d)| x + alpha * d).collect();
-    State {
-        gap: comb(&z.gap, &dz.gap),
-        slip: comb(&z.slip, &dz.slip),
-        pressure: comb(&z.pressure, &dz.pressure),
-        shear: comb(&z.shear, &dz.shear),
-        overlap: z.overlap + alpha * dz.overlap,
-        creep: z.creep + alpha * dz.creep,
-    }
+/// What a damped Newton loop on one block ended with.
+pub(crate) struct BlockOutcome {
+    /// The last iterate.
+    pub state: State,
+    /// Whether the stopping measure reached the tolerance.
+    pub converged: bool,
+    /// The stopping measure at the last iterate.
+    pub residual: f64,
+    /// One record per Newton step.
+    pub history: Vec<IterationRecord>,
+    /// Not converged although the attempt had a real budget: the Newton matrix was singular,
+    /// an iterate overflowed, or at least [`MIN_RESTART_BUDGET`] steps did not reach the
+    /// tolerance. A run cut short on purpose (`max_iterations` below that) is not stalled, so it
+    /// is not restarted.
+    pub stalled: bool,
 }
 
-fn merit(g: &[f64]) -> f64 {
-    0.5 * g.iter().map(|v| v * v).sum::<f64>()
-}
+/// Smallest iteration budget for which a non-converged attempt counts as stalled.
+pub const MIN_RESTART_BUDGET: usize = 10;
 
-fn max_abs(g: &[f64]) -> f64 {
-    g.iter().fold(0.0, |a, v| a.max(v.abs()))
-}
-
-/// The automatic penalties (r_n, r_t) for a problem and scale c.
-pub fn automatic_penalties(pb: &ContactProblem, scale: f64) -> (f64, f64) {
-    let m = pb.n_nodes();
-    let diag_h = (0..m).map(|i| pb.flex.hp[(i, i)]).sum::<f64>() / m as f64;
-    let diag_b = (0..m).map(|i| pb.bq[(i, i)].abs()).sum::<f64>() / m as f64;
-    (scale / diag_h.abs(), scale / diag_b)
-}
-
-/// The paper's start vector (Eq. 74): g = −h0, s = 0, p = q = 0, δ0 and ξ zero unless prescribed.
-pub fn start_vector(pb: &ContactProblem) -> State {
-    let m = pb.n_nodes();
-    State {
-        gap: pb.h0.iter().map(|h| -h).collect(),
-        slip: vec![0.0; m],
-        pressure: vec![0.0; m],
-        shear: vec![0.0; m],
-        overlap: match pb.normal {
-            NormalControl::Overlap(d) => d,
-            NormalControl::Force(_) => 0.0,
-        },
-        creep: match pb.tangential {
-            TangentialControl::Creep(c) => c,
-            _ => 0.0,
-        },
-    }
-}
-
-/// Solves the contact problem from the paper's start vector.
-pub fn solve(pb: &ContactProblem, settings: &NewtonSettings) -> (State, NewtonReport) {
-    let (rn, rt) = automatic_penalties(pb, settings.penalty_scale);
-    let sys = System {
-        pb,
-        form: settings.formulation,
-        rn,
-        rt,
-        length: pb.grid.length(),
-        free_overlap: matches!(pb.normal, NormalControl::Force(_)),
-        free_creep: !matches!(pb.tangential, TangentialControl::Creep(_)),
-    };
-    let traction_scale = match pb.normal {
-        NormalControl::Force(p) => p / pb.grid.length(),
-        NormalControl::Overlap(d) => rn * d.abs(),
-    };
-    let mut z = start_vector(pb);
-    let mut g = sys.residual(&z);
+/// Generalized Newton with Armijo line search on `block` from `z`, stopping when
+/// `measure(G_block(z), z) ≤ settings.tolerance` or after `settings.max_iterations` steps, or when
+/// the Newton matrix is singular.
+pub(crate) fn damped_newton(
+    sys: &System,
+    block: Block,
+    mut z: State,
+    settings: &NewtonSettings,
+    measure: &dyn Fn(&[f64], &State) -> f64,
+) -> BlockOutcome {
+    let mut g = sys.block_residual(&z, block);
     let mut history = Vec::new();
-    let scaled = |g: &[f64], z: &State| max_abs(g) / traction_scale.max(max_abs(&z.pressure)).max(f64::MIN_POSITIVE);
-    let mut converged = scaled(&g, &z) <= settings.tolerance;
+    let mut converged = measure(&g, &z) <= settings.tolerance;
+    let (mut singular, mut overflow) = (false, false);
     while !converged && history.len() < settings.max_iterations {
-        let residual = scaled(&g, &z);
-        let (dz, size) = match sys.newton_direction(&z, &g) {
+        let residual = measure(&g, &z);
+        let (dz, size) = match sys.newton_direction(&z, &g, block) {
             Ok(d) => d,
-            Err(_) => break,
+            Err(_) => {
+                singular = true;
+                break;
+            }
         };
         let theta = merit(&g);
         let mut alpha = 1.0;
         let mut trial = axpy(&z, alpha, &dz);
-        let mut g_trial = sys.residual(&trial);
+        let mut g_trial = sys.block_residual(&trial, block);
         for _ in 0..settings.max_backtracks {
             if merit(&g_trial) <= (1.0 - 2.0 * settings.armijo * alpha) * theta {
                 break;
             }
             alpha *= settings.step_reduction;
             trial = axpy(&z, alpha, &dz);
-            g_trial = sys.residual(&trial);
+            g_trial = sys.block_residual(&trial, block);
         }
         history.push(IterationRecord {
             residual,
             step: alpha,
             system_size: size,
+            inner_iterations: 0,
         });
+        // A full step without line search can overflow: keep the last finite iterate.
+        let next = measure(&g_trial, &trial);
+        if !next.is_finite() {
+            overflow = true;
+            break;
+        }
         z = trial;
         g = g_trial;
-        converged = scaled(&g, &z) <= settings.tolerance;
+        converged = next <= settings.tolerance;
     }
-    let residual = scaled(&g, &z);
-    let report = NewtonReport {
+    let residual = measure(&g, &z);
+    let exhausted = history.len() >= settings.max_iterations.max(MIN_RESTART_BUDGET);
+    BlockOutcome {
+        state: z,
         converged,
-        iterations: history.len(),
         residual,
         history,
-        penalty_normal: rn,
-        penalty_tangential: rt,
-        traction_scale,
+        stalled: !converged && (singular || overflow || exhausted),
+    }
+}
+
+/// Solves one block of the problem from `z` and stops on the block's own scaled residual (the
+/// inner solves of NORM/TANG). Returns the outcome and the penalties (r_n, r_t) used.
+pub(crate) fn solve_block(pb: &ContactProblem, block: Block, z: State, settings: &NewtonSettings) -> BlockOutcome {
+    // TANG works with the given traction bound μ max(0, p): Ψ's bound (module docs).
+    let form = match block {
+        Block::Tangential => Formulation::Psi,
+        _ => settings.formulation,
     };
-    (z, report)
+    let sys = System::new(pb, form, settings.penalty_scale);
+    let scale = sys.traction_scale();
+    damped_newton(&sys, block, z, settings, &|g, z| scaled_residual(g, z, scale))
+}
+
+/// Solves the contact problem from the paper's start vector with the generalized Newton method
+/// (line search as set by `settings.max_backtracks`), stopping on the common measure.
+pub(crate) fn solve_with(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+) -> (State, SolveReport) {
+    let mut sys = System::new(pb, settings.formulation, settings.penalty_scale);
+    let mut out = damped_newton(&sys, Block::Coupled, start_vector(pb), settings, &|g, z| {
+        measure.of_with(&sys, g, z)
+    });
+    // Globalization of the line-search method (not of newton_plain). A stalled Newton (its
+    // budget spent without converging, typically because the Armijo search finds no decrease
+    // along the pseudo-Newton direction at a non-solution, or a singular Newton matrix; met at
+    // large μ with strong coupling β, where the contact shifts far from Hertz) is restarted from
+    // the start vector with the penalties divided by 10, then by 100 (the projections then change
+    // branch more gradually), then with the other formulation (Ψ for Φ and conversely, whose
+    // friction bound switches elsewhere); if that fails too, from the iterate of projected Gauss–Seidel
+    // sweeps (relaxation 0.5, then 0.25), which find the contact and stick sets without a merit
+    // function. A run that converges on the first try is untouched.
+    let mut fallbacks = Vec::new();
+    if settings.max_backtracks > 0 {
+        for divisor in RESTART_PENALTY_DIVISORS {
+            if !out.stalled {
+                break;
+            }
+            sys = System::new(pb, settings.formulation, settings.penalty_scale / divisor);
+            let retry = damped_newton(&sys, Block::Coupled, start_vector(pb), settings, &|g, z| {
+                measure.of_with(&sys, g, z)
+            });
+            fallbacks.push(format!("penalty/{divisor}"));
+            out = BlockOutcome {
+                history: [out.history, retry.history.clone()].concat(),
+                ..retry
+            };
+        }
+        if out.stalled {
+            // The other formulation: its friction bound changes branch elsewhere.
+            let other = match settings.formulation {
+                Formulation::Phi => Formulation::Psi,
+                Formulation::Psi => Formulation::Phi,
+            };
+            sys = System::new(pb, other, settings.penalty_scale);
+            let retry = damped_newton(&sys, Block::Coupled, start_vector(pb), settings, &|g, z| {
+                measure.of_with(&sys, g, z)
+            });
+            fallbacks.push(format!("{other:?}").to_lowercase());
+            out = BlockOutcome {
+                history: [out.history, retry.history.clone()].concat(),
+                ..retry
+            };
+        }
+        for omega in FALLBACK_GS_RELAXATIONS {
+            if !out.stalled {
+                break;
+            }
+            let gs = NewtonSettings {
+                penalty_scale: omega,
+                tolerance: FALLBACK_GS_TOLERANCE.max(settings.tolerance),
+                max_iterations: FALLBACK_GS_SWEEPS,
+                ..*settings
+            };
+            let (start, gs_report) = super::gauss_seidel::solve(pb, &gs, measure);
+            if gs_report.residual.is_finite() {
+                sys = System::new(pb, settings.formulation, settings.penalty_scale);
+                let retry = damped_newton(&sys, Block::Coupled, start, settings, &|g, z| {
+                    measure.of_with(&sys, g, z)
+                });
+                fallbacks.push(format!(
+                    "gauss_seidel start (omega {omega}, {} sweeps)",
+                    gs_report.iterations
+                ));
+                out = BlockOutcome {
+                    history: [out.history, retry.history.clone()].concat(),
+                    ..retry
+                };
+            }
+        }
+    }
+    let iterations = out.history.len();
+    let report = SolveReport {
+        method: Method::Newton,
+        formulation: settings.formulation,
+        converged: out.converged,
+        iterations,
+        inner_iterations: iterations,
+        residual: out.residual,
+        history: out.history,
+        penalty_normal: sys.rn,
+        penalty_tangential: sys.rt,
+        traction_scale: measure.traction_scale(),
+        wall_time_s: 0.0,
+        fallbacks,
+    };
+    (out.state, report)
+}
+
+/// Solves the contact problem from the paper's start vector with the generalized Newton method
+/// and Armijo line search (the default method).
+pub fn solve(pb: &ContactProblem, settings: &NewtonSettings) -> (State, NewtonReport) {
+    super::methods::solve(
+        pb,
+        &super::methods::SolverSettings {
+            method: Method::Newton,
+            newton: *settings,
+        },
+    )
 }

@@ -30,9 +30,7 @@ use crate::contact::solution::ContactSolution;
 use crate::error::Error;
 use crate::mesh::build::{half_space_block, roller_on_shaft, RollerMeshSizes};
 use crate::mesh::{validate_and_orient, BoundaryMesh};
-use indicatif::{ProgressBar, ProgressStyle};
 use plotters::prelude::*;
-use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -196,30 +194,16 @@ pub fn run(case: &LoadedCase, options: &AccuracyOptions, progress: bool) -> Resu
         .collect();
     // Longest first, for the load balance of the parallel runs.
     tasks.sort_by_key(|&(m, n)| std::cmp::Reverse(n * if m == SceneModel::HalfSpace { 1 } else { 50 }));
-    let bar = if progress {
-        ProgressBar::new(tasks.len() as u64)
-    } else {
-        ProgressBar::hidden()
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, eta {eta} {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.jobs)
         .build()
         .map_err(|e| study_error(&format!("cannot start the worker threads: {e}")))?;
     let outcomes: Vec<(SceneModel, usize, Result<Outcome, String>)> = pool.install(|| {
-        tasks
-            .par_iter()
-            .map(|&(model, n)| {
-                let r = run_one(case, &scene, model, n, options.shaft_ratio).map_err(|e| e.to_string());
-                bar.inc(1);
-                (model, n, r)
-            })
-            .collect()
+        super::run_parallel(&tasks, "runs", progress, |&(model, n)| {
+            let r = run_one(case, &scene, model, n, options.shaft_ratio).map_err(|e| e.to_string());
+            (model, n, r)
+        })
     });
-    bar.finish_and_clear();
     let reference_run = match closed {
         Some(_) => None,
         None => outcomes
@@ -581,63 +565,56 @@ pub fn render(report: &AccuracyReport) -> String {
 }
 
 /// Writes accuracy.csv, accuracy.svg and accuracy.json into `dir` (through a temporary folder,
-/// renamed on success).
+/// renamed on success: [`super::write_atomically`]).
 pub fn write(dir: &Path, report: &AccuracyReport, title: &str) -> Result<(), Error> {
     let io = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
         path: path.to_path_buf(),
         message: e.to_string(),
     };
-    let tmp = dir.with_extension("partial");
-    if tmp.exists() {
-        std::fs::remove_dir_all(&tmp).map_err(|e| io(&tmp, &e))?;
-    }
-    std::fs::create_dir_all(&tmp).map_err(|e| io(&tmp, &e))?;
-    let csv_path = tmp.join("accuracy.csv");
-    let mut w = csv::Writer::from_path(&csv_path).map_err(|e| io(&csv_path, &e))?;
-    w.write_record([
-        "model",
-        "contact_elements",
-        "boundary_elements",
-        "converged",
-        "iterations",
-        "error_rms",
-        "error_max",
-        "creep_error",
-        "build_s",
-        "solve_s",
-        "total_s",
-        "message",
-    ])
-    .map_err(|e| io(&csv_path, &e))?;
-    let num = |v: f64| if v.is_finite() { format!("{v:e}") } else { String::new() };
-    for r in &report.rows {
+    super::write_atomically(dir, |tmp| {
+        let csv_path = tmp.join("accuracy.csv");
+        let mut w = csv::Writer::from_path(&csv_path).map_err(|e| io(&csv_path, &e))?;
         w.write_record([
-            r.model.name().to_string(),
-            r.contact_elements.to_string(),
-            r.boundary_elements.to_string(),
-            r.converged.to_string(),
-            r.iterations.to_string(),
-            num(r.error),
-            num(r.error_max),
-            r.creep_error.map_or(String::new(), num),
-            num(r.build_s),
-            num(r.solve_s),
-            num(r.total_s),
-            r.message.clone(),
+            "model",
+            "contact_elements",
+            "boundary_elements",
+            "converged",
+            "iterations",
+            "error_rms",
+            "error_max",
+            "creep_error",
+            "build_s",
+            "solve_s",
+            "total_s",
+            "message",
         ])
         .map_err(|e| io(&csv_path, &e))?;
-    }
-    w.flush().map_err(|e| io(&csv_path, &e))?;
-    drop(w);
-    let json_path = tmp.join("accuracy.json");
-    let json = serde_json::to_string_pretty(&report).map_err(|e| io(&json_path, &e))?;
-    std::fs::write(&json_path, json).map_err(|e| io(&json_path, &e))?;
-    let svg_path = tmp.join("accuracy.svg");
-    draw_chart(&svg_path, report, title).map_err(|e| io(&svg_path, &e))?;
-    if dir.exists() {
-        std::fs::remove_dir_all(dir).map_err(|e| io(dir, &e))?;
-    }
-    std::fs::rename(&tmp, dir).map_err(|e| io(dir, &e))
+        let num = |v: f64| if v.is_finite() { format!("{v:e}") } else { String::new() };
+        for r in &report.rows {
+            w.write_record([
+                r.model.name().to_string(),
+                r.contact_elements.to_string(),
+                r.boundary_elements.to_string(),
+                r.converged.to_string(),
+                r.iterations.to_string(),
+                num(r.error),
+                num(r.error_max),
+                r.creep_error.map_or(String::new(), num),
+                num(r.build_s),
+                num(r.solve_s),
+                num(r.total_s),
+                r.message.clone(),
+            ])
+            .map_err(|e| io(&csv_path, &e))?;
+        }
+        w.flush().map_err(|e| io(&csv_path, &e))?;
+        drop(w);
+        let json_path = tmp.join("accuracy.json");
+        let json = serde_json::to_string_pretty(&report).map_err(|e| io(&json_path, &e))?;
+        std::fs::write(&json_path, json).map_err(|e| io(&json_path, &e))?;
+        let svg_path = tmp.join("accuracy.svg");
+        draw_chart(&svg_path, report, title).map_err(|e| io(&svg_path, &e))
+    })
 }
 
 /// The points (time, error) of the converged runs that no other run beats in both.

@@ -1,0 +1,275 @@
+//! The residual G(z) of the contact problem and the convergence measure shared by every solution
+//! method (González & Abascal §3.2, Eq. 36/43 Φ and Eq. 44 Ψ).
+//!
+//! Unknowns z = (g, s, p, q, δ0, ξ) (paper Eq. 42; δ0 and ξ only when they are not prescribed).
+//! The residual, in the signs of [`crate::contact`], is:
+//!
+//! ```text
+//! G1 = r_n (g − h0 + δ0 − H_p p − H_q q)        elastic normal equations (Eq. 12)
+//! G2 = r_t (s − σξ − B_p p − B_q q)             elastic slip equations (Eq. 19)
+//! G3 = p − max(0, p − r_n g)          [Φ]       Signorini as a projection (Eq. 24)
+//!    = min(p, r_n g)                  [Ψ]       (Eq. 25; the same function: p − max(0, p − y) = min(p, y))
+//! G4 = q − Proj[−μp̂, μp̂](q − r_t s)             Coulomb as a projection (Eq. 34)
+//!      p̂ = max(0, p − r_n g) [Φ],  max(0, p) [Ψ]
+//! G5 = (Σ w_j p_j − P)/L,  G6 = (Σ w_j q_j − Q)/L   load control (Eq. 39), L the grid length
+//! ```
+//!
+//! The elastic rows are scaled by the penalties so that every component of G is a traction:
+//! the merit ½‖G‖² is then balanced and the convergence test ‖G‖∞ ≤ tol·p_ref is scale-free.
+//! The penalties are dimensionally sound: r_n = c / mean diag(H_p) and r_t = c / mean |diag(B_q)|
+//! (stress/length and stress), with the user's scale c (default 1).
+//!
+//! **One judge for every method.** [`ConvergenceMeasure`] is the scaled residual ‖G_Φ‖∞ / p_ref
+//! of the Φ function with the automatic penalties at c = 1, whatever method, formulation or
+//! penalty scale produced the iterate: every method stops on it and reports it, so their
+//! iteration counts and failures compare on the same footing. For the default Newton (Φ, c = 1)
+//! it is exactly the residual the Newton iteration drives to zero.
+
+use super::{ContactProblem, NormalControl, TangentialControl};
+use serde::{Deserialize, Serialize};
+
+/// The two projection formulations of the contact conditions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Formulation {
+    /// Paper Eq. 43: the friction bound uses the augmented pressure max(0, p − r g).
+    Phi,
+    /// Paper Eq. 44: the friction bound uses max(0, p).
+    Psi,
+}
+
+/// The unknowns z of the paper (Eq. 42).
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Gap g [length].
+    pub gap: Vec<f64>,
+    /// Slip s [-].
+    pub slip: Vec<f64>,
+    /// Pressure p [stress].
+    pub pressure: Vec<f64>,
+    /// Shear q [stress].
+    pub shear: Vec<f64>,
+    /// Overlap δ0 [length].
+    pub overlap: f64,
+    /// Creepage ξ [-].
+    pub creep: f64,
+}
+
+/// The projection Proj[−b, b](z) onto the friction interval (paper Eq. 29); zero for b ≤ 0.
+pub fn projection(z: f64, bound: f64) -> f64 {
+    if bound <= 0.0 {
+        0.0
+    } else {
+        z.clamp(-bound, bound)
+    }
+}
+
+/// The problem together with a formulation and penalties: evaluates G(z).
+pub(crate) struct System<'a> {
+    pub(crate) pb: &'a ContactProblem,
+    pub(crate) form: Formulation,
+    pub(crate) rn: f64,
+    pub(crate) rt: f64,
+    pub(crate) length: f64,
+    pub(crate) free_overlap: bool,
+    pub(crate) free_creep: bool,
+}
+
+impl<'a> System<'a> {
+    /// The system of `pb` with formulation `form` and the automatic penalties at scale `scale`.
+    pub(crate) fn new(pb: &'a ContactProblem, form: Formulation, scale: f64) -> Self {
+        let (rn, rt) = automatic_penalties(pb, scale);
+        Self {
+            pb,
+            form,
+            rn,
+            rt,
+            length: pb.grid.length(),
+            free_overlap: matches!(pb.normal, NormalControl::Force(_)),
+            free_creep: !matches!(pb.tangential, TangentialControl::Creep(_)),
+        }
+    }
+
+    pub(crate) fn m(&self) -> usize {
+        self.pb.n_nodes()
+    }
+
+    /// Pressure p̂ that sets the friction bound μp̂ (Φ: augmented, Ψ: the pressure itself).
+    pub(crate) fn bound_pressure(&self, p: f64, g: f64) -> f64 {
+        match self.form {
+            Formulation::Phi => (p - self.rn * g).max(0.0),
+            Formulation::Psi => p.max(0.0),
+        }
+    }
+
+    /// Whether a node is on the contact branch of the normal projection.
+    pub(crate) fn is_contact(&self, p: f64, g: f64) -> bool {
+        match self.form {
+            Formulation::Phi => p - self.rn * g > 0.0,
+            Formulation::Psi => p > self.rn * g,
+        }
+    }
+
+    /// G(z), components in the order of the module docs (G5, G6 only when controlled).
+    #[allow(clippy::needless_range_loop)] // several arrays indexed by node: clearer than zips
+    pub(crate) fn residual(&self, z: &State) -> Vec<f64> {
+        let pb = self.pb;
+        let m = self.m();
+        let mut r = Vec::with_capacity(4 * m + 2);
+        let h = pb.compression(&z.pressure, &z.shear);
+        for i in 0..m {
+            r.push(self.rn * (z.gap[i] - pb.h0[i] + z.overlap - h[i]));
+        }
+        let b = super::mat_vec2(&pb.bp, &z.pressure, &pb.bq, &z.shear);
+        for i in 0..m {
+            let e = pb.slip_operator.creep_weight[i];
+            r.push(self.rt * (z.slip[i] - pb.flow_sign * z.creep * e - b[i]));
+        }
+        r.extend(self.projection_residual(z));
+        r
+    }
+
+    /// Rows G3–G6 of G(z): the projections and the load equations, O(m) (the elastic rows G1,
+    /// G2 need the matrix–vector products).
+    #[allow(clippy::needless_range_loop)]
+    pub(crate) fn projection_residual(&self, z: &State) -> Vec<f64> {
+        let pb = self.pb;
+        let m = self.m();
+        let mut r = Vec::with_capacity(2 * m + 2);
+        for i in 0..m {
+            let (p, g) = (z.pressure[i], z.gap[i]);
+            r.push(match self.form {
+                Formulation::Phi => p - (p - self.rn * g).max(0.0),
+                Formulation::Psi => p.min(self.rn * g),
+            });
+        }
+        for i in 0..m {
+            let bound = pb.friction * self.bound_pressure(z.pressure[i], z.gap[i]);
+            r.push(z.shear[i] - projection(z.shear[i] - self.rt * z.slip[i], bound));
+        }
+        if let NormalControl::Force(p_total) = pb.normal {
+            r.push((pb.grid.integrate(&z.pressure) - p_total) / self.length);
+        }
+        if let Some((ratio, q_total)) = self.tangential_load() {
+            let f_p = pb.grid.integrate(&z.pressure);
+            r.push((pb.grid.integrate(&z.shear) - ratio * pb.friction * f_p - q_total) / self.length);
+        }
+        r
+    }
+
+    /// (c_p, Q0) of the tangential load equation Σ w q − c_p μ Σ w p − Q0 = 0, if Q is controlled.
+    pub(crate) fn tangential_load(&self) -> Option<(f64, f64)> {
+        match self.pb.tangential {
+            TangentialControl::Force(q) => Some((0.0, q)),
+            TangentialControl::Ratio(ratio) => Some((ratio, 0.0)),
+            TangentialControl::Creep(_) => None,
+        }
+    }
+
+    /// Traction scale p_ref of the convergence test [stress]: P/L under force control, r_n·|δ0|
+    /// under overlap control.
+    pub(crate) fn traction_scale(&self) -> f64 {
+        match self.pb.normal {
+            NormalControl::Force(p) => p / self.length,
+            NormalControl::Overlap(d) => self.rn * d.abs(),
+        }
+    }
+}
+
+/// ‖G‖∞ / max(p_ref, max|p|): the scaled residual of a residual vector.
+pub(crate) fn scaled_residual(g: &[f64], z: &State, traction_scale: f64) -> f64 {
+    max_abs(g) / traction_scale.max(max_abs(&z.pressure)).max(f64::MIN_POSITIVE)
+}
+
+/// z + α Δz.
+pub(crate) fn axpy(z: &State, alpha: f64, dz: &State) -> State {
+    let comb = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, d)| x + alpha * d).collect();
+    State {
+        gap: comb(&z.gap, &dz.gap),
+        slip: comb(&z.slip, &dz.slip),
+        pressure: comb(&z.pressure, &dz.pressure),
+        shear: comb(&z.shear, &dz.shear),
+        overlap: z.overlap + alpha * dz.overlap,
+        creep: z.creep + alpha * dz.creep,
+    }
+}
+
+/// The merit function Θ = ½‖G‖² (paper Eq. 50).
+pub(crate) fn merit(g: &[f64]) -> f64 {
+    0.5 * g.iter().map(|v| v * v).sum::<f64>()
+}
+
+/// ‖v‖∞.
+pub(crate) fn max_abs(g: &[f64]) -> f64 {
+    g.iter().fold(0.0, |a, v| a.max(v.abs()))
+}
+
+/// The automatic penalties (r_n, r_t) for a problem and scale c: r_n = c / mean diag(H_p)
+/// [stress/length], r_t = c / mean |diag(B_q)| [stress].
+pub fn automatic_penalties(pb: &ContactProblem, scale: f64) -> (f64, f64) {
+    let m = pb.n_nodes();
+    let diag_h = (0..m).map(|i| pb.flex.hp[(i, i)]).sum::<f64>() / m as f64;
+    let diag_b = (0..m).map(|i| pb.bq[(i, i)].abs()).sum::<f64>() / m as f64;
+    (scale / diag_h.abs(), scale / diag_b)
+}
+
+/// The paper's start vector (Eq. 74): g = −h0, s = 0, p = q = 0, δ0 and ξ zero unless prescribed.
+pub fn start_vector(pb: &ContactProblem) -> State {
+    let m = pb.n_nodes();
+    State {
+        gap: pb.h0.iter().map(|h| -h).collect(),
+        slip: vec![0.0; m],
+        pressure: vec![0.0; m],
+        shear: vec![0.0; m],
+        overlap: match pb.normal {
+            NormalControl::Overlap(d) => d,
+            NormalControl::Force(_) => 0.0,
+        },
+        creep: match pb.tangential {
+            TangentialControl::Creep(c) => c,
+            _ => 0.0,
+        },
+    }
+}
+
+/// The convergence measure shared by all methods: ‖G_Φ(z)‖∞ / max(p_ref, max|p|) with the
+/// automatic penalties at scale 1 (module docs). Dimensionless.
+pub struct ConvergenceMeasure<'a> {
+    system: System<'a>,
+    traction_scale: f64,
+}
+
+impl<'a> ConvergenceMeasure<'a> {
+    /// The measure of a problem.
+    pub fn new(pb: &'a ContactProblem) -> Self {
+        let system = System::new(pb, Formulation::Phi, 1.0);
+        let traction_scale = system.traction_scale();
+        Self { system, traction_scale }
+    }
+
+    /// Scaled residual of an iterate.
+    pub fn of(&self, z: &State) -> f64 {
+        scaled_residual(&self.system.residual(z), z, self.traction_scale)
+    }
+
+    /// The traction scale p_ref [stress].
+    pub fn traction_scale(&self) -> f64 {
+        self.traction_scale
+    }
+
+    /// Scaled residual of an iterate whose residual `g` under `sys` is already known: reused when
+    /// `sys` is the measure's own function (Φ at scale 1), recomputed otherwise.
+    pub(crate) fn of_with(&self, sys: &System, g: &[f64], z: &State) -> f64 {
+        let same = sys.form == Formulation::Phi && sys.rn == self.system.rn && sys.rt == self.system.rt;
+        if same {
+            scaled_residual(g, z, self.traction_scale)
+        } else {
+            self.of(z)
+        }
+    }
+
+    /// The Φ system at scale 1 behind the measure.
+    pub(crate) fn system(&self) -> &System<'a> {
+        &self.system
+    }
+}
