@@ -298,6 +298,31 @@ fn validate_runs_the_reference_problems() {
     );
 }
 
+/// A bem body takes its contact grid from its mesh (discontinuous quadratic field nodes): asking
+/// for another element type is refused, naming the key, instead of being ignored.
+#[test]
+fn bem_bodies_refuse_other_contact_element_types() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/carter_051_block.yaml");
+    let out = dir.path().join("out");
+    for kind in ["constant", "continuous_quadratic"] {
+        let (code, _, stderr) = rollbem(&[
+            "run",
+            case.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--set",
+            &format!("contact.grid.element={kind}"),
+        ]);
+        assert_eq!(code, 1, "{stderr}");
+        assert!(
+            stderr.contains("contact.grid.element") && stderr.contains(kind),
+            "{stderr}"
+        );
+        assert!(!out.exists());
+    }
+}
+
 /// `output.interior` of a bem body (issue 4): Somigliana fields written as CSV and VTU with the
 /// displacement and the point status, listed in result.pvd and summarised in summary.json and
 /// the run table; points outside the body or on its boundary are flagged and announced; a rigid

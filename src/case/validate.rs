@@ -161,6 +161,20 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             ),
         );
     }
+    let bem_body = [&case.bodies.a, &case.bodies.b]
+        .into_iter()
+        .any(|b| matches!(b, BodySpec::Bem { .. }));
+    if bem_body && c.grid.element != crate::grid::ElementKind::DiscontinuousQuadratic {
+        bad(
+            "contact.grid.element".into(),
+            format!(
+                "{} elements cannot be used with a bem body: the contact grid is then the mesh's own \
+                 contact elements, whose discontinuous quadratic field nodes carry the tractions; \
+                 remove the key, or use half_space/rigid bodies",
+                c.grid.element.name()
+            ),
+        );
+    }
     if let Some(h) = c.grid.half_length {
         if !(h > 0.0 && h.is_finite()) {
             bad(
