@@ -315,22 +315,7 @@ pub fn write_run(
     interior: Option<&crate::interior::InteriorField>,
     start: Instant,
 ) -> Result<(), Error> {
-    let err = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
-    let name = dir
-        .file_name()
-        .map_or("out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp: PathBuf = dir.with_file_name(format!(".{name}.partial-{}", std::process::id()));
-    if let Some(parent) = tmp.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent).map_err(|e| err(parent, &e))?;
-    }
-    if tmp.exists() {
-        std::fs::remove_dir_all(&tmp).map_err(|e| err(&tmp, &e))?;
-    }
-    std::fs::create_dir(&tmp).map_err(|e| err(&tmp, &e))?;
-    let result = (|| {
+    write_atomically(dir, |tmp| {
         if summary.converged {
             write_csv(&tmp.join("contact.csv"), sol, pb)?;
             if let Some(f) = interior {
@@ -371,13 +356,40 @@ pub fn write_run(
             }
         }
         summary.timings.total_s = start.elapsed().as_secs_f64();
-        let json = serde_json::to_string_pretty(summary).map_err(|e| err(&tmp, &e))?;
-        std::fs::write(tmp.join("summary.json"), json).map_err(|e| err(&tmp, &e))?;
+        let err = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        };
+        let json = serde_json::to_string_pretty(summary).map_err(|e| err(tmp, &e))?;
+        std::fs::write(tmp.join("summary.json"), json).map_err(|e| err(tmp, &e))
+    })
+}
+
+/// Creates a temporary sibling of `dir`, lets `write` fill it, then renames it onto `dir`
+/// (replacing an older result); on failure the temporary folder is removed and `dir` is left
+/// as it was (DESIGN §5: nothing half-written).
+pub fn write_atomically(dir: &Path, write: impl FnOnce(&Path) -> Result<(), Error>) -> Result<(), Error> {
+    let err = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    let name = dir
+        .file_name()
+        .map_or("out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp: PathBuf = dir.with_file_name(format!(".{name}.partial-{}", std::process::id()));
+    if let Some(parent) = tmp.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent).map_err(|e| err(parent, &e))?;
+    }
+    if tmp.exists() {
+        std::fs::remove_dir_all(&tmp).map_err(|e| err(&tmp, &e))?;
+    }
+    std::fs::create_dir(&tmp).map_err(|e| err(&tmp, &e))?;
+    let result = write(&tmp).and_then(|()| {
         if dir.exists() {
             std::fs::remove_dir_all(dir).map_err(|e| err(dir, &e))?;
         }
         std::fs::rename(&tmp, dir).map_err(|e| err(dir, &e))
-    })();
+    });
     if result.is_err() {
         let _ = std::fs::remove_dir_all(&tmp);
     }

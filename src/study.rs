@@ -18,7 +18,7 @@ use crate::case::{self, LoadedCase};
 use crate::error::Error;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Runs `f` on every job in parallel (rayon, in the current thread pool) with a progress bar on
 /// stderr when `progress` (indicatif hides it when stderr is not a terminal); results in job
@@ -55,35 +55,4 @@ pub fn solve_overridden(
     let case = case::load(case_path, &set)?;
     let solved = app::solve(&case)?;
     Ok((case, solved))
-}
-
-/// Creates a temporary sibling of `dir`, lets `write` fill it, then renames it onto `dir`
-/// (replacing an older result); on failure the temporary folder is removed and `dir` is left
-/// as it was (DESIGN §5: nothing half-written).
-pub fn write_atomically(dir: &Path, write: impl FnOnce(&Path) -> Result<(), Error>) -> Result<(), Error> {
-    let err = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
-    let name = dir
-        .file_name()
-        .map_or("study".into(), |n| n.to_string_lossy().into_owned());
-    let tmp: PathBuf = dir.with_file_name(format!(".{name}.partial-{}", std::process::id()));
-    if let Some(parent) = tmp.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent).map_err(|e| err(parent, &e))?;
-    }
-    if tmp.exists() {
-        std::fs::remove_dir_all(&tmp).map_err(|e| err(&tmp, &e))?;
-    }
-    std::fs::create_dir(&tmp).map_err(|e| err(&tmp, &e))?;
-    let result = write(&tmp).and_then(|()| {
-        if dir.exists() {
-            std::fs::remove_dir_all(dir).map_err(|e| err(dir, &e))?;
-        }
-        std::fs::rename(&tmp, dir).map_err(|e| err(dir, &e))
-    });
-    if result.is_err() {
-        let _ = std::fs::remove_dir_all(&tmp);
-    }
-    result
 }

@@ -30,19 +30,8 @@ use std::sync::Arc;
 
 const NS: [usize; 4] = [8, 16, 32, 64];
 
-/// Least-squares slope of ln(error) against ln(h), h ∝ 1/n.
-fn fitted_rate(ns: &[usize], errors: &[f64]) -> f64 {
-    let xs: Vec<f64> = ns.iter().map(|&n| (1.0 / n as f64).ln()).collect();
-    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
-    let k = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
-    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
-    sxy / sxx
-}
-
 fn assert_rate(label: &str, errors: &[f64]) -> f64 {
-    let rate = fitted_rate(&NS, errors);
+    let rate = common::fitted_rate(&NS, errors);
     println!("{label}: fitted rate {rate:.2}");
     assert!((2.5..=4.5).contains(&rate), "{label}: rate {rate}, errors {errors:?}");
     // Every refinement must gain at least a factor 4 (no stagnation from the integration).

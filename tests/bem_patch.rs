@@ -13,62 +13,19 @@ use rollbem::mesh::build::rectangle;
 use rollbem::mesh::BoundaryMesh;
 use std::sync::Arc;
 
-const SIGMA: [[f64; 2]; 2] = [[50.0, 20.0], [20.0, -30.0]];
+mod common;
+use common::patch::{exact_t, exact_u, strain};
 
-/// Plane-strain strain of the uniform stress SIGMA (reference sheet §8 Hooke's law).
-fn strain(m: &Elastic) -> [[f64; 2]; 2] {
-    let (e, nu) = (m.young, m.poisson);
-    let exx = ((1.0 - nu * nu) * SIGMA[0][0] - nu * (1.0 + nu) * SIGMA[1][1]) / e;
-    let eyy = ((1.0 - nu * nu) * SIGMA[1][1] - nu * (1.0 + nu) * SIGMA[0][0]) / e;
-    let exy = SIGMA[0][1] / (2.0 * m.shear());
-    [[exx, exy], [exy, eyy]]
-}
-
-fn exact_u(eps: [[f64; 2]; 2], x: [f64; 2]) -> [f64; 2] {
-    [eps[0][0] * x[0] + eps[0][1] * x[1], eps[1][0] * x[0] + eps[1][1] * x[1]]
-}
-
-fn exact_t(n: [f64; 2]) -> [f64; 2] {
-    [
-        SIGMA[0][0] * n[0] + SIGMA[0][1] * n[1],
-        SIGMA[1][0] * n[0] + SIGMA[1][1] * n[1],
-    ]
-}
-
-/// 4 × 2 rectangle at (−1, −0.5) with sides bottom, right, top, left.
 fn mesh(quadratic: bool) -> BoundaryMesh {
-    rectangle(
-        [-1.0, -0.5],
-        4.0,
-        2.0,
-        [3, 2, 4, 2],
-        ["bottom", "right", "top", "left"],
-        quadratic,
-    )
+    common::patch::rectangle_mesh(quadratic)
 }
 
 fn model(material: Elastic, quadratic: bool) -> BemModel {
     model_on(mesh(quadratic), material)
 }
 
-/// The patch problem on a rectangle mesh with sides bottom, right, top, left: displacements
-/// prescribed on bottom and left, tractions on right and top.
 fn model_on(mesh: BoundaryMesh, material: Elastic) -> BemModel {
-    let eps = strain(&material);
-    let u = BoundaryCondition::DisplacementField(Arc::new(move |x, _| exact_u(eps, x)));
-    let t = BoundaryCondition::TractionField(Arc::new(|_, n| exact_t(n)));
-    BemModel::new(
-        mesh,
-        material,
-        vec![
-            ("bottom".into(), u.clone()),
-            ("left".into(), u),
-            ("right".into(), t.clone()),
-            ("top".into(), t),
-        ],
-        BemOptions::default(),
-    )
-    .unwrap()
+    common::patch::model(mesh, material, None)
 }
 
 /// Max errors of u and t at the field nodes, relative to the largest exact value.

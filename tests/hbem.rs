@@ -5,64 +5,22 @@
 
 mod common;
 
+use common::patch::{exact_t, exact_u, strain};
 use rollbem::bem::hypersingular::{GradientEvaluator, GradientPoint, GradientRows};
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition};
 use rollbem::contact::solution::NodeState;
 use rollbem::material::Elastic;
-use rollbem::mesh::build::{annulus, rectangle};
+use rollbem::mesh::build::annulus;
 use std::sync::Arc;
 
 // ---------------------------------------------------------------------------------------------
 // Exact fields on straight and curved meshes.
 
-const SIGMA: [[f64; 2]; 2] = [[50.0, 20.0], [20.0, -30.0]];
-
-/// Plane-strain strain of the uniform stress SIGMA (reference sheet §8 Hooke's law).
-fn strain(m: &Elastic) -> [[f64; 2]; 2] {
-    let (e, nu) = (m.young, m.poisson);
-    let exx = ((1.0 - nu * nu) * SIGMA[0][0] - nu * (1.0 + nu) * SIGMA[1][1]) / e;
-    let eyy = ((1.0 - nu * nu) * SIGMA[1][1] - nu * (1.0 + nu) * SIGMA[0][0]) / e;
-    let exy = SIGMA[0][1] / (2.0 * m.shear());
-    [[exx, exy], [exy, eyy]]
-}
-
-fn patch_u(eps: [[f64; 2]; 2], x: [f64; 2]) -> [f64; 2] {
-    [eps[0][0] * x[0] + eps[0][1] * x[1], eps[1][0] * x[0] + eps[1][1] * x[1]]
-}
-
-fn patch_t(n: [f64; 2]) -> [f64; 2] {
-    [
-        SIGMA[0][0] * n[0] + SIGMA[0][1] * n[1],
-        SIGMA[1][0] * n[0] + SIGMA[1][1] * n[1],
-    ]
-}
-
 /// 4 × 2 rectangle at (−1, −0.5); the top is a contact group (fully discontinuous elements),
 /// the other sides have partially discontinuous elements at the corners.
 fn patch_model(nu: f64) -> BemModel {
-    let material = Elastic::new(210_000.0, nu);
-    let eps = strain(&material);
-    let u = BoundaryCondition::DisplacementField(Arc::new(move |x, _| patch_u(eps, x)));
-    let t = BoundaryCondition::TractionField(Arc::new(|_, n| patch_t(n)));
-    BemModel::new(
-        rectangle(
-            [-1.0, -0.5],
-            4.0,
-            2.0,
-            [3, 2, 4, 2],
-            ["bottom", "right", "top", "left"],
-            true,
-        ),
-        material,
-        vec![
-            ("bottom".into(), u.clone()),
-            ("left".into(), u),
-            ("right".into(), t.clone()),
-            ("top".into(), BoundaryCondition::Contact),
-        ],
-        BemOptions::default(),
-    )
-    .unwrap()
+    let mesh = common::patch::rectangle_mesh(true);
+    common::patch::model(mesh, Elastic::new(210_000.0, nu), Some(BoundaryCondition::Contact))
 }
 
 /// Max |∇u − exact| / max |exact| over 2 × 2 components.
@@ -102,8 +60,8 @@ fn uniform_stress_gradient_is_exact_from_exact_nodal_values() {
     for nu in [0.3, 0.5] {
         let model = patch_model(nu);
         let eps = strain(&model.material);
-        let u: Vec<[f64; 2]> = model.field_nodes().iter().map(|n| patch_u(eps, n.position)).collect();
-        let t: Vec<[f64; 2]> = model.field_nodes().iter().map(|n| patch_t(n.normal)).collect();
+        let u: Vec<[f64; 2]> = model.field_nodes().iter().map(|n| exact_u(eps, n.position)).collect();
+        let t: Vec<[f64; 2]> = model.field_nodes().iter().map(|n| exact_t(n.normal)).collect();
         let evaluator = GradientEvaluator::new(&model);
         let mut worst = 0.0f64;
         for point in boundary_points(&model) {
@@ -128,7 +86,7 @@ fn uniform_stress_gradient_is_exact_from_the_bem_solution() {
     for nu in [0.3, 0.5] {
         let mut model = patch_model(nu);
         let top = model.mesh.group_index("top").unwrap();
-        model.conditions[top] = BoundaryCondition::TractionField(Arc::new(|_, n| patch_t(n)));
+        model.conditions[top] = BoundaryCondition::TractionField(Arc::new(|_, n| exact_t(n)));
         let sol = model.solve().unwrap();
         let eps = strain(&model.material);
         let evaluator = GradientEvaluator::new(&model);
@@ -305,17 +263,6 @@ fn lame_strain_errors(n: usize) -> (f64, f64, f64) {
     (e_tt / scale, e_rr / scale, e_shape / scale)
 }
 
-/// Least-squares slope of ln(error) against ln(h), h ∝ 1/n.
-fn fitted_rate(ns: &[usize], errors: &[f64]) -> f64 {
-    let xs: Vec<f64> = ns.iter().map(|&n| (1.0 / n as f64).ln()).collect();
-    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
-    let k = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
-    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
-    sxy / sxx
-}
-
 /// HBEM boundary strains of the Lamé cylinder converge at third order.
 ///
 /// **Expected rate.** The hypersingular identity is exact for the exact boundary data; the
@@ -341,7 +288,11 @@ fn lame_boundary_strains_converge() {
     let tt: Vec<f64> = table.iter().map(|t| t.0).collect();
     let rr: Vec<f64> = table.iter().map(|t| t.1).collect();
     let shape: Vec<f64> = table.iter().map(|t| t.2).collect();
-    let (rate_tt, rate_rr, rate_shape) = (fitted_rate(&NS, &tt), fitted_rate(&NS, &rr), fitted_rate(&NS, &shape));
+    let (rate_tt, rate_rr, rate_shape) = (
+        common::fitted_rate(&NS, &tt),
+        common::fitted_rate(&NS, &rr),
+        common::fitted_rate(&NS, &shape),
+    );
     println!("fitted rates: HBEM eps_tt {rate_tt:.2}, eps_rr {rate_rr:.2}; shape-function eps_tt {rate_shape:.2}");
     for (label, errors, rate) in [("eps_tt", &tt, rate_tt), ("eps_rr", &rr, rate_rr)] {
         assert!((2.5..=3.6).contains(&rate), "{label}: rate {rate}, errors {errors:?}");

@@ -5,61 +5,20 @@
 //! (`cargo test --release --test interior_bem -- --nocapture`) and recorded in
 //! docs/validation.md, "Interior stresses (issue 4)".
 
+use common::patch::{exact_u, strain, SIGMA};
 use rollbem::bem::somigliana::interior_fields;
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition};
 use rollbem::interior::{InteriorOptions, InteriorSample, InteriorValue};
 use rollbem::material::Elastic;
-use rollbem::mesh::build::rectangle;
 use std::sync::Arc;
 
 // ---------------------------------------------------------------------------------------------
 // Uniform stress (reference sheet §8.3)
 
-const SIGMA: [[f64; 2]; 2] = [[50.0, 20.0], [20.0, -30.0]];
-
-fn strain(m: &Elastic) -> [[f64; 2]; 2] {
-    let (e, nu) = (m.young, m.poisson);
-    let exx = ((1.0 - nu * nu) * SIGMA[0][0] - nu * (1.0 + nu) * SIGMA[1][1]) / e;
-    let eyy = ((1.0 - nu * nu) * SIGMA[1][1] - nu * (1.0 + nu) * SIGMA[0][0]) / e;
-    let exy = SIGMA[0][1] / (2.0 * m.shear());
-    [[exx, exy], [exy, eyy]]
-}
-
-fn exact_u(eps: [[f64; 2]; 2], x: [f64; 2]) -> [f64; 2] {
-    [eps[0][0] * x[0] + eps[0][1] * x[1], eps[1][0] * x[0] + eps[1][1] * x[1]]
-}
-
 /// The 4 × 2 rectangle of tests/bem_patch.rs: displacements on bottom and left, tractions σ⁰·n
 /// on right and top; element lengths 4/3 (bottom), 1 (others).
 fn patch_model(nu: f64) -> BemModel {
-    let material = Elastic::new(210_000.0, nu);
-    let eps = strain(&material);
-    let u = BoundaryCondition::DisplacementField(Arc::new(move |x, _| exact_u(eps, x)));
-    let t = BoundaryCondition::TractionField(Arc::new(|_, n| {
-        [
-            SIGMA[0][0] * n[0] + SIGMA[0][1] * n[1],
-            SIGMA[1][0] * n[0] + SIGMA[1][1] * n[1],
-        ]
-    }));
-    BemModel::new(
-        rectangle(
-            [-1.0, -0.5],
-            4.0,
-            2.0,
-            [3, 2, 4, 2],
-            ["bottom", "right", "top", "left"],
-            true,
-        ),
-        material,
-        vec![
-            ("bottom".into(), u.clone()),
-            ("left".into(), u),
-            ("right".into(), t.clone()),
-            ("top".into(), t),
-        ],
-        BemOptions::default(),
-    )
-    .unwrap()
+    common::patch::model(common::patch::rectangle_mesh(true), Elastic::new(210_000.0, nu), None)
 }
 
 fn inside(s: &InteriorSample) -> InteriorValue {
@@ -212,17 +171,6 @@ fn lame_errors_at(model: &BemModel, sol: &rollbem::bem::BemSolution, n: usize, f
     (es, eu)
 }
 
-/// Least-squares slope of ln(error) against ln(h), h ∝ 1/n.
-fn fitted_rate(ns: &[usize], errors: &[f64]) -> f64 {
-    let xs: Vec<f64> = ns.iter().map(|&n| (1.0 / n as f64).ln()).collect();
-    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
-    let k = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
-    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
-    sxy / sxx
-}
-
 /// Lamé interior stresses and displacements against the exact solution, by mesh (elements per
 /// circle) and distance from the boundary (in element lengths h of the nearer circle).
 ///
@@ -268,7 +216,7 @@ fn lame_interior_stresses_converge_and_stay_accurate_near_the_boundary() {
         ("stress at d = h/10", stress(0.1)),
         ("displacement at d = h", disp(1.0)),
     ] {
-        let rate = fitted_rate(&ns, &e);
+        let rate = common::fitted_rate(&ns, &e);
         println!("Lamé interior {label}: fitted rate {rate:.2}");
         assert!((2.5..=4.5).contains(&rate), "{label}: rate {rate}, errors {e:?}");
     }

@@ -565,13 +565,13 @@ pub fn render(report: &AccuracyReport) -> String {
 }
 
 /// Writes accuracy.csv, accuracy.svg and accuracy.json into `dir` (through a temporary folder,
-/// renamed on success: [`super::write_atomically`]).
+/// renamed on success: [`crate::output::write_atomically`]).
 pub fn write(dir: &Path, report: &AccuracyReport, title: &str) -> Result<(), Error> {
     let io = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
         path: path.to_path_buf(),
         message: e.to_string(),
     };
-    super::write_atomically(dir, |tmp| {
+    crate::output::write_atomically(dir, |tmp| {
         let csv_path = tmp.join("accuracy.csv");
         let mut w = csv::Writer::from_path(&csv_path).map_err(|e| io(&csv_path, &e))?;
         w.write_record([

@@ -25,13 +25,14 @@
 //! element slices (`SLICE__METHOD__ripple.svg`).
 
 use super::heatmap::{self, CellView, Panel};
-use super::{run_parallel, solve_overridden, write_atomically};
+use super::{run_parallel, solve_overridden};
 use crate::case::{self, BodySpec};
 use crate::contact::newton::Formulation;
 use crate::contact::solution::traction_ripple;
 use crate::contact::Method;
 use crate::error::Error;
 use crate::material::material_for_beta;
+use crate::output::write_atomically;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

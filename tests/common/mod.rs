@@ -49,3 +49,15 @@ pub fn rollbem(args: &[&str]) -> (i32, String, String) {
     )
 }
 pub mod lame;
+pub mod patch;
+
+/// Least-squares slope of ln(error) against ln(h), h ∝ 1/n (n elements).
+pub fn fitted_rate(ns: &[usize], errors: &[f64]) -> f64 {
+    let xs: Vec<f64> = ns.iter().map(|&n| (1.0 / n as f64).ln()).collect();
+    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
+    let k = xs.len() as f64;
+    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
+    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}
