@@ -94,24 +94,12 @@ fn every_method_handles_every_load_control() {
         ("dissimilar_beta0288_004", &ALTERNATIVES[1..]),
     ] {
         let (_, load) = solve(name, &[]);
-        let s = &load.solution;
-        let half = format!("contact.grid.half_length={:.17e}", load.estimates.grid_half_length);
-        let overlap = format!("load.normal.overlap={:.17e}", s.overlap);
-        let creep = format!("load.tangential.creep={:.17e}", s.creep);
-        let force = format!("load.normal.force={:.17e}", s.normal_force);
-        let q = format!("load.tangential.force={:.17e}", s.tangential_force);
-        let controls: [(&str, Vec<&str>); 4] = [
-            ("P and Q/μP", vec![]),
-            ("P and Q", vec!["load.tangential.ratio=null", &q]),
-            ("P with ξ", vec![&force, "load.tangential.ratio=null", &creep]),
-            (
-                "δ0 and ξ",
-                vec!["load.normal.force=null", &overlap, "load.tangential.ratio=null", &creep],
-            ),
-        ];
+        // P and Q/μP (the shipped control) against the other four.
+        let mut controls = common::equivalent_load_controls(&load);
+        controls.insert(0, ("P and Q/μP", vec![]));
         let p0 = load.estimates.hertz_peak_pressure;
-        for (label, mut set) in controls {
-            set.push(&half);
+        for (label, set) in controls {
+            let set: Vec<&str> = set.iter().map(String::as_str).collect();
             let (_, newton) = solve(name, &set);
             for method in methods {
                 let (_, other) = solve_with(name, method, &set);

@@ -68,30 +68,15 @@ fn every_shipped_case_converges_balances_its_loads_and_phi_equals_psi() {
 }
 
 /// A kinematic run fed with the δ0 and ξ of a load-controlled run returns its P and Q to 1e-8;
-/// the two mixed controls (P with ξ; δ0 with Q) return the missing quantities too.
+/// the mixed controls (P with ξ; δ0 with Q) and force control (P and Q) return the missing
+/// quantities too.
 #[test]
 fn kinematic_and_mixed_control_reproduce_the_load_controlled_run() {
     for name in ["carter_051", "dissimilar_beta0288_004"] {
         let (_, load) = solve(name, &[]);
         let s = &load.solution;
-        let half = format!("contact.grid.half_length={:.17e}", load.estimates.grid_half_length);
-        let overlap = format!("load.normal.overlap={:.17e}", s.overlap);
-        let creep = format!("load.tangential.creep={:.17e}", s.creep);
-        let force = format!("load.normal.force={:.17e}", s.normal_force);
-        let q = format!("load.tangential.force={:.17e}", s.tangential_force);
-        let variants: [(&str, Vec<&str>); 3] = [
-            (
-                "kinematic",
-                vec!["load.normal.force=null", &overlap, "load.tangential.ratio=null", &creep],
-            ),
-            ("P with ξ", vec![&force, "load.tangential.ratio=null", &creep]),
-            (
-                "δ0 with Q",
-                vec!["load.normal.force=null", &overlap, "load.tangential.ratio=null", &q],
-            ),
-        ];
-        for (label, mut set) in variants {
-            set.push(&half);
+        for (label, set) in common::equivalent_load_controls(&load) {
+            let set: Vec<&str> = set.iter().map(String::as_str).collect();
             let (_, k) = solve(name, &set);
             let p_err = (k.solution.normal_force - s.normal_force).abs() / s.normal_force;
             let q_err = (k.solution.tangential_force - s.tangential_force).abs() / s.normal_force;

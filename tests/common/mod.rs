@@ -61,3 +61,29 @@ pub fn fitted_rate(ns: &[usize], errors: &[f64]) -> f64 {
     let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
     sxy / sxx
 }
+
+/// The other ways to load the scene of a solved force/ratio-controlled run `load`, each with the
+/// values that run found, so that every one must reproduce it: (label, `--set` overrides). The
+/// grid is pinned to the run's half-length (the estimates would otherwise follow the new load).
+/// Labels: "P and Q", "P with ξ", "δ0 with Q", "δ0 and ξ".
+pub fn equivalent_load_controls(load: &Solved) -> Vec<(&'static str, Vec<String>)> {
+    let s = &load.solution;
+    let half = format!("contact.grid.half_length={:.17e}", load.estimates.grid_half_length);
+    let overlap = format!("load.normal.overlap={:.17e}", s.overlap);
+    let creep = format!("load.tangential.creep={:.17e}", s.creep);
+    let force = format!("load.normal.force={:.17e}", s.normal_force);
+    let q = format!("load.tangential.force={:.17e}", s.tangential_force);
+    let (no_force, no_ratio) = (
+        "load.normal.force=null".to_string(),
+        "load.tangential.ratio=null".to_string(),
+    );
+    vec![
+        ("P and Q", vec![no_ratio.clone(), q.clone(), half.clone()]),
+        ("P with ξ", vec![force, no_ratio.clone(), creep.clone(), half.clone()]),
+        (
+            "δ0 with Q",
+            vec![no_force.clone(), overlap.clone(), no_ratio.clone(), q, half.clone()],
+        ),
+        ("δ0 and ξ", vec![no_force, overlap, no_ratio, creep, half]),
+    ]
+}
