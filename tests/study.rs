@@ -11,7 +11,10 @@ use rollbem::study::accuracy::{self, AccuracyOptions, SceneModel};
 /// (measured: half-space 8.6e-3 → 1.3e-3, blocks 8.2e-3 → 1.3e-3, true rollers 8.8e-3 → 1.9e-3,
 /// i.e. ×4.6 to ×6.6; the limit ×2 is what a first-order traction error near the stick/slip kink
 /// can still guarantee), and at 41 elements it is below 0.3 % of μp0 (the max-norm limits of
-/// docs/validation.md are 2 % for the half-space and blocks, 3 % for the true rollers).
+/// docs/validation.md are 2 % for the half-space and blocks, 3 % for the true rollers). The
+/// creepage against Carter's is within 2 % at 11 elements (measured 0.90–1.17 %) and falls by
+/// at least half over the two doublings, below 0.6 % at 41 (measured 0.21–0.48 %, ×2.4 to ×4.4
+/// over the two doublings).
 #[test]
 fn accuracy_study_of_the_carter_scene_converges_for_every_model() {
     let loaded = case::load(&common::case_path("carter_051"), &[]).unwrap();
@@ -28,7 +31,12 @@ fn accuracy_study_of_the_carter_scene_converges_for_every_model() {
         let (coarse, fine) = (rows[0].error, rows[2].error);
         assert!(coarse / fine > 2.0, "{model:?}: RMS error {coarse} → {fine}");
         assert!(fine < 3e-3, "{model:?}: RMS error {fine} at 41 elements");
-        assert!(rows.iter().all(|r| r.creep_error.unwrap().abs() < 0.02));
+        let creep: Vec<f64> = rows.iter().map(|r| r.creep_error.unwrap().abs()).collect();
+        assert!(creep[0] < 0.02, "{model:?}: creepage error {} at 11 elements", creep[0]);
+        assert!(
+            creep[2] < 0.5 * creep[0] && creep[2] < 6e-3,
+            "{model:?}: creepage error {creep:?} does not converge"
+        );
         if model != SceneModel::HalfSpace {
             assert!(rows.iter().all(|r| r.boundary_elements > 0));
         }
