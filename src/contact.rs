@@ -18,6 +18,7 @@
 //! multiplied by σ; the paper writes the contact conditions for p_n ≤ 0, we for p ≥ 0, so its
 //! min(0, p_n + r T_n) becomes −max(0, p − r g).
 
+mod creep_secant;
 pub mod friction_check;
 pub mod gauss_seidel;
 pub mod methods;

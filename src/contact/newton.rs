@@ -375,6 +375,9 @@ pub(crate) struct BlockOutcome {
 /// Smallest iteration budget for which a non-converged attempt counts as stalled.
 pub const MIN_RESTART_BUDGET: usize = 10;
 
+/// Consecutive line searches without an Armijo decrease after which an attempt is stalled.
+pub const MAX_FAILED_SEARCHES: usize = 2;
+
 /// Generalized Newton with Armijo line search on `block` from `z`, stopping when
 /// `measure(G_block(z), z) ≤ settings.tolerance` or after `settings.max_iterations` steps, or when
 /// the Newton matrix is singular.
@@ -389,7 +392,8 @@ pub(crate) fn damped_newton(
     let mut history = Vec::new();
     let mut converged = measure(&g, &z) <= settings.tolerance;
     let (mut singular, mut overflow) = (false, false);
-    while !converged && history.len() < settings.max_iterations {
+    let mut failed_searches = 0;
+    while !converged && history.len() < settings.max_iterations && failed_searches < MAX_FAILED_SEARCHES {
         let residual = measure(&g, &z);
         let (dz, size) = match sys.newton_direction(&z, &g, block) {
             Ok(d) => d,
@@ -402,13 +406,21 @@ pub(crate) fn damped_newton(
         let mut alpha = 1.0;
         let mut trial = axpy(&z, alpha, &dz);
         let mut g_trial = sys.block_residual(&trial, block);
+        let armijo = |g: &[f64], alpha: f64| merit(g) <= (1.0 - 2.0 * settings.armijo * alpha) * theta;
         for _ in 0..settings.max_backtracks {
-            if merit(&g_trial) <= (1.0 - 2.0 * settings.armijo * alpha) * theta {
+            if armijo(&g_trial, alpha) {
                 break;
             }
             alpha *= settings.step_reduction;
             trial = axpy(&z, alpha, &dz);
             g_trial = sys.block_residual(&trial, block);
+        }
+        // No decrease along the direction even at the shortest step: not a descent direction
+        // (a kink of G between the iterate and the solution). Repeated, the iteration is stuck.
+        if settings.max_backtracks > 0 && !armijo(&g_trial, alpha) {
+            failed_searches += 1;
+        } else {
+            failed_searches = 0;
         }
         history.push(IterationRecord {
             residual,
@@ -433,7 +445,7 @@ pub(crate) fn damped_newton(
         converged,
         residual,
         history,
-        stalled: !converged && (singular || overflow || exhausted),
+        stalled: !converged && (singular || overflow || exhausted || failed_searches >= MAX_FAILED_SEARCHES),
     }
 }
 
@@ -472,6 +484,16 @@ pub(crate) fn solve_with(
     // function. A run that converges on the first try is untouched.
     let mut fallbacks = Vec::new();
     if settings.max_backtracks > 0 {
+        if out.stalled {
+            if let Some(retry) = super::creep_secant::solve(pb, settings, measure, &out.state) {
+                sys = System::new(pb, settings.formulation, settings.penalty_scale);
+                fallbacks.push("creep iteration".to_string());
+                out = BlockOutcome {
+                    history: [out.history, retry.history.clone()].concat(),
+                    ..retry
+                };
+            }
+        }
         for divisor in RESTART_PENALTY_DIVISORS {
             if !out.stalled {
                 break;

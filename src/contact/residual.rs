@@ -159,6 +159,11 @@ impl<'a> System<'a> {
 
     /// (c_p, Q0) of the tangential load equation Σ w q − c_p μ Σ w p − Q0 = 0, if Q is controlled.
     pub(crate) fn tangential_load(&self) -> Option<(f64, f64)> {
+        // A system whose creepage is held fixed (`free_creep` false, also when the problem
+        // controls Q: see [`super::creep_secant`]) has no load row.
+        if !self.free_creep {
+            return None;
+        }
         match self.pb.tangential {
             TangentialControl::Force(q) => Some((0.0, q)),
             TangentialControl::Ratio(ratio) => Some((ratio, 0.0)),
