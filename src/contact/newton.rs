@@ -14,13 +14,17 @@
 //! first k with Θ(z + αΔz) ≤ (1 − 2σα)Θ(z). With `max_backtracks = 0` every full step is taken:
 //! that is the method `newton_plain` of [`super::methods`].
 //!
-//! **Restarts** (line-search method only, [`solve_with`]): when an attempt stalls (spends a
-//! budget of at least 10 steps without converging, or meets a singular Newton matrix), it is
-//! restarted with the penalties divided by 10 and 100, then with the other
-//! formulation, and last from the
-//! iterate of projected Gauss–Seidel sweeps ([`super::gauss_seidel`]) run to a scaled residual
-//! of 1e-4 (relaxation 0.5, then 0.25). Runs that converge directly (every shipped case) never restart; the report lists the
-//! restarts used (`fallbacks`).
+//! **Restarts** (line-search method only, [`solve_with`]): an attempt stalls when it spends a
+//! budget of at least 10 steps without converging, meets a singular Newton matrix, or when two
+//! line searches in a row find no decrease at all (the direction is no descent direction: a
+//! kink of G lies between the iterate and the solution). A stalled attempt with an unknown
+//! creepage is first finished by the creepage iteration of [`super::creep_secant`] (near
+//! complete slip the Q equation is a staircase in ξ that the coupled step cannot follow); if
+//! that fails too, it is restarted with the penalties divided by 10 and 100, then with the other
+//! formulation, and last from the iterate of projected Gauss–Seidel sweeps
+//! ([`super::gauss_seidel`]) run to a scaled residual of 1e-4 (relaxation 0.5, then 0.25). Runs
+//! that converge directly (every shipped case) never restart; the report lists the restarts
+//! used (`fallbacks`).
 //!
 //! **Blocks.** The same Newton solves the two halves of the problem for the NORM/TANG
 //! alternation ([`super::norm_tang`]): [`Block::Normal`] keeps q and ξ frozen and solves rows
