@@ -136,7 +136,14 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<LoadedCase, CaseError> 
         path: path.to_path_buf(),
         source,
     })?;
-    let mut value = parse_yaml(&text).map_err(|message| CaseError::Yaml {
+    parse(&text, path, overrides)
+}
+
+/// Parses, overrides and validates case text as if it had been read from `path` (which names
+/// the case in messages, and whose folder resolves the case's relative paths): for cases that
+/// live in memory (built-in references, tests, fuzzing) as well as files.
+pub fn parse(text: &str, path: &Path, overrides: &[String]) -> Result<LoadedCase, CaseError> {
+    let mut value = parse_yaml(text).map_err(|message| CaseError::Yaml {
         path: path.to_path_buf(),
         message,
     })?;
