@@ -19,14 +19,12 @@
 //! min(0, p_n + r T_n) becomes −max(0, p − r g).
 
 mod creep_secant;
-pub mod friction_check;
 pub mod gauss_seidel;
 pub mod methods;
 pub mod newton;
 pub mod norm_tang;
 pub mod residual;
 pub mod slip_operator;
-pub mod solution;
 
 use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;

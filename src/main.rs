@@ -4,6 +4,7 @@ use anyhow::Result;
 use clap::Parser;
 use rollbem::cli::{Cli, Command, StudyCommand};
 use rollbem::error::EXIT_NOT_CONVERGED;
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -16,6 +17,15 @@ fn main() -> ExitCode {
             ExitCode::from(code as u8)
         }
     }
+}
+
+/// The default folder of a sweep or study: the case's output folder with `_<what>` appended.
+fn default_output_dir(case: &rollbem::case::LoadedCase, what: &str) -> PathBuf {
+    let dir = case.output_dir();
+    let name = dir
+        .file_name()
+        .map_or(what.into(), |n| format!("{}_{what}", n.to_string_lossy()));
+    dir.with_file_name(name)
 }
 
 fn dispatch(cli: Cli) -> Result<i32> {
@@ -64,14 +74,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             let shard = shard.as_deref().map(rollbem::sweep::Shard::parse).transpose()?;
             let out = match out {
                 Some(o) => o,
-                None => {
-                    let loaded = rollbem::case::load(&case, &set)?;
-                    let dir = loaded.output_dir();
-                    let name = dir
-                        .file_name()
-                        .map_or("sweep".into(), |n| format!("{}_sweep", n.to_string_lossy()));
-                    dir.with_file_name(name)
-                }
+                None => default_output_dir(&rollbem::case::load(&case, &set)?, "sweep"),
             };
             let report = rollbem::sweep::run(&case, &set, &varies, shard, &out)?;
             let failed: Vec<&rollbem::sweep::RunRow> = report.rows.iter().filter(|r| r.status != "ok").collect();
@@ -132,13 +135,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
                         })
                         .collect::<Result<_>>()?;
                 }
-                let out = out.unwrap_or_else(|| {
-                    let dir = loaded.output_dir();
-                    let name = dir
-                        .file_name()
-                        .map_or("accuracy".into(), |n| format!("{}_accuracy", n.to_string_lossy()));
-                    dir.with_file_name(name)
-                });
+                let out = out.unwrap_or_else(|| default_output_dir(&loaded, "accuracy"));
                 let report = accuracy::run(&loaded, &options, true)?;
                 accuracy::write(&out, &report, &loaded.case.title)?;
                 print!("{}", accuracy::render(&report));
@@ -152,13 +149,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             StudyCommand::Stability { case, quick, out, set } => {
                 let out = match out {
                     Some(o) => o,
-                    None => {
-                        let dir = rollbem::case::load(&case, &set)?.output_dir();
-                        let name = dir
-                            .file_name()
-                            .map_or("stability".into(), |n| format!("{}_stability", n.to_string_lossy()));
-                        dir.with_file_name(name)
-                    }
+                    None => default_output_dir(&rollbem::case::load(&case, &set)?, "stability"),
                 };
                 let preset = if quick {
                     rollbem::study::stability::Preset::Quick
@@ -185,7 +176,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             if !(tolerance > 0.0 && tolerance.is_finite()) {
                 anyhow::bail!("--tolerance must be a positive fraction, e.g. 0.01 for 1 % (value = {tolerance})");
             }
-            print!("{}", rollbem::app::check_report(&case, &set, tolerance)?);
+            print!("{}", rollbem::check::check_report(&case, &set, tolerance)?);
             Ok(0)
         }
     }

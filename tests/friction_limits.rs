@@ -14,11 +14,11 @@ use rollbem::analytic;
 fn free_rolling_friction_limits_converge_in_few_newton_steps() {
     for mu in ["1e-4", "3e-4", "1e-3", "0.1", "1e3"] {
         for n in [41, 81] {
-            let (_, s) = solve(
+            let s = solve(
                 "free_rolling_al_steel",
                 &[&format!("contact.friction={mu}"), &format!("contact.grid.elements={n}")],
             );
-            let r = &s.newton;
+            let r = &s.report;
             assert!(
                 r.fallbacks.iter().all(|f| f == "creep iteration"),
                 "μ = {mu}, {n} elements: fallbacks {:?}",
@@ -38,18 +38,21 @@ fn free_rolling_friction_limits_converge_in_few_newton_steps() {
 /// the same tractions, and ξ is within the discretisation error of the complete-slip limit.
 #[test]
 fn creep_iteration_answer_is_the_solution() {
-    let (_, load) = solve(
+    let load = solve(
         "free_rolling_al_steel",
         &["contact.friction=1e-4", "contact.grid.elements=81"],
     );
     assert_eq!(
-        load.newton.fallbacks,
+        load.report.fallbacks,
         ["creep iteration"],
         "this scene exercises the creepage iteration"
     );
-    let half = format!("contact.grid.half_length={:.17e}", load.estimates.grid_half_length);
+    let half = format!(
+        "contact.grid.half_length={:.17e}",
+        load.scene.estimates.grid_half_length
+    );
     let creep = format!("load.tangential.creep={:.17e}", load.solution.creep);
-    let (_, kin) = solve(
+    let kin = solve(
         "free_rolling_al_steel",
         &[
             "contact.friction=1e-4",
@@ -59,7 +62,7 @@ fn creep_iteration_answer_is_the_solution() {
             &half,
         ],
     );
-    assert!(kin.newton.fallbacks.is_empty());
+    assert!(kin.report.fallbacks.is_empty());
     let mu_p = 1e-4 * load.solution.normal_force;
     assert!(
         kin.solution.tangential_force.abs() < 1e-6 * mu_p,
@@ -70,7 +73,7 @@ fn creep_iteration_answer_is_the_solution() {
     for (a, b) in load.solution.shear.iter().zip(&kin.solution.shear) {
         assert!((a - b).abs() < 1e-6 * q_max, "shear {a} vs {b}");
     }
-    let e = &load.estimates;
+    let e = &load.scene.estimates;
     let limit = analytic::free_rolling_creep_complete_slip(e.dundurs_beta, e.hertz_half_width, e.effective_radius);
     // 81 elements: −0.11 % (the 321-element run of tests/solver.rs is within 1 %).
     assert!(

@@ -8,9 +8,9 @@ mod common;
 use common::patch::{exact_t, exact_u, strain};
 use rollbem::bem::hypersingular::{GradientEvaluator, GradientPoint, GradientRows};
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition};
-use rollbem::contact::solution::NodeState;
 use rollbem::material::Elastic;
 use rollbem::mesh::build::annulus;
+use rollbem::post::NodeState;
 use std::sync::Arc;
 
 // ---------------------------------------------------------------------------------------------
@@ -308,9 +308,9 @@ fn lame_boundary_strains_converge() {
 /// (max |s_h| over all stick nodes, over the stick nodes at least one element from the zone's
 /// ends), all relative to Carter's largest |s| at the nodes (next to the trailing edge).
 fn carter_slip_errors(name: &str) -> ([f64; 2], [f64; 2]) {
-    let (loaded, s) = common::solve(name, &[]);
-    let c = rollbem::app::carter_reference(&loaded, &s.estimates).unwrap();
-    let r = s.estimates.effective_radius;
+    let s = common::solve(name, &[]);
+    let c = s.scene.carter_reference().unwrap();
+    let r = s.scene.estimates.effective_radius;
     let sol = &s.solution;
     let hbem = sol.slip_strain.as_ref().expect("bem bodies have the HBEM strain");
     let carter: Vec<f64> = sol.x.iter().map(|&x| c.slip(x, r)).collect();
@@ -371,8 +371,8 @@ fn carter_slip_by_hbem_on_true_rollers() {
 /// creepage within 3 %); measured 2.4 %, at the stick/slip transition.
 #[test]
 fn transferred_hbem_strain_matches_the_node_to_node_run() {
-    let (_, matched) = common::solve("carter_051_true", &[]);
-    let (_, moved) = common::solve("carter_051_true_nonmatching", &[]);
+    let matched = common::solve("carter_051_true", &[]);
+    let moved = common::solve("carter_051_true_nonmatching", &[]);
     let (a, b) = (
         matched.solution.slip_strain.as_ref().unwrap(),
         moved.solution.slip_strain.as_ref().unwrap(),
@@ -398,8 +398,8 @@ fn transferred_hbem_strain_matches_the_node_to_node_run() {
 /// above), and names its threshold.
 #[test]
 fn friction_check_is_clean_on_carter() {
-    use rollbem::contact::friction_check::{check_friction_law, DEFAULT_THRESHOLD_FRACTION};
-    let (_, s) = common::solve("carter_051_true", &[]);
+    use rollbem::post::friction_check::{check_friction_law, DEFAULT_THRESHOLD_FRACTION};
+    let s = common::solve("carter_051_true", &[]);
     let c = check_friction_law(&s.solution, 0.1, DEFAULT_THRESHOLD_FRACTION).unwrap();
     assert!(c.violations.is_empty(), "{:?}", c.violations);
     let limit = c.threshold.unwrap();
@@ -416,13 +416,13 @@ fn friction_check_is_clean_on_carter() {
 /// below the threshold (docs/hbem.md).
 #[test]
 fn fig4_true_geometry_keeps_the_regime_and_passes_the_friction_check() {
-    use rollbem::contact::friction_check::{check_friction_law, DEFAULT_THRESHOLD_FRACTION};
-    let (_, bem) = common::solve("fig4_true_geometry", &[]);
-    let (_, hs) = common::solve("dissimilar_beta0288_075", &[]);
-    assert_eq!(bem.regime, 2);
+    use rollbem::post::friction_check::{check_friction_law, DEFAULT_THRESHOLD_FRACTION};
+    let bem = common::solve("fig4_true_geometry", &[]);
+    let hs = common::solve("dissimilar_beta0288_075", &[]);
+    assert_eq!(bem.regime, rollbem::post::SlipRegime::TwoZonesAlike);
     assert_eq!(bem.solution.slip_directions(), hs.solution.slip_directions());
     // Same Hertz half-width a = 1 mm and the same 21-element grid: compare q/(μp0) node by node.
-    let norm = |s: &rollbem::app::Solved| 0.1 * s.estimates.hertz_peak_pressure;
+    let norm = |s: &rollbem::app::Solved| 0.1 * s.scene.estimates.hertz_peak_pressure;
     let dq = bem
         .solution
         .shear

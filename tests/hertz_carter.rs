@@ -7,8 +7,8 @@ use rollbem::analytic::hertz_pressure;
 /// Hertz: a and p0 within 1 % at 41 elements (DESIGN §6, issue 2).
 #[test]
 fn hertz_half_width_and_peak_within_one_percent_at_41_elements() {
-    let (_, s) = solve("hertz", &["contact.grid.elements=41"]);
-    let est = &s.estimates;
+    let s = solve("hertz", &["contact.grid.elements=41"]);
+    let est = &s.scene.estimates;
     let [x0, x1] = s.solution.contact_extent().unwrap();
     let a = 0.5 * (x1 - x0);
     let p0 = s.solution.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
@@ -29,8 +29,11 @@ fn hertz_half_width_and_peak_within_one_percent_at_41_elements() {
 fn hertz_pressure_converges_with_the_grid() {
     let mut rms = Vec::new();
     for n in [11, 21, 41, 81, 161] {
-        let (_, s) = solve("hertz", &[&format!("contact.grid.elements={n}")]);
-        let (a, p0) = (s.estimates.hertz_half_width, s.estimates.hertz_peak_pressure);
+        let s = solve("hertz", &[&format!("contact.grid.elements={n}")]);
+        let (a, p0) = (
+            s.scene.estimates.hertz_half_width,
+            s.scene.estimates.hertz_peak_pressure,
+        );
         let (_, r) = nodal_error(
             &s.solution.x,
             &s.solution.pressure,
@@ -56,8 +59,8 @@ fn carter_traction_stick_zone_and_creepage() {
         ("carter_051", 161),
         ("carter_084", 161),
     ] {
-        let (loaded, s) = solve(case, &[&format!("contact.grid.elements={n}")]);
-        let carter = rollbem::app::carter_reference(&loaded, &s.estimates).unwrap();
+        let s = solve(case, &[&format!("contact.grid.elements={n}")]);
+        let carter = s.scene.carter_reference().unwrap();
         let mu_p0 = carter.friction * carter.peak_pressure;
         let (max, _) = nodal_error(
             &s.solution.x,
@@ -68,7 +71,7 @@ fn carter_traction_stick_zone_and_creepage() {
         );
         assert!(max < 0.02, "{case}/{n}: max |q − q_Carter| = {max} μp0");
 
-        let stick = s.solution.zones_of(rollbem::contact::solution::NodeState::Stick);
+        let stick = s.solution.zones_of(rollbem::post::NodeState::Stick);
         assert_eq!(stick.len(), 1, "{case}/{n}: stick zones {stick:?}");
         let element = s.problem.grid.element_length();
         let [c0, c1] = carter.stick_zone();
@@ -86,7 +89,7 @@ fn carter_traction_stick_zone_and_creepage() {
             "{case}/{n}: stick zone {stick:?} does not reach the leading edge {edge}"
         );
 
-        let xi = carter.creep(s.estimates.effective_radius);
+        let xi = carter.creep(s.scene.estimates.effective_radius);
         assert!(
             (s.solution.creep / xi - 1.0).abs() < 0.01,
             "{case}/{n}: creep {} vs Carter {xi}",
@@ -102,16 +105,18 @@ fn carter_traction_stick_zone_and_creepage() {
 #[test]
 fn slip_derivatives_creepage_error_is_small_and_decreases_like_h() {
     let creep_error = |der: &str, n: usize| {
-        let (loaded, s) = solve(
+        let s = solve(
             "carter_051",
             &[
                 &format!("contact.slip_derivative={der}"),
                 &format!("contact.grid.elements={n}"),
             ],
         );
-        let xi = rollbem::app::carter_reference(&loaded, &s.estimates)
+        let xi = s
+            .scene
+            .carter_reference()
             .unwrap()
-            .creep(s.estimates.effective_radius);
+            .creep(s.scene.estimates.effective_radius);
         s.solution.creep / xi - 1.0
     };
     let (f21, s21) = (creep_error("first_order", 21), creep_error("second_order", 21));

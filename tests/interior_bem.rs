@@ -241,15 +241,10 @@ const MCEWEN: [(f64, f64, f64, f64, f64, f64, f64); 2] = [
 /// and its contact grid.
 fn shipped_block(side: Side) -> (Box<dyn BodyModel>, ContactGrid) {
     let case = rollbem::case::load(&common::case_path("carter_051_block"), &[]).unwrap();
-    let bodies = rollbem::app::prepare_bodies(&case).unwrap();
-    let est = rollbem::app::estimates(&case, &bodies);
-    let grid = rollbem::app::contact_grid(&case, &est, &bodies);
-    let (spec, k) = match side {
-        Side::A => (&case.case.bodies.a, 0),
-        Side::B => (&case.case.bodies.b, 1),
-    };
-    let model = rollbem::app::body_model(spec, &bodies[k], &grid, side).unwrap();
-    (model, grid)
+    let scene = rollbem::scene::Scene::from_case(&case).unwrap();
+    let k = if side == Side::A { 0 } else { 1 };
+    let model = scene.bodies[k].model(&scene.grid, side).unwrap();
+    (model, scene.grid)
 }
 
 /// A block of half-width `w` and depth `h` [mm] standing in for a half-plane on `side`, its

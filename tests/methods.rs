@@ -10,7 +10,7 @@ use rollbem::contact::newton::Formulation;
 
 /// Solves a shipped case with a method (Gauss–Seidel gets its sweep budget); panics with the
 /// history if it does not converge.
-fn solve_with(name: &str, method: &str, overrides: &[&str]) -> (case::LoadedCase, app::Solved) {
+fn solve_with(name: &str, method: &str, overrides: &[&str]) -> app::Solved {
     let mut set = vec![format!("solver.method={method}")];
     if method == "gauss_seidel" {
         set.push("solver.max_iterations=20000".into());
@@ -32,14 +32,14 @@ const ALTERNATIVES: [&str; 3] = ["newton_plain", "norm_tang", "gauss_seidel"];
 /// closely as Newton does: creepage within 1 %, shear within 2 % of μp0 away from the zone edges.
 #[test]
 fn every_method_gives_newtons_solution_on_carter() {
-    let (case, reference) = solve("carter_051", &[]);
-    let p0 = reference.estimates.hertz_peak_pressure;
-    let carter = app::carter_reference(&case, &reference.estimates).expect("ratio-controlled");
-    let exact_creep = carter.creep(reference.estimates.effective_radius);
+    let reference = solve("carter_051", &[]);
+    let p0 = reference.scene.estimates.hertz_peak_pressure;
+    let carter = reference.scene.carter_reference().expect("ratio-controlled");
+    let exact_creep = carter.creep(reference.scene.estimates.effective_radius);
     for method in ALTERNATIVES {
         for formulation in ["phi", "psi"] {
             let f = format!("solver.formulation={formulation}");
-            let (_, s) = solve_with("carter_051", method, &[&f]);
+            let s = solve_with("carter_051", method, &[&f]);
             let (sol, r) = (&s.solution, &reference.solution);
             assert!(
                 max_diff(&sol.pressure, &r.pressure, p0) < 1e-8,
@@ -67,7 +67,7 @@ fn every_method_gives_newtons_solution_on_carter() {
                     assert!((q - carter.shear(*x)).abs() < 0.02 * mu_p0, "{method}: q({x})");
                 }
             }
-            assert_eq!(s.newton.method.name(), method);
+            assert_eq!(s.report.method.name(), method);
         }
     }
 }
@@ -76,10 +76,10 @@ fn every_method_gives_newtons_solution_on_carter() {
 /// NORM/TANG alternation is the exact solution. Dissimilar bodies (β = 0.288) need several.
 #[test]
 fn norm_tang_needs_one_alternation_for_similar_bodies_and_more_for_dissimilar_ones() {
-    let (_, similar) = solve_with("carter_051", "norm_tang", &[]);
-    assert_eq!(similar.newton.iterations, 1, "{:?}", similar.newton.history);
-    let (_, dissimilar) = solve_with("dissimilar_beta0288_004", "norm_tang", &[]);
-    assert!(dissimilar.newton.iterations > 2, "{:?}", dissimilar.newton.history);
+    let similar = solve_with("carter_051", "norm_tang", &[]);
+    assert_eq!(similar.report.iterations, 1, "{:?}", similar.report.history);
+    let dissimilar = solve_with("dissimilar_beta0288_004", "norm_tang", &[]);
+    assert!(dissimilar.report.iterations > 2, "{:?}", dissimilar.report.history);
 }
 
 /// Every load control reaches every method: force control (δ0 and ξ unknown, Lagrange-type rows),
@@ -93,16 +93,16 @@ fn every_method_handles_every_load_control() {
         ("carter_051", &ALTERNATIVES[..]),
         ("dissimilar_beta0288_004", &ALTERNATIVES[1..]),
     ] {
-        let (_, load) = solve(name, &[]);
+        let load = solve(name, &[]);
         // P and Q/μP (the shipped control) against the other four.
         let mut controls = common::equivalent_load_controls(&load);
         controls.insert(0, ("P and Q/μP", vec![]));
-        let p0 = load.estimates.hertz_peak_pressure;
+        let p0 = load.scene.estimates.hertz_peak_pressure;
         for (label, set) in controls {
             let set: Vec<&str> = set.iter().map(String::as_str).collect();
-            let (_, newton) = solve(name, &set);
+            let newton = solve(name, &set);
             for method in methods {
-                let (_, other) = solve_with(name, method, &set);
+                let other = solve_with(name, method, &set);
                 let (a, b) = (&other.solution, &newton.solution);
                 assert!(
                     max_diff(&a.pressure, &b.pressure, p0) < 1e-7 && max_diff(&a.shear, &b.shear, p0) < 1e-7,
@@ -126,14 +126,10 @@ fn every_method_handles_every_load_control() {
 #[test]
 fn every_method_reports_in_the_same_form() {
     let loaded = case::load(&case_path("carter_051"), &[]).unwrap();
-    let bodies = app::prepare_bodies(&loaded).unwrap();
-    let est = app::estimates(&loaded, &bodies);
-    let (_, _, problem) = app::build_problem(&loaded, &est, &bodies).unwrap();
+    let scene = rollbem::scene::Scene::from_case(&loaded).unwrap();
+    let (_, problem) = scene.assemble().unwrap();
     for method in Method::ALL {
-        let mut settings = SolverSettings {
-            method,
-            newton: app::newton_settings(&loaded),
-        };
+        let mut settings = SolverSettings { method, ..scene.solver };
         settings.newton.max_iterations = if method == Method::GaussSeidel { 20_000 } else { 100 };
         let (state, report) = methods::solve(&problem, &settings);
         let measure = rollbem::contact::residual::ConvergenceMeasure::new(&problem);
@@ -159,11 +155,11 @@ fn gauss_seidel_over_relaxed_beyond_two_fails_and_says_so() {
     )
     .unwrap();
     let s = app::solve(&loaded).unwrap();
-    assert!(!s.newton.converged);
+    assert!(!s.report.converged);
     assert!(
-        s.newton.residual.is_finite() && s.newton.residual > 1e-3,
+        s.report.residual.is_finite() && s.report.residual > 1e-3,
         "{}",
-        s.newton.residual
+        s.report.residual
     );
 }
 
@@ -171,11 +167,11 @@ fn gauss_seidel_over_relaxed_beyond_two_fails_and_says_so() {
 /// ripple study solves the same problem).
 #[test]
 fn continuous_quadratic_elements_reproduce_hertz() {
-    let (_, s) = solve(
+    let s = solve(
         "hertz",
         &["contact.grid.element=continuous_quadratic", "contact.grid.elements=41"],
     );
-    let e = &s.estimates;
+    let e = &s.scene.estimates;
     let [x0, x1] = s.solution.contact_extent().unwrap();
     assert!(
         (0.5 * (x1 - x0) / e.hertz_half_width - 1.0).abs() < 0.01,

@@ -3,20 +3,20 @@
 
 mod common;
 use common::{nodal_error, solve};
-use rollbem::contact::solution::NodeState;
+use rollbem::post::NodeState;
 
 /// Carter's shear, stick zone and creepage for the case's Hertz estimates.
 fn carter_errors(name: &str) -> (f64, f64, f64) {
-    let (loaded, s) = solve(name, &[]);
+    let s = solve(name, &[]);
     // The BEM grid comes from the mesh; Carter from the case's Hertz estimates (a = 1 mm).
-    let c = rollbem::app::carter_reference(&loaded, &s.estimates).unwrap();
+    let c = s.scene.carter_reference().unwrap();
     let mu_p0 = c.friction * c.peak_pressure;
     let (max_q, _) = nodal_error(&s.solution.x, &s.solution.shear, |x| c.shear(x), f64::INFINITY, mu_p0);
     let stick = s.solution.zones_of(NodeState::Stick);
     assert_eq!(stick.len(), 1, "{name}: stick zones {stick:?}");
     let [c0, c1] = c.stick_zone();
     let width_error = ((stick[0][1] - stick[0][0]) - (c1 - c0)).abs() / s.problem.grid.element_length();
-    let creep_error = s.solution.creep / c.creep(s.estimates.effective_radius) - 1.0;
+    let creep_error = s.solution.creep / c.creep(s.scene.estimates.effective_radius) - 1.0;
     (max_q, width_error, creep_error)
 }
 
@@ -45,14 +45,14 @@ fn true_rollers_on_shafts_reproduce_carter() {
 /// tractions within 2 % of μp0 (issue 3 acceptance).
 #[test]
 fn half_space_block_agrees_with_the_analytic_half_space() {
-    let (_, block) = solve("carter_051_block", &[]);
-    let (_, analytic) = solve("carter_051", &[]);
+    let block = solve("carter_051_block", &[]);
+    let analytic = solve("carter_051", &[]);
     let x = &analytic.solution.x;
     assert!(
         x.iter().zip(&block.solution.x).all(|(a, b)| (a - b).abs() < 1e-9),
         "grids differ"
     );
-    let mu_p0 = 0.1 * analytic.estimates.hertz_peak_pressure;
+    let mu_p0 = 0.1 * analytic.scene.estimates.hertz_peak_pressure;
     let dq = analytic
         .solution
         .shear
@@ -66,9 +66,9 @@ fn half_space_block_agrees_with_the_analytic_half_space() {
 /// zones; only the true geometry gives the approach of the shaft centres.
 #[test]
 fn fig14_half_space_and_true_cylinders_nearly_agree() {
-    let (_, hs) = solve("fig14_half_space", &[]);
-    let (_, bem) = solve("fig14_true_geometry", &[]);
-    let p0 = hs.estimates.hertz_peak_pressure;
+    let hs = solve("fig14_half_space", &[]);
+    let bem = solve("fig14_true_geometry", &[]);
+    let p0 = hs.scene.estimates.hertz_peak_pressure;
     let mu = 0.2;
     let dq = hs
         .solution
@@ -98,8 +98,8 @@ fn approach_of_the_shaft_centres_matches_the_annulus_on_shaft_formula() {
         ("carter_051_true", [(100.0, 10.0, steel), (100.0, 10.0, steel)]),
         ("fig14_true_geometry", [(150.0, 15.0, al), (300.0, 30.0, steel_bj)]),
     ] {
-        let (_, s) = solve(name, &["load.tangential.ratio=0.0"]);
-        let (p, a) = (s.solution.normal_force, s.estimates.hertz_half_width);
+        let s = solve(name, &["load.tangential.ratio=0.0"]);
+        let (p, a) = (s.solution.normal_force, s.scene.estimates.hertz_half_width);
         let formula: f64 = rollers
             .iter()
             .map(|(r, rs, m)| shaft_roller_approach(p, *r, *rs, a, m))
@@ -121,9 +121,9 @@ fn approach_of_the_shaft_centres_matches_the_annulus_on_shaft_formula() {
 /// nodes loses ~8 % of the creepage, so the shipped mesh is over twice as fine).
 #[test]
 fn non_matching_contact_nodes_are_transferred() {
-    let (_, matched) = solve("carter_051_true", &[]);
-    let (_, moved) = solve("carter_051_true_nonmatching", &[]);
-    let p0 = matched.estimates.hertz_peak_pressure;
+    let matched = solve("carter_051_true", &[]);
+    let moved = solve("carter_051_true_nonmatching", &[]);
+    let p0 = matched.scene.estimates.hertz_peak_pressure;
     let diff = |a: &[f64], b: &[f64]| a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
     assert!(diff(&matched.solution.pressure, &moved.solution.pressure) / p0 < 1e-3);
     assert!(diff(&matched.solution.shear, &moved.solution.shear) / (0.1 * p0) < 0.05);

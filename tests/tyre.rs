@@ -14,7 +14,7 @@ fn thin_layer_run(tag: &str, nu: f64) -> (f64, f64, f64) {
     let radius = 100.0;
     // Sheet §5: δ = a²/(2R) (compressible, Winkler), a²/(6R) (incompressible).
     let overlap = if nu < 0.5 { 0.5 / radius } else { 1.0 / (6.0 * radius) };
-    let (_, s) = solve(
+    let s = solve(
         "tyre_b01_incompressible",
         &[
             &format!("bodies.B.mesh=../meshes/tyre_layer_b{tag}.msh"),
@@ -96,7 +96,7 @@ fn thin_layer_limits_are_approached_as_the_layer_thins() {
 fn incompressible_tyre_converges_and_its_contact_shifts_against_the_tangential_load() {
     let mut centres = Vec::new();
     for ratio in [-0.74, 0.05, 0.41] {
-        let (_, s) = solve("tyre_b01_incompressible", &[&format!("load.tangential.ratio={ratio}")]);
+        let s = solve("tyre_b01_incompressible", &[&format!("load.tangential.ratio={ratio}")]);
         let q = s.solution.tangential_force / (0.1 * s.solution.normal_force);
         assert!((q - ratio).abs() < 1e-9, "Q/muP = {q}");
         let [x0, x1] = s.solution.contact_extent().unwrap();
@@ -118,7 +118,7 @@ fn incompressible_tyre_converges_and_its_contact_shifts_against_the_tangential_l
 #[test]
 fn compressible_thick_tyre_converges_for_the_three_load_ratios() {
     for ratio in [-0.74, 0.05, 0.41] {
-        let (_, s) = solve("tyre_b05_compressible", &[&format!("load.tangential.ratio={ratio}")]);
+        let s = solve("tyre_b05_compressible", &[&format!("load.tangential.ratio={ratio}")]);
         let [x0, x1] = s.solution.contact_extent().unwrap();
         assert!((0.5 * (x1 - x0) - 1.0).abs() < 0.03, "half-width {}", 0.5 * (x1 - x0));
         assert!((0.5 * (x0 + x1)).abs() < 0.01, "centre {}", 0.5 * (x0 + x1));
@@ -133,7 +133,7 @@ fn compressible_thick_tyre_converges_for_the_three_load_ratios() {
 #[test]
 fn incompressible_thick_layer_converges_from_the_paper_start_vector() {
     for ratio in [0.0, 0.41] {
-        let (_, s) = solve(
+        let s = solve(
             "tyre_b01_incompressible",
             &[
                 "bodies.B.mesh=../meshes/tyre_layer_b05.msh",
@@ -158,7 +158,7 @@ fn rigid_cylinder_on_a_half_space_is_hertz_and_takes_its_radius_from_a_mesh() {
         "{model: rigid, radius: 100.0}",
         "{model: rigid, mesh: ../meshes/roller_r100_shaft10_A.msh}",
     ] {
-        let (_, s) = solve(
+        let s = solve(
             "hertz",
             &[
                 &format!("bodies.A={body}"),

@@ -15,7 +15,7 @@
 //! |Q/μP| ≥ 1 is outside the problem's domain (no steady rolling exists: the contact slides as a
 //! whole) and is marked `out_of_domain`, not solved and not counted as a failure. Each solved
 //! cell records the common convergence measure (converged, iterations, residual, solve time)
-//! and, when converged, the traction ripple ([`crate::contact::solution::traction_ripple`],
+//! and, when converged, the traction ripple ([`crate::post::traction_ripple`],
 //! relative to μp0).
 //!
 //! Outputs (written to a temporary folder, then renamed): `stability.csv` (one row per cell
@@ -24,15 +24,16 @@
 //! cells grey), one overview per slice with every method (`SLICE.svg`), and ripple maps of the
 //! element slices (`SLICE__METHOD__ripple.svg`).
 
-use super::heatmap::{self, CellView, Panel};
-use super::{run_parallel, solve_overridden};
+use super::run_parallel;
+use crate::app;
 use crate::case::{self, BodySpec};
 use crate::contact::newton::Formulation;
-use crate::contact::solution::traction_ripple;
 use crate::contact::Method;
 use crate::error::Error;
 use crate::material::material_for_beta;
+use crate::output::charts::heatmap::{self, CellView, Panel};
 use crate::output::write_atomically;
+use crate::post::traction_ripple;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -130,6 +131,16 @@ pub struct Axis {
     pub key: AxisKey,
     /// The values.
     pub values: Vec<String>,
+}
+
+impl Axis {
+    /// The axis as a heat map draws it.
+    pub fn drawn(&self) -> heatmap::Axis<'_> {
+        heatmap::Axis {
+            label: self.key.label(),
+            values: &self.values,
+        }
+    }
 }
 
 fn axis(key: AxisKey, values: &[&str]) -> Axis {
@@ -261,6 +272,16 @@ pub enum Status {
 }
 
 impl Status {
+    /// How a heat map draws the cell.
+    pub fn drawn(self) -> heatmap::Status {
+        match self {
+            Status::Converged => heatmap::Status::Converged,
+            Status::NotConverged => heatmap::Status::NotConverged,
+            Status::OutOfDomain => heatmap::Status::OutOfDomain,
+            Status::Error => heatmap::Status::Error,
+        }
+    }
+
     /// Name in the CSV.
     pub fn name(self) -> &'static str {
         match self {
@@ -449,9 +470,10 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
     if job.out_of_domain {
         return cell;
     }
-    match solve_overridden(case_path, base_set, &job.overrides) {
-        Ok((case, s)) => {
-            let r = &s.newton;
+    let overrides: Vec<&String> = base_set.iter().chain(&job.overrides).collect();
+    match app::solve_case(case_path, &overrides) {
+        Ok(s) => {
+            let r = &s.report;
             cell.iterations = r.iterations;
             cell.inner_iterations = r.inner_iterations;
             cell.residual = r.residual;
@@ -463,10 +485,10 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
                 Status::NotConverged
             };
             if r.converged {
-                let mu_p0 = case.case.contact.friction * s.estimates.hertz_peak_pressure;
+                let mu_p0 = s.scene.friction() * s.scene.estimates.hertz_peak_pressure;
                 cell.ripple = (mu_p0 > 0.0).then(|| traction_ripple(&s.solution) / mu_p0);
                 cell.creep = Some(s.solution.creep);
-                cell.regime = Some(s.regime);
+                cell.regime = Some(s.regime.number());
             }
         }
         Err(e) => {
@@ -577,7 +599,7 @@ fn cell_views(r: &StabilityReport, slice: usize, method: usize, ripple: bool) ->
         .map(|c| CellView {
             ix: c.ix,
             iy: c.iy,
-            status: c.status,
+            status: c.status.drawn(),
             value: if ripple {
                 c.ripple
             } else {
@@ -599,8 +621,8 @@ fn write_outputs(dir: &Path, r: &StabilityReport) -> Result<(), Error> {
         for (mi, m) in r.methods.iter().enumerate() {
             let panel = Panel {
                 title: format!("{} ({})", m.label, m.method.iteration_unit()),
-                x: &s.x,
-                y: &s.y,
+                x: s.x.drawn(),
+                y: s.y.drawn(),
                 cells: cell_views(r, si, mi, false),
                 ripple: false,
             };

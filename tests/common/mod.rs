@@ -2,7 +2,6 @@
 #![allow(dead_code)]
 
 use rollbem::app::{self, Solved};
-use rollbem::case::{self, LoadedCase};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -13,17 +12,16 @@ pub fn case_path(name: &str) -> PathBuf {
         .join(format!("{name}.yaml"))
 }
 
-/// Loads a shipped case with `key=value` overrides and solves it (no files written).
-pub fn solve(name: &str, overrides: &[&str]) -> (LoadedCase, Solved) {
-    let set: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    let case = case::load(&case_path(name), &set).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let solved = app::solve(&case).unwrap_or_else(|e| panic!("{name}: {e}"));
+/// Loads a shipped case with `key=value` overrides and solves it (no files written); panics
+/// with the residual history if it does not converge.
+pub fn solve(name: &str, overrides: &[&str]) -> Solved {
+    let solved = app::solve_case(&case_path(name), overrides).unwrap_or_else(|e| panic!("{name}: {e}"));
     assert!(
-        solved.newton.converged,
+        solved.report.converged,
         "{name} {overrides:?} did not converge: {:?}",
-        solved.newton.history
+        solved.report.history
     );
-    (case, solved)
+    solved
 }
 
 /// Max and RMS of |f(x_i) − g_i| / scale over the nodes with |x_i| < limit.
@@ -68,7 +66,10 @@ pub fn fitted_rate(ns: &[usize], errors: &[f64]) -> f64 {
 /// Labels: "P and Q", "P with ξ", "δ0 with Q", "δ0 and ξ".
 pub fn equivalent_load_controls(load: &Solved) -> Vec<(&'static str, Vec<String>)> {
     let s = &load.solution;
-    let half = format!("contact.grid.half_length={:.17e}", load.estimates.grid_half_length);
+    let half = format!(
+        "contact.grid.half_length={:.17e}",
+        load.scene.estimates.grid_half_length
+    );
     let overlap = format!("load.normal.overlap={:.17e}", s.overlap);
     let creep = format!("load.tangential.creep={:.17e}", s.creep);
     let force = format!("load.normal.force={:.17e}", s.normal_force);

@@ -6,11 +6,32 @@
 //! orange (`err`). Ripple maps: the ripple / (μp0) of converged cells, white (≤ 1e-4) to purple
 //! (≥ 1, log scale), written in per cent.
 
-use super::stability::{Axis, Status};
 use crate::error::Error;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::Path;
+
+/// How a cell's run ended, as drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// Converged: drawn green (iterations) or by its ripple.
+    Converged,
+    /// Did not converge: red, `x`.
+    NotConverged,
+    /// Outside the problem's domain, not solved: grey, `n/a`.
+    OutOfDomain,
+    /// The run was rejected: orange, `err`.
+    Error,
+}
+
+/// One axis of a panel: its label and the values of its rows or columns.
+#[derive(Debug, Clone, Copy)]
+pub struct Axis<'a> {
+    /// Axis label.
+    pub label: &'a str,
+    /// The values, as written.
+    pub values: &'a [String],
+}
 
 /// One cell as drawn.
 #[derive(Debug, Clone, Copy)]
@@ -31,9 +52,9 @@ pub struct Panel<'a> {
     /// Panel title.
     pub title: String,
     /// Horizontal axis.
-    pub x: &'a Axis,
+    pub x: Axis<'a>,
     /// Vertical axis.
-    pub y: &'a Axis,
+    pub y: Axis<'a>,
     /// The cells.
     pub cells: Vec<CellView>,
     /// Ripple map (else iterations).
@@ -166,12 +187,12 @@ fn draw(path: &Path, title: &str, panels: &[&Panel]) -> Result<(), Box<dyn std::
             ))?;
         }
         root.draw(&Text::new(
-            p.x.key.label().to_string(),
+            p.x.label.to_string(),
             (ox + LEFT + CELL_W * nx / 2, oy + TOP + CELL_H * ny + 34),
             centred(13.0, &BLACK),
         ))?;
         root.draw(&Text::new(
-            p.y.key.label().to_string(),
+            p.y.label.to_string(),
             (ox + 8, oy + TOP - 12),
             TextStyle::from(font(13.0)).pos(Pos::new(HPos::Left, VPos::Center)),
         ))?;

@@ -17,7 +17,8 @@
 //! per cent of it near stick/slip transitions and by much less elsewhere (docs/hbem.md). When
 //! nothing slips (s = 0 at every contact node) there is no scale and no node is flagged.
 
-use super::solution::{ContactSolution, NodeState};
+use super::solution::ContactSolution;
+use super::zones::NodeState;
 use serde::Serialize;
 
 /// Default threshold as a fraction of max |s| over the nodes in contact: 5 %.

@@ -1,48 +1,12 @@
-//! The converged solution in user-facing terms: forces, contact extent, stick/slip zones.
+//! The solver's state in user-facing terms (signs of docs/theory.md): nodal tractions, gap
+//! and slip recomputed from the tractions, node states, forces, contact extent and zones.
 
-use super::newton::State;
-use super::ContactProblem;
+use super::zones::{zones, NodeState, SlipDirection, Zone};
+use crate::contact::newton::State;
+use crate::contact::ContactProblem;
 use serde::Serialize;
 
-/// State of a contact node (DESIGN §5 `state` column).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum NodeState {
-    /// p = 0: the surfaces are apart (or just touching).
-    Open,
-    /// In contact, no slip, |q| < μp.
-    Stick,
-    /// In contact and slipping, |q| = μp.
-    Slip,
-}
-
-impl NodeState {
-    /// Lower-case name used in CSV files.
-    pub fn name(self) -> &'static str {
-        match self {
-            NodeState::Open => "open",
-            NodeState::Stick => "stick",
-            NodeState::Slip => "slip",
-        }
-    }
-}
-
-/// A run of neighbouring nodes in the same state.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Zone {
-    /// Node state in the zone.
-    pub state: NodeState,
-    /// Start x [length] (midway to the previous node of another state).
-    pub x0: f64,
-    /// End x [length].
-    pub x1: f64,
-    /// Sign of the slip in a slip zone (+1/−1), 0 otherwise.
-    pub direction: i8,
-    /// Number of nodes in the zone.
-    pub nodes: usize,
-}
-
-/// Converged solution at the contact nodes, user-facing signs (DESIGN §2).
+/// Converged solution at the contact nodes, user-facing signs (docs/theory.md).
 #[derive(Debug, Clone, Serialize)]
 pub struct ContactSolution {
     /// Node x [length].
@@ -174,94 +138,12 @@ impl ContactSolution {
             .collect()
     }
 
-    /// Slip-zone directions (+1/−1) in increasing x.
-    pub fn slip_directions(&self) -> Vec<i8> {
+    /// Slip-zone directions in increasing x.
+    pub fn slip_directions(&self) -> Vec<SlipDirection> {
         self.zones
             .iter()
             .filter(|z| z.state == NodeState::Slip)
             .map(|z| z.direction)
             .collect()
     }
-}
-
-/// Splits the nodes into runs of equal state (and, for slip, equal slip sign).
-fn zones(x: &[f64], state: &[NodeState], slip: &[f64]) -> Vec<Zone> {
-    let m = x.len();
-    let dir = |i: usize| -> i8 {
-        if state[i] == NodeState::Slip {
-            if slip[i] >= 0.0 {
-                1
-            } else {
-                -1
-            }
-        } else {
-            0
-        }
-    };
-    let mut out: Vec<Zone> = Vec::new();
-    let half = if m > 1 { 0.5 * (x[1] - x[0]) } else { 0.0 };
-    for i in 0..m {
-        let key = (state[i], dir(i));
-        match out.last_mut() {
-            Some(z) if (z.state, z.direction) == key => {
-                z.x1 = x[i] + half;
-                z.nodes += 1;
-            }
-            _ => out.push(Zone {
-                state: state[i],
-                x0: x[i] - half,
-                x1: x[i] + half,
-                direction: key.1,
-                nodes: 1,
-            }),
-        }
-    }
-    out
-}
-
-/// Slip regime of the classification in paper §5.2 (and reference sheet §4.2), from the slip
-/// zones ordered from the leading edge: 1 one slip zone; 2 two zones slipping in the same
-/// direction; 3 two zones in opposite directions; 4 three zones, outer two alike and the middle
-/// one opposite. Zones of fewer than `min_nodes` nodes are ignored. Returns 0 for full stick or
-/// any other pattern.
-pub fn slip_regime(solution: &ContactSolution, leading_edge_sign: f64, min_nodes: usize) -> u8 {
-    let mut dirs: Vec<i8> = solution
-        .zones
-        .iter()
-        .filter(|z| z.state == NodeState::Slip && z.nodes >= min_nodes)
-        .map(|z| z.direction)
-        .collect();
-    if leading_edge_sign > 0.0 {
-        dirs.reverse();
-    }
-    match dirs.as_slice() {
-        [_] => 1,
-        [a, b] if a == b => 2,
-        [_, _] => 3,
-        [a, b, c] if a == c && a != b => 4,
-        _ => 0,
-    }
-}
-
-/// Ripple of the shear [stress]: node-to-node zig-zag, measured as the largest
-/// min(|Δ²q_i|, |Δ²q_{i+1}|) over neighbouring second differences of opposite sign whose
-/// stencils lie inside one zone. A smooth traction changes the sign of Δ²q only at inflection
-/// points, where Δ²q is small (about h³ times the third derivative), and square-root kinks at
-/// zone or contact edges keep one sign; an odd–even oscillation of amplitude A (the ripples Man
-/// & Aliabadi reported with continuous elements) gives about 4A.
-pub fn traction_ripple(solution: &ContactSolution) -> f64 {
-    let m = solution.x.len();
-    let q = &solution.shear;
-    let key = |i: usize| {
-        (
-            solution.state[i],
-            solution.slip[i] >= 0.0 || solution.state[i] != NodeState::Slip,
-        )
-    };
-    let inside = |i: usize| solution.state[i] != NodeState::Open && key(i - 1) == key(i) && key(i + 1) == key(i);
-    let d2 = |i: usize| q[i - 1] - 2.0 * q[i] + q[i + 1];
-    (1..m.saturating_sub(2))
-        .filter(|&i| inside(i) && inside(i + 1) && key(i) == key(i + 1) && d2(i) * d2(i + 1) < 0.0)
-        .map(|i| d2(i).abs().min(d2(i + 1).abs()))
-        .fold(0.0, f64::max)
 }
