@@ -32,7 +32,7 @@ fn zone_labels(zones: &[Zone], a: f64, decimals: usize, nodes: bool) -> String {
         .map(|z| {
             let name = z.state.name();
             let state = if nodes { &name[..2] } else { name };
-            let sign = direction_mark(z.direction.sign());
+            let sign = direction_mark(z.direction.map_or(0, SlipDirection::sign));
             let count = if nodes { format!("({})", z.nodes) } else { String::new() };
             format!("{state}{sign}[{:.decimals$}, {:.decimals$}]{count}", z.x0 / a, z.x1 / a)
         })
@@ -176,7 +176,14 @@ pub fn regimes() -> Table {
                 n.to_string(),
                 format!("{:.5}", s.solution.creep * r / (mu * a)),
                 s.regime.to_string(),
-                format!("{:?}", SlipDirection::signs(&s.solution.slip_directions())),
+                format!(
+                    "{:?}",
+                    s.solution
+                        .slip_directions()
+                        .iter()
+                        .map(|d| d.sign())
+                        .collect::<Vec<_>>()
+                ),
                 zone_labels(&s.solution.zones, a, 3, false),
             ]);
         }

@@ -1,7 +1,6 @@
 //! The terminal table of a run.
 
 use super::summary::Summary;
-use crate::post::SlipDirection;
 use std::path::Path;
 
 /// The terminal summary table of a run.
@@ -60,7 +59,7 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
         format!(
             "{}  directions {:?}  regime {}",
             zones(&s.slip_zones),
-            SlipDirection::signs(&s.slip_directions),
+            s.slip_directions.iter().map(|d| d.sign()).collect::<Vec<_>>(),
             s.slip_regime
         ),
     );

@@ -143,7 +143,7 @@ impl ContactSolution {
         self.zones
             .iter()
             .filter(|z| z.state == NodeState::Slip)
-            .map(|z| z.direction)
+            .filter_map(|z| z.direction)
             .collect()
     }
 }

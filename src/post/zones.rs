@@ -2,7 +2,7 @@
 //! §5.2) and the ripple of the shear inside them.
 
 use super::solution::ContactSolution;
-use serde::Serialize;
+use serde::{Serialize, Serializer};
 
 /// State of a contact node (the `state` column of contact.csv).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -27,38 +27,84 @@ impl NodeState {
     }
 }
 
-/// Direction of the slip s (velocity of A's surface relative to B's over |V|) in a zone;
-/// written as its sign +1, −1, or 0 outside slip zones.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(into = "i8")]
+/// Direction of the slip in a slip zone: the sign of the slip s, the velocity of A's surface
+/// relative to B's divided by |V|. Written as +1 / −1 in summary.json.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SlipDirection {
-    /// s ≥ 0: A slides in +x over B.
-    Positive,
-    /// s < 0: A slides in −x over B.
-    Negative,
-    /// Not a slip zone.
-    NotSlipping,
+    /// s ≥ 0: A's surface slips in +x relative to B's.
+    PlusX,
+    /// s < 0: A's surface slips in −x relative to B's.
+    MinusX,
 }
 
 impl SlipDirection {
-    /// +1, −1 or 0.
-    pub fn sign(self) -> i8 {
-        match self {
-            SlipDirection::Positive => 1,
-            SlipDirection::Negative => -1,
-            SlipDirection::NotSlipping => 0,
+    /// The direction of a slip s [-] (s = 0 counts as +x).
+    pub fn of(slip: f64) -> Self {
+        if slip >= 0.0 {
+            SlipDirection::PlusX
+        } else {
+            SlipDirection::MinusX
         }
     }
 
-    /// The signs of a list of directions, for printing as `[-1, 1]`.
-    pub fn signs(directions: &[SlipDirection]) -> Vec<i8> {
-        directions.iter().map(|d| d.sign()).collect()
+    /// +1 or −1.
+    pub fn sign(self) -> i8 {
+        match self {
+            SlipDirection::PlusX => 1,
+            SlipDirection::MinusX => -1,
+        }
     }
 }
 
-impl From<SlipDirection> for i8 {
-    fn from(d: SlipDirection) -> i8 {
-        d.sign()
+impl Serialize for SlipDirection {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_i8(self.sign())
+    }
+}
+
+/// Writes a zone's direction as +1 / −1, and 0 for a zone that does not slip.
+fn serialize_zone_direction<S: Serializer>(direction: &Option<SlipDirection>, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_i8(direction.map_or(0, SlipDirection::sign))
+}
+
+/// Slip regime of the classification of González & Abascal §5.2, from the slip zones ordered
+/// from the leading edge. Written as its number 0–4 in summary.json.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SlipRegime {
+    /// 0: full stick, or any pattern not below (e.g. four slip zones).
+    Unclassified,
+    /// 1: one slip zone.
+    OneZone,
+    /// 2: two zones slipping in the same direction.
+    TwoZonesSameDirection,
+    /// 3: two zones slipping in opposite directions.
+    TwoZonesOpposite,
+    /// 4: three zones, the outer two alike and the middle one opposite.
+    ThreeZones,
+}
+
+impl SlipRegime {
+    /// The number of the paper's classification, 1–4, or 0 for [`SlipRegime::Unclassified`].
+    pub fn number(self) -> u8 {
+        match self {
+            SlipRegime::Unclassified => 0,
+            SlipRegime::OneZone => 1,
+            SlipRegime::TwoZonesSameDirection => 2,
+            SlipRegime::TwoZonesOpposite => 3,
+            SlipRegime::ThreeZones => 4,
+        }
+    }
+}
+
+impl std::fmt::Display for SlipRegime {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.number())
+    }
+}
+
+impl Serialize for SlipRegime {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_u8(self.number())
     }
 }
 
@@ -71,8 +117,9 @@ pub struct Zone {
     pub x0: f64,
     /// End x [length].
     pub x1: f64,
-    /// Direction of the slip in a slip zone (written as ±1), 0 otherwise.
-    pub direction: SlipDirection,
+    /// Direction of the slip in a slip zone, None otherwise (written +1 / −1 / 0).
+    #[serde(serialize_with = "serialize_zone_direction")]
+    pub direction: Option<SlipDirection>,
     /// Number of nodes in the zone.
     pub nodes: usize,
 }
@@ -80,15 +127,7 @@ pub struct Zone {
 /// Splits the nodes into runs of equal state (and, for slip, equal slip sign).
 pub fn zones(x: &[f64], state: &[NodeState], slip: &[f64]) -> Vec<Zone> {
     let m = x.len();
-    let dir = |i: usize| {
-        if state[i] != NodeState::Slip {
-            SlipDirection::NotSlipping
-        } else if slip[i] >= 0.0 {
-            SlipDirection::Positive
-        } else {
-            SlipDirection::Negative
-        }
-    };
+    let dir = |i: usize| (state[i] == NodeState::Slip).then(|| SlipDirection::of(slip[i]));
     let mut out: Vec<Zone> = Vec::new();
     let half = if m > 1 { 0.5 * (x[1] - x[0]) } else { 0.0 };
     for i in 0..m {
@@ -110,66 +149,23 @@ pub fn zones(x: &[f64], state: &[NodeState], slip: &[f64]) -> Vec<Zone> {
     out
 }
 
-/// Slip regime of the classification of González & Abascal §5.2, from the slip zones ordered
-/// from the leading edge; written as its number 0–4.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(into = "u8")]
-pub enum SlipRegime {
-    /// 0: none of the four (full stick, or another pattern).
-    Unclassified,
-    /// 1: one slip zone.
-    OneZone,
-    /// 2: two zones slipping in the same direction.
-    TwoZonesAlike,
-    /// 3: two zones slipping in opposite directions.
-    TwoZonesOpposite,
-    /// 4: three zones, the outer two alike and the middle one opposite.
-    ThreeZonesMiddleReversed,
-}
-
-impl SlipRegime {
-    /// The regime's number in the paper (0 for none of them).
-    pub fn number(self) -> u8 {
-        match self {
-            SlipRegime::Unclassified => 0,
-            SlipRegime::OneZone => 1,
-            SlipRegime::TwoZonesAlike => 2,
-            SlipRegime::TwoZonesOpposite => 3,
-            SlipRegime::ThreeZonesMiddleReversed => 4,
-        }
-    }
-}
-
-/// The regime's number, as the paper writes it.
-impl std::fmt::Display for SlipRegime {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}", self.number())
-    }
-}
-
-impl From<SlipRegime> for u8 {
-    fn from(r: SlipRegime) -> u8 {
-        r.number()
-    }
-}
-
-/// The slip regime of a solution: its slip zones of at least `min_nodes` nodes, ordered from
-/// the leading edge (`leading_edge_sign` +1: the leading edge is at +x).
+/// The [`SlipRegime`] of a solution whose leading edge lies on the side `leading_edge_sign` of
+/// the contact (+1: at +x). Zones of fewer than `min_nodes` nodes are ignored.
 pub fn slip_regime(solution: &ContactSolution, leading_edge_sign: f64, min_nodes: usize) -> SlipRegime {
     let mut dirs: Vec<SlipDirection> = solution
         .zones
         .iter()
         .filter(|z| z.state == NodeState::Slip && z.nodes >= min_nodes)
-        .map(|z| z.direction)
+        .filter_map(|z| z.direction)
         .collect();
     if leading_edge_sign > 0.0 {
         dirs.reverse();
     }
     match dirs.as_slice() {
         [_] => SlipRegime::OneZone,
-        [a, b] if a == b => SlipRegime::TwoZonesAlike,
+        [a, b] if a == b => SlipRegime::TwoZonesSameDirection,
         [_, _] => SlipRegime::TwoZonesOpposite,
-        [a, b, c] if a == c && a != b => SlipRegime::ThreeZonesMiddleReversed,
+        [a, b, c] if a == c && a != b => SlipRegime::ThreeZones,
         _ => SlipRegime::Unclassified,
     }
 }
