@@ -5,7 +5,7 @@
 //!
 //! Run: `cargo run --release --example hbem_report` (a few seconds).
 
-mod common;
+pub mod common;
 
 use common::{root, signed, solve, Table};
 use plotters::prelude::*;

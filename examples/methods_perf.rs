@@ -7,7 +7,7 @@
 //!
 //! Run: `cargo run --release --example methods_perf`. Method and machine: docs/performance.md.
 
-mod common;
+pub mod common;
 
 use common::{case_path, Table};
 use rollbem::app;

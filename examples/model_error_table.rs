@@ -15,7 +15,7 @@
 //! Run: `cargo run --release --example model_error_table` (about a minute). The `docs` test
 //! compares the tables with docs/choosing-a-model.md and the constants of src/advice.rs.
 
-mod common;
+pub mod common;
 
 use common::Table;
 use rollbem::app;

@@ -5,7 +5,7 @@
 //!
 //! Run: `cargo build --release && cargo run --release --example perf_report`.
 
-mod common;
+pub mod common;
 
 use common::{case_path, root, solve, Table};
 use rollbem::app::Solved;

@@ -3,7 +3,7 @@
 //!
 //! Run: `cargo run --release --example validation_report` (about a minute).
 
-mod common;
+pub mod common;
 
 use common::{direction_mark, shipped_cases, solve, Table};
 use rollbem::analytic::{self, hertz_pressure};

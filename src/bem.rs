@@ -28,7 +28,7 @@
 //!
 //! **Incompressible material (ν = 0.5).** The kernels stay finite, but the Kelvin displacement
 //! field is then divergence-free, so ∮ U*_ij n_j dΓ = 0 around every closed loop: G annihilates
-//! a uniform pressure on any loop. Consequences, both checked in `tests/bem_lame.rs`:
+//! a uniform pressure on any loop. Consequences, both checked in `tests/bem/lame.rs`:
 //! * on a loop whose displacements are all prescribed (a fixed shaft or core) the computed
 //!   traction is determined only up to a uniform pressure c·n on that loop. Displacements
 //!   everywhere (hence the contact flexibility), and the resultant force and moment on the loop,

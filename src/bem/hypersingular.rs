@@ -57,7 +57,7 @@
 //! These agree with the sheet's formulas; the unit tests check them against the integrand
 //! itself (F − F₋₂/δ² − F₋₁/δ stays bounded as δ → 0 on a curved element) and the whole
 //! evaluation against rigid motions on curved meshes, the uniform-stress patch and Lamé
-//! (`tests/hbem.rs`).
+//! (`tests/bem/hbem.rs`).
 //!
 //! # Output
 //! [`GradientRows`]: the linear map from the nodal (u, t) of all field nodes to u_i,k(X), so

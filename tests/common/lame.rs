@@ -100,3 +100,18 @@ pub fn lame_pins(model: &BemModel) -> [Pin; 3] {
         },
     ]
 }
+
+/// The Lamé annulus with n elements per circle, held fixed inside and free outside: a body
+/// with no load, for tests of what the BEM does to rigid motions (ν = 0.3, steel).
+pub fn fixed_ring(n: usize) -> BemModel {
+    BemModel::new(
+        annulus(A_IN, B_OUT, n, n, ["inner", "outer"], true),
+        Elastic::new(210_000.0, 0.3),
+        vec![
+            ("inner".into(), BoundaryCondition::Fixed),
+            ("outer".into(), BoundaryCondition::Free),
+        ],
+        BemOptions::default(),
+    )
+    .expect("the fixed annulus is well posed")
+}

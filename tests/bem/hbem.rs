@@ -3,9 +3,7 @@
 //! sheet §9), checked on exact fields, under mesh refinement, and as the slip of a rolling
 //! contact against Carter.
 
-mod common;
-
-use common::patch::{exact_t, exact_u, strain};
+use crate::common::patch::{exact_t, exact_u, strain};
 use rollbem::bem::hypersingular::{GradientEvaluator, GradientPoint, GradientRows};
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition};
 use rollbem::material::Elastic;
@@ -19,8 +17,8 @@ use std::sync::Arc;
 /// 4 × 2 rectangle at (−1, −0.5); the top is a contact group (fully discontinuous elements),
 /// the other sides have partially discontinuous elements at the corners.
 fn patch_model(nu: f64) -> BemModel {
-    let mesh = common::patch::rectangle_mesh(true);
-    common::patch::model(mesh, Elastic::new(210_000.0, nu), Some(BoundaryCondition::Contact))
+    let mesh = crate::common::patch::rectangle_mesh(true);
+    crate::common::patch::model(mesh, Elastic::new(210_000.0, nu), Some(BoundaryCondition::Contact))
 }
 
 /// Max |∇u − exact| / max |exact| over 2 × 2 components.
@@ -79,7 +77,7 @@ fn uniform_stress_gradient_is_exact_from_exact_nodal_values() {
 }
 
 /// The same from a BEM solve of the patch problem (contact side traction-loaded with σ⁰·n):
-/// the solve is exact to ~1e-12 (tests/bem_patch.rs asserts 1e-9), so the HBEM gradient must
+/// the solve is exact to ~1e-12 (tests/bem/patch.rs asserts 1e-9), so the HBEM gradient must
 /// still be exact to 1e-8.
 #[test]
 fn uniform_stress_gradient_is_exact_from_the_bem_solution() {
@@ -110,16 +108,7 @@ type Motion = fn([f64; 2]) -> [f64; 2];
 /// Laurent terms (c, n1 and the Jacobian slope).
 #[test]
 fn rigid_motions_have_the_exact_gradient_on_curved_elements() {
-    let model = BemModel::new(
-        annulus(10.0, 20.0, 8, 8, ["inner", "outer"], true),
-        Elastic::new(210_000.0, 0.3),
-        vec![
-            ("inner".into(), BoundaryCondition::Fixed),
-            ("outer".into(), BoundaryCondition::Free),
-        ],
-        BemOptions::default(),
-    )
-    .unwrap();
+    let model = crate::common::lame::fixed_ring(8);
     let evaluator = GradientEvaluator::new(&model);
     let t = vec![[0.0; 2]; model.field_nodes().len()];
     let motions: [(Motion, [[f64; 2]; 2]); 3] = [
@@ -209,7 +198,7 @@ fn lame_strain_errors(n: usize) -> (f64, f64, f64) {
         BemOptions::default(),
     )
     .unwrap();
-    // Pins (as tests/bem_lame.rs): exact (u_x, u_y) at the outer node nearest (b, 0), u_x at the
+    // Pins (as tests/bem/lame.rs): exact (u_x, u_y) at the outer node nearest (b, 0), u_x at the
     // one nearest (0, b): the pressure-loaded problem without its rigid motion.
     let nodes = model.field_nodes();
     let nearest = |target: [f64; 2]| {
@@ -267,7 +256,7 @@ fn lame_strain_errors(n: usize) -> (f64, f64, f64) {
 ///
 /// **Expected rate.** The hypersingular identity is exact for the exact boundary data; the
 /// error is that of the BEM's boundary u and t (O(h³): quadratic interpolation and geometry,
-/// tests/bem_lame.rs) seen through W and V. Differentiation can cost one order (an interpolation
+/// tests/bem/lame.rs) seen through W and V. Differentiation can cost one order (an interpolation
 /// error oscillating on the scale h, seen by a 1/r² kernel, gives O(h³)/h), so 2 is the floor
 /// of any sound implementation and 3 is what the data allow. Measured: fitted slopes 3.27
 /// (ε_θθ) and 3.05 (ε_rr) over 8–64 elements per circle; continuing to 128 and 256 (not run
@@ -289,9 +278,9 @@ fn lame_boundary_strains_converge() {
     let rr: Vec<f64> = table.iter().map(|t| t.1).collect();
     let shape: Vec<f64> = table.iter().map(|t| t.2).collect();
     let (rate_tt, rate_rr, rate_shape) = (
-        common::fitted_rate(&NS, &tt),
-        common::fitted_rate(&NS, &rr),
-        common::fitted_rate(&NS, &shape),
+        crate::common::fitted_rate(&NS, &tt),
+        crate::common::fitted_rate(&NS, &rr),
+        crate::common::fitted_rate(&NS, &shape),
     );
     println!("fitted rates: HBEM eps_tt {rate_tt:.2}, eps_rr {rate_rr:.2}; shape-function eps_tt {rate_shape:.2}");
     for (label, errors, rate) in [("eps_tt", &tt, rate_tt), ("eps_rr", &rr, rate_rr)] {
@@ -308,7 +297,7 @@ fn lame_boundary_strains_converge() {
 /// (max |s_h| over all stick nodes, over the stick nodes at least one element from the zone's
 /// ends), all relative to Carter's largest |s| at the nodes (next to the trailing edge).
 fn carter_slip_errors(name: &str) -> ([f64; 2], [f64; 2]) {
-    let s = common::solve(name, &[]);
+    let s = crate::common::solve(name, &[]);
     let c = s.scene.carter_reference().unwrap();
     let r = s.scene.estimates.effective_radius;
     let sol = &s.solution;
@@ -367,12 +356,12 @@ fn carter_slip_by_hbem_on_true_rollers() {
 /// Non-matching contact nodes: body B's HBEM strain is computed on its own 54 contact nodes
 /// and carried to the grid by [`rollbem::body::transfer`] (as its flexibility). The HBEM slip
 /// must agree with the node-to-node run within 5 % of the largest slip, the accuracy the
-/// transfer has for the tangential problem (tests/true_geometry.rs: shear within 5 % of μp0,
+/// transfer has for the tangential problem (tests/validation/true_geometry.rs: shear within 5 % of μp0,
 /// creepage within 3 %); measured 2.4 %, at the stick/slip transition.
 #[test]
 fn transferred_hbem_strain_matches_the_node_to_node_run() {
-    let matched = common::solve("carter_051_true", &[]);
-    let moved = common::solve("carter_051_true_nonmatching", &[]);
+    let matched = crate::common::solve("carter_051_true", &[]);
+    let moved = crate::common::solve("carter_051_true_nonmatching", &[]);
     let (a, b) = (
         matched.solution.slip_strain.as_ref().unwrap(),
         moved.solution.slip_strain.as_ref().unwrap(),
@@ -399,7 +388,7 @@ fn transferred_hbem_strain_matches_the_node_to_node_run() {
 #[test]
 fn friction_check_is_clean_on_carter() {
     use rollbem::post::friction_check::{check_friction_law, DEFAULT_THRESHOLD_FRACTION};
-    let s = common::solve("carter_051_true", &[]);
+    let s = crate::common::solve("carter_051_true", &[]);
     let c = check_friction_law(&s.solution, 0.1, DEFAULT_THRESHOLD_FRACTION).unwrap();
     assert!(c.violations.is_empty(), "{:?}", c.violations);
     let limit = c.threshold.unwrap();
@@ -417,8 +406,8 @@ fn friction_check_is_clean_on_carter() {
 #[test]
 fn fig4_true_geometry_keeps_the_regime_and_passes_the_friction_check() {
     use rollbem::post::friction_check::{check_friction_law, DEFAULT_THRESHOLD_FRACTION};
-    let bem = common::solve("fig4_true_geometry", &[]);
-    let hs = common::solve("dissimilar_beta0288_075", &[]);
+    let bem = crate::common::solve("fig4_true_geometry", &[]);
+    let hs = crate::common::solve("dissimilar_beta0288_075", &[]);
     assert_eq!(bem.regime.number(), 2);
     assert_eq!(bem.solution.slip_directions(), hs.solution.slip_directions());
     // Same Hertz half-width a = 1 mm and the same 21-element grid: compare q/(μp0) node by node.
@@ -446,7 +435,7 @@ fn fig4_true_geometry_keeps_the_regime_and_passes_the_friction_check() {
 fn run_writes_the_hbem_slip_and_the_check_for_bem_bodies() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("fig4");
-    let case = common::case_path("fig4_true_geometry");
+    let case = crate::common::case_path("fig4_true_geometry");
     let status = std::process::Command::new(env!("CARGO_BIN_EXE_rollbem"))
         .args(["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()])
         .output()

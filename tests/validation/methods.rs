@@ -1,8 +1,7 @@
 //! The alternative solution methods (issue 6): where they converge they solve the same
 //! discrete problem as the default Newton, and they handle every load control.
 
-mod common;
-use common::{case_path, solve};
+use crate::common::{case_path, solve};
 use rollbem::app;
 use rollbem::case;
 use rollbem::contact::methods::{self, Method, SolverSettings};
@@ -95,7 +94,7 @@ fn every_method_handles_every_load_control() {
     ] {
         let load = solve(name, &[]);
         // P and Q/μP (the shipped control) against the other four.
-        let mut controls = common::equivalent_load_controls(&load);
+        let mut controls = crate::common::equivalent_load_controls(&load);
         controls.insert(0, ("P and Q/μP", vec![]));
         let p0 = load.scene.estimates.hertz_peak_pressure;
         for (label, set) in controls {

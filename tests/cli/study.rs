@@ -1,8 +1,7 @@
 //! `rollbem study accuracy` (issue 6): the three body models of the Carter scene against the
 //! closed form, and the command's outputs.
 
-mod common;
-use common::rollbem;
+use crate::common::rollbem;
 use rollbem::case;
 use rollbem::study::accuracy::{self, AccuracyOptions, SceneModel};
 
@@ -17,7 +16,7 @@ use rollbem::study::accuracy::{self, AccuracyOptions, SceneModel};
 /// over the two doublings).
 #[test]
 fn accuracy_study_of_the_carter_scene_converges_for_every_model() {
-    let loaded = case::load(&common::case_path("carter_051"), &[]).unwrap();
+    let loaded = case::load(&crate::common::case_path("carter_051"), &[]).unwrap();
     let options = AccuracyOptions {
         ladder: AccuracyOptions::quick_ladder(),
         ..AccuracyOptions::default()
@@ -51,7 +50,7 @@ fn accuracy_study_of_the_carter_scene_converges_for_every_model() {
 /// true-geometry run, and says so.
 #[test]
 fn accuracy_study_without_a_closed_form_uses_the_finest_true_geometry_run() {
-    let loaded = case::load(&common::case_path("dissimilar_beta0288_075"), &[]).unwrap();
+    let loaded = case::load(&crate::common::case_path("dissimilar_beta0288_075"), &[]).unwrap();
     let options = AccuracyOptions {
         ladder: vec![11, 21],
         models: vec![SceneModel::HalfSpace],
@@ -74,7 +73,7 @@ fn accuracy_study_without_a_closed_form_uses_the_finest_true_geometry_run() {
 fn study_accuracy_command_writes_the_table_and_the_chart() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("acc");
-    let case = common::case_path("carter_051");
+    let case = crate::common::case_path("carter_051");
     let (code, stdout, stderr) = rollbem(&[
         "study",
         "accuracy",
@@ -107,13 +106,13 @@ fn study_accuracy_command_writes_the_table_and_the_chart() {
 /// b/a ≈ 0.1 needs the BEM at any usual tolerance.
 #[test]
 fn check_advises_the_model_for_the_tolerance() {
-    let carter = common::case_path("carter_051");
+    let carter = crate::common::case_path("carter_051");
     let (code, out, _) = rollbem(&["check", carter.to_str().unwrap()]);
     assert_eq!(code, 0);
     assert!(out.contains("half_space is enough for a tolerance of 1.00 %"), "{out}");
     let (_, out, _) = rollbem(&["check", carter.to_str().unwrap(), "--tolerance", "0.001"]);
     assert!(out.contains("use bem"), "{out}");
-    let tyre = common::case_path("tyre_b01_incompressible");
+    let tyre = crate::common::case_path("tyre_b01_incompressible");
     let (_, out, _) = rollbem(&["check", tyre.to_str().unwrap(), "--tolerance", "0.1"]);
     assert!(out.contains("layer thickness b") && out.contains("use bem"), "{out}");
     let (code, _, err) = rollbem(&["check", carter.to_str().unwrap(), "--tolerance", "0"]);

@@ -1,7 +1,6 @@
 //! Acceptance tests of the contact solver on the shipped half-space cases (issue 2).
 
-mod common;
-use common::{case_path, solve};
+use crate::common::{case_path, solve};
 use rollbem::analytic;
 use rollbem::post::traction_ripple;
 
@@ -75,7 +74,7 @@ fn kinematic_and_mixed_control_reproduce_the_load_controlled_run() {
     for name in ["carter_051", "dissimilar_beta0288_004"] {
         let load = solve(name, &[]);
         let s = &load.solution;
-        for (label, set) in common::equivalent_load_controls(&load) {
+        for (label, set) in crate::common::equivalent_load_controls(&load) {
             let set: Vec<&str> = set.iter().map(String::as_str).collect();
             let k = solve(name, &set);
             let p_err = (k.solution.normal_force - s.normal_force).abs() / s.normal_force;

@@ -2,10 +2,10 @@
 //! Lamé thick cylinder, Hertz/McEwen stresses from a BEM block against the half-space model.
 //!
 //! Tolerances are justified where they are asserted; the measured numbers are printed
-//! (`cargo test --release --test interior_bem -- --nocapture`) and recorded in
+//! (`cargo test --release --test bem interior:: -- --nocapture`) and recorded in
 //! docs/validation.md, "Interior stresses (issue 4)".
 
-use common::patch::{exact_u, strain, SIGMA};
+use crate::common::patch::{exact_u, strain, SIGMA};
 use rollbem::bem::somigliana::interior_fields;
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition};
 use rollbem::interior::{InteriorOptions, InteriorSample, InteriorValue};
@@ -15,10 +15,14 @@ use std::sync::Arc;
 // ---------------------------------------------------------------------------------------------
 // Uniform stress (reference sheet §8.3)
 
-/// The 4 × 2 rectangle of tests/bem_patch.rs: displacements on bottom and left, tractions σ⁰·n
+/// The 4 × 2 rectangle of tests/bem/patch.rs: displacements on bottom and left, tractions σ⁰·n
 /// on right and top; element lengths 4/3 (bottom), 1 (others).
 fn patch_model(nu: f64) -> BemModel {
-    common::patch::model(common::patch::rectangle_mesh(true), Elastic::new(210_000.0, nu), None)
+    crate::common::patch::model(
+        crate::common::patch::rectangle_mesh(true),
+        Elastic::new(210_000.0, nu),
+        None,
+    )
 }
 
 fn inside(s: &InteriorSample) -> InteriorValue {
@@ -31,7 +35,7 @@ fn inside(s: &InteriorSample) -> InteriorValue {
 /// Uniform stress is reproduced exactly at interior points (both u and σ), down to a tenth of an
 /// element from the boundary, for ν = 0.3 and the incompressible ν = 0.5 (where D and S must
 /// stay finite). The exact boundary data lie in the quadratic space, so the only errors are the
-/// BEM solve's (≤ 1e-12, tests/bem_patch.rs) and the interior quadrature's (tolerance 1e-12):
+/// BEM solve's (≤ 1e-12, tests/bem/patch.rs) and the interior quadrature's (tolerance 1e-12):
 /// bound 1e-9 of the largest exact value, as for the boundary patch test.
 #[test]
 fn uniform_stress_is_exact_at_interior_points() {
@@ -121,11 +125,10 @@ fn points_outside_or_on_the_boundary_are_flagged() {
 // ---------------------------------------------------------------------------------------------
 // Lamé thick cylinder (reference sheet §8.1)
 
-mod common;
-use common::lame::{self, A_IN, B_OUT};
+use crate::common::lame::{self, A_IN, B_OUT};
 
 /// The pressure-loaded Lamé cylinder with `n` elements per circle, its rigid motion removed by
-/// the exact displacement at three components (as tests/bem_lame.rs), solved.
+/// the exact displacement at three components (as tests/bem/lame.rs), solved.
 fn lame_solution(nu: f64, n: usize) -> (BemModel, rollbem::bem::BemSolution) {
     let model = lame::pressure_loaded_lame(nu, n);
     let sol = model.solve_pinned(&lame::lame_pins(&model)).unwrap();
@@ -178,7 +181,7 @@ fn lame_errors_at(model: &BemModel, sol: &rollbem::bem::BemSolution, n: usize, f
 ///   (measured 8.4e-6; 16 elements give 1.0e-4, just above it);
 /// * down to d = h/10 the stresses stay accurate: below 1e-4 from 32 elements on (measured
 ///   2.7e-5 there), and they converge: the fitted rate over 16–128 elements must lie in the band
-///   2.5–4.5 of tests/bem_lame.rs (quadratic elements: h³, nodal superconvergence up to h⁴;
+///   2.5–4.5 of tests/bem/lame.rs (quadratic elements: h³, nodal superconvergence up to h⁴;
 ///   measured 3.8 at d = h and 3.1 at d = h/10), so a lost order or an under-integrated
 ///   near-singular element would fail;
 /// * interior displacements converge like the boundary ones (rate in the same band).
@@ -216,7 +219,7 @@ fn lame_interior_stresses_converge_and_stay_accurate_near_the_boundary() {
         ("stress at d = h/10", stress(0.1)),
         ("displacement at d = h", disp(1.0)),
     ] {
-        let rate = common::fitted_rate(&ns, &e);
+        let rate = crate::common::fitted_rate(&ns, &e);
         println!("Lamé interior {label}: fitted rate {rate:.2}");
         assert!((2.5..=4.5).contains(&rate), "{label}: rate {rate}, errors {e:?}");
     }
@@ -240,7 +243,7 @@ const MCEWEN: [(f64, f64, f64, f64, f64, f64, f64); 2] = [
 /// contact elements of 0.118 mm whose edges include ±a = ±1 mm) as the application builds it,
 /// and its contact grid.
 fn shipped_block(side: Side) -> (Box<dyn BodyModel>, ContactGrid) {
-    let case = rollbem::case::load(&common::case_path("carter_051_block"), &[]).unwrap();
+    let case = rollbem::case::load(&crate::common::case_path("carter_051_block"), &[]).unwrap();
     let scene = rollbem::scene::Scene::from_case(&case).unwrap();
     let k = if side == Side::A { 0 } else { 1 };
     let model = scene.bodies[k].model(&scene.grid, side).unwrap();

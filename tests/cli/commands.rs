@@ -2,8 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-mod common;
-use common::rollbem;
+use crate::common::rollbem;
 
 const BASE: &str = r#"
 title: "cli test"

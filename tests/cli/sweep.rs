@@ -1,16 +1,8 @@
 //! `rollbem sweep`: 15-run product, failure isolation, sharding and merging (issue 5).
 
+use crate::common::rollbem;
 use std::path::Path;
 use std::process::Command;
-
-fn rollbem(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rollbem")).args(args).output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 fn case() -> String {
     format!("{}/cases/dissimilar_beta0288_075.yaml", env!("CARGO_MANIFEST_DIR"))

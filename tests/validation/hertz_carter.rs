@@ -1,7 +1,6 @@
 //! Validation against the closed forms of Hertz and Carter (reference sheet §1–§2).
 
-mod common;
-use common::{nodal_error, solve};
+use crate::common::{nodal_error, solve};
 use rollbem::analytic::hertz_pressure;
 
 /// Hertz: a and p0 within 1 % at 41 elements (DESIGN §6, issue 2).

@@ -5,8 +5,7 @@
 //! scene with ξ prescribed gives Q = 0) and approach the complete-slip limit
 //! ξ = 0.914772 β a/R (Bentall & Johnson 1967).
 
-mod common;
-use common::solve;
+use crate::common::solve;
 use rollbem::analytic;
 
 /// The default method's Newton steps on the free-rolling limits, μ = 1e-4 … 1e3.
@@ -75,7 +74,7 @@ fn creep_iteration_answer_is_the_solution() {
     }
     let e = &load.scene.estimates;
     let limit = analytic::free_rolling_creep_complete_slip(e.dundurs_beta, e.hertz_half_width, e.effective_radius);
-    // 81 elements: −0.11 % (the 321-element run of tests/solver.rs is within 1 %).
+    // 81 elements: −0.11 % (the 321-element run of tests/validation/solver.rs is within 1 %).
     assert!(
         (load.solution.creep / limit - 1.0).abs() < 0.005,
         "ξ = {} vs {limit}",

@@ -1,10 +1,9 @@
 //! Tyred cylinder (paper §5.4, Figs 10–13; issue 4): a rigid cylinder rolling on a cover layer
 //! bonded to a rigid core, the layer a BEM strip (`meshes/tyre_layer_b*.geo`), load by overlap.
 //! References: the thin-layer limits of the reference sheet §5 (derived there from the exact
-//! layer compliance C(k), whose BEM reproduction is tested in `tests/bem_layer.rs`).
+//! layer compliance C(k), whose BEM reproduction is tested in `tests/bem/layer.rs`).
 
-mod common;
-use common::solve;
+use crate::common::solve;
 
 /// Frictionless normal contact (μ = 0, ξ = 0 prescribed) of the rigid R = 100 mm cylinder on a
 /// layer of thickness b [mm] (mesh `tyre_layer_b<tag>.msh`), Poisson's ratio ν, overlap δ0 of

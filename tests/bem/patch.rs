@@ -13,11 +13,10 @@ use rollbem::mesh::build::rectangle;
 use rollbem::mesh::BoundaryMesh;
 use std::sync::Arc;
 
-mod common;
-use common::patch::{exact_t, exact_u, strain};
+use crate::common::patch::{exact_t, exact_u, strain};
 
 fn mesh(quadratic: bool) -> BoundaryMesh {
-    common::patch::rectangle_mesh(quadratic)
+    crate::common::patch::rectangle_mesh(quadratic)
 }
 
 fn model(material: Elastic, quadratic: bool) -> BemModel {
@@ -25,7 +24,7 @@ fn model(material: Elastic, quadratic: bool) -> BemModel {
 }
 
 fn model_on(mesh: BoundaryMesh, material: Elastic) -> BemModel {
-    common::patch::model(mesh, material, None)
+    crate::common::patch::model(mesh, material, None)
 }
 
 /// Max errors of u and t at the field nodes, relative to the largest exact value.
@@ -113,16 +112,7 @@ fn h_annihilates_rigid_body_modes() {
     // rotation, T*(x−X) reduces to a multiple of the tangent, so this mostly checks loop
     // closure, orientation and the diagonal; the patch test checks the integrals.)
     let rectangle = model(Elastic::new(210_000.0, 0.3), true);
-    let ring = BemModel::new(
-        rollbem::mesh::build::annulus(10.0, 20.0, 12, 12, ["inner", "outer"], true),
-        Elastic::new(210_000.0, 0.3),
-        vec![
-            ("inner".into(), BoundaryCondition::Fixed),
-            ("outer".into(), BoundaryCondition::Free),
-        ],
-        BemOptions::default(),
-    )
-    .unwrap();
+    let ring = crate::common::lame::fixed_ring(12);
     for (label, m) in [("rectangle", rectangle), ("curved ring", ring)] {
         let res = rigid_mode_residuals(&m);
         println!(

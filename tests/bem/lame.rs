@@ -31,7 +31,7 @@ use std::sync::Arc;
 const NS: [usize; 4] = [8, 16, 32, 64];
 
 fn assert_rate(label: &str, errors: &[f64]) -> f64 {
-    let rate = common::fitted_rate(&NS, errors);
+    let rate = crate::common::fitted_rate(&NS, errors);
     println!("{label}: fitted rate {rate:.2}");
     assert!((2.5..=4.5).contains(&rate), "{label}: rate {rate}, errors {errors:?}");
     // Every refinement must gain at least a factor 4 (no stagnation from the integration).
@@ -52,8 +52,7 @@ fn modulo_uniform_pressure(d: &[[f64; 2]], n: &[[f64; 2]]) -> f64 {
 // ---------------------------------------------------------------------------------------------
 // §8.1 Lamé: a = 10, b = 20, p_i = 100, p_o = 30, E = 210 000.
 
-mod common;
-use common::lame::{
+use crate::common::lame::{
     displacement as lame_u, lame_pins, pressure_loaded_lame, radial_displacement as lame_ur, u_scale as lame_u_scale,
     A_IN, B_OUT, P_IN, P_OUT,
 };

@@ -1,8 +1,7 @@
 //! BEM bodies in the contact problem (issue 3): half-space blocks and true rollers on shafts
 //! against Carter and against the analytic half-space model.
 
-mod common;
-use common::{nodal_error, solve};
+use crate::common::{nodal_error, solve};
 use rollbem::post::NodeState;
 
 /// Carter's shear, stick zone and creepage for the case's Hertz estimates.

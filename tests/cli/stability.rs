@@ -1,7 +1,6 @@
 //! `rollbem study stability` (issue 6): the quick map, its outputs and its acceptance criterion.
 
-mod common;
-use common::case_path;
+use crate::common::case_path;
 use rollbem::study::stability::{self, Preset, Status};
 
 /// Acceptance on the quick map of Carter's case (the map CI runs): the default method

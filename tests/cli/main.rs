@@ -1,0 +1,12 @@
+//! The `rollbem` program and its multi-run commands: exit codes, messages and files of `run`
+//! and `check`, sweeps (shards, merge), and the two studies.
+//!
+//! Run one file's tests with its module name, e.g. `cargo test --release --test cli sweep::`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod commands;
+mod stability;
+mod study;
+mod sweep;
