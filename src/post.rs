@@ -8,6 +8,7 @@
 pub mod fields;
 pub mod friction_check;
 pub mod norms;
+pub mod regime;
 pub mod solution;
 pub mod zones;
 
@@ -18,10 +19,11 @@ use crate::error::Error;
 use crate::interior::InteriorField;
 use crate::scene::{BodyModels, Scene};
 use friction_check::{check_friction_law, FrictionCheck, DEFAULT_THRESHOLD_FRACTION};
+pub use regime::{slip_regime, traction_ripple};
 use serde::Serialize;
 pub use solution::ContactSolution;
 use std::time::Instant;
-pub use zones::{slip_regime, traction_ripple, NodeState, SlipDirection, SlipRegime, Zone};
+pub use zones::{NodeState, SlipDirection, SlipRegime, Zone};
 
 /// Wall-clock time of each stage [s].
 #[derive(Debug, Clone, Copy, Default, Serialize)]
