@@ -144,16 +144,8 @@ fn every_method_reports_in_the_same_form() {
 /// diverge and the method reports it (not converged, a finite residual in the report).
 #[test]
 fn gauss_seidel_over_relaxed_beyond_two_fails_and_says_so() {
-    let loaded = case::load(
-        &case_path("carter_051"),
-        &[
-            "solver.method=gauss_seidel".into(),
-            "solver.penalty=3".into(),
-            "solver.max_iterations=2000".into(),
-        ],
-    )
-    .unwrap();
-    let s = app::solve(&loaded).unwrap();
+    let set = ["solver.method=gauss_seidel", "solver.penalty=3", "solver.max_iterations=2000"];
+    let s = app::solve_case(&case_path("carter_051"), &set).unwrap();
     assert!(!s.report.converged);
     assert!(
         s.report.residual.is_finite() && s.report.residual > 1e-3,
