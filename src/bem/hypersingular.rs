@@ -69,9 +69,9 @@
 
 use super::assemble::BemModel;
 use super::element::{ElementGeometry, FieldInterpolation};
-use super::integrate::Quadrature;
 use super::kernel::{GradientKernels, Kelvin};
 use super::BemError;
+use crate::quadrature::Quadrature;
 use faer::Mat;
 
 /// Where the displacement gradient is evaluated.
@@ -211,7 +211,7 @@ pub fn off_element_integrals(
     source: [f64; 2],
 ) -> GradientIntegrals {
     let mut out = GradientIntegrals::default();
-    quadrature.off_element_points(geometry, source, |xi, weight| {
+    quadrature.off_element_points(&geometry.nodes, source, |xi, weight| {
         add_point(
             kernel,
             geometry,
