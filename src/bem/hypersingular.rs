@@ -168,9 +168,7 @@ fn add_point(
     weight: f64,
     out: &mut GradientIntegrals,
 ) {
-    let tangent = geometry.tangent(xi);
-    let jac = tangent[0].hypot(tangent[1]);
-    let normal = [tangent[1] / jac, -tangent[0] / jac];
+    let (jac, normal) = geometry.jacobian_and_normal(xi);
     let k = kernel.gradient([0.0, 0.0], offset, normal);
     let n = field.shape(xi);
     for a in 0..3 {

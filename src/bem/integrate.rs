@@ -159,9 +159,7 @@ fn accumulate(
     out: &mut ElementIntegrals,
 ) {
     let x = geometry.point(xi);
-    let tangent = geometry.tangent(xi);
-    let jac = tangent[0].hypot(tangent[1]);
-    let normal = [tangent[1] / jac, -tangent[0] / jac];
+    let (jac, normal) = geometry.jacobian_and_normal(xi);
     let n = field.shape(xi);
     let mut u = kernel.displacement(source, x);
     let t = kernel.traction(source, x, normal);

@@ -277,6 +277,8 @@ fn boundary_point(
     nodal_t: &[[f64; 2]; 3],
     xi: f64,
 ) -> TabulatedPoint {
+    // sqrt rather than the hypot of `ElementGeometry::jacobian_and_normal`: this runs for every
+    // near-field point of an interior grid (as `KernelFrame::interior`).
     let tangent = geometry.tangent(xi);
     let jac = (tangent[0] * tangent[0] + tangent[1] * tangent[1]).sqrt();
     let n = interpolation.shape(xi);
