@@ -1,12 +1,12 @@
 //! The driver: case → body models → contact problem → solver → solution → outputs.
 
 use crate::analytic::{self, Carter};
-use crate::bem::condense::BemBody;
 use crate::bem::{BemModel, BemOptions, BoundaryCondition};
+use crate::body::bem::BemBody;
 use crate::body::half_space::HalfSpace;
 use crate::body::rigid::Rigid;
 use crate::body::transfer::Transferred;
-use crate::body::{BodyModel, BoundaryField, Side, WithCircularProfile};
+use crate::body::{Body, BoundaryField, ContactLoad, Side, WithCircularProfile};
 use crate::case::{self, BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase, NormalSpec, TangentialSpec};
 use crate::contact::methods::{self, SolverSettings};
 use crate::contact::newton::{NewtonReport, NewtonSettings};
@@ -257,7 +257,7 @@ pub fn body_model(
     prepared: &PreparedBody,
     grid: &ContactGrid,
     side: Side,
-) -> Result<Box<dyn BodyModel>, Error> {
+) -> Result<Box<dyn Body>, Error> {
     match spec {
         BodySpec::HalfSpace { .. } => Ok(Box::new(HalfSpace {
             material: prepared.material.expect("half-space bodies have a material"),
@@ -282,7 +282,7 @@ pub fn body_model(
             let model = BemModel::new(lm.mesh.clone(), material, conditions, BemOptions::default())?;
             let own = lm.contact_grid();
             let body = BemBody::new(model, contact, &own, side)?;
-            let on_grid: Box<dyn BodyModel> = if own.coincides_with(grid) {
+            let on_grid: Box<dyn Body> = if own.coincides_with(grid) {
                 Box::new(body)
             } else {
                 let t = Transferred {
@@ -440,8 +440,8 @@ pub fn build_problem(
     let condense_s = a.stage_seconds().1 + b.stage_seconds().1;
     let problem = ContactProblem::assemble(
         grid,
-        a.as_ref(),
-        b.as_ref(),
+        a.model(),
+        b.model(),
         c.contact.slip_derivative,
         c.contact.friction,
         c.contact.rolling_direction,
@@ -452,7 +452,7 @@ pub fn build_problem(
 }
 
 /// The built body models of A and B.
-pub type BodyModels = [Box<dyn BodyModel>; 2];
+pub type BodyModels = [Box<dyn Body>; 2];
 
 /// Wall-clock time of each stage [s].
 #[derive(Debug, Clone, Copy, Default, Serialize)]
@@ -535,12 +535,15 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
     let leading = -case.case.contact.rolling_direction.flow_sign();
     let regime = slip_regime(&solution, leading, 1);
     let boundary = if newton.converged && case.case.output.vtk {
-        let field = |m: &dyn BodyModel| {
-            m.boundary_field(&problem.grid, &solution.pressure, &solution.shear)
+        let load = ContactLoad {
+            grid: &problem.grid,
+            pressure: &solution.pressure,
+            shear: &solution.shear,
+        };
+        let field = |m: &dyn Body| {
+            m.boundary_field(&load)
                 .transpose()
-                .map_err(|what| Error::Unsupported {
-                    what: format!("the boundary solution of a bem body for output failed: {what}"),
-                })
+                .map_err(|e| Error::BoundaryField(Box::new(e)))
         };
         [field(models[0].as_ref())?, field(models[1].as_ref())?]
     } else {
@@ -595,15 +598,13 @@ fn interior_field(
     let (k, side) = if spec.body == "B" { (1, Side::B) } else { (0, Side::A) };
     let model = models[k].as_ref();
     let points = crate::interior::grid_points(spec.x, spec.y);
+    let load = ContactLoad {
+        grid: &problem.grid,
+        pressure: &solution.pressure,
+        shear: &solution.shear,
+    };
     let samples = model
-        .interior(
-            &problem.grid,
-            side,
-            &solution.pressure,
-            &solution.shear,
-            &points,
-            &crate::interior::InteriorOptions::default(),
-        )
+        .interior(side, &load, &points, &crate::interior::InteriorOptions::default())
         .map_err(|source| Error::Interior {
             case: case.path.clone(),
             body: spec.body.clone(),

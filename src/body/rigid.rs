@@ -1,7 +1,8 @@
 //! The rigid body model: zero flexibility, circular profile.
 
-use super::{circle_profile, BodyModel, Flexibility, Side, StrainOperator};
+use super::{circle_profile, BodyFields, BodyModel, ContactLoad, FieldError, Flexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;
+use crate::interior::{InteriorOptions, InteriorSample};
 
 /// A rigid cylinder of the given radius [length].
 #[derive(Debug, Clone)]
@@ -28,6 +29,21 @@ impl BodyModel for Rigid {
         Some(StrainOperator {
             p: faer::Mat::zeros(m, m),
             q: faer::Mat::zeros(m, m),
+        })
+    }
+}
+
+/// A rigid body has neither a boundary solution nor interior fields.
+impl BodyFields for Rigid {
+    fn interior(
+        &self,
+        _side: Side,
+        _load: &ContactLoad,
+        _points: &[[f64; 2]],
+        _options: &InteriorOptions,
+    ) -> Result<Vec<InteriorSample>, FieldError> {
+        Err(FieldError::NoInteriorField {
+            model: self.model_name(),
         })
     }
 }

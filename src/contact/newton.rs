@@ -339,7 +339,7 @@ impl System<'_> {
         let d_overlap = col_overlap.map_or(0.0, |c| y[(c, 0)]);
         let d_creep = col_creep.map_or(0.0, |c| y[(c, 0)]);
         let dh = pb.compression(&dp, &dq);
-        let db = super::mat_vec2(&pb.bp, &dp, &pb.bq, &dq);
+        let db = crate::linalg::mat_vec2(&pb.bp, &dp, &pb.bq, &dq);
         let dg = (0..m).map(|i| -g1[i] / self.rn - d_overlap + dh[i]).collect();
         let e = &pb.slip_operator.creep_weight;
         let ds = (0..m)
