@@ -8,10 +8,10 @@ use crate::body::rigid::Rigid;
 use crate::body::transfer::Transferred;
 use crate::body::{Body, BoundaryField, ContactLoad, Side, WithCircularProfile};
 use crate::case::{self, BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase, NormalSpec, TangentialSpec};
-use crate::contact::methods::{self, SolverSettings};
-use crate::contact::newton::{NewtonReport, NewtonSettings};
+use crate::contact::methods;
 use crate::contact::solution::{slip_regime, ContactSolution};
 use crate::contact::{ContactProblem, NormalControl, TangentialControl};
+use crate::contact::{NewtonSettings, SolveReport, SolverSettings};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::material::{self, Elastic};
@@ -408,11 +408,13 @@ pub fn newton_settings(case: &LoadedCase) -> NewtonSettings {
     }
 }
 
-/// The solver settings of a case: its method and the Newton settings it shares.
+/// The solver settings of a case: its method, the Newton settings it shares, and the
+/// Gauss–Seidel relaxation ω, which `solver.penalty` sets for `gauss_seidel`.
 pub fn solver_settings(case: &LoadedCase) -> SolverSettings {
     SolverSettings {
         method: case.case.solver.method,
         newton: newton_settings(case),
+        relaxation: case.case.solver.penalty.scale(),
     }
 }
 
@@ -479,7 +481,7 @@ pub struct RunReport {
     /// The assembled problem.
     pub problem: ContactProblem,
     /// Solver report.
-    pub newton: NewtonReport,
+    pub report: SolveReport,
     /// Where the outputs were written.
     pub output_dir: PathBuf,
 }
@@ -494,7 +496,7 @@ pub struct Solved {
     /// The solution (for a non-converged run: the last iterate).
     pub solution: ContactSolution,
     /// Solver report.
-    pub newton: NewtonReport,
+    pub report: SolveReport,
     /// Stage timings (total excludes output).
     pub timings: Timings,
     /// Slip regime 1–4 (paper §5.2), 0 for none.
@@ -525,16 +527,16 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
         ..Timings::default()
     };
     let t_solve = Instant::now();
-    let (state, newton) = methods::solve(&problem, &solver_settings(case));
+    let (state, report) = methods::solve(&problem, &solver_settings(case));
     timings.solve_s = t_solve.elapsed().as_secs_f64();
     timings.total_s = start.elapsed().as_secs_f64();
     let solution = ContactSolution::from_state(&problem, &state);
-    if newton.converged {
+    if report.converged {
         check_grid_contains_contact(case, &solution)?;
     }
     let leading = -case.case.contact.rolling_direction.flow_sign();
     let regime = slip_regime(&solution, leading, 1);
-    let boundary = if newton.converged && case.case.output.vtk {
+    let boundary = if report.converged && case.case.output.vtk {
         let load = ContactLoad {
             grid: &problem.grid,
             pressure: &solution.pressure,
@@ -555,7 +557,7 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
         .flat_map(|m| m.notices.clone())
         .collect();
     let t_interior = Instant::now();
-    let interior = match (&case.case.output.interior, newton.converged) {
+    let interior = match (&case.case.output.interior, report.converged) {
         (Some(spec), true) => Some(interior_field(case, spec, &models, &problem, &solution)?),
         _ => None,
     };
@@ -580,7 +582,7 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
         estimates,
         problem,
         solution,
-        newton,
+        report,
         timings,
         regime,
     })
@@ -633,7 +635,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         &s.estimates,
         &s.problem,
         &s.solution,
-        &s.newton,
+        &s.report,
         s.regime,
         s.timings,
     );
@@ -652,7 +654,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         summary,
         solution: s.solution,
         problem: s.problem,
-        newton: s.newton,
+        report: s.report,
         output_dir,
     })
 }

@@ -19,12 +19,15 @@
 //! min(0, p_n + r T_n) becomes −max(0, p − r g).
 
 mod creep_secant;
+pub mod direction;
 pub mod friction_check;
 pub mod gauss_seidel;
 pub mod methods;
 pub mod newton;
 pub mod norm_tang;
+pub mod report;
 pub mod residual;
+pub mod restart;
 pub mod slip_operator;
 pub mod solution;
 
@@ -32,7 +35,8 @@ use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;
 use crate::linalg::mat_vec2;
 use faer::Mat;
-pub use methods::{Method, SolveReport, SolverSettings};
+pub use report::{GaussSeidelSettings, IterationRecord, Method, NewtonSettings, SolveReport, SolverSettings};
+pub use residual::{Formulation, State};
 use serde::{Deserialize, Serialize};
 pub use slip_operator::{SlipDerivative, SlipOperator};
 

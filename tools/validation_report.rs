@@ -64,7 +64,7 @@ fn main() {
             pmax / p0 - 1.0,
             rms,
             mx,
-            s.newton.iterations
+            s.report.iterations
         );
     }
 
@@ -93,7 +93,7 @@ fn main() {
                     "| {name} | {n} | {der} | {mx:.4} | {rms:.2e} | {:+.3} | {:+.3e} | {} |",
                     (width - (c1 - c0)) / s.problem.grid.element_length(),
                     s.solution.creep / xi - 1.0,
-                    s.newton.iterations
+                    s.report.iterations
                 );
             }
         }
@@ -121,8 +121,8 @@ fn main() {
         let dq = max_abs_diff(&phi.solution.shear, &psi.solution.shear) / qmax;
         println!(
             "| {name} | {} | {} | {:.6} | {:.6} | {:.6e} | {:.6e} | {dp:.1e} | {dq:.1e} | {} |",
-            phi.newton.iterations,
-            psi.newton.iterations,
+            phi.report.iterations,
+            psi.report.iterations,
             phi.solution.normal_force,
             phi.solution.tangential_force,
             phi.solution.creep,
@@ -238,7 +238,7 @@ fn main() {
                     e.dundurs_beta / mu,
                     slip_regime(&s.solution, 1.0, 1),
                     zones.join(" "),
-                    s.newton.iterations
+                    s.report.iterations
                 );
             }
         }

@@ -1,6 +1,6 @@
 //! The converged solution in user-facing terms: forces, contact extent, stick/slip zones.
 
-use super::newton::State;
+use super::residual::State;
 use super::ContactProblem;
 use serde::Serialize;
 
