@@ -9,7 +9,7 @@ use crate::body::transfer::Transferred;
 use crate::body::{Body, BoundaryField, ContactLoad, Side, WithCircularProfile};
 use crate::case::{self, BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase, NormalSpec, TangentialSpec};
 use crate::contact::methods;
-use crate::contact::solution::{slip_regime, ContactSolution};
+use crate::contact::solution::{slip_regime, ContactSolution, SlipRegime};
 use crate::contact::{ContactProblem, NormalControl, TangentialControl};
 use crate::contact::{NewtonSettings, SolveReport, SolverSettings};
 use crate::error::Error;
@@ -500,7 +500,7 @@ pub struct Solved {
     /// Stage timings (total excludes output).
     pub timings: Timings,
     /// Slip regime 1–4 (paper §5.2), 0 for none.
-    pub regime: u8,
+    pub regime: SlipRegime,
     /// Whole-boundary fields of A and B (bem bodies, when VTK output is on).
     pub boundary: [Option<BoundaryField>; 2],
     /// Notices for the user (e.g. mesh loops turned round).

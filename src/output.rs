@@ -9,7 +9,7 @@ pub mod vtk;
 use crate::app::{Estimates, Timings};
 use crate::case::LoadedCase;
 use crate::contact::friction_check::{check_friction_law, FrictionCheck, DEFAULT_THRESHOLD_FRACTION};
-use crate::contact::solution::{ContactSolution, NodeState, Zone};
+use crate::contact::solution::{ContactSolution, NodeState, SlipDirection, SlipRegime, Zone};
 use crate::contact::ContactProblem;
 use crate::contact::{IterationRecord, SolveReport};
 use crate::error::Error;
@@ -77,11 +77,11 @@ pub struct Summary {
     /// Slip zones [[x0, x1], …].
     pub slip_zones: Vec<[f64; 2]>,
     /// Sign of the slip in each slip zone, in the order of `slip_zones`.
-    pub slip_directions: Vec<i8>,
+    pub slip_directions: Vec<SlipDirection>,
     /// All zones in increasing x, with node counts.
     pub zones: Vec<Zone>,
     /// Slip regime 1–4 of paper §5.2 (0: none of them, e.g. full stick).
-    pub slip_regime: u8,
+    pub slip_regime: SlipRegime,
     /// Peak pressure [stress].
     pub max_pressure: f64,
     /// Stage timings [s].
@@ -146,7 +146,7 @@ pub fn summary(
     pb: &ContactProblem,
     sol: &ContactSolution,
     report: &SolveReport,
-    regime: u8,
+    regime: SlipRegime,
     timings: Timings,
 ) -> Summary {
     let mu = case.case.contact.friction;
@@ -452,7 +452,7 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
         format!(
             "{}  directions {:?}  regime {}",
             zones(&s.slip_zones),
-            s.slip_directions,
+            s.slip_directions.iter().map(|d| d.sign()).collect::<Vec<_>>(),
             s.slip_regime
         ),
     );

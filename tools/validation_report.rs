@@ -5,7 +5,7 @@
 use rollbem::analytic::{self, hertz_pressure};
 use rollbem::app::{self, Solved};
 use rollbem::case::{self, LoadedCase};
-use rollbem::contact::solution::{slip_regime, ContactSolution, NodeState};
+use rollbem::contact::solution::{slip_regime, ContactSolution, NodeState, SlipDirection};
 use std::path::PathBuf;
 
 fn solve(name: &str, set: &[String]) -> (LoadedCase, Solved) {
@@ -152,9 +152,9 @@ fn main() {
                         "{}{}[{:.3}, {:.3}]",
                         z.state.name(),
                         match z.direction {
-                            1 => "+",
-                            -1 => "−",
-                            _ => "",
+                            Some(SlipDirection::PlusX) => "+",
+                            Some(SlipDirection::MinusX) => "−",
+                            None => "",
                         },
                         z.x0 / a,
                         z.x1 / a
@@ -165,7 +165,11 @@ fn main() {
                 "| {name} | {n} | {:.5} | {} | {:?} | {} |",
                 s.solution.creep * r / (mu * a),
                 s.regime,
-                s.solution.slip_directions(),
+                s.solution
+                    .slip_directions()
+                    .iter()
+                    .map(|d| d.sign())
+                    .collect::<Vec<_>>(),
                 zones.join(" ")
             );
         }
@@ -219,9 +223,9 @@ fn main() {
                     .filter(|z| z.state != NodeState::Open)
                     .map(|z| {
                         let sign = match z.direction {
-                            1 => "+",
-                            -1 => "−",
-                            _ => "",
+                            Some(SlipDirection::PlusX) => "+",
+                            Some(SlipDirection::MinusX) => "−",
+                            None => "",
                         };
                         format!(
                             "{}{sign}[{:.2}, {:.2}]({})",

@@ -466,7 +466,7 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
                 let mu_p0 = case.case.contact.friction * s.estimates.hertz_peak_pressure;
                 cell.ripple = (mu_p0 > 0.0).then(|| traction_ripple(&s.solution) / mu_p0);
                 cell.creep = Some(s.solution.creep);
-                cell.regime = Some(s.regime);
+                cell.regime = Some(s.regime.number());
             }
         }
         Err(e) => {
