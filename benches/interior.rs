@@ -13,7 +13,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition};
 use rollbem::body::bem::BemBody;
-use rollbem::body::{BodyFields, ContactLoad, Side};
+use rollbem::body::{BodyFields, ContactLoad, InteriorQuery, Side};
 use rollbem::grid::{ContactGrid, ElementKind};
 use rollbem::interior::{grid_points, InteriorOptions, InteriorSample};
 use rollbem::material::Elastic;
@@ -69,15 +69,19 @@ fn interior(c: &mut Criterion) {
         ("whole_body_100x100", [-39.6, 39.6, 100.0], [0.2, 39.6, 100.0]),
     ] {
         let points = grid_points(x, y);
-        let samples = body.interior(Side::A, &load, &points, &options).expect("interior");
+        let query = InteriorQuery {
+            side: Side::A,
+            load,
+            points: &points,
+            options,
+        };
+        let samples = body.interior(&query).expect("interior");
         let inside = samples
             .iter()
             .filter(|s| matches!(s, InteriorSample::Inside(_)))
             .count();
         eprintln!("{name}: {inside} of {} points evaluated", points.len());
-        group.bench_function(name, |b| {
-            b.iter(|| body.interior(Side::A, &load, &points, &options).expect("interior"))
-        });
+        group.bench_function(name, |b| b.iter(|| body.interior(&query).expect("interior")));
     }
     group.finish();
 }

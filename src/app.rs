@@ -6,7 +6,7 @@ use crate::body::bem::BemBody;
 use crate::body::half_space::HalfSpace;
 use crate::body::rigid::Rigid;
 use crate::body::transfer::Transferred;
-use crate::body::{Body, BoundaryField, ContactLoad, Side, WithCircularProfile};
+use crate::body::{Body, BoundaryField, ContactLoad, InteriorQuery, Side, WithCircularProfile};
 use crate::case::{self, BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase, NormalSpec, TangentialSpec};
 use crate::contact::methods;
 use crate::contact::solution::{slip_regime, ContactSolution, SlipRegime};
@@ -600,18 +600,21 @@ fn interior_field(
     let (k, side) = if spec.body == "B" { (1, Side::B) } else { (0, Side::A) };
     let model = models[k].as_ref();
     let points = crate::interior::grid_points(spec.x, spec.y);
-    let load = ContactLoad {
-        grid: &problem.grid,
-        pressure: &solution.pressure,
-        shear: &solution.shear,
+    let query = InteriorQuery {
+        side,
+        load: ContactLoad {
+            grid: &problem.grid,
+            pressure: &solution.pressure,
+            shear: &solution.shear,
+        },
+        points: &points,
+        options: crate::interior::InteriorOptions::default(),
     };
-    let samples = model
-        .interior(side, &load, &points, &crate::interior::InteriorOptions::default())
-        .map_err(|source| Error::Interior {
-            case: case.path.clone(),
-            body: spec.body.clone(),
-            source: Box::new(source),
-        })?;
+    let samples = model.interior(&query).map_err(|source| Error::Interior {
+        case: case.path.clone(),
+        body: spec.body.clone(),
+        source: Box::new(source),
+    })?;
     let shape = [spec.x[2] as usize, spec.y[2] as usize];
     Ok(crate::interior::InteriorField::from_samples(
         &spec.body,

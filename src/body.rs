@@ -142,6 +142,23 @@ pub struct ContactLoad<'a> {
     pub shear: &'a [f64],
 }
 
+/// What post-processing asks a body for inside it: the fields at `points` (contact frame: y > 0
+/// inside A, y < 0 inside B) of the body placed on `side`, under `load`.
+#[derive(Debug, Clone, Copy)]
+pub struct InteriorQuery<'a> {
+    /// Which body of the pair.
+    pub side: Side,
+    /// The contact tractions.
+    pub load: ContactLoad<'a>,
+    /// The points [length], contact frame.
+    pub points: &'a [[f64; 2]],
+    /// Accuracy controls (the boundary layer left out).
+    pub options: InteriorOptions,
+}
+
+/// One [`InteriorSample`] per point of an [`InteriorQuery`], or why the model cannot give them.
+pub type InteriorResult = Result<Vec<InteriorSample>, FieldError>;
+
 /// What a body model can show under a solved [`ContactLoad`] (post-processing; the solver does
 /// not use it).
 pub trait BodyFields {
@@ -151,18 +168,11 @@ pub trait BodyFields {
         None
     }
 
-    /// Displacement and stress at `points` (contact frame: y > 0 inside A, y < 0 inside B)
-    /// of this body placed on `side`, under the load. One [`InteriorSample`] per point: the
+    /// Displacement and stress at the points of `query`. One [`InteriorSample`] per point: the
     /// fields in the contact frame, or why the point was not evaluated (outside the body, or
-    /// within the boundary layer of `options`). Models without an interior field (rigid) return
-    /// [`FieldError::NoInteriorField`].
-    fn interior(
-        &self,
-        side: Side,
-        load: &ContactLoad,
-        points: &[[f64; 2]],
-        options: &InteriorOptions,
-    ) -> Result<Vec<InteriorSample>, FieldError>;
+    /// within the boundary layer of the query's options). Models without an interior field
+    /// (rigid) return [`FieldError::NoInteriorField`].
+    fn interior(&self, query: &InteriorQuery) -> InteriorResult;
 }
 
 /// A body of a run: a [`BodyModel`] for the solver and its [`BodyFields`] for post-processing.
@@ -265,13 +275,7 @@ impl BodyFields for WithCircularProfile {
         self.inner.boundary_field(load)
     }
 
-    fn interior(
-        &self,
-        side: Side,
-        load: &ContactLoad,
-        points: &[[f64; 2]],
-        options: &InteriorOptions,
-    ) -> Result<Vec<InteriorSample>, FieldError> {
-        self.inner.interior(side, load, points, options)
+    fn interior(&self, query: &InteriorQuery) -> InteriorResult {
+        self.inner.interior(query)
     }
 }

@@ -227,7 +227,7 @@ fn lame_interior_stresses_converge_and_stay_accurate_near_the_boundary() {
 
 use rollbem::body::bem::BemBody;
 use rollbem::body::half_space::HalfSpace;
-use rollbem::body::{Body, BodyFields, ContactLoad, Side};
+use rollbem::body::{Body, BodyFields, ContactLoad, InteriorQuery, Side};
 use rollbem::grid::ContactGrid;
 
 /// McEwen's maxima (reference sheet §7, ν = 0.3): (μ, max τ1/p0, x/a, z/a, max σ_VM/p0, x/a, z/a).
@@ -309,14 +309,17 @@ fn maximum(
     criterion: fn(&[f64; 4]) -> f64,
 ) -> Peak {
     let best = |points: Vec<[f64; 2]>| -> Peak {
-        let load = ContactLoad {
-            grid,
-            pressure: p,
-            shear: q,
+        let query = InteriorQuery {
+            side,
+            load: ContactLoad {
+                grid,
+                pressure: p,
+                shear: q,
+            },
+            points: &points,
+            options: InteriorOptions::default(),
         };
-        let samples = model
-            .interior(side, &load, &points, &InteriorOptions::default())
-            .unwrap();
+        let samples = model.interior(&query).unwrap();
         points
             .iter()
             .zip(&samples)

@@ -16,7 +16,10 @@
 //! The HBEM surface strain of [`crate::bem::condense`] enters the pair convention the same way:
 //! p ↦ S_xy, q ↦ S_xx on either side.
 
-use super::{BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, Side, StrainOperator};
+use super::{
+    BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery, InteriorResult, Side,
+    StrainOperator,
+};
 use crate::bem::somigliana::interior_fields;
 use crate::bem::{condense, BemError, BemModel, BemSolution, ContactFlexibility};
 use crate::grid::{ContactGrid, ElementKind};
@@ -356,13 +359,8 @@ impl BodyFields for BemBody {
     }
 
     /// Somigliana's identity, see [`BemBody::interior_samples`]; `side` must be the body's own.
-    fn interior(
-        &self,
-        side: Side,
-        load: &ContactLoad,
-        points: &[[f64; 2]],
-        options: &InteriorOptions,
-    ) -> Result<Vec<InteriorSample>, FieldError> {
+    fn interior(&self, query: &InteriorQuery) -> InteriorResult {
+        let (side, load) = (query.side, &query.load);
         if side != self.side {
             return Err(FieldError::Bem(BemError::ContactGridMismatch {
                 path: self.model.mesh.source.clone(),
@@ -370,6 +368,6 @@ impl BodyFields for BemBody {
                 problem: format!("body built for side {:?}, asked for side {side:?}", self.side),
             }));
         }
-        Ok(self.interior_samples(load.grid, load.pressure, load.shear, points, options)?)
+        Ok(self.interior_samples(load.grid, load.pressure, load.shear, query.points, &query.options)?)
     }
 }

@@ -25,9 +25,8 @@
 //! there, which is exact to round-off for those smooth integrands.
 
 use super::flamant::halfplane_interior;
-use super::{circle_profile, BodyFields, BodyModel, ContactLoad, FieldError, Flexibility, Side, StrainOperator};
+use super::{circle_profile, BodyFields, BodyModel, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator};
 use crate::grid::{ContactGrid, ElementKind};
-use crate::interior::{InteriorOptions, InteriorSample};
 use crate::material::Elastic;
 use crate::quadrature::gauss_legendre;
 use faer::Mat;
@@ -255,21 +254,15 @@ impl BodyFields for HalfSpace {
     /// Flamant / Boussinesq–Cerruti superposition ([`super::flamant`], Eq. H1–H2), the
     /// displacement measured from this model's datum [`HalfSpace::datum_length`], so that at
     /// the surface it equals the displacement the flexibility gives.
-    fn interior(
-        &self,
-        side: Side,
-        load: &ContactLoad,
-        points: &[[f64; 2]],
-        options: &InteriorOptions,
-    ) -> Result<Vec<InteriorSample>, FieldError> {
+    fn interior(&self, query: &InteriorQuery) -> InteriorResult {
         Ok(halfplane_interior(
-            load,
+            &query.load,
             self.material.shear(),
             self.material.poisson,
             self.datum_length(),
-            side,
-            points,
-            options,
+            query.side,
+            query.points,
+            &query.options,
         ))
     }
 }
@@ -413,6 +406,8 @@ mod tests {
     #[test]
     fn interior_displacement_meets_the_half_space_surface_displacement() {
         use crate::body::flamant::halfplane_interior;
+        use crate::body::ContactLoad;
+        use crate::interior::{InteriorOptions, InteriorSample};
         let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 21, -1.3, 1.3);
         let hs = HalfSpace {
             material: Elastic::new(210_000.0, 0.3),

@@ -1,8 +1,9 @@
 //! The rigid body model: zero flexibility, circular profile.
 
-use super::{circle_profile, BodyFields, BodyModel, ContactLoad, FieldError, Flexibility, Side, StrainOperator};
+use super::{
+    circle_profile, BodyFields, BodyModel, FieldError, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator,
+};
 use crate::grid::ContactGrid;
-use crate::interior::{InteriorOptions, InteriorSample};
 
 /// A rigid cylinder of the given radius [length].
 #[derive(Debug, Clone)]
@@ -35,13 +36,7 @@ impl BodyModel for Rigid {
 
 /// A rigid body has neither a boundary solution nor interior fields.
 impl BodyFields for Rigid {
-    fn interior(
-        &self,
-        _side: Side,
-        _load: &ContactLoad,
-        _points: &[[f64; 2]],
-        _options: &InteriorOptions,
-    ) -> Result<Vec<InteriorSample>, FieldError> {
+    fn interior(&self, _query: &InteriorQuery) -> InteriorResult {
         Err(FieldError::NoInteriorField {
             model: self.model_name(),
         })

@@ -12,9 +12,11 @@
 //! so F_grid = D · F_body · T for every block. When the grids coincide the transfer is the
 //! identity, and the flexibility is returned unchanged (bit for bit).
 
-use super::{Body, BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, Side, StrainOperator};
+use super::{
+    Body, BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery, InteriorResult,
+    Side, StrainOperator,
+};
 use crate::grid::ContactGrid;
-use crate::interior::{InteriorOptions, InteriorSample};
 use crate::linalg::mat_vec;
 use faer::Mat;
 
@@ -156,20 +158,14 @@ impl BodyFields for Transferred {
     }
 
     /// Tractions are carried to the body's own nodes by the grid's interpolation first.
-    fn interior(
-        &self,
-        side: Side,
-        load: &ContactLoad,
-        points: &[[f64; 2]],
-        options: &InteriorOptions,
-    ) -> Result<Vec<InteriorSample>, FieldError> {
-        let (p, q) = self.own_tractions(load);
-        let own = ContactLoad {
+    fn interior(&self, query: &InteriorQuery) -> InteriorResult {
+        let (p, q) = self.own_tractions(&query.load);
+        let load = ContactLoad {
             grid: &self.own_grid,
             pressure: &p,
             shear: &q,
         };
-        self.inner.interior(side, &own, points, options)
+        self.inner.interior(&InteriorQuery { load, ..*query })
     }
 }
 

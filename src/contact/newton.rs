@@ -145,6 +145,17 @@ pub(crate) fn coupled_attempt(
     (out, [sys.rn, sys.rt])
 }
 
+/// The first attempt of a solve: from the paper's start vector with the formulation and penalty
+/// scale of `settings` ([`coupled_attempt`]).
+pub(crate) fn first_attempt(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+) -> (BlockOutcome, [f64; 2]) {
+    let (form, scale) = (settings.formulation, settings.penalty_scale);
+    coupled_attempt(pb, form, scale, start_vector(pb), settings, measure)
+}
+
 /// The common report of a Newton run that ended with `out`, the last attempt having used the
 /// penalties [r_n, r_t], after the restarts `fallbacks`.
 pub(crate) fn report(
@@ -175,13 +186,6 @@ pub(crate) fn report(
 /// One attempt of the generalized Newton method from the paper's start vector (line search as
 /// set by `settings.max_backtracks`), stopping on the common measure; no restart.
 pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
-    let (out, penalties) = coupled_attempt(
-        pb,
-        settings.formulation,
-        settings.penalty_scale,
-        start_vector(pb),
-        settings,
-        measure,
-    );
+    let (out, penalties) = first_attempt(pb, settings, measure);
     report(settings, out, penalties, measure, Vec::new())
 }

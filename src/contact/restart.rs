@@ -18,7 +18,7 @@
 //! (docs/stability.md). The report lists the restarts used (`fallbacks`) and records every
 //! Newton step of every attempt in its history.
 
-use super::newton::{self, coupled_attempt, BlockOutcome};
+use super::newton::{self, coupled_attempt, first_attempt, BlockOutcome};
 use super::report::{GaussSeidelSettings, NewtonSettings, SolveReport};
 use super::residual::{automatic_penalties, start_vector, ConvergenceMeasure, Formulation, State};
 use super::{creep_secant, gauss_seidel, ContactProblem};
@@ -48,14 +48,7 @@ fn then(run: BlockOutcome, retry: BlockOutcome) -> BlockOutcome {
 /// (none when `settings.max_backtracks` is 0: a run without line search is not globalized),
 /// stopping on the common measure.
 pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
-    let (mut out, mut penalties) = coupled_attempt(
-        pb,
-        settings.formulation,
-        settings.penalty_scale,
-        start_vector(pb),
-        settings,
-        measure,
-    );
+    let (mut out, mut penalties) = first_attempt(pb, settings, measure);
     let mut fallbacks = Vec::new();
     if settings.max_backtracks > 0 {
         if out.stalled {
