@@ -13,7 +13,7 @@
 //! The contact group must use the contact grid's nodes: discontinuous quadratic elements whose
 //! field nodes lie at the grid's node abscissae (checked in [`BemBody::new`]).
 //!
-//! The HBEM surface strain of [`crate::bem::condense`] enters the pair convention the same way:
+//! The HBEM surface strain of [`crate::bem::condense`](mod@crate::bem::condense) enters the pair convention the same way:
 //! p ↦ S_xy, q ↦ S_xx on either side.
 
 use super::{

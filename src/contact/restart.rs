@@ -2,7 +2,7 @@
 //! attempt stalls ([`super::newton`]). Every fallback is tried only while the previous one left
 //! the run stalled; a run that converges on the first try is untouched (every shipped case).
 //!
-//! 1. **Creepage iteration** ([`super::creep_secant`]), when ξ is unknown: near complete slip the
+//! 1. **Creepage iteration** (`contact/creep_secant.rs`), when ξ is unknown: near complete slip the
 //!    Q equation is a staircase in ξ that the coupled step cannot follow.
 //! 2. **Smaller penalties**: from the start vector with the penalties divided by
 //!    [`RESTART_PENALTY_DIVISORS`] (10, then 100): the projections then change branch more

@@ -78,7 +78,7 @@ impl Quadrature {
     }
 
     /// The [`QuadratureOptions::log_points`]-point rule (nodes, weights) on [0, 1] for the
-    /// weight ln(1/t) ([`log_gauss`]).
+    /// weight ln(1/t) ([`log_gauss()`]).
     pub fn log_rule(&self) -> &(Vec<f64>, Vec<f64>) {
         &self.log
     }
