@@ -13,8 +13,8 @@
 //! The contact group must use the contact grid's nodes: discontinuous quadratic elements whose
 //! field nodes lie at the grid's node abscissae (checked in [`BemBody::new`]).
 //!
-//! The HBEM surface strain of [`crate::bem::condense`](mod@crate::bem::condense) enters the pair convention the same way:
-//! p ↦ S_xy, q ↦ S_xx on either side.
+//! The HBEM surface strain of [`crate::bem::condense`](mod@crate::bem::condense) enters the pair
+//! convention the same way: p ↦ S_xy, q ↦ S_xx on either side.
 
 use super::{
     BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery, InteriorResult, Side,
@@ -358,7 +358,8 @@ impl BodyFields for BemBody {
         )
     }
 
-    /// Somigliana's identity, see [`BemBody::interior_samples`]; `side` must be the body's own.
+    /// Somigliana's identity, see [`BemBody::interior_samples`]; the query's side must be the
+    /// body's own.
     fn interior(&self, query: &InteriorQuery) -> InteriorResult {
         let (side, load) = (query.side, &query.load);
         if side != self.side {
