@@ -7,7 +7,7 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use rollbem::app;
 use rollbem::case::LoadedCase;
-use rollbem::contact::newton;
+use rollbem::contact::{methods, Method, SolverSettings};
 use rollbem::scene::Scene;
 use std::path::PathBuf;
 use std::time::Duration;
@@ -27,15 +27,18 @@ fn contact_pipeline(c: &mut Criterion) {
         let case = load(n);
         let scene = Scene::from_case(&case).expect("scene");
         let (_, problem) = scene.assemble().expect("problem");
-        let settings = scene.solver.newton;
-        let (_, report) = newton::solve(&problem, &settings);
+        let settings = SolverSettings {
+            method: Method::Newton,
+            ..scene.solver
+        };
+        let (_, report) = methods::solve(&problem, &settings);
         eprintln!(
             "carter2d {n} elements: {} Newton iterations, converged {}",
             report.iterations, report.converged
         );
         group.bench_with_input(BenchmarkId::new("assembly", n), &n, |b, _| b.iter(|| scene.assemble()));
         group.bench_with_input(BenchmarkId::new("newton_solve", n), &n, |b, _| {
-            b.iter(|| newton::solve(&problem, &settings))
+            b.iter(|| methods::solve(&problem, &settings))
         });
     }
     group.finish();

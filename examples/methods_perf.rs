@@ -11,8 +11,8 @@ pub mod common;
 
 use common::{case_path, Table};
 use rollbem::app;
-use rollbem::contact::methods::{self, Method, SolverSettings};
-use rollbem::contact::newton::Formulation;
+use rollbem::contact::Formulation;
+use rollbem::contact::{methods, Method, SolverSettings};
 use rollbem::scene::Scene;
 
 /// The method variants, each with its iteration budget.

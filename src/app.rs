@@ -3,8 +3,7 @@
 
 use crate::case::{self, LoadedCase};
 use crate::contact::methods;
-use crate::contact::newton::NewtonReport;
-use crate::contact::ContactProblem;
+use crate::contact::{ContactProblem, SolveReport};
 use crate::error::Error;
 use crate::output::{self, Summary};
 pub use crate::post::Solved;
@@ -91,7 +90,7 @@ pub struct RunReport {
     /// The assembled problem.
     pub problem: ContactProblem,
     /// Solver report.
-    pub report: NewtonReport,
+    pub report: SolveReport,
     /// Where the outputs were written.
     pub output_dir: PathBuf,
 }

@@ -1,4 +1,4 @@
-//! Command-line interface (DESIGN §5).
+//! Command-line interface: the verbs, their arguments and their help texts.
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -69,7 +69,7 @@ pub enum Command {
     /// limits) and print each measured error against its closed form and limit; exit code 2 if
     /// any fails. docs/validation.md has the full tables.
     Validate,
-    /// Studies over many runs of a case's scene (issue 6): speed against accuracy of the body
+    /// Studies over many runs of a case's scene: speed against accuracy of the body
     /// models, and where each solution method converges (parallel, with a progress bar).
     Study {
         /// Which study.

@@ -13,8 +13,8 @@ pub mod solution;
 pub mod zones;
 
 use crate::body::BoundaryField;
-use crate::contact::newton::{NewtonReport, State};
-use crate::contact::ContactProblem;
+use crate::contact::residual::State;
+use crate::contact::{ContactProblem, SolveReport};
 use crate::error::Error;
 use crate::interior::InteriorField;
 use crate::scene::{BodyModels, Scene};
@@ -50,7 +50,7 @@ pub struct Solved {
     /// The solution (for a non-converged run: the last iterate).
     pub solution: ContactSolution,
     /// Solver report (for every method).
-    pub report: NewtonReport,
+    pub report: SolveReport,
     /// Stage timings (total excludes output).
     pub timings: Timings,
     /// Slip regime (González & Abascal §5.2).
@@ -74,7 +74,7 @@ pub fn process(
     models: &BodyModels,
     problem: ContactProblem,
     state: &State,
-    report: NewtonReport,
+    report: SolveReport,
     mut timings: Timings,
 ) -> Result<Solved, Error> {
     let solution = ContactSolution::from_state(&problem, state);

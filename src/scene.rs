@@ -12,11 +12,9 @@ pub mod estimates;
 pub mod loaded_mesh;
 
 use crate::analytic::Carter;
-use crate::body::{BodyModel, Side};
+use crate::body::{Body, Side};
 use crate::case::{LoadedCase, NormalSpec, TangentialSpec};
-use crate::contact::methods::SolverSettings;
-use crate::contact::newton::NewtonSettings;
-use crate::contact::{ContactProblem, NormalControl, TangentialControl};
+use crate::contact::{ContactProblem, NewtonSettings, NormalControl, SolverSettings, TangentialControl};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 pub use body_setup::{BemSetup, BodySetup};
@@ -24,7 +22,7 @@ pub use estimates::{aligned_half_length, Estimates};
 pub use loaded_mesh::LoadedMesh;
 
 /// The built body models of A and B.
-pub type BodyModels = [Box<dyn BodyModel>; 2];
+pub type BodyModels = [Box<dyn Body>; 2];
 
 /// A case resolved for solving.
 #[derive(Debug, Clone)]
@@ -134,8 +132,8 @@ impl Scene {
         let c = &self.case.case.contact;
         ContactProblem::assemble(
             self.grid.clone(),
-            models[0].as_ref(),
-            models[1].as_ref(),
+            models[0].model(),
+            models[1].model(),
             c.slip_derivative,
             c.friction,
             c.rolling_direction,
@@ -173,10 +171,12 @@ pub fn newton_settings(case: &LoadedCase) -> NewtonSettings {
     }
 }
 
-/// The solver settings of a case: its method and the Newton settings it shares.
+/// The solver settings of a case: its method, the Newton settings it shares, and the
+/// Gauss–Seidel relaxation ω, which `solver.penalty` sets for `gauss_seidel`.
 pub fn solver_settings(case: &LoadedCase) -> SolverSettings {
     SolverSettings {
         method: case.case.solver.method,
         newton: newton_settings(case),
+        relaxation: case.case.solver.penalty.scale(),
     }
 }

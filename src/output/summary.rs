@@ -1,6 +1,6 @@
 //! summary.json: what a run found, in one JSON document.
 
-use crate::contact::newton::IterationRecord;
+use crate::contact::IterationRecord;
 use crate::post::friction_check::FrictionCheck;
 use crate::post::{NodeState, SlipDirection, SlipRegime, Solved, Timings, Zone};
 use crate::scene::Estimates;
@@ -115,7 +115,7 @@ pub struct SolverSummary {
     /// Solution method used.
     pub method: crate::contact::Method,
     /// Formulation used.
-    pub formulation: crate::contact::newton::Formulation,
+    pub formulation: crate::contact::Formulation,
     /// Normal penalty r_n [stress/length].
     pub penalty_normal: f64,
     /// Tangential penalty r_t [stress].

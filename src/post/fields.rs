@@ -2,7 +2,7 @@
 //! VTK) and the interior grid of `output.interior`.
 
 use super::solution::ContactSolution;
-use crate::body::{BodyModel, BoundaryField, Side};
+use crate::body::{Body, BoundaryField, ContactLoad, InteriorQuery, Side};
 use crate::case::InteriorSpec;
 use crate::error::Error;
 use crate::grid::ContactGrid;
@@ -16,12 +16,15 @@ pub fn boundary_fields(
     grid: &ContactGrid,
     solution: &ContactSolution,
 ) -> Result<[Option<BoundaryField>; 2], Error> {
-    let field = |m: &dyn BodyModel| {
-        m.boundary_field(grid, &solution.pressure, &solution.shear)
+    let load = ContactLoad {
+        grid,
+        pressure: &solution.pressure,
+        shear: &solution.shear,
+    };
+    let field = |m: &dyn Body| {
+        m.boundary_field(&load)
             .transpose()
-            .map_err(|what| Error::Unsupported {
-                what: format!("the boundary solution of a bem body for output failed: {what}"),
-            })
+            .map_err(|e| Error::BoundaryField(Box::new(e)))
     };
     Ok([field(models[0].as_ref())?, field(models[1].as_ref())?])
 }
@@ -38,20 +41,21 @@ pub fn interior_field(
     let (k, side) = if spec.body == "B" { (1, Side::B) } else { (0, Side::A) };
     let model = models[k].as_ref();
     let points = grid_points(spec.x, spec.y);
-    let samples = model
-        .interior(
+    let query = InteriorQuery {
+        side,
+        load: ContactLoad {
             grid,
-            side,
-            &solution.pressure,
-            &solution.shear,
-            &points,
-            &InteriorOptions::default(),
-        )
-        .map_err(|source| Error::Interior {
-            case: scene.case.path.clone(),
-            body: spec.body.clone(),
-            source: Box::new(source),
-        })?;
+            pressure: &solution.pressure,
+            shear: &solution.shear,
+        },
+        points: &points,
+        options: InteriorOptions::default(),
+    };
+    let samples = model.interior(&query).map_err(|source| Error::Interior {
+        case: scene.case.path.clone(),
+        body: spec.body.clone(),
+        source: Box::new(source),
+    })?;
     let shape = [spec.x[2] as usize, spec.y[2] as usize];
     Ok(InteriorField::from_samples(
         &spec.body,

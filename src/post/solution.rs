@@ -2,7 +2,7 @@
 //! and slip recomputed from the tractions, node states, forces, contact extent and zones.
 
 use super::zones::{zones, NodeState, SlipDirection, Zone};
-use crate::contact::newton::State;
+use crate::contact::residual::State;
 use crate::contact::ContactProblem;
 use serde::Serialize;
 

@@ -2,12 +2,12 @@
 //! radius, the loaded mesh of a `bem` body) and the body model it builds on a contact grid.
 
 use super::loaded_mesh::LoadedMesh;
-use crate::bem::condense::BemBody;
 use crate::bem::{BemModel, BemOptions, BoundaryCondition};
+use crate::body::bem::BemBody;
 use crate::body::half_space::HalfSpace;
 use crate::body::rigid::Rigid;
 use crate::body::transfer::Transferred;
-use crate::body::{BodyModel, Side, WithCircularProfile};
+use crate::body::{Body, Side, WithCircularProfile};
 use crate::case::{BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase};
 use crate::error::Error;
 use crate::grid::ContactGrid;
@@ -173,7 +173,7 @@ impl BodySetup {
     ///
     /// A `bem` body is condensed to its own contact nodes; if those differ from the grid's, its
     /// flexibility is carried over by [`Transferred`].
-    pub fn model(&self, grid: &ContactGrid, side: Side) -> Result<Box<dyn BodyModel>, Error> {
+    pub fn model(&self, grid: &ContactGrid, side: Side) -> Result<Box<dyn Body>, Error> {
         match self {
             BodySetup::HalfSpace { material, radius } => Ok(Box::new(HalfSpace {
                 material: *material,
@@ -201,7 +201,7 @@ impl BodySetup {
 }
 
 impl BemSetup {
-    fn model(&self, grid: &ContactGrid, side: Side) -> Result<Box<dyn BodyModel>, Error> {
+    fn model(&self, grid: &ContactGrid, side: Side) -> Result<Box<dyn Body>, Error> {
         let model = BemModel::new(
             self.mesh.mesh.clone(),
             self.material,
@@ -210,7 +210,7 @@ impl BemSetup {
         )?;
         let own = self.mesh.contact_grid();
         let body = BemBody::new(model, &self.contact, &own, side)?;
-        let on_grid: Box<dyn BodyModel> = if own.coincides_with(grid) {
+        let on_grid: Box<dyn Body> = if own.coincides_with(grid) {
             Box::new(body)
         } else {
             let t = Transferred {

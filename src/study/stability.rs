@@ -29,7 +29,7 @@ mod files;
 use super::run_parallel;
 use crate::app;
 use crate::case::{self, BodySpec};
-use crate::contact::newton::Formulation;
+use crate::contact::Formulation;
 use crate::contact::Method;
 use crate::error::Error;
 use crate::material::material_for_beta;

@@ -1,4 +1,6 @@
-//! The numbers the docs quote are the numbers the report programs print: every table of
+//! What the docs say is true: they cite only what the repository holds
+//! ([`no_external_references`]), and the numbers they quote are the numbers the report
+//! programs print: every table of
 //! docs/*.md that a program in examples/ prints is compared here, cell by cell, with what the
 //! program prints now (within the rounding of the printed digits, see [`markdown`]), and the
 //! numbers the prose repeats from those tables are checked against them. A change of the
@@ -11,6 +13,8 @@
 // compiled together here, that file is one module per report.
 #![allow(clippy::duplicate_mod)]
 
+#[path = "../common/mod.rs"]
+mod common;
 #[allow(dead_code)]
 #[path = "../../examples/hbem_report.rs"]
 mod hbem_report;
@@ -21,6 +25,7 @@ mod methods_perf;
 #[allow(dead_code)]
 #[path = "../../examples/model_error_table.rs"]
 mod model_error_table;
+mod no_external_references;
 #[allow(dead_code)]
 #[path = "../../examples/perf_report.rs"]
 mod perf_report;

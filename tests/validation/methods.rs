@@ -4,8 +4,8 @@
 use crate::common::{case_path, solve};
 use rollbem::app;
 use rollbem::case;
-use rollbem::contact::methods::{self, Method, SolverSettings};
-use rollbem::contact::newton::Formulation;
+use rollbem::contact::Formulation;
+use rollbem::contact::{methods, Method, SolverSettings};
 
 /// Solves a shipped case with a method (Gauss–Seidel gets its sweep budget); panics with the
 /// history if it does not converge.
@@ -144,7 +144,11 @@ fn every_method_reports_in_the_same_form() {
 /// diverge and the method reports it (not converged, a finite residual in the report).
 #[test]
 fn gauss_seidel_over_relaxed_beyond_two_fails_and_says_so() {
-    let set = ["solver.method=gauss_seidel", "solver.penalty=3", "solver.max_iterations=2000"];
+    let set = [
+        "solver.method=gauss_seidel",
+        "solver.penalty=3",
+        "solver.max_iterations=2000",
+    ];
     let s = app::solve_case(&case_path("carter_051"), &set).unwrap();
     assert!(!s.report.converged);
     assert!(
