@@ -1,6 +1,7 @@
 //! What the docs say is true: they cite only what the repository holds
-//! ([`no_external_references`]), and the numbers they quote are the numbers the report
-//! programs print: every table of
+//! ([`no_external_references`]), the source keeps the rules of docs/architecture.md
+//! ([`architecture`]), and the numbers they quote are the numbers the report programs print:
+//! every table of
 //! docs/*.md that a program in examples/ prints is compared here, cell by cell, with what the
 //! program prints now (within the rounding of the printed digits, see [`markdown`]), and the
 //! numbers the prose repeats from those tables are checked against them. A change of the
@@ -13,6 +14,7 @@
 // compiled together here, that file is one module per report.
 #![allow(clippy::duplicate_mod)]
 
+mod architecture;
 #[path = "../common/mod.rs"]
 mod common;
 #[allow(dead_code)]
