@@ -6,15 +6,32 @@ use std::path::PathBuf;
 /// rollbem — 2D steady rolling contact of elastic cylinders (half-space or BEM bodies),
 /// coupled normal–tangential, Coulomb friction, generalized Newton (González & Abascal 2000).
 ///
-/// Exit codes: 0 solved; 1 bad input (message names the file and key; nothing written);
-/// 2 the solver did not converge (summary.json written with converged: false and the
-/// residual history).
+/// Exit codes: 0 solved; 1 bad input or usage (the message names the file, key or folder;
+/// nothing written); 2 the solver did not converge (summary.json written with converged: false
+/// and the residual history); 3 internal error (a bug: please report it; nothing written).
+///
+/// rollbem never deletes or overwrites a file it did not write: it replaces only its own earlier
+/// results (atomically) and refuses an output folder that holds anything else.
 #[derive(Debug, Parser)]
 #[command(name = "rollbem", version, about, long_about)]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
+}
+
+impl Cli {
+    /// The case file of the command, if it has one (named in the internal-error report).
+    pub fn case_path(&self) -> Option<&std::path::Path> {
+        match &self.command {
+            Command::Run { case, .. } | Command::Check { case, .. } => Some(case),
+            Command::Sweep { case, .. } => case.as_deref(),
+            Command::Study { study } => match study {
+                StudyCommand::Accuracy { case, .. } | StudyCommand::Stability { case, .. } => Some(case),
+            },
+            Command::Validate => None,
+        }
+    }
 }
 
 /// The verbs.
