@@ -57,8 +57,10 @@ pub enum Command {
     /// rollbem sweep cases/variable_mu_qp_0075.yaml --vary contact.friction=0.1,0.2,0.3,0.4,0.8
     ///
     /// Writes one folder per run (run_0000, …), sweep.csv (varied values, status, forces,
-    /// creepage, zones, timings) and sweep.pvd (the runs' contact lines as ParaView time steps).
-    /// A failed run is recorded as failed and the others go on; exit code 2 if any run failed.
+    /// creepage, zones, timings; a row added as each run finishes), sweep.json (what sweep this
+    /// is) and sweep.pvd (the runs' contact lines as ParaView time steps). A failed run is
+    /// recorded as failed and the others go on; exit code 2 if any run failed (3 if one hit an
+    /// internal error). An interrupted sweep is continued with --resume.
     /// Large sweeps: `--shard K/N` runs the K-th of N deterministic slices (one per Slurm array
     /// task), then `rollbem sweep --merge DIR... --out DIR` joins the shards.
     Sweep {
@@ -79,8 +81,15 @@ pub enum Command {
         #[arg(long, value_name = "K/N", conflicts_with = "merge")]
         shard: Option<String>,
         /// Join the sweep_shard_*.csv files of these folders into --out (default: the first).
+        /// Refused (exit 1) unless they make one complete sweep: every shard 1..N, all of the
+        /// same case, --set and --vary, each with all its runs.
         #[arg(long, num_args = 1.., value_name = "DIR")]
         merge: Vec<PathBuf>,
+        /// Continue an interrupted sweep (or shard) in --out: keep the runs its table records as
+        /// done, run only the missing and failed ones. The table must belong to the same sweep
+        /// (case, --set, --vary, shards).
+        #[arg(long, conflicts_with = "merge")]
+        resume: bool,
     },
     /// Solve the built-in reference problems (Hertz, Carter, dissimilar regimes, free-rolling
     /// limits) and print each measured error against its closed form and limit; exit code 2 if

@@ -102,6 +102,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             out,
             shard,
             merge,
+            resume,
         } => {
             if !merge.is_empty() {
                 let out = out.unwrap_or_else(|| merge[0].clone());
@@ -126,10 +127,15 @@ fn dispatch(cli: Cli) -> Result<i32> {
                     dir.with_file_name(name)
                 }
             };
-            let report = rollbem::sweep::run(&case, &set, &varies, shard, &out)?;
+            let report = rollbem::sweep::run(&case, &set, &varies, shard, &out, resume)?;
             let failed: Vec<&rollbem::sweep::RunRow> = report.rows.iter().filter(|r| r.status != "ok").collect();
+            let kept = if report.resumed > 0 {
+                format!(" ({} kept from the interrupted sweep)", report.resumed)
+            } else {
+                String::new()
+            };
             println!(
-                "sweep: {} of {} runs here, {} ok, {} failed or not converged; table {}",
+                "sweep: {} of {} runs here{kept}, {} ok, {} failed or not converged; table {}",
                 report.rows.len(),
                 report.total_runs,
                 report.rows.len() - failed.len(),
@@ -139,7 +145,13 @@ fn dispatch(cli: Cli) -> Result<i32> {
             for r in &failed {
                 eprintln!("  {} {}: {} {}", r.folder, r.values.join(" "), r.status, r.message);
             }
-            Ok(if failed.is_empty() { 0 } else { EXIT_NOT_CONVERGED })
+            Ok(if report.rows.iter().any(|r| r.internal_error) {
+                EXIT_INTERNAL_ERROR
+            } else if failed.is_empty() {
+                0
+            } else {
+                EXIT_NOT_CONVERGED
+            })
         }
         Command::Validate => {
             let checks = rollbem::reference::run()?;

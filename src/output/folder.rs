@@ -43,6 +43,10 @@ pub const MANIFEST: &str = ".rollbem-manifest";
 /// Longest file or folder name most file systems accept [bytes].
 pub const MAX_NAME_BYTES: usize = 255;
 
+/// Longest name of an output folder [bytes]: [`MAX_NAME_BYTES`] less what the temporary
+/// sibling's name adds (`.NAME.partial-PID`: 10 bytes and a process id of up to 10 digits).
+pub const MAX_FOLDER_NAME_BYTES: usize = MAX_NAME_BYTES - 20;
+
 /// Longest path rollbem will create [bytes] (Linux's PATH_MAX, 4096, less the terminator).
 pub const MAX_PATH_BYTES: usize = 4095;
 
@@ -109,7 +113,7 @@ impl Manifest {
 #[derive(Debug, thiserror::Error)]
 pub enum FolderError {
     /// The path cannot name a folder (NUL byte, overlong name, the root).
-    #[error("output folder `{path}`: {reason}; nothing was written")]
+    #[error("output folder `{path}` (--out, or output.dir of the case): {reason}; nothing was written")]
     BadPath {
         /// The path as given (lossy).
         path: String,
@@ -182,12 +186,13 @@ fn io_err(path: &Path, e: impl std::fmt::Display) -> FolderError {
 /// than [`MAX_NAME_BYTES`], a path longer than [`MAX_PATH_BYTES`], an empty path. Checked before
 /// anything is created, so a bad `output.dir` leaves no folder behind.
 pub fn check_path(dir: &Path) -> Result<(), FolderError> {
-    let shown = dir.to_string_lossy();
+    // Shown with control characters escaped and long paths cut.
+    let shown: String = dir.to_string_lossy().escape_debug().collect();
     let bad = |reason: String| FolderError::BadPath {
-        path: if shown.len() > 80 {
+        path: if shown.chars().count() > 80 {
             format!("{}…", shown.chars().take(80).collect::<String>())
         } else {
-            shown.to_string()
+            shown.clone()
         },
         reason,
     };
@@ -212,6 +217,15 @@ pub fn check_path(dir: &Path) -> Result<(), FolderError> {
                     "a folder name is {n} bytes long; file systems allow {MAX_NAME_BYTES}"
                 )));
             }
+        }
+    }
+    if let Some(name) = dir.file_name() {
+        let n = name.as_encoded_bytes().len();
+        if n > MAX_FOLDER_NAME_BYTES {
+            return Err(bad(format!(
+                "the folder name is {n} bytes long; rollbem allows {MAX_FOLDER_NAME_BYTES} (file systems \
+                 allow {MAX_NAME_BYTES}, and the name of the temporary folder it writes first is 20 longer)"
+            )));
         }
     }
     Ok(())
