@@ -1021,7 +1021,8 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("out");
         write_atomically(&out, Kind::Run, |t| {
-            Ok(fs::write(t.join("summary.json"), "one").unwrap())
+            fs::write(t.join("summary.json"), "one").unwrap();
+            Ok(())
         })
         .unwrap();
         let failed = write_atomically(&out, Kind::Run, |t| {
