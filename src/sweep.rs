@@ -523,8 +523,13 @@ impl Job<'_> {
     fn run_in(&self, dir: &Path, resume: bool) -> Result<(Vec<RunRow>, usize), Error> {
         let runs = product(self.varies);
         let mine = |n: usize| self.shard.is_none_or(|s| s.owns(n));
+        let csv_name = self.record.csv_name();
+        let mut tables = vec![csv_name.clone(), csv_name.replace(".csv", ".json")];
+        if self.shard.is_none() {
+            tables.extend(["sweep.pvd".to_string(), folder::MANIFEST.to_string()]);
+        }
+        clean_stale(dir, &mine, &tables);
         write_record(dir, self.record)?;
-        clean_stale_runs(dir, &mine);
         let csv_path = dir.join(self.record.csv_name());
         let keys: Vec<String> = self.varies.iter().map(|v| v.key.clone()).collect();
         let kept: Vec<RunRow> = if resume {
@@ -578,26 +583,30 @@ impl Job<'_> {
 }
 
 /// Removes temporaries that killed writers left for this sweep's runs (`.run_NNNN.partial-PID`,
-/// `.run_NNNN.old-PID`, unheld `.run_NNNN.rollbem-lock`) and for its tables; the caller holds
-/// the sweep's (or the shard's) lock, so no live writer owns them.
-fn clean_stale_runs(dir: &Path, mine: &dyn Fn(usize) -> bool) {
+/// `.run_NNNN.old-PID`, unheld `.run_NNNN.rollbem-lock`) and for its own files (`tables`:
+/// `.sweep.csv.partial-PID`, ...); the caller holds the sweep's (or the shard's) lock, so no live
+/// writer owns them.
+fn clean_stale(dir: &Path, mine: &dyn Fn(usize) -> bool, tables: &[String]) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };
     for name in entries.filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned())) {
-        let Some(base) = name.strip_prefix('.') else { continue };
-        let base = base
+        let Some(hidden) = name.strip_prefix('.') else { continue };
+        let base = hidden
             .rsplit_once(".partial-")
-            .or_else(|| base.rsplit_once(".old-"))
-            .map_or(base.strip_suffix(".rollbem-lock").unwrap_or(""), |(b, _)| b);
+            .or_else(|| hidden.rsplit_once(".old-"))
+            .map_or(hidden.strip_suffix(".rollbem-lock").unwrap_or(""), |(b, _)| b);
         let ours = match base.strip_prefix("run_").map(str::parse::<usize>) {
             Some(Ok(n)) => mine(n),
-            _ => false,
+            _ => tables.iter().any(|t| t == base),
         };
         let path = dir.join(&name);
         match folder::sweep_owns(&name) {
             Some(SweepEntry::Temporary) if ours && path.is_dir() => {
                 let _ = folder::remove_owned(&path);
             }
-            Some(SweepEntry::File) if ours && name.ends_with(".rollbem-lock") => {
+            Some(SweepEntry::Temporary) if ours => {
+                let _ = std::fs::remove_file(&path);
+            }
+            Some(SweepEntry::File) if ours && name.ends_with(".rollbem-lock") && base.starts_with("run_") => {
                 // Taking the lock removes the file when it is released; a held one stays.
                 if let Ok(lock) = FileLock::try_acquire(&path, Access::Exclusive) {
                     drop(lock);

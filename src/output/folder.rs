@@ -31,7 +31,6 @@
 
 use crate::error::Error;
 use serde::{Deserialize, Serialize};
-use std::ffi::OsStr;
 use std::fs::{self, File, OpenOptions};
 use std::io;
 use std::path::{Component, Path, PathBuf};
@@ -246,29 +245,19 @@ fn normalize(path: &Path) -> PathBuf {
     out
 }
 
-/// The absolute path of the folder `dir` names: symbolic links resolved in the part that exists
-/// (so `--out link` writes where the link points), the rest taken as written.
+/// The absolute path of the folder `dir` names: the longest part that exists resolved as the
+/// operating system resolves it (symbolic links and `..`, so `--out link` writes where the link
+/// points), the rest (`..` and `.` included) taken lexically.
 pub fn resolve(dir: &Path) -> Result<PathBuf, FolderError> {
     check_path(dir)?;
     let abs = std::path::absolute(dir).map_err(|e| io_err(dir, e))?;
-    let abs = normalize(&abs);
-    // The longest existing ancestor, canonicalised; the rest appended.
-    let mut existing = abs.as_path();
-    let mut rest: Vec<&OsStr> = Vec::new();
-    loop {
-        if fs::symlink_metadata(existing).is_ok() {
-            break;
-        }
-        match (existing.parent(), existing.file_name()) {
-            (Some(parent), Some(name)) => {
-                rest.push(name);
-                existing = parent;
-            }
-            _ => break,
-        }
-    }
-    let mut target = fs::canonicalize(existing).unwrap_or_else(|_| existing.to_path_buf());
-    target.extend(rest.iter().rev());
+    let existing = abs
+        .ancestors()
+        .find(|a| fs::symlink_metadata(a).is_ok())
+        .unwrap_or(Path::new("/"));
+    let rest = abs.strip_prefix(existing).unwrap_or(Path::new(""));
+    let base = fs::canonicalize(existing).unwrap_or_else(|_| existing.to_path_buf());
+    let target = normalize(&base.join(rest));
     if target.file_name().is_none() || target.parent().is_none() {
         return Err(FolderError::BadPath {
             path: dir.to_string_lossy().into_owned(),
@@ -709,6 +698,9 @@ pub fn clean_stale_siblings(target: &Path) {
         let path = parent.join(&n);
         if stale && is_dir(&path) && read_manifest(&path).is_some() {
             let _ = remove_owned(&path);
+        } else if stale && is_dir(&path) {
+            // Killed before its manifest was written: removed only if empty.
+            let _ = fs::remove_dir(&path);
         }
     }
 }
@@ -822,7 +814,9 @@ impl Drop for Claim {
 /// Whether `target` may receive a result of `kind`: absent, empty, or holding only an earlier
 /// rollbem result of that kind.
 fn check_replaceable(target: &Path, kind: Kind) -> Result<(), FolderError> {
-    match fs::metadata(target) {
+    // Not followed: [`resolve`] resolved a link that points somewhere; one that is left points
+    // nowhere, and renaming onto it would replace the user's link.
+    match fs::symlink_metadata(target) {
         Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(()),
         Err(e) => return Err(io_err(target, e)),
         Ok(m) if !m.is_dir() => {
@@ -869,7 +863,10 @@ fn swap_in(target: &Path, kind: Kind, write: impl FnOnce(&Path) -> Result<(), Er
     write(&tmp)?;
     inject_fault(&name_of(target));
     let mut files = Vec::new();
-    written_entries(&tmp, "", &mut files)?;
+    if kind != Kind::Sweep {
+        // A sweep folder owns the names of its layout, and its run folders list their own files.
+        written_entries(&tmp, "", &mut files)?;
+    }
     write_manifest(&tmp, &Manifest::new(kind, false, files))?;
     replace(target, kind, &tmp)?;
     // Renamed into place: the guard finds nothing left to remove.
@@ -958,6 +955,32 @@ mod tests {
         assert!(check_path(Path::new(&"x/".repeat(2100))).is_err());
         assert!(check_path(Path::new("out/carter")).is_ok());
         assert!(resolve(Path::new("/")).is_err());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn links_are_followed_where_they_point_and_a_dangling_one_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let real = dir.path().join("real");
+        fs::create_dir(&real).unwrap();
+        std::os::unix::fs::symlink(&real, dir.path().join("link")).unwrap();
+        let canon = real.canonicalize().unwrap();
+        assert_eq!(resolve(&dir.path().join("link/out")).unwrap(), canon.join("out"));
+        // `link/..` is the folder holding `real` (as the system resolves it), not `dir`'s.
+        assert_eq!(
+            resolve(&dir.path().join("link/../x")).unwrap(),
+            canon.parent().unwrap().join("x")
+        );
+        assert_eq!(
+            resolve(&dir.path().join("new/../y")).unwrap(),
+            canon.parent().unwrap().join("y")
+        );
+        std::os::unix::fs::symlink(dir.path().join("gone"), dir.path().join("dangling")).unwrap();
+        assert!(matches!(
+            Claim::acquire(&dir.path().join("dangling"), Kind::Run, Access::Exclusive),
+            Err(FolderError::NotAFolder { .. })
+        ));
+        assert!(fs::symlink_metadata(dir.path().join("dangling")).is_ok());
     }
 
     #[test]
