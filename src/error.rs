@@ -38,17 +38,14 @@ pub enum Error {
         body: String,
         /// Why (boxed: a BEM error is large, and errors travel by value).
         #[source]
-        source: Box<crate::interior::InteriorError>,
+        source: Box<crate::body::FieldError>,
     },
     /// A body's contact segment does not cover the contact grid.
     #[error(transparent)]
     Transfer(#[from] crate::body::transfer::TransferError),
-    /// A feature the case asks for is not available in this version.
-    #[error("not available: {what}")]
-    Unsupported {
-        /// What and what to do instead.
-        what: String,
-    },
+    /// The boundary solution of a body could not be evaluated for the VTK output.
+    #[error("the boundary solution of a bem body for output failed: {0}")]
+    BoundaryField(#[source] Box<crate::body::FieldError>),
     /// The solved contact touches the end of the grid, so the grid does not contain it.
     #[error(
         "{case}: the contact reaches the {end} end of the grid (x = {x:.6}): the grid is too short. \

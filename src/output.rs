@@ -11,9 +11,9 @@ pub mod vtk;
 use crate::app::{Estimates, Timings};
 use crate::case::LoadedCase;
 use crate::contact::friction_check::{check_friction_law, FrictionCheck, DEFAULT_THRESHOLD_FRACTION};
-use crate::contact::newton::{IterationRecord, NewtonReport};
-use crate::contact::solution::{ContactSolution, NodeState, Zone};
+use crate::contact::solution::{ContactSolution, NodeState, SlipDirection, SlipRegime, Zone};
 use crate::contact::ContactProblem;
+use crate::contact::{IterationRecord, SolveReport};
 use crate::error::Error;
 use serde::Serialize;
 use std::path::Path;
@@ -79,11 +79,11 @@ pub struct Summary {
     /// Slip zones [[x0, x1], …].
     pub slip_zones: Vec<[f64; 2]>,
     /// Sign of the slip in each slip zone, in the order of `slip_zones`.
-    pub slip_directions: Vec<i8>,
+    pub slip_directions: Vec<SlipDirection>,
     /// All zones in increasing x, with node counts.
     pub zones: Vec<Zone>,
     /// Slip regime 1–4 of paper §5.2 (0: none of them, e.g. full stick).
-    pub slip_regime: u8,
+    pub slip_regime: SlipRegime,
     /// Peak pressure [stress].
     pub max_pressure: f64,
     /// Stage timings [s].
@@ -128,7 +128,7 @@ pub struct SolverSummary {
     /// Solution method used.
     pub method: crate::contact::Method,
     /// Formulation used.
-    pub formulation: crate::contact::newton::Formulation,
+    pub formulation: crate::contact::Formulation,
     /// Normal penalty r_n [stress/length].
     pub penalty_normal: f64,
     /// Tangential penalty r_t [stress].
@@ -147,8 +147,8 @@ pub fn summary(
     est: &Estimates,
     pb: &ContactProblem,
     sol: &ContactSolution,
-    newton: &NewtonReport,
-    regime: u8,
+    report: &SolveReport,
+    regime: SlipRegime,
     timings: Timings,
 ) -> Summary {
     let mu = case.case.contact.friction;
@@ -159,9 +159,9 @@ pub fn summary(
     };
     Summary {
         title: case.case.title.clone(),
-        converged: newton.converged,
-        iterations: newton.iterations,
-        residual: newton.residual,
+        converged: report.converged,
+        iterations: report.iterations,
+        residual: report.residual,
         normal_force: sol.normal_force,
         tangential_force: sol.tangential_force,
         load_ratio: (mu > 0.0 && sol.normal_force > 0.0).then(|| sol.tangential_force / (mu * sol.normal_force)),
@@ -195,13 +195,13 @@ pub fn summary(
             slip_derivative: pb.slip_operator.scheme,
         },
         solver: SolverSummary {
-            method: newton.method,
+            method: report.method,
             formulation: case.case.solver.formulation,
-            penalty_normal: newton.penalty_normal,
-            penalty_tangential: newton.penalty_tangential,
-            traction_scale: newton.traction_scale,
-            history: newton.history.clone(),
-            fallbacks: newton.fallbacks.clone(),
+            penalty_normal: report.penalty_normal,
+            penalty_tangential: report.penalty_tangential,
+            traction_scale: report.traction_scale,
+            history: report.history.clone(),
+            fallbacks: report.fallbacks.clone(),
         },
         hbem_check: check_friction_law(sol, mu, DEFAULT_THRESHOLD_FRACTION),
         notices: Vec::new(),
@@ -434,7 +434,7 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
         format!(
             "{}  directions {:?}  regime {}",
             zones(&s.slip_zones),
-            s.slip_directions,
+            s.slip_directions.iter().map(|d| d.sign()).collect::<Vec<_>>(),
             s.slip_regime
         ),
     );

@@ -437,8 +437,8 @@ fn run_one(
     }
     let solved = app::solve_prepared(&c, &bodies, start)?;
     Ok(Outcome {
-        solution_converged: solved.newton.converged,
-        iterations: solved.newton.iterations,
+        solution_converged: solved.report.converged,
+        iterations: solved.report.iterations,
         boundary_elements,
         build_s: solved.timings.assembly_s + solved.timings.condense_s,
         solve_s: solved.timings.solve_s,

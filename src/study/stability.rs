@@ -27,8 +27,8 @@
 use super::heatmap::{self, CellView, Panel};
 use super::{run_parallel, solve_overridden};
 use crate::case::{self, BodySpec};
-use crate::contact::newton::Formulation;
 use crate::contact::solution::traction_ripple;
+use crate::contact::Formulation;
 use crate::contact::Method;
 use crate::error::Error;
 use crate::material::material_for_beta;
@@ -452,7 +452,7 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
     }
     match solve_overridden(case_path, base_set, &job.overrides) {
         Ok((case, s)) => {
-            let r = &s.newton;
+            let r = &s.report;
             cell.iterations = r.iterations;
             cell.inner_iterations = r.inner_iterations;
             cell.residual = r.residual;
@@ -467,7 +467,7 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
                 let mu_p0 = case.case.contact.friction * s.estimates.hertz_peak_pressure;
                 cell.ripple = (mu_p0 > 0.0).then(|| traction_ripple(&s.solution) / mu_p0);
                 cell.creep = Some(s.solution.creep);
-                cell.regime = Some(s.regime);
+                cell.regime = Some(s.regime.number());
             }
         }
         Err(e) => {
