@@ -102,6 +102,12 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
     let start = Instant::now();
     let case = case::load(case_path, overrides)?;
     let output_dir = out.map(Path::to_path_buf).unwrap_or_else(|| case.output_dir());
+    // Lock and check the output folder before solving: a foreign or busy folder fails at once.
+    let _claim = output::folder::Claim::acquire(
+        &output_dir,
+        output::folder::Kind::Run,
+        output::folder::Access::Exclusive,
+    )?;
     let s = solve_scene(Scene::from_case(&case)?, start)?;
     let mut summary = output::summary(&s);
     output::write_run(

@@ -4,10 +4,12 @@
 //! compute no physics.
 //!
 //! Everything is written to a temporary sibling folder and renamed onto the output folder only
-//! when complete, so a failed run never leaves a half-written result.
+//! when complete, so a failed run never leaves a half-written result; an output folder that
+//! holds anything rollbem did not write is refused ([`folder`]).
 
 pub mod charts;
 mod csv_files;
+pub mod folder;
 pub mod summary;
 pub mod svg;
 mod table;
@@ -19,7 +21,7 @@ use crate::error::Error;
 use crate::interior::InteriorField;
 use crate::post::ContactSolution;
 pub use csv_files::{write_csv, write_interior_csv, CSV_COLUMNS};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 pub use summary::{summary, Summary};
 pub use table::render_table;
@@ -35,7 +37,7 @@ pub fn write_run(
     interior: Option<&InteriorField>,
     start: Instant,
 ) -> Result<(), Error> {
-    write_atomically(dir, |tmp| {
+    write_atomically(dir, folder::Kind::Run, |tmp| {
         if summary.converged {
             write_csv(&tmp.join("contact.csv"), sol, pb)?;
             if let Some(f) = interior {
@@ -85,33 +87,13 @@ pub fn write_run(
     })
 }
 
-/// Creates a temporary sibling of `dir`, lets `write` fill it, then renames it onto `dir`
-/// (replacing an older result); on failure the temporary folder is removed and `dir` is left
-/// as it was (DESIGN §5: nothing half-written).
-pub fn write_atomically(dir: &Path, write: impl FnOnce(&Path) -> Result<(), Error>) -> Result<(), Error> {
-    let err = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
-    let name = dir
-        .file_name()
-        .map_or("out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp: PathBuf = dir.with_file_name(format!(".{name}.partial-{}", std::process::id()));
-    if let Some(parent) = tmp.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent).map_err(|e| err(parent, &e))?;
-    }
-    if tmp.exists() {
-        std::fs::remove_dir_all(&tmp).map_err(|e| err(&tmp, &e))?;
-    }
-    std::fs::create_dir(&tmp).map_err(|e| err(&tmp, &e))?;
-    let result = write(&tmp).and_then(|()| {
-        if dir.exists() {
-            std::fs::remove_dir_all(dir).map_err(|e| err(dir, &e))?;
-        }
-        std::fs::rename(&tmp, dir).map_err(|e| err(dir, &e))
-    });
-    if result.is_err() {
-        let _ = std::fs::remove_dir_all(&tmp);
-    }
-    result
+/// Writes a result of `kind` atomically into `dir` through a temporary sibling folder, replacing
+/// an earlier rollbem result of the same kind and refusing a folder that holds anything else
+/// (see [`folder`]: the manifest, the lock, the rules). On failure `dir` is left as it was.
+pub fn write_atomically(
+    dir: &Path,
+    kind: folder::Kind,
+    write: impl FnOnce(&Path) -> Result<(), Error>,
+) -> Result<(), Error> {
+    folder::write_atomically(dir, kind, write)
 }

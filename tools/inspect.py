@@ -233,11 +233,11 @@ def rolling_note(ax, summary):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dir", type=Path, help="folder written by `rollbem run` (summary.json, contact.vtu, ...)")
-    ap.add_argument("-o", "--output", type=Path, default=None, help="PNG file (default RUN_DIR/inspect.png)")
+    ap.add_argument("-o", "--output", type=Path, default=None, help="PNG file (default RUN_DIR.png beside the run folder: a file inside it would keep rollbem from replacing that result)")
     ap.add_argument("--dpi", type=int, default=100, help="resolution (default 100)")
     args = ap.parse_args()
     d = args.run_dir
-    out = args.output or d / "inspect.png"
+    out = args.output or d.parent / (d.resolve().name + ".png")
     summary = json.loads((d / "summary.json").read_text())
     length_unit, _, stress_unit = units(summary)
     mu = summary["case"]["contact"]["friction"]

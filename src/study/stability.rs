@@ -34,6 +34,7 @@ use crate::contact::Method;
 use crate::error::Error;
 use crate::material::material_for_beta;
 use crate::output::charts::heatmap;
+use crate::output::folder::{Access, Claim, Kind};
 use crate::output::write_atomically;
 use crate::post::traction_ripple;
 pub use files::{render_summary, CSV_COLUMNS};
@@ -506,6 +507,8 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
 pub fn run(case_path: &Path, base_set: &[String], preset: Preset, out: &Path) -> Result<StabilityReport, Error> {
     let start = Instant::now();
     case::load(case_path, base_set)?;
+    // Lock and check the output folder before the study runs.
+    let _claim = Claim::acquire(out, Kind::StudyStability, Access::Exclusive)?;
     let slices = ladder(preset);
     let methods = method_variants();
     let jobs = jobs(case_path, base_set, &slices, &methods)?;
@@ -518,6 +521,6 @@ pub fn run(case_path: &Path, base_set: &[String], preset: Preset, out: &Path) ->
         wall_s: 0.0,
     };
     report.wall_s = start.elapsed().as_secs_f64();
-    write_atomically(out, |tmp| files::write_outputs(tmp, &report))?;
+    write_atomically(out, Kind::StudyStability, |tmp| files::write_outputs(tmp, &report))?;
     Ok(report)
 }

@@ -1,5 +1,6 @@
 //! The `rollbem` program and its multi-run commands: exit codes, messages and files of `run`
-//! and `check`, sweeps (shards, merge), and the two studies.
+//! and `check`, the safety of the user's files, sweeps (shards, merge, resume), and the two
+//! studies.
 //!
 //! Run one file's tests with its module name, e.g. `cargo test --release --test cli sweep::`.
 
@@ -7,6 +8,7 @@
 mod common;
 
 mod commands;
+mod files;
 mod stability;
 mod study;
 mod sweep;

@@ -12,7 +12,7 @@ pub fn write(dir: &Path, report: &AccuracyReport, title: &str) -> Result<(), Err
         path: path.to_path_buf(),
         message: e.to_string(),
     };
-    crate::output::write_atomically(dir, |tmp| {
+    crate::output::write_atomically(dir, crate::output::folder::Kind::StudyAccuracy, |tmp| {
         let csv_path = tmp.join("accuracy.csv");
         let mut w = csv::Writer::from_path(&csv_path).map_err(|e| io(&csv_path, &e))?;
         w.write_record([
