@@ -76,7 +76,7 @@ pub enum Error {
     /// The output folder cannot be written (it holds files rollbem did not write, another
     /// process writes it, its path names no folder).
     #[error(transparent)]
-    Folder(#[from] crate::output::folder::FolderError),
+    Folder(#[from] crate::files::FolderError),
     /// Writing results failed.
     #[error("cannot write results to {path}: {message}")]
     Output {

@@ -32,6 +32,7 @@ pub mod check;
 pub mod cli;
 pub mod contact;
 pub mod error;
+pub mod files;
 pub mod grid;
 pub mod interior;
 pub mod linalg;

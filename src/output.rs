@@ -9,7 +9,6 @@
 
 pub mod charts;
 mod csv_files;
-pub mod folder;
 pub mod summary;
 pub mod svg;
 mod table;
@@ -18,6 +17,7 @@ pub mod vtk;
 use crate::body::BoundaryField;
 use crate::contact::ContactProblem;
 use crate::error::Error;
+pub use crate::files as folder;
 use crate::interior::InteriorField;
 use crate::post::ContactSolution;
 pub use csv_files::{write_csv, write_interior_csv, CSV_COLUMNS};
