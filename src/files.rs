@@ -236,8 +236,9 @@ pub fn check_path(dir: &Path) -> Result<(), FolderError> {
     Ok(())
 }
 
-/// Removes `.` and `name/..` pairs lexically.
-fn normalize(path: &Path) -> PathBuf {
+/// Removes `.` and `name/..` pairs lexically (`cases/../out/x` → `out/x`; a path that
+/// cancels out entirely becomes empty).
+pub fn normalize(path: &Path) -> PathBuf {
     let mut out = PathBuf::new();
     for c in path.components() {
         match c {

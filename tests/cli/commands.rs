@@ -4,21 +4,9 @@ use std::path::{Path, PathBuf};
 
 use crate::common::rollbem;
 
-const BASE: &str = r#"
-title: "cli test"
-materials:
-  steel: {E: 210000.0, nu: 0.3}
-bodies:
-  A: {model: half_space, material: steel, radius: 100.0}
-  B: {model: half_space, material: steel, radius: 100.0}
-contact:
-  friction: 0.1
-  grid: {elements: 21, extent: 1.3}
-load:
-  normal: {force: 1812.4573}
-  tangential: {ratio: 0.51}
-output: {dir: out}
-"#;
+/// The fast Carter case with its results in `out/` next to it.
+static BASE: std::sync::LazyLock<String> =
+    std::sync::LazyLock::new(|| format!("{}output: {{dir: out}}\n", crate::common::CARTER_CASE));
 
 fn write_case(dir: &Path, text: &str) -> PathBuf {
     let path = dir.join("case.yaml");
@@ -29,7 +17,7 @@ fn write_case(dir: &Path, text: &str) -> PathBuf {
 #[test]
 fn run_writes_the_documented_outputs() {
     let dir = tempfile::tempdir().unwrap();
-    let case = write_case(dir.path(), BASE);
+    let case = write_case(dir.path(), &BASE);
     let (code, stdout, stderr) = rollbem(&["run", case.to_str().unwrap()]);
     assert_eq!(code, 0, "{stderr}");
     assert!(
@@ -151,7 +139,7 @@ fn bad_input_is_rejected_with_the_key_named_and_nothing_written() {
 #[test]
 fn bad_override_and_missing_file_are_input_errors() {
     let dir = tempfile::tempdir().unwrap();
-    let case = write_case(dir.path(), BASE);
+    let case = write_case(dir.path(), &BASE);
     let (code, _, stderr) = rollbem(&["run", case.to_str().unwrap(), "--set", "contact.friction"]);
     assert_eq!(code, 1);
     assert!(
@@ -169,7 +157,7 @@ fn bad_override_and_missing_file_are_input_errors() {
 #[test]
 fn non_convergence_exits_2_with_history_and_no_result() {
     let dir = tempfile::tempdir().unwrap();
-    let case = write_case(dir.path(), BASE);
+    let case = write_case(dir.path(), &BASE);
     let (code, _, stderr) = rollbem(&["run", case.to_str().unwrap(), "--set", "solver.max_iterations=1"]);
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("did not converge"), "{stderr}");
@@ -188,7 +176,7 @@ fn non_convergence_exits_2_with_history_and_no_result() {
 #[test]
 fn check_prints_hertz_estimates_and_set_overrides_apply() {
     let dir = tempfile::tempdir().unwrap();
-    let case = write_case(dir.path(), BASE);
+    let case = write_case(dir.path(), &BASE);
     let (code, stdout, stderr) = rollbem(&["check", case.to_str().unwrap()]);
     assert_eq!(code, 0, "{stderr}");
     assert!(

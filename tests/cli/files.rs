@@ -8,36 +8,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-/// A fast half-space case (Carter, 21 elements).
-const CASE: &str = r#"
-title: "files test"
-materials:
-  steel: {E: 210000.0, nu: 0.3}
-bodies:
-  A: {model: half_space, material: steel, radius: 100.0}
-  B: {model: half_space, material: steel, radius: 100.0}
-contact:
-  friction: 0.1
-  grid: {elements: 21, extent: 1.3}
-load:
-  normal: {force: 1812.4573}
-  tangential: {ratio: 0.51}
-"#;
+use crate::common::{rollbem_with, CARTER_CASE as CASE};
 
-/// Runs the binary in `cwd` with extra environment: (exit code, stdout, stderr); -1 when it
-/// was killed by a signal.
 fn rollbem_in(cwd: &Path, env: &[(&str, &str)], args: &[&str]) -> (i32, String, String) {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_rollbem"));
-    cmd.current_dir(cwd).args(args).env_remove("ROLLBEM_TEST_FAULT");
-    for (k, v) in env {
-        cmd.env(k, v);
-    }
-    let out = cmd.output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    rollbem_with(Some(cwd), env, args)
 }
 
 fn rollbem(cwd: &Path, args: &[&str]) -> (i32, String, String) {

@@ -145,17 +145,7 @@ fn bad_sweep_arguments_are_input_errors() {
 
 /// As [`rollbem`], with extra environment (the fault injection of the tests).
 fn rollbem_env(env: &[(&str, &str)], args: &[&str]) -> (i32, String, String) {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_rollbem"));
-    cmd.args(args).env_remove("ROLLBEM_TEST_FAULT");
-    for (k, v) in env {
-        cmd.env(k, v);
-    }
-    let out = cmd.output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    crate::common::rollbem_with(None, env, args)
 }
 
 /// Hidden entries of a folder (locks, temporaries).

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use rollbem::app::{self, Solved};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// Path of a shipped case by its stem.
@@ -24,22 +24,40 @@ pub fn solve(name: &str, overrides: &[&str]) -> Solved {
     solved
 }
 
-/// Max and RMS of |f(x_i) − g_i| / scale over the nodes with |x_i| < limit.
-pub fn nodal_error(x: &[f64], values: &[f64], exact: impl Fn(f64) -> f64, limit: f64, scale: f64) -> (f64, f64) {
-    let errs: Vec<f64> = x
-        .iter()
-        .zip(values)
-        .filter(|(x, _)| x.abs() < limit)
-        .map(|(x, v)| (v - exact(*x)).abs() / scale)
-        .collect();
-    let max = errs.iter().fold(0.0_f64, |a, &b| a.max(b));
-    let rms = (errs.iter().map(|e| e * e).sum::<f64>() / errs.len() as f64).sqrt();
-    (max, rms)
-}
+/// A fast half-space case (Carter, Q/μP = 0.51, 21 elements), without an output folder.
+pub const CARTER_CASE: &str = r#"
+title: "cli test"
+materials:
+  steel: {E: 210000.0, nu: 0.3}
+bodies:
+  A: {model: half_space, material: steel, radius: 100.0}
+  B: {model: half_space, material: steel, radius: 100.0}
+contact:
+  friction: 0.1
+  grid: {elements: 21, extent: 1.3}
+load:
+  normal: {force: 1812.4573}
+  tangential: {ratio: 0.51}
+"#;
 
 /// Runs the `rollbem` binary: (exit code, stdout, stderr).
 pub fn rollbem(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rollbem")).args(args).output().unwrap();
+    rollbem_with(None, &[], args)
+}
+
+/// Runs the `rollbem` binary in `cwd` (None: this process's folder) with extra environment
+/// (the fault injection of the tests is cleared first): (exit code, stdout, stderr); -1 when
+/// it was killed by a signal.
+pub fn rollbem_with(cwd: Option<&Path>, env: &[(&str, &str)], args: &[&str]) -> (i32, String, String) {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_rollbem"));
+    if let Some(dir) = cwd {
+        cmd.current_dir(dir);
+    }
+    cmd.args(args).env_remove("ROLLBEM_TEST_FAULT");
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    let out = cmd.output().unwrap();
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stdout).into_owned(),

@@ -1,7 +1,8 @@
 //! Validation against the closed forms of Hertz and Carter (reference sheet §1–§2).
 
-use crate::common::{nodal_error, solve};
+use crate::common::solve;
 use rollbem::analytic::hertz_pressure;
+use rollbem::post::norms::nodal_error_against;
 
 /// Hertz: a and p0 within 1 % at 41 elements (DESIGN §6, issue 2).
 #[test]
@@ -33,13 +34,14 @@ fn hertz_pressure_converges_with_the_grid() {
             s.scene.estimates.hertz_half_width,
             s.scene.estimates.hertz_peak_pressure,
         );
-        let (_, r) = nodal_error(
+        let r = nodal_error_against(
             &s.solution.x,
             &s.solution.pressure,
             |x| hertz_pressure(x, a, p0),
             1.3 * a,
             p0,
-        );
+        )
+        .rms;
         rms.push(r);
     }
     for k in 2..rms.len() {
@@ -61,13 +63,14 @@ fn carter_traction_stick_zone_and_creepage() {
         let s = solve(case, &[&format!("contact.grid.elements={n}")]);
         let carter = s.scene.carter_reference().unwrap();
         let mu_p0 = carter.friction * carter.peak_pressure;
-        let (max, _) = nodal_error(
+        let max = nodal_error_against(
             &s.solution.x,
             &s.solution.shear,
             |x| carter.shear(x),
             f64::INFINITY,
             mu_p0,
-        );
+        )
+        .max;
         assert!(max < 0.02, "{case}/{n}: max |q − q_Carter| = {max} μp0");
 
         let stick = s.solution.zones_of(rollbem::post::NodeState::Stick);

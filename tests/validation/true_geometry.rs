@@ -1,7 +1,8 @@
 //! BEM bodies in the contact problem (issue 3): half-space blocks and true rollers on shafts
 //! against Carter and against the analytic half-space model.
 
-use crate::common::{nodal_error, solve};
+use crate::common::solve;
+use rollbem::post::norms::nodal_error_against;
 use rollbem::post::NodeState;
 
 /// Carter's shear, stick zone and creepage for the case's Hertz estimates.
@@ -10,7 +11,7 @@ fn carter_errors(name: &str) -> (f64, f64, f64) {
     // The BEM grid comes from the mesh; Carter from the case's Hertz estimates (a = 1 mm).
     let c = s.scene.carter_reference().unwrap();
     let mu_p0 = c.friction * c.peak_pressure;
-    let (max_q, _) = nodal_error(&s.solution.x, &s.solution.shear, |x| c.shear(x), f64::INFINITY, mu_p0);
+    let max_q = nodal_error_against(&s.solution.x, &s.solution.shear, |x| c.shear(x), f64::INFINITY, mu_p0).max;
     let stick = s.solution.zones_of(NodeState::Stick);
     assert_eq!(stick.len(), 1, "{name}: stick zones {stick:?}");
     let [c0, c1] = c.stick_zone();
