@@ -1,5 +1,5 @@
 //! Studies: many solves of one scene, in parallel, with a progress bar, summarised in a CSV and
-//! SVG charts written atomically (issue 6).
+//! SVG charts written atomically.
 //!
 //! This module holds the parallel runner every study uses; each study is a submodule that
 //! builds its jobs, solves them through [`crate::app`] and reads the results:

@@ -1,4 +1,4 @@
-//! `rollbem study accuracy CASE`: speed against accuracy of the body models (issue 6).
+//! `rollbem study accuracy CASE`: speed against accuracy of the body models.
 //!
 //! The scene of the case — its cylinders' radii and materials, friction and load — is solved
 //! with each body model that can represent it, at a ladder of discretizations:

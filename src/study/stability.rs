@@ -1,4 +1,4 @@
-//! `rollbem study stability CASE`: a convergence map of every solution method (issue 6).
+//! `rollbem study stability CASE`: a convergence map of every solution method.
 //!
 //! The full Cartesian product of friction, load ratio, Dundurs β, penalty, grid and element type
 //! is too large, so the map is a set of two-dimensional **slices** through the base case, each

@@ -1,7 +1,6 @@
-//! Hypersingular BEM (HBEM) boundary strains (issue 4 part 3): the displacement gradient at
-//! boundary points from the boundary displacements and tractions (paper Eq. 79, reference
-//! sheet §9), checked on exact fields, under mesh refinement, and as the slip of a rolling
-//! contact against Carter.
+//! Hypersingular BEM (HBEM) boundary strains: the displacement gradient at boundary points from
+//! the boundary displacements and tractions (paper Eq. 79, docs/references.md §9), checked on
+//! exact fields, under mesh refinement, and as the slip of a rolling contact against Carter.
 
 use crate::common::patch::{exact_t, exact_u, strain};
 use rollbem::bem::hypersingular::{GradientEvaluator, GradientPoint, GradientRows};
@@ -151,7 +150,7 @@ fn points_outside_an_element_are_refused() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Lamé thick cylinder (reference sheet §8.1): a = 10, b = 20, p_i = 100, p_o = 30, E = 210 000.
+// Lamé thick cylinder (docs/references.md §8.1): a = 10, b = 20, p_i = 100, p_o = 30, E = 210 000.
 
 const A_IN: f64 = 10.0;
 const B_OUT: f64 = 20.0;
@@ -159,7 +158,7 @@ const P_IN: f64 = 100.0;
 const P_OUT: f64 = 30.0;
 const NS: [usize; 4] = [8, 16, 32, 64];
 
-/// Lamé constants (A, B) of σ_rr = A − B/r², σ_θθ = A + B/r² (sheet §8.1).
+/// Lamé constants (A, B) of σ_rr = A − B/r², σ_θθ = A + B/r² (docs/references.md §8.1).
 fn lame_constants() -> (f64, f64) {
     let (a2, b2) = (A_IN * A_IN, B_OUT * B_OUT);
     (
@@ -322,7 +321,7 @@ fn carter_slip_errors(name: &str) -> ([f64; 2], [f64; 2]) {
 }
 
 /// The HBEM slip of the true rollers R = 100 mm on shafts (cases/carter_051_true.yaml, 21
-/// contact elements) against Carter's slip (reference sheet §2, in our frame:
+/// contact elements) against Carter's slip (docs/references.md §2, in our frame:
 /// [`rollbem::analytic::Carter::slip`]).
 ///
 /// * Slip zone: within 5 % of Carter's largest slip (the issue's target; measured 0.80 %). The

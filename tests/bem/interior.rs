@@ -1,9 +1,9 @@
-//! Interior displacement and stress by Somigliana's identity (issue 4, part 4): patch test,
+//! Interior displacement and stress by Somigliana's identity: patch test,
 //! Lamé thick cylinder, Hertz/McEwen stresses from a BEM block against the half-space model.
 //!
 //! Tolerances are justified where they are asserted; the measured numbers are printed
 //! (`cargo test --release --test bem interior:: -- --nocapture`) and recorded in
-//! docs/validation.md, "Interior stresses (issue 4)".
+//! docs/validation.md, "Interior stresses".
 
 use crate::common::patch::{exact_u, strain, SIGMA};
 use rollbem::bem::somigliana::interior_fields;
@@ -13,7 +13,7 @@ use rollbem::material::Elastic;
 use std::sync::Arc;
 
 // ---------------------------------------------------------------------------------------------
-// Uniform stress (reference sheet §8.3)
+// Uniform stress (docs/references.md §8.3)
 
 /// The 4 × 2 rectangle of tests/bem/patch.rs: displacements on bottom and left, tractions σ⁰·n
 /// on right and top; element lengths 4/3 (bottom), 1 (others).
@@ -123,7 +123,7 @@ fn points_outside_or_on_the_boundary_are_flagged() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Lamé thick cylinder (reference sheet §8.1)
+// Lamé thick cylinder (docs/references.md §8.1)
 
 use crate::common::lame::{self, A_IN, B_OUT};
 
@@ -226,14 +226,14 @@ fn lame_interior_stresses_converge_and_stay_accurate_near_the_boundary() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Hertz pressure with a sliding traction q = μp (reference sheet §7): BEM blocks and half-space
+// Hertz pressure with a sliding traction q = μp (docs/references.md §7): BEM blocks and half-space
 
 use rollbem::body::bem::BemBody;
 use rollbem::body::half_space::HalfSpace;
 use rollbem::body::{Body, BodyFields, ContactLoad, InteriorQuery, Side};
 use rollbem::grid::ContactGrid;
 
-/// McEwen's maxima (reference sheet §7, ν = 0.3): (μ, max τ1/p0, x/a, z/a, max σ_VM/p0, x/a, z/a).
+/// McEwen's maxima (docs/references.md §7, ν = 0.3): (μ, max τ1/p0, x/a, z/a, max σ_VM/p0, x/a, z/a).
 const MCEWEN: [(f64, f64, f64, f64, f64, f64, f64); 2] = [
     (0.0, 0.300283, 0.0, 0.786151, 0.557516, 0.0, 0.704292),
     (0.2, 0.318989, 0.625169, 0.601318, 0.589993, 0.553341, 0.565980),
@@ -437,7 +437,7 @@ fn hertz_maxima_from_the_half_space_and_from_a_block_with_half_plane_data() {
 
 /// The shipped block case (cases/carter_051_block.yaml: 80 × 40 mm, far face fixed, sides free)
 /// is a *finite* body: its maximum shear under the Hertz pressure is 0.30896 p0, 2.9 % above
-/// the half-plane's 0.30028, which misses the 2 % of issue 4 — by physics, not numerics. The
+/// the half-plane's 0.30028, which misses the asked-for 2 % — by physics, not numerics. The
 /// block carries the load P = πa p0/2 to its fixed face 40a away, and the correction to the
 /// half-plane field near the contact is a smooth stress of order P/(πH) ≈ 0.012 p0
 /// (H the depth), which raises τ1 = |σx − σz|/2 on the axis. This test shows it:

@@ -1,4 +1,4 @@
-//! Lamé thick cylinder and annulus on a rigid core (reference sheet §8.1, §8.2): convergence of
+//! Lamé thick cylinder and annulus on a rigid core (docs/references.md §8.1, §8.2): convergence of
 //! the boundary values under mesh refinement, at ν = 0.3 and ν = 0.5.
 //!
 //! **Removing the rigid-body motion.** The Lamé cylinder is loaded by pressures only, so its
@@ -172,7 +172,7 @@ const R_S: f64 = 15.0;
 const R_O: f64 = 150.0;
 const P_O: f64 = 30.0;
 
-/// (u_r(R_o), σ_rr(r_s)) of the bonded annulus (sheet §8.2).
+/// (u_r(R_o), σ_rr(r_s)) of the bonded annulus (docs/references.md §8.2).
 fn core_exact(m: &Elastic) -> (f64, f64) {
     let nu = m.poisson;
     let rho = R_S / R_O;
@@ -250,7 +250,7 @@ fn annulus_on_a_rigid_core_converges_in_displacement_and_shaft_traction() {
 
 #[test]
 fn incompressible_annulus_on_a_rigid_core_does_not_move_and_carries_a_uniform_pressure() {
-    // ν = 0.5: σ = −p_o I everywhere and u ≡ 0 (sheet §8.2 with 1 − 2ν = 0). The shaft
+    // ν = 0.5: σ = −p_o I everywhere and u ≡ 0 (docs/references.md §8.2 with 1 − 2ν = 0). The shaft
     // traction is only known up to a uniform pressure (module docs): checked modulo it.
     let mut previous = (f64::INFINITY, f64::INFINITY);
     for n in [8, 16, 32] {

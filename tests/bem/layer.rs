@@ -1,5 +1,5 @@
-//! Flat layer bonded to a rigid base (the tyre's building block, issue 4): the BEM surface
-//! compliance under a pressure P cos kx against the exact C(k) of DESIGN §6 / reference sheet §5.
+//! Flat layer bonded to a rigid base (the tyre's building block): the BEM surface
+//! compliance under a pressure P cos kx against the exact C(k) of docs/references.md §5.
 //!
 //! One wavelength −λ/2 ≤ x ≤ λ/2 is modelled: for a cos kx load the planes x = ±λ/2 are planes of
 //! symmetry (u_x = 0, zero shear), so the strip with those conditions is the infinite layer

@@ -1,4 +1,4 @@
-//! Patch test of the BEM (reference sheet §8.3): a uniform stress state on a rectangle with
+//! Patch test of the BEM (docs/references.md §8.3): a uniform stress state on a rectangle with
 //! corners. The exact boundary fields (u linear, t constant per side) lie in the quadratic
 //! interpolation space, so the collocation equations are satisfied exactly by the exact nodal
 //! values and the only error left is the quadrature error (target 1e-12 relative, see

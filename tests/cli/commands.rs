@@ -1,4 +1,4 @@
-//! The `rollbem` binary: exit codes, messages, files written (DESIGN §5, §8).
+//! The `rollbem` binary: exit codes, messages, files written.
 
 use std::path::{Path, PathBuf};
 
@@ -254,7 +254,7 @@ load:
 }
 
 /// A run with bem bodies writes each body's boundary as quadratic edges and lists everything
-/// in result.pvd (issue 5).
+/// in result.pvd.
 #[test]
 fn bem_runs_write_boundary_vtk_files_and_the_collection() {
     let dir = tempfile::tempdir().unwrap();
@@ -310,7 +310,7 @@ fn bem_bodies_refuse_other_contact_element_types() {
     }
 }
 
-/// `output.interior` of a bem body (issue 4): Somigliana fields written as CSV and VTU with the
+/// `output.interior` of a bem body: Somigliana fields written as CSV and VTU with the
 /// displacement and the point status, listed in result.pvd and summarised in summary.json and
 /// the run table; points outside the body or on its boundary are flagged and announced; a rigid
 /// body is refused before anything is solved, naming the key.

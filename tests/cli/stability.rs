@@ -1,4 +1,4 @@
-//! `rollbem study stability` (issue 6): the quick map, its outputs and its acceptance criterion.
+//! `rollbem study stability`: the quick map, its outputs and its acceptance criterion.
 
 use crate::common::case_path;
 use rollbem::study::stability::{self, Preset, Status};

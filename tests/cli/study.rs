@@ -1,4 +1,4 @@
-//! `rollbem study accuracy` (issue 6): the three body models of the Carter scene against the
+//! `rollbem study accuracy`: the three body models of the Carter scene against the
 //! closed form, and the command's outputs.
 
 use crate::common::rollbem;

@@ -1,4 +1,4 @@
-//! `rollbem sweep`: 15-run product, failure isolation, sharding and merging (issue 5).
+//! `rollbem sweep`: 15-run product, failure isolation, sharding and merging.
 
 use crate::common::rollbem;
 use std::path::Path;

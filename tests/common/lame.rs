@@ -1,4 +1,4 @@
-//! The Lamé thick cylinder of reference sheet §8.1: a = 10, b = 20 mm, p_i = 100, p_o = 30 MPa.
+//! The Lamé thick cylinder of docs/references.md §8.1: a = 10, b = 20 mm, p_i = 100, p_o = 30 MPa.
 
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition, Pin};
 use rollbem::material::Elastic;

@@ -1,7 +1,8 @@
-//! The repository stands alone: what a user reads (docs/, cases/, README.md, tools/ and every
-//! `--help` text) cites the literature and the repository's own files, never a document the
-//! repository does not hold (a "reference sheet", a "DESIGN" brief, `../shared`) nor a tracker
-//! number ("issue 6"). Fails naming the file (or help text) and line of each occurrence.
+//! The repository stands alone: what a user reads (docs/, cases/, README.md, tools/, the report
+//! programs of examples/ and every `--help` text) cites the literature and the repository's own
+//! files, never a document the repository does not hold (a "reference sheet", a "DESIGN" brief,
+//! `../shared`) nor a tracker number ("issue 6"). Fails naming the file (or help text) and line
+//! of each occurrence.
 
 use std::path::{Path, PathBuf};
 
@@ -82,10 +83,10 @@ fn the_grep_recognises_what_it_must_refuse() {
 }
 
 #[test]
-fn docs_cases_readme_and_tools_cite_nothing_outside_the_repository() {
+fn docs_cases_readme_tools_and_examples_cite_nothing_outside_the_repository() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let mut files = vec![root.join("README.md")];
-    for dir in ["docs", "cases", "tools"] {
+    for dir in ["docs", "cases", "tools", "examples"] {
         text_files(&root.join(dir), &mut files);
     }
     assert!(files.len() > 20, "found only {files:?}");

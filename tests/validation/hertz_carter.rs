@@ -1,10 +1,10 @@
-//! Validation against the closed forms of Hertz and Carter (reference sheet §1–§2).
+//! Validation against the closed forms of Hertz and Carter (docs/references.md §1–§2).
 
 use crate::common::solve;
 use rollbem::analytic::hertz_pressure;
 use rollbem::post::norms::nodal_error_against;
 
-/// Hertz: a and p0 within 1 % at 41 elements (DESIGN §6, issue 2).
+/// Hertz: a and p0 within 1 % at 41 elements .
 #[test]
 fn hertz_half_width_and_peak_within_one_percent_at_41_elements() {
     let s = solve("hertz", &["contact.grid.elements=41"]);

@@ -1,4 +1,4 @@
-//! The alternative solution methods (issue 6): where they converge they solve the same
+//! The alternative solution methods: where they converge they solve the same
 //! discrete problem as the default Newton, and they handle every load control.
 
 use crate::common::{case_path, solve};

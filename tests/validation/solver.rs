@@ -1,4 +1,4 @@
-//! Acceptance tests of the contact solver on the shipped half-space cases (issue 2).
+//! Acceptance tests of the contact solver on the shipped half-space cases.
 
 use crate::common::{case_path, solve};
 use rollbem::analytic;
@@ -113,13 +113,13 @@ fn dissimilar_regimes_of_the_paper_with_dundurs_beta_over_mu_2_88() {
         }
     }
     // Reading A (aluminium on steel, β_D/μ = 1.44): Q/μP = 0.04 gives regime 2, not 4
-    // (reference sheet §4.3).
+    // (docs/references.md §4.3).
     let s = solve("dissimilar_al_steel_004", &["contact.grid.elements=81"]);
     assert_eq!(s.regime.number(), 2, "zones {:?}", s.solution.zones);
 }
 
 /// Free rolling of aluminium on steel: ξ → 0.914772 β a/R as μ → 0 and ξ → 2εa/R with
-/// p(0) → cosh(πε)E*a/(2R) as μ → ∞ (reference sheet §4.4), within 1 % at 321 elements.
+/// p(0) → cosh(πε)E*a/(2R) as μ → ∞ (docs/references.md §4.4), within 1 % at 321 elements.
 #[test]
 fn free_rolling_creepage_limits() {
     let slip = solve(
@@ -164,8 +164,8 @@ fn variable_friction_cases_have_smooth_tractions() {
     }
 }
 
-/// Interior stresses of half-space bodies (issue 4, half-space part): under the Hertz pressure
-/// the maximum shear is 0.300283 p0 at depth 0.786 a in both bodies (reference sheet §7);
+/// Interior stresses of half-space bodies: under the Hertz pressure
+/// the maximum shear is 0.300283 p0 at depth 0.786 a in both bodies (docs/references.md §7);
 /// within 2 % and one grid step (0.02 a) on a 161-element contact grid.
 #[test]
 fn interior_maximum_shear_under_hertz_in_both_bodies() {
@@ -190,7 +190,7 @@ fn interior_maximum_shear_under_hertz_in_both_bodies() {
     }
 }
 
-/// The interior of a bem body whose contact nodes are transferred to the grid (issue 4): body B
+/// The interior of a bem body whose contact nodes are transferred to the grid: body B
 /// of the non-matching rollers (2× finer contact mesh, tractions carried to its own nodes by the
 /// grid's interpolation) against the paired rollers, under the same Carter case. The two B
 /// meshes differ, so the fields differ by their discretisations: measured 3e-5 p0 on the

@@ -1,4 +1,4 @@
-//! BEM bodies in the contact problem (issue 3): half-space blocks and true rollers on shafts
+//! BEM bodies in the contact problem: half-space blocks and true rollers on shafts
 //! against Carter and against the analytic half-space model.
 
 use crate::common::solve;
@@ -42,7 +42,7 @@ fn true_rollers_on_shafts_reproduce_carter() {
 }
 
 /// The BEM block and the analytic half-space, on the same 21-element grid: tangential
-/// tractions within 2 % of μp0 (issue 3 acceptance).
+/// tractions within 2 % of μp0.
 #[test]
 fn half_space_block_agrees_with_the_analytic_half_space() {
     let block = solve("carter_051_block", &[]);
@@ -84,9 +84,9 @@ fn fig14_half_space_and_true_cylinders_nearly_agree() {
 }
 
 /// What only the true geometry gives: the approach of the shaft centres. Compared with the
-/// closed form of an annulus on a rigid shaft under one Hertz contact (reference sheet §6c,
+/// closed form of an annulus on a rigid shaft under one Hertz contact (docs/references.md §6c,
 /// summed over both rollers), at Q = 0. The formula itself is exact to O(a/R) (3e-4 relative at
-/// a/R = 0.01, sheet §6b); we allow 0.5 % for that and the BEM discretization.
+/// a/R = 0.01, docs/references.md §6b); we allow 0.5 % for that and the BEM discretization.
 #[test]
 fn approach_of_the_shaft_centres_matches_the_annulus_on_shaft_formula() {
     use rollbem::analytic::shaft_roller_approach;
@@ -113,7 +113,7 @@ fn approach_of_the_shaft_centres_matches_the_annulus_on_shaft_formula() {
     }
 }
 
-/// Non-matching contact nodes (issue 3 item 3): body B's 54 contact elements on |x| ≤ 1.5 mm are
+/// Non-matching contact nodes: body B's 54 contact elements on |x| ≤ 1.5 mm are
 /// carried to A's 21-element grid by interpolation. Against the node-to-node run: same zones,
 /// pressure within 0.1 % of p0, shear within 5 % of μp0 and creepage within 3 % (measured 0.04 %,
 /// 4.0 %, 2.3 %). The transfer costs tangential accuracy: the slip differentiates the

@@ -1,6 +1,6 @@
-//! Tyred cylinder (paper §5.4, Figs 10–13; issue 4): a rigid cylinder rolling on a cover layer
+//! Tyred cylinder (paper §5.4, Figs 10–13): a rigid cylinder rolling on a cover layer
 //! bonded to a rigid core, the layer a BEM strip (`meshes/tyre_layer_b*.geo`), load by overlap.
-//! References: the thin-layer limits of the reference sheet §5 (derived there from the exact
+//! References: the thin-layer limits of the docs/references.md §5 (derived there from the exact
 //! layer compliance C(k), whose BEM reproduction is tested in `tests/bem/layer.rs`).
 
 use crate::common::solve;
@@ -46,7 +46,7 @@ fn thin_layer_run(tag: &str, nu: f64) -> (f64, f64, f64) {
     (a, p_total, shape)
 }
 
-/// As b/a → 0 the half-width and the pressure shape approach the thin-layer limits (sheet §5):
+/// As b/a → 0 the half-width and the pressure shape approach the thin-layer limits (docs/references.md §5):
 /// compressible p = (3P/4a)(1 − x²/a²) with a² = 2Rδ and P = 4G(1−ν)a³/(3(1−2ν)bR);
 /// incompressible p = (15P/16a)(1 − x²/a²)² with a² = 6Rδ. The leading correction is O(b/a)
 /// (edge zones of width ~b where the local operator fails), so halving b/a from 0.1 to 0.05
@@ -144,10 +144,10 @@ fn incompressible_thick_layer_converges_from_the_paper_start_vector() {
     }
 }
 
-/// The rigid model (issue 4 item 1): zero flexibility and a circular profile, given by its
+/// The rigid model: zero flexibility and a circular profile, given by its
 /// radius or fitted to the contact group of a mesh. A rigid R = 100 cylinder on a steel
 /// half-space body of profile radius 100 at Q = 0 is Hertz with 1/E* = (1 − ν²)/E and
-/// 1/R = 1/100 + 1/100 (reference sheet §1): a = √(4PR/(πE*)).
+/// 1/R = 1/100 + 1/100 (docs/references.md §1): a = √(4PR/(πE*)).
 /// The mesh-fitted radius reproduces the given one (the contact nodes lie on the circle to the
 /// mesh's 1e-9 print precision), so the two runs agree to round-off.
 #[test]
