@@ -169,6 +169,11 @@ impl Annulus {
         }
     }
 
+    /// Which rim is loaded.
+    pub fn loaded_rim(&self) -> LoadedRim {
+        self.loaded
+    }
+
     /// The material.
     pub fn material(&self) -> Elastic {
         self.material
