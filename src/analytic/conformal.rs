@@ -92,6 +92,22 @@ pub enum TractionDirection {
     LoadLine,
 }
 
+/// How the rigid gap depends on the approach δ.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RigidGap {
+    /// Linear in δ, like every displacement of linear elasticity: the pairing, the directions
+    /// and ∂s/∂d are those of the unloaded geometry d = ΔR (eq. C4 with d = ΔR). The problem is
+    /// then linear in (p, δ) for a given arc; with zero clearance the arc does not depend on
+    /// the load. What Persson's and Ciavarella & Decuzzi's theory and a linear contact model
+    /// (gap = g0 − δ·n_x + u) solve.
+    #[default]
+    Linear,
+    /// The two circles at their final distance d = ΔR + δ (pairing, directions and rigid gap
+    /// iterated to convergence): adds the geometric term ~δ²/(2R), significant only when δ is
+    /// not small against the clearance.
+    Exact,
+}
+
 /// Resolution of the series solution.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SeriesResolution {
@@ -148,7 +164,9 @@ pub struct DiscInBore {
     pub ring: Ring,
     /// Direction of the contact traction.
     pub direction: TractionDirection,
-    /// Truncation of the series.
+    /// Dependence of the rigid gap on the approach.
+    pub rigid_gap: RigidGap,
+    /// Resolution of the series.
     pub resolution: SeriesResolution,
 }
 
@@ -173,6 +191,8 @@ pub struct ConformalSolution {
     model: Model,
     coefficients: Vec<f64>,
     centre_distance: f64,
+    /// δ beyond the pairing's centre distance (linear rigid gap) [length].
+    step: f64,
 }
 
 /// One point of the contact pressure, with its position on both bodies.
@@ -557,6 +577,7 @@ impl DiscInBore {
             roller,
             ring,
             direction: TractionDirection::default(),
+            rigid_gap: RigidGap::default(),
             resolution: SeriesResolution::default(),
         }
     }
@@ -595,6 +616,10 @@ impl DiscInBore {
             1.0
         };
         let mut d = model.clearance;
+        if self.rigid_gap == RigidGap::Linear {
+            let (th, arc) = model.bounded_arc(theta, d, load)?;
+            return Ok(ConformalSolution::new(model, load, th, d, arc));
+        }
         // The rigid gap and the pairing depend on d only weakly (δ ≪ R): Newton on d converges
         // in two or three steps.
         for _ in 0..30 {
@@ -611,6 +636,8 @@ impl DiscInBore {
 }
 
 impl ConformalSolution {
+    /// `d` is the centre distance of the pairing; the approach is d + Δd − ΔR (Δd = 0 when the
+    /// exact iteration has converged).
     fn new(model: Model, load: f64, theta_c: f64, d: f64, arc: Arc) -> Self {
         let pair = model.pair(theta_c, d);
         let mut sol = Self {
@@ -618,12 +645,13 @@ impl ConformalSolution {
             half_angle: theta_c,
             roller_half_angle: pair.theta1,
             half_width: model.r1 * pair.theta1,
-            approach: d - model.clearance,
+            approach: d + arc.step - model.clearance,
             peak_pressure: 0.0,
             edge_residual: arc.edge,
             model,
             coefficients: arc.coefficients,
             centre_distance: d,
+            step: arc.step,
         };
         sol.peak_pressure = sol.find_peak();
         sol
@@ -676,7 +704,8 @@ impl ConformalSolution {
             .zip(&self.coefficients)
             .map(|(g, c)| g * c)
             .sum();
-        (self.model.r2 - pr.s) * (pr.psi - pr.theta).cos() + elastic
+        let rigid = self.model.r2 - pr.s - self.step * pr.ds_dd;
+        rigid * (pr.psi - pr.theta).cos() + elastic
     }
 
     /// Radial displacements (outwards positive) of the bore at θ and of the roller at the
@@ -713,6 +742,51 @@ impl ConformalSolution {
         }
         best.max(self.pressure(0.5 * (a + b)))
     }
+}
+
+/// Load P [force/length] of a pin in a hole of an infinite plate (Persson 1964), elastically
+/// similar, frictionless, in the same-radius linear theory, for the contact half-angle α [rad]
+/// and the radial clearance ΔR [length] (docs/conformal.md eq. C14, derived there):
+///
+/// P = πE*ΔR / [cos⁴(α/2)(1 + ln cos(α/2))/sin²(α/2) − sin²(α/2)].
+///
+/// Small α: P → πE*ΔRα²/4, Hertz with R* = R²/ΔR. Infinite at the zero-clearance angle
+/// [`pin_in_plate_zero_clearance_angle`]; NaN beyond it (no such contact).
+pub fn pin_in_plate_load(half_angle: f64, clearance: f64, e_star: f64) -> f64 {
+    let (s, c) = (0.5 * half_angle).sin_cos();
+    let denominator = c.powi(4) * (1.0 + c.ln()) / (s * s) - s * s;
+    if denominator > 0.0 {
+        PI * e_star * clearance / denominator
+    } else {
+        f64::NAN
+    }
+}
+
+/// Contact pressure [stress] of the pin in the plate at the angle θ for the half-angle α, the
+/// load P per unit length and the radius R (docs/conformal.md eq. C13):
+///
+/// p = p₁√((cos θ − cos α)(1 + cos θ)) + 2B artanh√((cos θ − cos α)/(1 + cos θ)),
+/// p₁ = P/(πR), B = p₁cos⁴(α/2)/(2 sin²(α/2)).
+pub fn pin_in_plate_pressure(theta: f64, half_angle: f64, load: f64, radius: f64) -> f64 {
+    let (ct, ca) = (theta.cos(), half_angle.cos());
+    if ct <= ca {
+        return 0.0;
+    }
+    let p1 = load / (PI * radius);
+    let (s, c) = (0.5 * half_angle).sin_cos();
+    let b = p1 * c.powi(4) / (2.0 * s * s);
+    p1 * ((ct - ca) * (1.0 + ct)).sqrt() + 2.0 * b * ((ct - ca) / (1.0 + ct)).sqrt().atanh()
+}
+
+/// Contact half-angle of the pin in the plate with zero clearance [rad], the same for every
+/// load: the root of cos⁴(α/2)(1 + ln cos(α/2)) = sin⁴(α/2), 84.83° (docs/conformal.md eq. C15).
+pub fn pin_in_plate_zero_clearance_angle() -> f64 {
+    let f = |a: f64| {
+        let (s, c) = (0.5 * a).sin_cos();
+        c.powi(4) * (1.0 + c.ln()) - s.powi(4)
+    };
+    let (a, b) = (1.4, 1.5);
+    brent(f, a, b, f(a), f(b), 1e-15).unwrap_or(f64::NAN)
 }
 
 /// T_0(t), T_2(t), …, T_{2(k−1)}(t).
