@@ -210,6 +210,9 @@ pub struct PressureSample {
     pub pressure: f64,
     /// Pressure per unit roller arc length, p·R2/(R1 dθ1/dθ) [stress].
     pub roller_pressure: f64,
+    /// Direction ψ of the traction, from +x [rad]: the ring receives p(cos ψ, sin ψ) per unit
+    /// bore arc length, the roller the opposite force.
+    pub direction: f64,
 }
 
 /// Everything fixed by the scene: the two rims' kernels (or mode compliances).
@@ -689,6 +692,7 @@ impl ConformalSolution {
             roller_arc: self.model.r1 * pr.theta1,
             pressure: p,
             roller_pressure: p * self.model.r2 / (self.model.r1 * pr.dtheta1),
+            direction: pr.psi,
         }
     }
 
