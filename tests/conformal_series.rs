@@ -92,7 +92,11 @@ fn assert_admissible(s: &ConformalSolution, outside: f64, gap_tol: f64, what: &s
         let g = s.gap(0.999 * th);
         assert!(g.abs() < gap_tol, "{what}: gap {g:e} on the arc at {th}");
         let out = s.half_angle + (outside - s.half_angle) * (i as f64 + 0.5) / 200.0;
-        assert!(s.gap(out) > 0.0, "{what}: gap {} ≤ 0 at {out} outside the arc", s.gap(out));
+        assert!(
+            s.gap(out) > 0.0,
+            "{what}: gap {} ≤ 0 at {out} outside the arc",
+            s.gap(out)
+        );
     }
 }
 
@@ -111,14 +115,20 @@ fn small_load_is_hertz_with_an_error_of_order_a_over_r_squared() {
         let t = std::time::Instant::now();
         let s = scene.solve(p).unwrap();
         let elapsed = t.elapsed();
-        let (ea, ep) = (s.half_width / a - 1.0, s.peak_pressure / hertz_peak_pressure(p, a) - 1.0);
+        let (ea, ep) = (
+            s.half_width / a - 1.0,
+            s.peak_pressure / hertz_peak_pressure(p, a) - 1.0,
+        );
         println!(
             "| {ratio} | {a} | {ea:+.4e} | {ep:+.4e} | {:.6e} | {:.0} ms |",
             s.approach,
             elapsed.as_secs_f64() * 1e3
         );
         if ratio <= 0.05 {
-            assert!(ea.abs() < 3.0 * ratio * ratio && ep.abs() < 3.0 * ratio * ratio, "a/R = {ratio}: {ea} {ep}");
+            assert!(
+                ea.abs() < 3.0 * ratio * ratio && ep.abs() < 3.0 * ratio * ratio,
+                "a/R = {ratio}: {ea} {ep}"
+            );
         }
         errors.push((ea, ep));
     }
@@ -142,7 +152,10 @@ fn dissimilar_materials_at_small_load_are_hertz() {
         let a = ratio * scene.roller.radius;
         let p = load_for(&scene, a);
         let s = scene.solve(p).unwrap();
-        let (ea, ep) = (s.half_width / a - 1.0, s.peak_pressure / hertz_peak_pressure(p, a) - 1.0);
+        let (ea, ep) = (
+            s.half_width / a - 1.0,
+            s.peak_pressure / hertz_peak_pressure(p, a) - 1.0,
+        );
         println!("| {ratio} | {ea:+.4e} | {ep:+.4e} |");
         let tol = 0.05 * ratio + 3.0 * ratio * ratio;
         assert!(ea.abs() < tol && ep.abs() < tol, "a/R = {ratio}: {ea} {ep}");
@@ -180,7 +193,10 @@ fn pin_in_plate_limit_matches_the_closed_form() {
         // The difference is the closed form's O(ΔR/R): ×100 from ΔR/R = 1e−6 to 1e−4.
         let scale = row[1].1 / row[0].1;
         assert!((50.0..200.0).contains(&scale), "α = {deg}°: scaling {scale}");
-        println!("| {deg} | {:.6} | {:+.3e} | {:.2e} | {:+.3e} |", row[0].0, row[0].1, row[0].2, row[1].1);
+        println!(
+            "| {deg} | {:.6} | {:+.3e} | {:.2e} | {:+.3e} |",
+            row[0].0, row[0].1, row[0].2, row[1].1
+        );
     }
 }
 
@@ -191,10 +207,20 @@ fn zero_clearance_arc_does_not_depend_on_the_load() {
     let alpha0 = pin_in_plate_zero_clearance_angle();
     let pin0 = pin(0.0);
     let (s1, s2) = (pin0.solve(1.0).unwrap(), pin0.solve(1e4).unwrap());
-    assert!((s1.half_angle - s2.half_angle).abs() < 1e-12, "{} {}", s1.half_angle, s2.half_angle);
+    assert!(
+        (s1.half_angle - s2.half_angle).abs() < 1e-12,
+        "{} {}",
+        s1.half_angle,
+        s2.half_angle
+    );
     assert!((s2.approach / s1.approach / 1e4 - 1.0).abs() < 1e-10);
     let rel = s1.half_angle / alpha0 - 1.0;
-    assert!(rel.abs() < 1e-6, "θc = {}°, closed form {}°", s1.half_angle.to_degrees(), alpha0.to_degrees());
+    assert!(
+        rel.abs() < 1e-6,
+        "θc = {}°, closed form {}°",
+        s1.half_angle.to_degrees(),
+        alpha0.to_degrees()
+    );
     // The product's ring with zero clearance: roller R1 = R2 = 50 mm on the shaft of 5 mm.
     let mut tight = bore(steel());
     tight.roller.radius = 50.0;
@@ -226,7 +252,10 @@ fn pressure_terms_converge_spectrally() {
         for k in [4, 6, 8, 12, 16] {
             scene.resolution.pressure_terms = k;
             let s = scene.solve(p).unwrap();
-            errs.push(((s.half_width / reference.half_width - 1.0).abs(), pressure_difference(&s, &reference)));
+            errs.push((
+                (s.half_width / reference.half_width - 1.0).abs(),
+                pressure_difference(&s, &reference),
+            ));
         }
         rows.push(errs);
     }
@@ -236,8 +265,16 @@ fn pressure_terms_converge_spectrally() {
             rows[0][i].0, rows[0][i].1, rows[1][i].0, rows[1][i].1
         );
     }
-    assert!(rows[0][2].0 < 1e-10 && rows[0][2].1 < 1e-9, "steel K = 8: {:?}", rows[0][2]);
-    assert!(rows[1][3].0 < 1e-6 && rows[1][3].1 < 1e-6, "bronze K = 12: {:?}", rows[1][3]);
+    assert!(
+        rows[0][2].0 < 1e-10 && rows[0][2].1 < 1e-9,
+        "steel K = 8: {:?}",
+        rows[0][2]
+    );
+    assert!(
+        rows[1][3].0 < 1e-6 && rows[1][3].1 < 1e-6,
+        "bronze K = 12: {:?}",
+        rows[1][3]
+    );
     for r in &rows {
         assert!(r[1].1 < r[0].1 && r[3].1 < r[1].1, "not converging: {r:?}");
     }
@@ -260,7 +297,10 @@ fn truncated_fourier_series_converges_to_the_closed_form_kernels() {
         let mut s = scene;
         s.resolution.truncation = Some(m);
         let sol = s.solve(p).unwrap();
-        let e = ((sol.half_width / reference.half_width - 1.0).abs(), pressure_difference(&sol, &reference));
+        let e = (
+            (sol.half_width / reference.half_width - 1.0).abs(),
+            pressure_difference(&sol, &reference),
+        );
         println!("| {m} | {:.2e} | {:.2e} |", e.0, e.1);
         errs.push(e);
     }
@@ -301,7 +341,10 @@ fn solution_is_admissible_and_in_equilibrium() {
         }
         assert!((ring_force / p - 1.0).abs() < 1e-7, "{what}: ring {ring_force} vs {p}");
         // The roller side uses the paired arc lengths (a trapezoid in R1θ1): O(h²) = 1e−6.
-        assert!((roller_force / p - 1.0).abs() < 1e-5, "{what}: roller {roller_force} vs {p}");
+        assert!(
+            (roller_force / p - 1.0).abs() < 1e-5,
+            "{what}: roller {roller_force} vs {p}"
+        );
     }
 }
 
@@ -320,7 +363,11 @@ fn traction_direction_and_rigid_gap_choices_at_a_over_r_0_2() {
         load_line.direction = TractionDirection::LoadLine;
         let mut exact = base;
         exact.rigid_gap = RigidGap::Exact;
-        for (label, sc) in [("common normal, linear gap", base), ("load line", load_line), ("exact gap", exact)] {
+        for (label, sc) in [
+            ("common normal, linear gap", base),
+            ("load line", load_line),
+            ("exact gap", exact),
+        ] {
             let s = sc.solve(p).unwrap();
             assert_admissible(&s, 2.5 * s.half_angle, 1e-9, label);
             println!(
@@ -333,7 +380,10 @@ fn traction_direction_and_rigid_gap_choices_at_a_over_r_0_2() {
             );
             if label == "exact gap" {
                 let moved = (s.half_angle / reference.half_angle - 1.0).abs();
-                assert!(moved < 2.0 * reference.approach / 40.0, "exact gap moved the arc by {moved}");
+                assert!(
+                    moved < 2.0 * reference.approach / 40.0,
+                    "exact gap moved the arc by {moved}"
+                );
             }
         }
     }

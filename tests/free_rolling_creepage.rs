@@ -4,7 +4,9 @@
 //! a = 0.5 mm). The numbers of docs/conformal.md come from
 //! `cargo test --release --test free_rolling_creepage -- --nocapture --test-threads 1`.
 
-use rollbem::analytic::creepage::{free_rolling_creepage, free_rolling_creepage_solid_rollers, CreepageError, ShaftRoller};
+use rollbem::analytic::creepage::{
+    free_rolling_creepage, free_rolling_creepage_solid_rollers, CreepageError, ShaftRoller,
+};
 use rollbem::material::Elastic;
 
 fn steel() -> Elastic {
@@ -25,12 +27,24 @@ fn unequal_rollers_on_shafts_match_the_outside_estimate() {
     // the global axes, −3.7e−6 along the local normal; agreement to its quoted digits.
     let c = free_rolling_creepage(&roller(60.0, 8.0), &roller(90.0, 12.0), 0.5).unwrap();
     let solid = free_rolling_creepage_solid_rollers(60.0, 90.0, 0.5, &steel());
-    println!("\n| steel R 60 on shaft 8, R 90 on shaft 12, a = 0.5 mm (P = {:.3} N/mm) | ξ |", c.load);
+    println!(
+        "\n| steel R 60 on shaft 8, R 90 on shaft 12, a = 0.5 mm (P = {:.3} N/mm) | ξ |",
+        c.load
+    );
     println!("|---|---|");
     println!("| local normal (hoop strain) | {:.4e} |", c.local_normal);
-    println!("| global axes (∂u_x/∂x, uniform rigid speeds) | {:.4e} |", c.global_axes);
-    println!("| global-axes tractions, hoop strain | {:.4e} |", c.global_tractions_hoop_strain);
-    println!("| solid rollers, closed form: local / global | {:.4e} / {:.4e} |", solid[1], solid[0]);
+    println!(
+        "| global axes (∂u_x/∂x, uniform rigid speeds) | {:.4e} |",
+        c.global_axes
+    );
+    println!(
+        "| global-axes tractions, hoop strain | {:.4e} |",
+        c.global_tractions_hoop_strain
+    );
+    println!(
+        "| solid rollers, closed form: local / global | {:.4e} / {:.4e} |",
+        solid[1], solid[0]
+    );
     assert!((c.local_normal + 3.7e-6).abs() < 0.05e-6, "{}", c.local_normal);
     assert!((c.global_axes + 1.34e-5).abs() < 0.005e-5, "{}", c.global_axes);
     assert_eq!(c.as_array(), [c.global_axes, c.local_normal]);
@@ -52,13 +66,20 @@ fn creepage_vanishes_as_the_square_of_a_over_r() {
     println!("\n| λ (R_A = 60λ, R_B = 90λ) | λ²ξ local | λ²ξ global |");
     println!("|---|---|---|");
     for lambda in [1.0, 2.0, 4.0, 8.0] {
-        let c = free_rolling_creepage(&roller(60.0 * lambda, 8.0 * lambda), &roller(90.0 * lambda, 12.0 * lambda), 0.5)
-            .unwrap();
+        let c = free_rolling_creepage(
+            &roller(60.0 * lambda, 8.0 * lambda),
+            &roller(90.0 * lambda, 12.0 * lambda),
+            0.5,
+        )
+        .unwrap();
         let scaled = [c.local_normal * lambda * lambda, c.global_axes * lambda * lambda];
         println!("| {lambda} | {:.6e} | {:.6e} |", scaled[0], scaled[1]);
         if lambda == 8.0 {
             for i in 0..2 {
-                assert!((scaled[i] / last[i] - 1.0).abs() < 1e-4, "λ = 8: {scaled:?} vs {last:?}");
+                assert!(
+                    (scaled[i] / last[i] - 1.0).abs() < 1e-4,
+                    "λ = 8: {scaled:?} vs {last:?}"
+                );
             }
             assert!(c.local_normal.abs() < 1e-7 && c.global_axes.abs() < 3e-7);
         }
@@ -77,7 +98,10 @@ fn creepage_scales_with_a_squared() {
     };
     let (small, large) = (r(0.125), r(0.5));
     for i in 0..2 {
-        assert!((large[i] / small[i] - 1.0).abs() < 3.0 * 0.5 / 60.0, "{small:?} {large:?}");
+        assert!(
+            (large[i] / small[i] - 1.0).abs() < 3.0 * 0.5 / 60.0,
+            "{small:?} {large:?}"
+        );
     }
 }
 
@@ -89,8 +113,16 @@ fn solid_rollers_match_the_closed_form() {
         let c = free_rolling_creepage(&roller(60.0, 0.06), &roller(90.0, 0.09), a).unwrap();
         let [global, local] = free_rolling_creepage_solid_rollers(60.0, 90.0, a, &steel());
         let tol = a / 60.0;
-        assert!((c.local_normal / local - 1.0).abs() < tol, "a = {a}: {} vs {local}", c.local_normal);
-        assert!((c.global_axes / global - 1.0).abs() < tol, "a = {a}: {} vs {global}", c.global_axes);
+        assert!(
+            (c.local_normal / local - 1.0).abs() < tol,
+            "a = {a}: {} vs {local}",
+            c.local_normal
+        );
+        assert!(
+            (c.global_axes / global - 1.0).abs() < tol,
+            "a = {a}: {} vs {global}",
+            c.global_axes
+        );
     }
 }
 

@@ -34,8 +34,8 @@
 mod kernel;
 
 use super::michell::{Annulus, LoadedRim, MichellError, ModeCompliance};
-use kernel::{ChebyshevRule, RimKernel};
 use crate::material::Elastic;
+use kernel::{ChebyshevRule, RimKernel};
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
@@ -345,7 +345,10 @@ impl Model {
             return self.quadrature;
         }
         let span = theta_c.max(self.pair(theta_c, d).theta1.abs());
-        let rest = self.roller_kernel.remainder_modes().max(self.ring_kernel.remainder_modes());
+        let rest = self
+            .roller_kernel
+            .remainder_modes()
+            .max(self.ring_kernel.remainder_modes());
         3 * self.terms + 40 + (1.5 * rest as f64 * span).ceil() as usize
     }
 
@@ -391,7 +394,11 @@ impl Model {
                     let u = target_angle - source_angle;
                     let dt = t - rule.nodes[i];
                     // ln|u| = ln|t − τ| + ln|u/(t − τ)|, the second smooth (its limit ln|dΘ/dτ|).
-                    let ratio = if dt.abs() > 1e-12 { (u / dt).abs().ln() } else { slope.abs().ln() };
+                    let ratio = if dt.abs() > 1e-12 {
+                        (u / dt).abs().ln()
+                    } else {
+                        slope.abs().ln()
+                    };
                     let [rr, rs, tt] = kern.eval(u);
                     let w = |x: kernel::Split| wl[i] * x.ln + ws[i] * x.sgn + reg * (x.ln * ratio + x.smooth);
                     let (wrr, wrs, wtt) = (w(rr), w(rs), w(tt));
@@ -428,7 +435,9 @@ impl Model {
         // cos(nθc τ)·T_2j needs a rule exact to degree ~ Mθc + 2K.
         let half = ((m as f64 * theta_c.max(theta1_c) + 2.0 * k as f64) / 4.0).ceil() as usize + 24;
         let q = 2 * half;
-        let nodes: Vec<f64> = (1..=half).map(|i| ((2 * i - 1) as f64 * PI / (2 * q) as f64).cos()).collect();
+        let nodes: Vec<f64> = (1..=half)
+            .map(|i| ((2 * i - 1) as f64 * PI / (2 * q) as f64).cos())
+            .collect();
         let w = 2.0 * PI / q as f64;
         let mut basis = DMatrix::zeros(k, half);
         let mut comp = vec![[0.0; 4]; half];
@@ -454,7 +463,12 @@ impl Model {
             out.column_mut(0).scale_mut(0.5);
             out
         };
-        let (t2, s2, t1, s1) = (project(0, &trig2[0]), project(1, &trig2[1]), project(2, &trig1[0]), project(3, &trig1[1]));
+        let (t2, s2, t1, s1) = (
+            project(0, &trig2[0]),
+            project(1, &trig2[1]),
+            project(2, &trig1[0]),
+            project(3, &trig1[1]),
+        );
         let amplitudes = |comps: &[ModeCompliance], t: &DMatrix<f64>, s: &DMatrix<f64>| {
             let (mut u, mut v) = (DMatrix::zeros(k, m + 1), DMatrix::zeros(k, m + 1));
             for (n, c) in comps.iter().enumerate() {
@@ -528,7 +542,10 @@ impl Model {
             }
         }
         b[k] = load;
-        let x = a.lu().solve(&b).unwrap_or_else(|| DVector::from_element(k + 1, f64::NAN));
+        let x = a
+            .lu()
+            .solve(&b)
+            .unwrap_or_else(|| DVector::from_element(k + 1, f64::NAN));
         let coefficients: Vec<f64> = x.iter().take(k).copied().collect();
         let edge = coefficients.iter().sum::<f64>() * self.r2 * theta_c / load;
         Arc {
@@ -545,7 +562,9 @@ impl Model {
         let (mut lo, mut hi) = (guess, guess);
         let (mut f_lo, mut f_hi) = (f(lo), f(lo));
         if !f_lo.is_finite() {
-            return Err(ConformalError::NotConverged(format!("singular arc system at θc = {guess}")));
+            return Err(ConformalError::NotConverged(format!(
+                "singular arc system at θc = {guess}"
+            )));
         }
         // Too small an arc needs a compressive edge singularity (positive coefficient).
         while f_hi > 0.0 {
@@ -668,8 +687,8 @@ impl ConformalSolution {
             return 0.0;
         }
         let v = chebyshev_even(t, self.coefficients.len());
-        let num: f64 = v.iter().zip(&self.coefficients).map(|(a, b)| a * b).sum::<f64>()
-            - self.coefficients.iter().sum::<f64>();
+        let num: f64 =
+            v.iter().zip(&self.coefficients).map(|(a, b)| a * b).sum::<f64>() - self.coefficients.iter().sum::<f64>();
         num / (1.0 - t * t).sqrt()
     }
 
@@ -717,7 +736,11 @@ impl ConformalSolution {
     pub fn radial_displacements(&self, theta: f64) -> (f64, f64) {
         let pr = self.model.pair(theta, self.centre_distance);
         let disp = self.model.displacements(self.half_angle, self.centre_distance, &[pr]);
-        let dot = |m: &DMatrix<f64>| (0..self.coefficients.len()).map(|j| m[(j, 0)] * self.coefficients[j]).sum();
+        let dot = |m: &DMatrix<f64>| {
+            (0..self.coefficients.len())
+                .map(|j| m[(j, 0)] * self.coefficients[j])
+                .sum()
+        };
         (dot(&disp.ring_r), dot(&disp.roller_r))
     }
 
@@ -846,7 +869,9 @@ fn brent(f: impl Fn(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64, tol: f64) -> 
             return Ok(b);
         }
         let mut s = if fa != fc && fb != fc {
-            a * fb * fc / ((fa - fb) * (fa - fc)) + b * fa * fc / ((fb - fa) * (fb - fc)) + c * fa * fb / ((fc - fa) * (fc - fb))
+            a * fb * fc / ((fa - fb) * (fa - fc))
+                + b * fa * fc / ((fb - fa) * (fb - fc))
+                + c * fa * fb / ((fc - fa) * (fc - fb))
         } else {
             b - fb * (b - a) / (fb - fa)
         };
@@ -863,7 +888,9 @@ fn brent(f: impl Fn(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64, tol: f64) -> 
         }
         let fs = f(s);
         if !fs.is_finite() {
-            return Err(ConformalError::NotConverged(format!("non-finite edge coefficient at θc = {s}")));
+            return Err(ConformalError::NotConverged(format!(
+                "non-finite edge coefficient at θc = {s}"
+            )));
         }
         d = c;
         c = b;

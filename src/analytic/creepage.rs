@@ -91,7 +91,12 @@ impl FreeRollingCreepage {
 /// Leading-order closed form for solid rollers (shafts → 0) whose load is reacted at the
 /// centre (docs/conformal.md eq. R6–R7): [global axes, local normal] with
 /// ξ_local = −(P/(4πG))(1/R_A − 1/R_B), ξ_global = ξ_local − (a²/4)(1/R_A² − 1/R_B²).
-pub fn free_rolling_creepage_solid_rollers(radius_a: f64, radius_b: f64, half_width: f64, material: &Elastic) -> [f64; 2] {
+pub fn free_rolling_creepage_solid_rollers(
+    radius_a: f64,
+    radius_b: f64,
+    half_width: f64,
+    material: &Elastic,
+) -> [f64; 2] {
     let e_star = 1.0 / (2.0 * material.plane_strain_compliance());
     let r_star = 1.0 / (1.0 / radius_a + 1.0 / radius_b);
     let load = super::hertz_load(half_width, r_star, e_star);
@@ -124,7 +129,12 @@ impl Roller {
         let ann = Annulus::new(r.shaft_radius, r.radius, r.material, LoadedRim::Outer)?;
         let kappa = 3.0 - 4.0 * r.material.poisson;
         let g4 = 4.0 * r.material.shear();
-        let (e_t, e_s, w_t, w_s) = ((kappa - 1.0) / g4, (kappa + 1.0) / g4, -(kappa + 1.0) / g4, (1.0 - kappa) / g4);
+        let (e_t, e_s, w_t, w_s) = (
+            (kappa - 1.0) / g4,
+            (kappa + 1.0) / g4,
+            -(kappa + 1.0) / g4,
+            (1.0 - kappa) / g4,
+        );
         let (mut strain_t, mut strain_s, mut rotation_t, mut rotation_s) = (vec![], vec![], vec![], vec![]);
         let mut quiet = 0;
         for n in 0..100_000 {
@@ -349,7 +359,9 @@ pub fn free_rolling_creepage(
     let p0 = super::hertz_peak_pressure(load, half_width);
     // Gauss–Chebyshev (first kind) nodes of the creepage average (module docs).
     let j = 64;
-    let t: Vec<f64> = (1..=j).map(|i| ((2 * i - 1) as f64 * PI / (2 * j) as f64).cos()).collect();
+    let t: Vec<f64> = (1..=j)
+        .map(|i| ((2 * i - 1) as f64 * PI / (2 * j) as f64).cos())
+        .collect();
     let average = |loading: Loading, hoop: bool| {
         let da = ra.stretch(loading, hoop, half_width, p0, &t);
         let db = rb.stretch(loading, hoop, half_width, p0, &t);

@@ -262,7 +262,10 @@ impl Annulus {
             );
             // The Lamé system is regular for every annulus with ν < 0.5 (determinant ∝ 1 + (1−2ν)ρ²
             // or its ring analogue), so the solve cannot fail on a validated annulus.
-            let c = a.lu().solve(&Vector2::new(0.0, radial_stress)).unwrap_or_else(Vector2::zeros);
+            let c = a
+                .lu()
+                .solve(&Vector2::new(0.0, radial_stress))
+                .unwrap_or_else(Vector2::zeros);
             return c.iter().copied().collect();
         }
         let mut a = Matrix4::zeros();
@@ -394,7 +397,11 @@ mod tests {
             let up = (r / (4.0 * g)) * (k / (nf - 1.0) + 1.0 / (nf + 1.0));
             let cp = plate.compliance(n);
             // The fixed rim at 1000R changes mode 2 by O((R/R_o)²) = 1e−6 (4.5e−6 measured).
-            assert!((-cp.radial_from_radial - up).abs() < 1e-5 * up.abs(), "plate U n={n}: {} vs {up}", -cp.radial_from_radial);
+            assert!(
+                (-cp.radial_from_radial - up).abs() < 1e-5 * up.abs(),
+                "plate U n={n}: {} vs {up}",
+                -cp.radial_from_radial
+            );
         }
     }
 
@@ -442,7 +449,10 @@ mod tests {
             let expected = PI * rl * (t - s);
             for r in [inner, 0.5 * (inner + outer), outer] {
                 let force = a.mode_one_force(t, s, r);
-                assert!((force - expected).abs() < 1e-10 * expected.abs(), "r = {r}: {force} vs {expected}");
+                assert!(
+                    (force - expected).abs() < 1e-10 * expected.abs(),
+                    "r = {r}: {force} vs {expected}"
+                );
             }
         }
     }

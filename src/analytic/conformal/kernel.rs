@@ -106,12 +106,20 @@ impl RimKernel {
         for n in 2..200_000 {
             let c = annulus.compliance(n);
             let (cc, cs) = canonical(n as f64);
-            let (a, b, d) = (c.radial_from_radial - cc, c.radial_from_shear - cs, c.tangential_from_shear - cc);
+            let (a, b, d) = (
+                c.radial_from_radial - cc,
+                c.radial_from_shear - cs,
+                c.tangential_from_shear - cc,
+            );
             rest_rr.push(a);
             rest_rs.push(b);
             rest_tt.push(d);
             let tiny = 1e-14 * cc.abs().max(cs.abs());
-            quiet = if a.abs().max(b.abs()).max(d.abs()) < tiny { quiet + 1 } else { 0 };
+            quiet = if a.abs().max(b.abs()).max(d.abs()) < tiny {
+                quiet + 1
+            } else {
+                0
+            };
             if quiet >= 3 {
                 break;
             }
@@ -188,7 +196,9 @@ pub(crate) struct ChebyshevRule {
 
 impl ChebyshevRule {
     pub fn new(q: usize) -> Self {
-        let nodes: Vec<f64> = (1..=q).map(|i| ((2 * i - 1) as f64 * PI / (2 * q) as f64).cos()).collect();
+        let nodes: Vec<f64> = (1..=q)
+            .map(|i| ((2 * i - 1) as f64 * PI / (2 * q) as f64).cos())
+            .collect();
         let interp = (0..q)
             .map(|k| {
                 let f = if k == 0 { 1.0 } else { 2.0 } / q as f64;
