@@ -388,3 +388,19 @@ fn traction_direction_and_rigid_gap_choices_at_a_over_r_0_2() {
         }
     }
 }
+
+#[test]
+fn prescribed_approach_gives_back_the_load() {
+    // solve_approach inverts solve: δ(P) → P to the root search's tolerance.
+    for scene in [bore(steel()), pin(0.0)] {
+        let p = if scene.effective_radius().is_finite() {
+            load_for(&scene, 4.0)
+        } else {
+            1000.0
+        };
+        let s = scene.solve(p).unwrap();
+        let back = scene.solve_approach(s.approach).unwrap();
+        assert!((back.load / p - 1.0).abs() < 1e-9, "{} vs {p}", back.load);
+        assert!((back.half_angle / s.half_angle - 1.0).abs() < 1e-9);
+    }
+}

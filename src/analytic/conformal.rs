@@ -657,6 +657,48 @@ impl DiscInBore {
     }
 }
 
+impl DiscInBore {
+    /// Solves the contact for a prescribed approach δ > 0 [length] (zero clearance or not): the
+    /// load P with `solve(P).approach` = δ to 1e−12, by Brent's method on ln P.
+    pub fn solve_approach(&self, approach: f64) -> Result<ConformalSolution, ConformalError> {
+        if !(approach > 0.0 && approach.is_finite()) {
+            return Err(ConformalError::Load(approach));
+        }
+        // A probe load gives the scale: δ grows with P a little faster than linearly (Hertz:
+        // δ ∝ P ln(1/P) at small load), so P·δ/δ_probe is a good first guess.
+        let probe = 1e-6 * self.contact_modulus() * self.roller.radius;
+        let scale = self.solve(probe)?.approach;
+        let f = |ln_p: f64| -> f64 {
+            match self.solve(ln_p.exp()) {
+                Ok(s) => s.approach / approach - 1.0,
+                Err(_) => f64::NAN,
+            }
+        };
+        let guess = (probe * approach / scale).ln();
+        let (mut lo, mut hi) = (guess - 0.5, guess + 0.5);
+        let (mut f_lo, mut f_hi) = (f(lo), f(hi));
+        for _ in 0..60 {
+            if !(f_lo.is_finite() && f_hi.is_finite()) {
+                return Err(ConformalError::ArcTooLarge { max_degrees: 150.0 });
+            }
+            if f_lo <= 0.0 && f_hi >= 0.0 {
+                let ln_p = brent(f, lo, hi, f_lo, f_hi, 1e-13)?;
+                return self.solve(ln_p.exp());
+            }
+            if f_lo > 0.0 {
+                (hi, f_hi) = (lo, f_lo);
+                lo -= 1.0;
+                f_lo = f(lo);
+            } else {
+                (lo, f_lo) = (hi, f_hi);
+                hi += 1.0;
+                f_hi = f(hi);
+            }
+        }
+        Err(ConformalError::NotConverged("load for the approach".into()))
+    }
+}
+
 impl ConformalSolution {
     /// `d` is the centre distance of the pairing; the approach is d + Δd − ΔR (Δd = 0 when the
     /// exact iteration has converged).

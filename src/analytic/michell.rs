@@ -11,8 +11,9 @@
 //!
 //! with stresses positive in tension (a contact pressure p is σ_rr = −p on either rim) and u
 //! the displacement relative to the fixed rim. The field of mode n is a combination of four
-//! Michell terms (Michell 1899; Barber, *Elasticity*, ch. 9), written here as Kolosov–
-//! Muskhelishvili potentials with real coefficients (Muskhelishvili §41, §56):
+//! Michell terms (Michell 1899; Barber, *Elasticity*, problems in polar coordinates), written
+//! here as Kolosov–Muskhelishvili potentials with real coefficients (Muskhelishvili, *Some basic
+//! problems of the mathematical theory of elasticity*):
 //!
 //! ```text
 //! 2G(u_r + i u_θ) = e^{−iθ} [κ φ(z) − z conj φ'(z) − conj ψ(z)]                    (M1)
@@ -53,8 +54,8 @@ pub enum MichellError {
         /// Outer radius [length].
         outer: f64,
     },
-    /// The material is not a plane-strain elastic solid (E > 0, −1 < ν < 0.5).
-    #[error("material must have E > 0 and −1 < ν < 0.5 (got E = {young}, ν = {poisson})")]
+    /// The material is not a plane-strain elastic solid (E > 0, −1 < ν ≤ 0.5).
+    #[error("material must have E > 0 and −1 < ν ≤ 0.5 (got E = {young}, ν = {poisson})")]
     Material {
         /// Young's modulus [stress].
         young: f64,
@@ -142,7 +143,7 @@ impl Annulus {
             return Err(MichellError::Radii { inner, outer });
         }
         let (young, poisson) = (material.young, material.poisson);
-        if !(young > 0.0 && young.is_finite() && poisson > -1.0 && poisson < 0.5) {
+        if !(young > 0.0 && young.is_finite() && poisson > -1.0 && poisson <= 0.5) {
             return Err(MichellError::Material { young, poisson });
         }
         Ok(Self {

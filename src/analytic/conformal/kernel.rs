@@ -29,7 +29,8 @@
 //!
 //! So every kernel is K(u) = A(u) ln|u| + B(u) sgn u + C(u), A, B, C smooth, C holding the
 //! remainder Σ (C^n − C^n_canonical) and the modes 0 and 1. Against a pressure term
-//! T_k(τ)/√(1−τ²) the ln and sgn parts are integrated exactly (Mason & Handscomb §9.5):
+//! T_k(τ)/√(1−τ²) the ln and sgn parts are integrated exactly (Mason & Handscomb,
+//! *Chebyshev Polynomials*, on integral equations):
 //!
 //! ```text
 //! ∫ ln|t−τ| T_k(τ)/√(1−τ²) dτ = −π ln 2 (k = 0), −(π/k) T_k(t) (k ≥ 1)                |t| ≤ 1
