@@ -1,6 +1,6 @@
 //! Free-rolling creepage of unequal rollers on shafts at second order in a/R
 //! (src/analytic/creepage.rs): its limits, its scaling, the solid-roller closed form derived in
-//! docs/conformal.md §4, and the scene of the issue (steel R 60 on shaft 8, R 90 on shaft 12,
+//! docs/conformal.md §4, and a scene with an outside estimate (steel R 60 on shaft 8, R 90 on shaft 12,
 //! a = 0.5 mm). The numbers of docs/conformal.md come from
 //! `cargo test --release --test free_rolling_creepage -- --nocapture --test-threads 1`.
 
@@ -23,7 +23,7 @@ fn roller(radius: f64, shaft: f64) -> ShaftRoller {
 
 #[test]
 fn unequal_rollers_on_shafts_match_the_outside_estimate() {
-    // The issue quotes an independent estimate for this scene: −1.34e−5 with tractions along
+    // An estimate made outside this code for this scene: −1.34e−5 with tractions along
     // the global axes, −3.7e−6 along the local normal; agreement to its quoted digits.
     let c = free_rolling_creepage(&roller(60.0, 8.0), &roller(90.0, 12.0), 0.5).unwrap();
     let solid = free_rolling_creepage_solid_rollers(60.0, 90.0, 0.5, &steel());

@@ -352,8 +352,9 @@ mod tests {
     }
 
     #[test]
-    fn bonded_core_lame_of_reference_sheet() {
-        // Annulus on a rigid core r_s = 15, R = 150, p = 30 MPa: u_r(R) = −1.098748e−2 mm.
+    fn bonded_core_is_lame() {
+        // docs/references.md §8.2: annulus on a rigid core r_s = 15, R = 150, p = 30 MPa, steel:
+        // u_r(R) = −1.098748e−2 mm, σ_rr(r_s) = −41.832669 MPa.
         let a = Annulus::new(15.0, 150.0, steel(), LoadedRim::Outer).unwrap();
         let u = a.compliance(0).radial_from_radial * -30.0;
         assert!((u + 1.098748e-2).abs() < 1e-8, "u = {u}");

@@ -349,4 +349,33 @@ mod tests {
             assert!((got - exact).abs() < 1e-13, "t = {t}: {got} vs {exact}");
         }
     }
+
+    #[test]
+    fn approach_of_a_roller_on_its_shaft_is_the_full_series_of_the_references() {
+        // docs/references.md §6c: steel rollers R = 150 and 300 mm on shafts of 15 and 30 mm,
+        // one Hertz contact a = 1 mm, P = 906.229 N/mm: the approach of the shaft centre to the
+        // contact point is 1.570358e−2 and 1.743492e−2 mm by the full series (the O(a/R) formula
+        // gives 3e−6 and 2e−6 less). δ = −u_r(0) from K_rr and product integration, with the
+        // Hertz pressure over the arc length Rθ; tolerance 1e−8 mm, the quoted digits.
+        let steel = Elastic::new(210_000.0, 0.3);
+        let p0 = 2.0 * 906.229 / PI;
+        for (r, shaft, expected) in [(150.0, 15.0, 1.570358e-2), (300.0, 30.0, 1.743492e-2)] {
+            let kern = RimKernel::new(&Annulus::new(shaft, r, steel, LoadedRim::Outer).unwrap());
+            let rule = ChebyshevRule::new(64);
+            let theta_c = 1.0 / r;
+            let (wl, ws) = (rule.log_weights(0.0), rule.sign_weights(0.0));
+            let mut u = 0.0;
+            for (i, &tau) in rule.nodes.iter().enumerate() {
+                let [rr, _, _] = kern.eval(-theta_c * tau);
+                let w = wl[i] * rr.ln + ws[i] * rr.sgn + rule.regular_weight() * (rr.ln * theta_c.ln() + rr.smooth);
+                // σ_rr = −p0√(1−τ²) = −p0(1−τ²)/√(1−τ²): the rule's weight carries the 1/√.
+                u += w * -p0 * (1.0 - tau * tau);
+            }
+            let delta = -u * theta_c / PI;
+            assert!(
+                (delta - expected).abs() < 1e-8,
+                "R = {r}: δ = {delta:e}, expected {expected:e}"
+            );
+        }
+    }
 }
