@@ -4,6 +4,10 @@
 //! Conventions of DESIGN §2 (reference sheet §0–§4): P per unit length, E* the contact modulus,
 //! R the effective radius 1/R = 1/R_A + 1/R_B, β Dundurs' parameter with A first.
 
+pub mod conformal;
+pub mod creepage;
+pub mod michell;
+
 use std::f64::consts::PI;
 
 /// Hertz half-width a = √(4PR/(πE*)) [length] (Johnson eq. 4.43; reference sheet §1).
