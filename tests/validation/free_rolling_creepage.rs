@@ -2,7 +2,7 @@
 //! (src/analytic/creepage.rs): its limits, its scaling, the solid-roller closed form derived in
 //! docs/conformal.md §4, and a scene with an outside estimate (steel R 60 on shaft 8, R 90 on shaft 12,
 //! a = 0.5 mm). The numbers of docs/conformal.md come from
-//! `cargo test --release --test free_rolling_creepage -- --nocapture --test-threads 1`.
+//! `cargo test --release --test validation free_rolling_creepage:: -- --nocapture --test-threads 1`.
 
 use rollbem::analytic::creepage::{
     free_rolling_creepage, free_rolling_creepage_solid_rollers, CreepageError, ShaftRoller,

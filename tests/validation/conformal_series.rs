@@ -2,7 +2,7 @@
 //! against independent results: Hertz at small load, the closed form of a pin in an infinite
 //! plate (Persson 1964; derived in docs/conformal.md §2), the zero-clearance angle; and its own
 //! convergence, admissibility and equilibrium. The tables of docs/conformal.md come from
-//! `cargo test --release --test conformal_series -- --nocapture --test-threads 1`.
+//! `cargo test --release --test validation conformal_series:: -- --nocapture --test-threads 1`.
 //!
 //! Scene of the product's cases: steel roller R1 = 40 mm on a rigid shaft r0 = 5 mm in the bore
 //! R2 = 50 mm of a ring whose rim R3 = 65 mm is fixed (1/R* = 1/R1 − 1/R2, R* = 200 mm).
