@@ -1,6 +1,7 @@
 //! A boundary mesh read for a body of the scene, with what the scene needs from its contact
 //! group: the x-range, the fitted profile radius and the contact grid of its own elements.
 
+use crate::bem::element::ElementGeometry;
 use crate::grid::{ContactGrid, ElementKind};
 use crate::mesh::BoundaryMesh;
 use std::path::PathBuf;
@@ -34,10 +35,22 @@ impl LoadedMesh {
             .flat_map(|e| e.nodes.iter().map(|&n| self.mesh.nodes[n]))
     }
 
-    /// Radius of the contact segment's profile [length]: the algebraic least-squares circle
-    /// (Kåsa fit: x² + y² + Dx + Ey + F = 0), exact for nodes on a circle; infinite when the
-    /// segment is straight (the fit's centre then runs away: R > 1e6 times the segment length).
+    /// Signed radius of the contact segment's profile [length]: the algebraic least-squares
+    /// circle (Kåsa fit: x² + y² + Dx + Ey + F = 0), exact for nodes on a circle; positive when
+    /// the circle's centre lies inside the body (a convex roller), negative when it lies outside
+    /// (a concave bore: the segment's outward normal points towards the centre); infinite when
+    /// the segment is straight (the fit's centre then runs away: |R| > 1e6 times the segment
+    /// length).
     pub fn contact_radius(&self) -> f64 {
+        match self.contact_circle() {
+            Some((centre, r)) => r * self.convexity(centre),
+            None => f64::INFINITY,
+        }
+    }
+
+    /// Centre and (unsigned) radius of the circle fitted to the contact nodes, None when the
+    /// segment is straight (see [`Self::contact_radius`]).
+    pub fn contact_circle(&self) -> Option<([f64; 2], f64)> {
         let pts: Vec<[f64; 2]> = self.contact_nodes().collect();
         // Normal equations of min Σ (D x + E y + F + x² + y²)², centred for conditioning.
         let n = pts.len() as f64;
@@ -55,17 +68,35 @@ impl LoadedMesh {
         }
         let [x0, x1] = self.contact_range();
         let span = (x1 - x0).max(f64::MIN_POSITIVE);
-        match a.lu().solve(&b) {
-            Some(s) => {
-                let r2 = 0.25 * (s[0] * s[0] + s[1] * s[1]) - s[2];
-                let r = r2.max(0.0).sqrt();
-                if r.is_finite() && r < 1e6 * span {
-                    r
-                } else {
-                    f64::INFINITY
-                }
-            }
-            None => f64::INFINITY,
+        let s = a.lu().solve(&b)?;
+        let r2 = 0.25 * (s[0] * s[0] + s[1] * s[1]) - s[2];
+        let r = r2.max(0.0).sqrt();
+        (r.is_finite() && r < 1e6 * span).then_some(([cx - 0.5 * s[0], cy - 0.5 * s[1]], r))
+    }
+
+    /// +1 if `centre` lies inside the body behind its contact segment (convex), −1 if on the
+    /// side its outward normal points to (concave), judged at the contact element nearest x = 0.
+    fn convexity(&self, centre: [f64; 2]) -> f64 {
+        let Some(e) = self
+            .mesh
+            .elements
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.group == self.contact_group)
+            .min_by(|(a, _), (b, _)| {
+                let x = |e: usize| ElementGeometry::from_mesh(&self.mesh, e).point(0.0)[0].abs();
+                x(*a).total_cmp(&x(*b))
+            })
+            .map(|(e, _)| e)
+        else {
+            return 1.0;
+        };
+        let g = ElementGeometry::from_mesh(&self.mesh, e);
+        let (p, n) = (g.point(0.0), g.normal(0.0));
+        if (centre[0] - p[0]) * n[0] + (centre[1] - p[1]) * n[1] > 0.0 {
+            -1.0
+        } else {
+            1.0
         }
     }
 

@@ -13,6 +13,7 @@ mod conformal_series;
 mod free_rolling_creepage;
 mod friction_limits;
 mod hertz_carter;
+mod internal_contact;
 mod methods;
 mod solver;
 mod true_geometry;
