@@ -186,12 +186,27 @@ impl BodySetup {
     ///
     /// A `bem` body is condensed to its own contact nodes; if those differ from the grid's, its
     /// flexibility is carried over by [`Transferred`].
+    /// A half-space body on a grid of mapped (curved) elements, which its closed-form element
+    /// integrals do not cover, is built on the straight grid between the same edges and carried
+    /// over by the same transfer.
     pub fn model(&self, grid: &ContactGrid, side: Side) -> Result<Box<dyn Body>, Error> {
         match self {
-            BodySetup::HalfSpace { material, radius } => Ok(Box::new(HalfSpace {
-                material: *material,
-                radius: *radius,
-            })),
+            BodySetup::HalfSpace { material, radius } => {
+                let body = HalfSpace {
+                    material: *material,
+                    radius: *radius,
+                };
+                if grid.is_straight() {
+                    return Ok(Box::new(body));
+                }
+                let t = Transferred {
+                    inner: Box::new(body),
+                    own_grid: grid.straightened(),
+                    side,
+                };
+                t.check(grid)?;
+                Ok(Box::new(t))
+            }
             BodySetup::Rigid { radius } => Ok(Box::new(Rigid { radius: *radius })),
             BodySetup::Bem(b) => b.model(grid, side),
         }

@@ -100,23 +100,56 @@ impl LoadedMesh {
         }
     }
 
-    /// The contact grid of the mesh's own contact elements: their end points in x, with
-    /// discontinuous quadratic interpolation (the BEM contact elements' field nodes).
+    /// The contact grid of the mesh's own contact elements: their end points in x and their
+    /// quadratic geometry (the mid node's x), with discontinuous quadratic interpolation, so its
+    /// nodes are the x of the BEM contact elements' field nodes however curved the arc
+    /// ([`ContactGrid::from_mapped_edges`]).
     pub fn contact_grid(&self) -> ContactGrid {
-        let mut edges: Vec<f64> = self
-            .mesh
-            .elements
-            .iter()
-            .filter(|e| e.group == self.contact_group)
-            .flat_map(|e| {
-                let (a, b) = e.ends();
-                [self.mesh.nodes[a][0], self.mesh.nodes[b][0]]
+        let tol = 1e-9 * self.mesh.size();
+        let mut pieces: Vec<[f64; 3]> = self
+            .contact_elements()
+            .map(|g| {
+                let [a, b, m] = g.nodes;
+                let (x0, x1) = if a[0] <= b[0] { (a[0], b[0]) } else { (b[0], a[0]) };
+                [x0, x1, m[0]]
             })
             .collect();
+        pieces.sort_by(|p, q| p[0].total_cmp(&q[0]));
+        let mut edges: Vec<f64> = pieces.iter().flat_map(|p| [p[0], p[1]]).collect();
         edges.sort_by(f64::total_cmp);
-        let tol = 1e-9 * self.mesh.size();
         edges.dedup_by(|a, b| (*a - *b).abs() <= tol);
-        ContactGrid::from_edges(ElementKind::DiscontinuousQuadratic, edges)
+        // Each grid element takes the mid point of the mesh element between its edges (the
+        // centre where the contact group has a gap).
+        let mids = edges
+            .windows(2)
+            .map(|w| {
+                pieces
+                    .iter()
+                    .find(|p| (p[0] - w[0]).abs() <= tol && (p[1] - w[1]).abs() <= tol)
+                    .map_or(0.5 * (w[0] + w[1]), |p| p[2])
+            })
+            .collect();
+        ContactGrid::from_mapped_edges(ElementKind::DiscontinuousQuadratic, edges, mids)
+    }
+
+    /// The geometry of the contact group's elements.
+    pub fn contact_elements(&self) -> impl Iterator<Item = ElementGeometry> + '_ {
+        self.mesh
+            .elements
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.group == self.contact_group)
+            .map(|(e, _)| ElementGeometry::from_mesh(&self.mesh, e))
+    }
+
+    /// The contact surface above x: its point's y and its slope dy/dx [length, -], from the
+    /// contact element whose x-range holds x (None beyond the contact group).
+    pub fn surface_at(&self, x: f64) -> Option<(f64, f64)> {
+        self.contact_elements().find_map(|g| {
+            let xi = element_parameter_at(&g, x)?;
+            let t = g.tangent(xi);
+            Some((g.point(xi)[1], t[1] / t[0]))
+        })
     }
 
     /// Total length of the elements of a group (polyline through end, mid, end nodes) [length].
@@ -148,4 +181,25 @@ impl LoadedMesh {
                 .fold(f64::INFINITY, f64::min),
         )
     }
+}
+
+/// The ξ ∈ [−1, 1] at which a quadratic element's x(ξ) equals x (None if x is outside its
+/// x-range): x(ξ) = x_m + ξ(x₁ − x₀)/2 + ξ²((x₀ + x₁)/2 − x_m).
+pub fn element_parameter_at(g: &ElementGeometry, x: f64) -> Option<f64> {
+    let [p0, p1, pm] = g.nodes;
+    let (c0, c1, c2) = (pm[0] - x, 0.5 * (p1[0] - p0[0]), 0.5 * (p0[0] + p1[0]) - pm[0]);
+    let roots: Vec<f64> = if c2.abs() < 1e-14 * c1.abs() {
+        vec![-c0 / c1]
+    } else {
+        let disc = c1 * c1 - 4.0 * c2 * c0;
+        if disc < 0.0 {
+            return None;
+        }
+        let s = disc.sqrt();
+        vec![(-c1 + s) / (2.0 * c2), (-c1 - s) / (2.0 * c2)]
+    };
+    roots
+        .into_iter()
+        .find(|r| r.abs() <= 1.0 + 1e-12)
+        .map(|r| r.clamp(-1.0, 1.0))
 }
