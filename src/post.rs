@@ -85,14 +85,21 @@ pub fn process(
     let friction_check = check_friction_law(&solution, scene.friction(), DEFAULT_THRESHOLD_FRACTION);
     let output = &scene.case.case.output;
     let boundary = if report.converged && output.vtk {
-        fields::boundary_fields(models, &problem.grid, &solution)?
+        fields::boundary_fields(models, &problem.grid, &problem.frame, &solution)?
     } else {
         [None, None]
     };
     let mut notices = scene.notices();
     let t_interior = Instant::now();
     let interior = match (&output.interior, report.converged) {
-        (Some(spec), true) => Some(fields::interior_field(&scene, spec, models, &problem.grid, &solution)?),
+        (Some(spec), true) => Some(fields::interior_field(
+            &scene,
+            spec,
+            models,
+            &problem.grid,
+            &problem.frame,
+            &solution,
+        )?),
         _ => None,
     };
     timings.interior_s = t_interior.elapsed().as_secs_f64();

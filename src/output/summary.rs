@@ -55,6 +55,13 @@ pub struct Summary {
     pub tangential_force: f64,
     /// Q/(μP) (null when μ = 0).
     pub load_ratio: Option<f64>,
+    /// The axes the tractions act along: `contact` (the interface's normal and tangent) or
+    /// `global` (x and y; always for half-space bodies).
+    pub traction_axes: crate::contact::TractionAxes,
+    /// The forces on A globally (x, y) and along the contact (normal, tangential)
+    /// [force/length]; with global axes the y force and the normal force are P, the x and
+    /// tangential force Q.
+    pub forces: crate::contact::ContactForces,
     /// δ0 [length] (half-space bodies: relative to the datum ℓ = 2R/e, see docs/theory.md).
     pub overlap: f64,
     /// ξ = (V_A − V_B)/V.
@@ -142,6 +149,12 @@ pub fn summary(s: &Solved) -> Summary {
         normal_force: sol.normal_force,
         tangential_force: sol.tangential_force,
         load_ratio: (mu > 0.0 && sol.normal_force > 0.0).then(|| sol.tangential_force / (mu * sol.normal_force)),
+        traction_axes: if pb.frame.is_global() {
+            crate::contact::TractionAxes::Global
+        } else {
+            crate::contact::TractionAxes::Contact
+        },
+        forces: sol.forces,
         overlap: sol.overlap,
         creep: sol.creep,
         contact: sol.contact_extent().map(|[x0, x1]| ContactExtent {

@@ -9,6 +9,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod conformal_bem;
 mod conformal_series;
 mod free_rolling_creepage;
 mod friction_limits;
