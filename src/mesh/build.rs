@@ -346,7 +346,14 @@ pub fn ring_with_bore(
         .powf(1.0 / (half as f64 - 1.0).max(1.0));
     let top = [0.0, s * 2.0 * r];
     b.arc_to(centre, top, half, turn, grading, "bore");
-    b.arc_to(centre, surface(-half_length), sizes.bore.max(2) - half, turn, 1.0 / grading, "bore");
+    b.arc_to(
+        centre,
+        surface(-half_length),
+        sizes.bore.max(2) - half,
+        turn,
+        1.0 / grading,
+        "bore",
+    );
     b.circle(centre, rim_radius, sizes.rim, "rim");
     b.finish()
 }

@@ -130,7 +130,11 @@ fn conformal_contact_at_a_over_r_0_2_matches_the_series() {
             "| bem | {n} | {a:.5} | {:+.2e} | {shape:.2e} | {same_angle:.2e} |",
             a / series.half_width - 1.0
         );
-        assert!((a / series.half_width - 1.0).abs() < 0.01, "{n}: arc {a} vs {}", series.half_width);
+        assert!(
+            (a / series.half_width - 1.0).abs() < 0.01,
+            "{n}: arc {a} vs {}",
+            series.half_width
+        );
         assert!(shape < 0.02, "{n}: pressure error {shape} of p_max");
     }
     let hs = solve_model(&case, SceneModel::HalfSpace, 61, 0.1).unwrap().solution;
@@ -177,7 +181,11 @@ fn roller_in_a_ring_bore_at_small_load_matches_hertz_and_carter() {
         assert!((p_max / p0 - 1.0).abs() < 0.01);
         assert!(rms < 0.02, "shear RMS {rms} μp0");
         if a_hertz < 0.1 {
-            assert!((s.creep / creep - 1.0).abs() < 0.02, "creep {} vs Carter {creep}", s.creep);
+            assert!(
+                (s.creep / creep - 1.0).abs() < 0.02,
+                "creep {} vs Carter {creep}",
+                s.creep
+            );
         }
     }
 }
@@ -197,7 +205,11 @@ fn the_creepage_of_internal_contact_carries_a_curvature_term_proportional_to_a()
         let case = bore_case(a, &extra);
         let carter = 0.2 * a / 200.0 * (1.0 - 0.5_f64.sqrt());
         let bem = bem_in_bore(&case, 41).creep / carter;
-        let hs = solve_model(&case, SceneModel::HalfSpace, 41, 0.1).unwrap().solution.creep / carter;
+        let hs = solve_model(&case, SceneModel::HalfSpace, 41, 0.1)
+            .unwrap()
+            .solution
+            .creep
+            / carter;
         let mut global = extra.to_vec();
         global.push("contact.traction_axes=global".into());
         let bem_global = bem_in_bore(&bore_case(a, &global), 41).creep / carter;
@@ -208,7 +220,10 @@ fn the_creepage_of_internal_contact_carries_a_curvature_term_proportional_to_a()
             hs - 1.0
         );
         per_a.push((bem - hs) / a);
-        assert!((bem_global - hs).abs() < 0.03, "global axes {bem_global} vs half-space {hs}");
+        assert!(
+            (bem_global - hs).abs() < 0.03,
+            "global axes {bem_global} vs half-space {hs}"
+        );
     }
     println!("curvature term per mm of a: {per_a:?}");
     for v in &per_a[1..] {
