@@ -17,13 +17,13 @@
 /// shafts (similar steel, μ = 0.1, Q/μP = 0.5, 41 contact elements). Below a/R ≈ 0.01 the
 /// values are the two discretizations' difference (~5e-4), not model error.
 pub const ROLLER_ERROR: [(f64, f64, f64); 7] = [
-    (2e-3, 5.342e-4, 7.050e-4),
-    (5e-3, 5.268e-4, 8.984e-4),
-    (1e-2, 5.006e-4, 1.798e-3),
-    (2e-2, 6.755e-4, 5.396e-3),
-    (5e-2, 2.438e-3, 3.057e-2),
-    (1e-1, 8.727e-3, 7.753e-2),
-    (2e-1, 3.376e-2, 2.597e-1),
+    (2e-3, 5.340e-4, 7.050e-4),
+    (5e-3, 5.259e-4, 8.985e-4),
+    (1e-2, 4.969e-4, 1.799e-3),
+    (2e-2, 7.241e-4, 5.397e-3),
+    (5e-2, 2.743e-3, 3.057e-2),
+    (1e-1, 9.951e-3, 7.751e-2),
+    (2e-1, 3.876e-2, 2.597e-1),
 ];
 
 /// (b/a, max |Δp|/p0) of the half-space model against a layer of thickness b bonded to a

@@ -423,7 +423,8 @@ fn fig4_true_geometry_keeps_the_regime_and_passes_the_friction_check() {
             .iter()
             .zip(&hs.solution.shear)
             .fold(0.0f64, |m, (a, b)| m.max((a / norm(&bem) - b / norm(&hs)).abs()));
-        println!("fig4, {axes} axes: max |q_true − q_half-space| = {dq:.4} μp0");
+        let psi = bem.scene.frame.normal_angle.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        println!("fig4, {axes} axes: max |q_true − q_half-space| = {dq:.4} μp0, interface angle up to {psi:.2e} rad");
         if axes == "global" {
             assert!(dq < 0.05, "{dq}");
         }

@@ -18,6 +18,9 @@ mod architecture;
 #[path = "../common/mod.rs"]
 mod common;
 #[allow(dead_code)]
+#[path = "../../examples/conformal_report.rs"]
+mod conformal_report;
+#[allow(dead_code)]
 #[path = "../../examples/hbem_report.rs"]
 mod hbem_report;
 mod markdown;
@@ -117,6 +120,30 @@ fn validation_free_rolling_table() {
 #[test]
 fn validation_variable_friction_table() {
     assert_same("validation.md", &validation_report::variable_friction());
+}
+
+/// docs/theory.md: what the traction axes change on every shipped case (the half-space cases
+/// not at all).
+#[test]
+fn traction_axes_table() {
+    let t = conformal_report::traction_axes_effect();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("theory.md"), printed, Rows::All, &[], (&[], 0.0));
+}
+
+/// docs/conformal.md §6: the roller-in-a-ring-bore cases, BEM and half-space.
+#[test]
+fn bore_table() {
+    let rows = conformal_report::bore_runs();
+    let t = conformal_report::bore_table(&rows);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("conformal.md"), printed, Rows::All, &[], (&[], 0.0));
 }
 
 /// docs/hbem.md: Carter with true rollers (the error table), Fig. 4's nodes (a selection of
