@@ -199,7 +199,7 @@ fn common_solve(name: &str) -> rollbem::app::Solved {
     hbem_report::common::solve(name, &[] as &[&str])
 }
 
-/// docs/choosing-a-model.md's two tables, and the constants of src/advice.rs that
+/// docs/choosing-a-model.md's three tables, and the constants of src/advice.rs that
 /// `rollbem check` interpolates: the report prints them to four figures, so the constants must
 /// be the measured values within half a unit of their fourth figure.
 #[test]
@@ -216,6 +216,19 @@ fn model_error_tables_and_advice_constants() {
         assert_eq!(r.a_over_r, a_over_r);
         assert_four_figures(p, r.pressure, "ROLLER_ERROR pressure");
         assert_four_figures(q, r.shear, "ROLLER_ERROR shear");
+    }
+    let internal = model_error_table::internal();
+    let t = model_error_table::internal_table(&internal);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("choosing-a-model.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_eq!(internal.len(), rollbem::advice::INTERNAL_ERROR.len());
+    for (r, &(a_over_r, p, q)) in internal.iter().zip(&rollbem::advice::INTERNAL_ERROR) {
+        assert_eq!(r.a_over_r, a_over_r);
+        assert_four_figures(p, r.pressure, "INTERNAL_ERROR pressure");
+        assert_four_figures(q, r.shear, "INTERNAL_ERROR shear");
     }
     let layers = model_error_table::layers();
     let t = model_error_table::layer_table(&layers);
