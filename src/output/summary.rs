@@ -62,6 +62,12 @@ pub struct Summary {
     /// [force/length]; with global axes the y force and the normal force are P, the x and
     /// tangential force Q.
     pub forces: crate::contact::ContactForces,
+    /// The contact's directions at the grid's nodes when the tractions act along the contact
+    /// (null along the global axes): `normal_angle` ψ [rad] of the interface's tangent from
+    /// +x, `arc_scale` [A, B] the interface length per body surface length, `rigid_slip` k
+    /// [-] (docs/theory.md, "Tractions along the contact"). Body b carries, per unit length of
+    /// its own surface, the global traction ±s_b(p sin(−ψ) + q cos ψ, p cos ψ + q sin ψ) (+ on A).
+    pub contact_frame: Option<crate::contact::ContactFrame>,
     /// δ0 [length] (half-space bodies: relative to the datum ℓ = 2R/e, see docs/theory.md).
     pub overlap: f64,
     /// ξ = (V_A − V_B)/V.
@@ -155,6 +161,7 @@ pub fn summary(s: &Solved) -> Summary {
             crate::contact::TractionAxes::Contact
         },
         forces: sol.forces,
+        contact_frame: (!pb.frame.is_global()).then(|| pb.frame.clone()),
         overlap: sol.overlap,
         creep: sol.creep,
         contact: sol.contact_extent().map(|[x0, x1]| ContactExtent {
