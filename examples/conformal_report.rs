@@ -10,6 +10,7 @@ pub mod common;
 
 use common::{root, shipped_cases, signed, solve, Table};
 use plotters::prelude::*;
+use rollbem::analytic::creepage::{free_rolling_creepage_in_a_bore, BoreRing, ShaftRoller};
 use rollbem::analytic::Carter;
 use rollbem::app::{self, Solved};
 use rollbem::post::ContactSolution;
@@ -171,6 +172,8 @@ pub fn bore_table(rows: &[BoreRow]) -> Table {
         "half-space a/a_H",
         "half-space p_max/p0",
         "half-space ξ/ξ_Carter",
+        "BEM ξ",
+        "ξ_Carter + ξ_free",
         "iterations",
     ]);
     for r in rows {
@@ -197,10 +200,29 @@ pub fn bore_table(rows: &[BoreRow]) -> Table {
             format!("{:.4}", half_width(h) / a),
             format!("{:.4}", max_of(&h.pressure) / p0),
             format!("{:.4}", h.creep / carter),
+            format!("{:.4e}", b.creep),
+            format!("{:.4e}", carter + bore_free_rolling(a)),
             r.bem.report.iterations.to_string(),
         ]);
     }
     t
+}
+
+/// The series' free-rolling creepage of the bore cases' roller (R1 = 40 on a shaft of 5) in
+/// their ring (bore 50, rim 65), steel, at the Hertz half-width a.
+fn bore_free_rolling(a: f64) -> f64 {
+    let steel = rollbem::material::Elastic::new(210_000.0, 0.3);
+    let roller = ShaftRoller {
+        radius: 40.0,
+        shaft_radius: 40.0 * BORE_SHAFT_RATIO,
+        material: steel,
+    };
+    let ring = BoreRing {
+        bore_radius: 50.0,
+        rim_radius: 65.0,
+        material: steel,
+    };
+    free_rolling_creepage_in_a_bore(&roller, &ring, a).expect("series").0
 }
 
 type Curve = (String, Vec<(f64, f64)>, RGBColor);
