@@ -132,6 +132,18 @@ fn parse_yaml(text: &str) -> Result<serde_norway::Value, String> {
 
 /// Loads, overrides and validates a case file.
 pub fn load(path: &Path, overrides: &[String]) -> Result<LoadedCase, CaseError> {
+    // Checked before opening: reading a FIFO would block for ever.
+    let problem = crate::limits::input_file_problem(path, crate::limits::MAX_CASE_BYTES);
+    let problem = problem.map_err(|source| CaseError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    if let Some(why) = problem {
+        return Err(CaseError::Read {
+            path: path.to_path_buf(),
+            source: std::io::Error::new(std::io::ErrorKind::InvalidInput, why),
+        });
+    }
     let text = std::fs::read_to_string(path).map_err(|source| CaseError::Read {
         path: path.to_path_buf(),
         source,

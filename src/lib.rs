@@ -31,6 +31,7 @@ pub mod contact;
 pub mod error;
 pub mod grid;
 pub mod interior;
+pub mod limits;
 pub mod material;
 pub mod mesh;
 pub mod output;

@@ -321,7 +321,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         }
         TangentialSpec::Creep(x) => {
             // ξ = (V_A − V_B)/V with V the mean speed: |ξ| = 2 means that one surface stands still.
-            if !(x.abs() < 2.0) {
+            if x.is_nan() || x.abs() >= 2.0 {
                 bad(
                     "load.tangential.creep".into(),
                     format!(
