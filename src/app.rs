@@ -21,6 +21,9 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+pub mod finite;
+pub mod preflight;
+
 /// Hertz-type estimates of a scene (also what `rollbem check` prints).
 #[derive(Debug, Clone, Serialize)]
 pub struct Estimates {
@@ -518,6 +521,7 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
 /// study builds them); `start` is when the run began, for the timings.
 pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Instant) -> Result<Solved, Error> {
     let estimates = estimates(case, bodies);
+    preflight::check(case, &estimates, bodies)?;
     let (condense_s, models, problem) = build_problem(case, &estimates, bodies)?;
     let mut timings = Timings {
         assembly_s: start.elapsed().as_secs_f64() - condense_s,
@@ -529,6 +533,8 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
     timings.solve_s = t_solve.elapsed().as_secs_f64();
     timings.total_s = start.elapsed().as_secs_f64();
     let solution = ContactSolution::from_state(&problem, &state);
+    finite::check(&case.path, "the solver's residual history", &newton.history)?;
+    finite::check(&case.path, "the contact solution", &solution)?;
     if newton.converged {
         check_grid_contains_contact(case, &solution)?;
     }
@@ -557,6 +563,7 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
         _ => None,
     };
     timings.interior_s = t_interior.elapsed().as_secs_f64();
+    finite::check_fields(&case.path, interior.as_ref(), &boundary)?;
     if let Some(f) = &interior {
         let [_, outside, boundary] = f.counts();
         if outside + boundary > 0 {
@@ -638,6 +645,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
     );
     summary.notices = s.notices.clone();
     summary.interior = s.interior.as_ref().map(crate::interior::InteriorField::summary);
+    finite::check(&case.path, "summary.json", &summary)?;
     output::write_run(
         &output_dir,
         &mut summary,
@@ -665,6 +673,7 @@ fn check_grid_contains_contact(case: &LoadedCase, sol: &ContactSolution) -> Resu
                 end,
                 x: sol.x[i],
                 extent: case.case.contact.grid.extent,
+                advice: preflight::grid_too_short_advice(case),
             });
         }
     }
@@ -692,6 +701,7 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
     let case = case::load(case_path, overrides)?;
     let bodies = prepare_bodies(&case)?;
     let est = estimates(&case, &bodies);
+    let memory = preflight::check(&case, &est, &bodies)?;
     let grid = contact_grid(&case, &est, &bodies);
     let c = &case.case;
     let mut t = format!("rollbem check {}: valid\n", case_path.display());
@@ -871,6 +881,14 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
         crate::advice::roller_error(est.half_width_over_radius)
     };
     line("model advice", crate::advice::advise(&error, tolerance));
+    line(
+        "memory estimate",
+        format!(
+            "{} (peak; {} available)",
+            crate::limits::human_bytes(memory.bytes()),
+            crate::limits::available_memory().map_or("unknown".into(), crate::limits::human_bytes)
+        ),
+    );
     Ok(t)
 }
 
