@@ -150,7 +150,7 @@ fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &[PreparedBody
     let ratio = a / r;
     match case.case.load.normal() {
         NormalSpec::Force(p) => {
-            if !(ratio < 1.0) {
+            if ratio.is_nan() || ratio >= 1.0 {
                 bad(
                     "load.normal.force",
                     format!(
@@ -163,7 +163,7 @@ fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &[PreparedBody
                         sig(ratio)
                     ),
                 );
-            } else if !(ratio >= MIN_HALF_WIDTH_OVER_RADIUS) {
+            } else if ratio < MIN_HALF_WIDTH_OVER_RADIUS {
                 bad(
                     "load.normal.force",
                     format!(
@@ -179,7 +179,7 @@ fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &[PreparedBody
             }
         }
         NormalSpec::Overlap(d) => {
-            if !(d < r) {
+            if d.is_nan() || d >= r {
                 bad(
                     "load.normal.overlap",
                     format!(
@@ -208,7 +208,7 @@ fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &[PreparedBody
                     sig(h)
                 ),
             );
-        } else if !(h < a) {
+        } else if a.is_nan() || h >= a {
             // With nodes farther apart than a, the whole contact falls between two nodes.
             bad(
                 key,
