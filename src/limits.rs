@@ -69,21 +69,22 @@ pub struct ProblemSizes {
 
 /// Peak memory per squared contact node [bytes]: about 31 dense m×m matrices of doubles live at
 /// once (the flexibilities of the pair and of each body, the slip operators, the half-space
-/// kernels while they are built, the Newton Jacobian and its LU factors). Measured 229–278 bytes
-/// for m = 300–1800 (see [`MemoryEstimate`]); the largest is taken.
+/// kernels while they are built, the Newton Jacobian and its LU factors). The peak RSS of
+/// half-space pairs at m = 300–1800 gives 230–260 bytes per m² (see [`MemoryEstimate`]).
 pub const BYTES_PER_CONTACT_NODE_SQUARED: f64 = 280.0;
 
 /// Peak memory per squared boundary unknown n = 2 × field nodes of the largest `bem` body
 /// [bytes]: the BEM matrices H and G, the rows they are gathered from, the system matrix and its
 /// LU factors of one body (bodies are built one after the other, and only their condensed
-/// flexibility is kept). Measured 44–57 bytes for n = 1000–4200.
-pub const BYTES_PER_BEM_UNKNOWN_SQUARED: f64 = 60.0;
+/// flexibility is kept). The peak RSS of rollers of 490–2090 nodes gives 40–57 bytes per n²,
+/// varying by 15 % from run to run at the largest size.
+pub const BYTES_PER_BEM_UNKNOWN_SQUARED: f64 = 64.0;
 
 /// Memory per interior point with VTK output [bytes]: the fields, the CSV rows and vtkio's
-/// XML document. Measured about 950 bytes.
-pub const BYTES_PER_INTERIOR_POINT_VTK: f64 = 1000.0;
+/// XML document. Measured 940–1060 bytes (grids of 300² and 600² points).
+pub const BYTES_PER_INTERIOR_POINT_VTK: f64 = 1200.0;
 
-/// Memory per interior point without VTK output [bytes]. Measured about 110 bytes.
+/// Memory per interior point without VTK output [bytes]. Measured 50–100 bytes.
 pub const BYTES_PER_INTERIOR_POINT: f64 = 130.0;
 
 /// Memory of the program itself, its small tables and thread stacks [bytes].
