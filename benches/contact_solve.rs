@@ -7,7 +7,7 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use rollbem::app;
 use rollbem::case;
-use rollbem::contact::newton;
+use rollbem::contact::{methods, Method, SolverSettings};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -27,8 +27,11 @@ fn contact_pipeline(c: &mut Criterion) {
         let bodies = app::prepare_bodies(&case).expect("bodies");
         let est = app::estimates(&case, &bodies);
         let (_, _, problem) = app::build_problem(&case, &est, &bodies).expect("problem");
-        let settings = app::newton_settings(&case);
-        let (_, report) = newton::solve(&problem, &settings);
+        let settings = SolverSettings {
+            method: Method::Newton,
+            ..app::solver_settings(&case)
+        };
+        let (_, report) = methods::solve(&problem, &settings);
         eprintln!(
             "carter2d {n} elements: {} Newton iterations, converged {}",
             report.iterations, report.converged
@@ -37,7 +40,7 @@ fn contact_pipeline(c: &mut Criterion) {
             b.iter(|| app::build_problem(&case, &est, &bodies))
         });
         group.bench_with_input(BenchmarkId::new("newton_solve", n), &n, |b, _| {
-            b.iter(|| newton::solve(&problem, &settings))
+            b.iter(|| methods::solve(&problem, &settings))
         });
     }
     group.finish();

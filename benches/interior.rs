@@ -11,9 +11,9 @@
 //! Run: `cargo bench --bench interior`. Method and machine: docs/performance.md.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use rollbem::bem::condense::BemBody;
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition};
-use rollbem::body::{BodyModel, Side};
+use rollbem::body::bem::BemBody;
+use rollbem::body::{BodyFields, ContactLoad, InteriorQuery, Side};
 use rollbem::grid::{ContactGrid, ElementKind};
 use rollbem::interior::{grid_points, InteriorOptions, InteriorSample};
 use rollbem::material::Elastic;
@@ -48,6 +48,11 @@ fn interior(c: &mut Criterion) {
         .collect();
     let q: Vec<f64> = p.iter().map(|v| 0.2 * v).collect();
     let options = InteriorOptions::default();
+    let load = ContactLoad {
+        grid: &grid,
+        pressure: &p,
+        shear: &q,
+    };
     eprintln!(
         "interior benchmark: {} boundary nodes, {} elements, {} threads",
         body.model.field_nodes().len(),
@@ -64,20 +69,19 @@ fn interior(c: &mut Criterion) {
         ("whole_body_100x100", [-39.6, 39.6, 100.0], [0.2, 39.6, 100.0]),
     ] {
         let points = grid_points(x, y);
-        let samples = body
-            .interior(&grid, Side::A, &p, &q, &points, &options)
-            .expect("interior");
+        let query = InteriorQuery {
+            side: Side::A,
+            load,
+            points: &points,
+            options,
+        };
+        let samples = body.interior(&query).expect("interior");
         let inside = samples
             .iter()
             .filter(|s| matches!(s, InteriorSample::Inside(_)))
             .count();
         eprintln!("{name}: {inside} of {} points evaluated", points.len());
-        group.bench_function(name, |b| {
-            b.iter(|| {
-                body.interior(&grid, Side::A, &p, &q, &points, &options)
-                    .expect("interior")
-            })
-        });
+        group.bench_function(name, |b| b.iter(|| body.interior(&query).expect("interior")));
     }
     group.finish();
 }

@@ -1,17 +1,17 @@
 //! The driver: case → body models → contact problem → solver → solution → outputs.
 
 use crate::analytic::{self, Carter};
-use crate::bem::condense::BemBody;
 use crate::bem::{BemModel, BemOptions, BoundaryCondition};
+use crate::body::bem::BemBody;
 use crate::body::half_space::HalfSpace;
 use crate::body::rigid::Rigid;
 use crate::body::transfer::Transferred;
-use crate::body::{BodyModel, BoundaryField, Side, WithCircularProfile};
+use crate::body::{Body, BoundaryField, ContactLoad, InteriorQuery, Side, WithCircularProfile};
 use crate::case::{self, BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase, NormalSpec, TangentialSpec};
-use crate::contact::methods::{self, SolverSettings};
-use crate::contact::newton::{NewtonReport, NewtonSettings};
-use crate::contact::solution::{slip_regime, ContactSolution};
+use crate::contact::methods;
+use crate::contact::solution::{slip_regime, ContactSolution, SlipRegime};
 use crate::contact::{ContactProblem, NormalControl, TangentialControl};
+use crate::contact::{NewtonSettings, SolveReport, SolverSettings};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::material::{self, Elastic};
@@ -260,7 +260,7 @@ pub fn body_model(
     prepared: &PreparedBody,
     grid: &ContactGrid,
     side: Side,
-) -> Result<Box<dyn BodyModel>, Error> {
+) -> Result<Box<dyn Body>, Error> {
     match spec {
         BodySpec::HalfSpace { .. } => Ok(Box::new(HalfSpace {
             material: prepared.material.expect("half-space bodies have a material"),
@@ -285,7 +285,7 @@ pub fn body_model(
             let model = BemModel::new(lm.mesh.clone(), material, conditions, BemOptions::default())?;
             let own = lm.contact_grid();
             let body = BemBody::new(model, contact, &own, side)?;
-            let on_grid: Box<dyn BodyModel> = if own.coincides_with(grid) {
+            let on_grid: Box<dyn Body> = if own.coincides_with(grid) {
                 Box::new(body)
             } else {
                 let t = Transferred {
@@ -411,11 +411,13 @@ pub fn newton_settings(case: &LoadedCase) -> NewtonSettings {
     }
 }
 
-/// The solver settings of a case: its method and the Newton settings it shares.
+/// The solver settings of a case: its method, the Newton settings it shares, and the
+/// Gauss–Seidel relaxation ω, which `solver.penalty` sets for `gauss_seidel`.
 pub fn solver_settings(case: &LoadedCase) -> SolverSettings {
     SolverSettings {
         method: case.case.solver.method,
         newton: newton_settings(case),
+        relaxation: case.case.solver.penalty.scale(),
     }
 }
 
@@ -443,8 +445,8 @@ pub fn build_problem(
     let condense_s = a.stage_seconds().1 + b.stage_seconds().1;
     let problem = ContactProblem::assemble(
         grid,
-        a.as_ref(),
-        b.as_ref(),
+        a.model(),
+        b.model(),
         c.contact.slip_derivative,
         c.contact.friction,
         c.contact.rolling_direction,
@@ -455,7 +457,7 @@ pub fn build_problem(
 }
 
 /// The built body models of A and B.
-pub type BodyModels = [Box<dyn BodyModel>; 2];
+pub type BodyModels = [Box<dyn Body>; 2];
 
 /// Wall-clock time of each stage [s].
 #[derive(Debug, Clone, Copy, Default, Serialize)]
@@ -482,7 +484,7 @@ pub struct RunReport {
     /// The assembled problem.
     pub problem: ContactProblem,
     /// Solver report.
-    pub newton: NewtonReport,
+    pub report: SolveReport,
     /// Where the outputs were written.
     pub output_dir: PathBuf,
 }
@@ -497,11 +499,11 @@ pub struct Solved {
     /// The solution (for a non-converged run: the last iterate).
     pub solution: ContactSolution,
     /// Solver report.
-    pub newton: NewtonReport,
+    pub report: SolveReport,
     /// Stage timings (total excludes output).
     pub timings: Timings,
     /// Slip regime 1–4 (paper §5.2), 0 for none.
-    pub regime: u8,
+    pub regime: SlipRegime,
     /// Whole-boundary fields of A and B (bem bodies, when VTK output is on).
     pub boundary: [Option<BoundaryField>; 2],
     /// Notices for the user (e.g. mesh loops turned round).
@@ -529,24 +531,27 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
         ..Timings::default()
     };
     let t_solve = Instant::now();
-    let (state, newton) = methods::solve(&problem, &solver_settings(case));
+    let (state, report) = methods::solve(&problem, &solver_settings(case));
     timings.solve_s = t_solve.elapsed().as_secs_f64();
     timings.total_s = start.elapsed().as_secs_f64();
     let solution = ContactSolution::from_state(&problem, &state);
-    finite::check(&case.path, "the solver's residual history", &newton.history)?;
+    finite::check(&case.path, "the solver's residual history", &report.history)?;
     finite::check(&case.path, "the contact solution", &solution)?;
-    if newton.converged {
+    if report.converged {
         check_grid_contains_contact(case, &solution)?;
     }
     let leading = -case.case.contact.rolling_direction.flow_sign();
     let regime = slip_regime(&solution, leading, 1);
-    let boundary = if newton.converged && case.case.output.vtk {
-        let field = |m: &dyn BodyModel| {
-            m.boundary_field(&problem.grid, &solution.pressure, &solution.shear)
+    let boundary = if report.converged && case.case.output.vtk {
+        let load = ContactLoad {
+            grid: &problem.grid,
+            pressure: &solution.pressure,
+            shear: &solution.shear,
+        };
+        let field = |m: &dyn Body| {
+            m.boundary_field(&load)
                 .transpose()
-                .map_err(|what| Error::Unsupported {
-                    what: format!("the boundary solution of a bem body for output failed: {what}"),
-                })
+                .map_err(|e| Error::BoundaryField(Box::new(e)))
         };
         [field(models[0].as_ref())?, field(models[1].as_ref())?]
     } else {
@@ -558,7 +563,7 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
         .flat_map(|m| m.notices.clone())
         .collect();
     let t_interior = Instant::now();
-    let interior = match (&case.case.output.interior, newton.converged) {
+    let interior = match (&case.case.output.interior, report.converged) {
         (Some(spec), true) => Some(interior_field(case, spec, &models, &problem, &solution)?),
         _ => None,
     };
@@ -584,7 +589,7 @@ pub fn solve_prepared(case: &LoadedCase, bodies: &[PreparedBody; 2], start: Inst
         estimates,
         problem,
         solution,
-        newton,
+        report,
         timings,
         regime,
     })
@@ -602,20 +607,21 @@ fn interior_field(
     let (k, side) = if spec.body == "B" { (1, Side::B) } else { (0, Side::A) };
     let model = models[k].as_ref();
     let points = crate::interior::grid_points(spec.x, spec.y);
-    let samples = model
-        .interior(
-            &problem.grid,
-            side,
-            &solution.pressure,
-            &solution.shear,
-            &points,
-            &crate::interior::InteriorOptions::default(),
-        )
-        .map_err(|source| Error::Interior {
-            case: case.path.clone(),
-            body: spec.body.clone(),
-            source: Box::new(source),
-        })?;
+    let query = InteriorQuery {
+        side,
+        load: ContactLoad {
+            grid: &problem.grid,
+            pressure: &solution.pressure,
+            shear: &solution.shear,
+        },
+        points: &points,
+        options: crate::interior::InteriorOptions::default(),
+    };
+    let samples = model.interior(&query).map_err(|source| Error::Interior {
+        case: case.path.clone(),
+        body: spec.body.clone(),
+        source: Box::new(source),
+    })?;
     let shape = [spec.x[2] as usize, spec.y[2] as usize];
     Ok(crate::interior::InteriorField::from_samples(
         &spec.body,
@@ -633,13 +639,19 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
     let start = Instant::now();
     let case = case::load(case_path, overrides)?;
     let output_dir = out.map(Path::to_path_buf).unwrap_or_else(|| case.output_dir());
+    // Lock and check the output folder before solving: a foreign or busy folder fails at once.
+    let _claim = output::folder::Claim::acquire(
+        &output_dir,
+        output::folder::Kind::Run,
+        output::folder::Access::Exclusive,
+    )?;
     let s = solve(&case)?;
     let mut summary = output::summary(
         &case,
         &s.estimates,
         &s.problem,
         &s.solution,
-        &s.newton,
+        &s.report,
         s.regime,
         s.timings,
     );
@@ -659,7 +671,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         summary,
         solution: s.solution,
         problem: s.problem,
-        newton: s.newton,
+        report: s.report,
         output_dir,
     })
 }

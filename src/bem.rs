@@ -21,8 +21,9 @@
 //! * [`hypersingular`] — displacement gradient at boundary points (HBEM, paper Eq. 79) from the
 //!   solved boundary values;
 //! * [`assemble`] — H and G (parallel over collocation points), boundary conditions, solve;
-//! * [`condense`](mod@condense) — flexibility at the contact nodes and the
-//!   [`crate::body::BodyModel`] of a BEM body;
+//! * [`condense`](mod@condense) — flexibility at the contact nodes (global axes), the HBEM
+//!   surface strain there, and the boundary solution under given contact tractions (the body
+//!   model built on it is `crate::body::bem`);
 //! * [`somigliana`] — interior displacement and stress from the boundary solution (kernels
 //!   U*, T*, D, S).
 //!
@@ -53,7 +54,7 @@ pub mod kernel;
 pub mod somigliana;
 
 pub use assemble::{BemModel, BemOptions, BemSolution, Pin};
-pub use condense::{condense, BemBody, ContactFlexibility};
+pub use condense::{condense, ContactFlexibility};
 pub use discretise::{Discretisation, FieldNode};
 
 use crate::mesh::MeshError;
@@ -61,7 +62,7 @@ use std::sync::Arc;
 
 /// A vector field on the boundary, evaluated at a field node from its position [length] and its
 /// unit outward normal; returns a displacement [length] or a traction [stress] in global axes.
-pub type BoundaryField = Arc<dyn Fn([f64; 2], [f64; 2]) -> [f64; 2] + Send + Sync>;
+pub type BoundaryFunction = Arc<dyn Fn([f64; 2], [f64; 2]) -> [f64; 2] + Send + Sync>;
 
 /// What is prescribed on one component of the boundary data (global axes).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -89,9 +90,9 @@ pub enum BoundaryCondition {
     /// `[Displacement(0.0), Traction(0.0)]`.
     Components([Component; 2]),
     /// Displacement given as a function of (position, outward normal).
-    DisplacementField(BoundaryField),
+    DisplacementField(BoundaryFunction),
     /// Traction given as a function of (position, outward normal).
-    TractionField(BoundaryField),
+    TractionField(BoundaryFunction),
     /// The contact surface: discontinuous quadratic elements (González & Abascal §5) loaded by
     /// the contact tractions, which are unknown to the body. A plain [`BemModel::solve`] takes
     /// them as zero; [`condense()`] takes them as the unit loads of the flexibility.

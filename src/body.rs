@@ -1,10 +1,21 @@
-//! Body models: what one body offers the contact problem.
+//! Body models: what one body offers the contact problem, and what it can show afterwards.
 //!
-//! A body model gives exactly one thing to the contact problem: its [`Flexibility`] at the
-//! contact grid, plus its undeformed profile and (where it has one) an operator for the surface
-//! strain used to re-check the slip. The contact solver never knows which model it talks to.
-//! Post-processing asks the model for what it can show under the solved tractions: its
-//! boundary ([`BodyModel::boundary_field`]) and its interior fields ([`BodyModel::interior`]).
+//! A body model gives exactly one thing to the contact problem ([`BodyModel`]): its
+//! [`Flexibility`] at the contact grid, plus its undeformed profile and (where it has one) an
+//! operator for the surface strain used to re-check the slip. The contact solver never knows
+//! which model it talks to. Post-processing asks the model, through [`BodyFields`], for what it
+//! can show under the solved tractions ([`ContactLoad`]): its boundary
+//! ([`BodyFields::boundary_field`]) and its interior fields ([`BodyFields::interior`]). A run
+//! holds each body as a [`Body`], which is both.
+//!
+//! | model | file | flexibility | fields |
+//! |---|---|---|---|
+//! | `half_space` | [`half_space`] | closed-form half-plane integrals | Flamant superposition ([`flamant`]) |
+//! | `bem` | [`bem`](mod@bem) | condensed BEM ([`crate::bem`]) | boundary solution, Somigliana |
+//! | `rigid` | [`rigid`] | zero | none |
+//!
+//! plus two wrappers: [`transfer::Transferred`] (a body known on its own contact nodes, seen on
+//! the common grid) and [`WithCircularProfile`] (the profile replaced by a circle).
 //!
 //! # Pair convention
 //! All quantities are written so that the two bodies' contributions simply add:
@@ -15,12 +26,15 @@
 //! * `w` is the body's share of the relative tangential displacement w = u_xA − u_xB, i.e.
 //!   w = u_xA for body A and w = −u_xB for body B.
 
+pub mod bem;
+pub mod flamant;
 pub mod half_space;
 pub mod rigid;
 pub mod transfer;
 
 use crate::grid::ContactGrid;
-use crate::interior::{InteriorError, InteriorOptions, InteriorSample};
+use crate::interior::{InteriorOptions, InteriorSample};
+use crate::linalg::mat_vec2;
 use faer::Mat;
 use serde::Serialize;
 
@@ -70,6 +84,16 @@ impl Flexibility {
             wq: Mat::zeros(m, m),
         }
     }
+
+    /// Normal displacement into the body h = H_p p + H_q q at the nodes [length].
+    pub fn normal(&self, p: &[f64], q: &[f64]) -> Vec<f64> {
+        mat_vec2(&self.hp, p, &self.hq, q)
+    }
+
+    /// Tangential share w = W_p p + W_q q at the nodes [length].
+    pub fn tangential(&self, p: &[f64], q: &[f64]) -> Vec<f64> {
+        mat_vec2(&self.wp, p, &self.wq, q)
+    }
 }
 
 /// Operator giving the tangential surface strain share ∂w/∂x at the nodes from nodal (p, q),
@@ -104,32 +128,84 @@ pub trait BodyModel {
     fn stage_seconds(&self) -> (f64, f64) {
         (0.0, 0.0)
     }
+}
 
-    /// The body's whole boundary under the nodal contact tractions (p, q) on `grid` (pair
-    /// convention), for output; None for models without a boundary (half-space, rigid).
-    fn boundary_field(&self, _grid: &ContactGrid, _p: &[f64], _q: &[f64]) -> Option<Result<BoundaryField, String>> {
+/// The nodal contact tractions on a grid, in the pair convention: the load under which
+/// post-processing asks a body for its fields.
+#[derive(Debug, Clone, Copy)]
+pub struct ContactLoad<'a> {
+    /// The grid whose shape functions interpolate the nodal values.
+    pub grid: &'a ContactGrid,
+    /// Nodal pressure p ≥ 0 [stress], on both bodies.
+    pub pressure: &'a [f64],
+    /// Nodal shear q [stress] that B exerts on A, +x (B receives −q).
+    pub shear: &'a [f64],
+}
+
+/// What post-processing asks a body for inside it: the fields at `points` (contact frame: y > 0
+/// inside A, y < 0 inside B) of the body placed on `side`, under `load`.
+#[derive(Debug, Clone, Copy)]
+pub struct InteriorQuery<'a> {
+    /// Which body of the pair.
+    pub side: Side,
+    /// The contact tractions.
+    pub load: ContactLoad<'a>,
+    /// The points [length], contact frame.
+    pub points: &'a [[f64; 2]],
+    /// Accuracy controls (the boundary layer left out).
+    pub options: InteriorOptions,
+}
+
+/// One [`InteriorSample`] per point of an [`InteriorQuery`], or why the model cannot give them.
+pub type InteriorResult = Result<Vec<InteriorSample>, FieldError>;
+
+/// What a body model can show under a solved [`ContactLoad`] (post-processing; the solver does
+/// not use it).
+pub trait BodyFields {
+    /// The body's whole boundary under the load, for output; None for models without a
+    /// boundary (half-space, rigid).
+    fn boundary_field(&self, _load: &ContactLoad) -> Option<Result<BoundaryField, FieldError>> {
         None
     }
 
-    /// Displacement and stress at `points` (contact frame: y > 0 inside A, y < 0 inside B)
-    /// of this body placed on `side`, under the nodal contact tractions (p, q) on `grid` (pair
-    /// convention), for post-processing. One [`InteriorSample`] per point: the fields in the
-    /// contact frame, or why the point was not evaluated (outside the body, or within the
-    /// boundary layer of `options`). Models without an interior field (rigid) return
-    /// [`InteriorError::NoInteriorField`].
-    fn interior(
-        &self,
-        _grid: &ContactGrid,
-        _side: Side,
-        _p: &[f64],
-        _q: &[f64],
-        _points: &[[f64; 2]],
-        _options: &InteriorOptions,
-    ) -> Result<Vec<InteriorSample>, InteriorError> {
-        Err(InteriorError::NoInteriorField {
-            model: self.model_name(),
-        })
+    /// Displacement and stress at the points of `query`. One [`InteriorSample`] per point: the
+    /// fields in the contact frame, or why the point was not evaluated (outside the body, or
+    /// within the boundary layer of the query's options). Models without an interior field
+    /// (rigid) return [`FieldError::NoInteriorField`].
+    fn interior(&self, query: &InteriorQuery) -> InteriorResult;
+}
+
+/// A body of a run: a [`BodyModel`] for the solver and its [`BodyFields`] for post-processing.
+/// Implemented for every type that is both.
+pub trait Body: BodyModel + BodyFields {
+    /// The body as the contact problem sees it.
+    fn model(&self) -> &dyn BodyModel;
+    /// The body as post-processing sees it.
+    fn fields(&self) -> &dyn BodyFields;
+}
+
+impl<T: BodyModel + BodyFields> Body for T {
+    fn model(&self) -> &dyn BodyModel {
+        self
     }
+
+    fn fields(&self) -> &dyn BodyFields {
+        self
+    }
+}
+
+/// Why a body model cannot give its fields.
+#[derive(Debug, thiserror::Error)]
+pub enum FieldError {
+    /// The model has no interior (a rigid body).
+    #[error("the {model} model has no interior field (it does not deform); ask for the other body")]
+    NoInteriorField {
+        /// The model's name.
+        model: &'static str,
+    },
+    /// The BEM body could not be evaluated.
+    #[error(transparent)]
+    Bem(#[from] crate::bem::BemError),
 }
 
 /// A body's boundary, element by element, for VTK output (global axes of the mesh, which are
@@ -166,8 +242,8 @@ pub fn circle_profile(radius: f64, x: f64) -> f64 {
 /// BEM block standing in for a half-space whose gap is that of the real cylinders (paper §2,
 /// Fig. 2: "the initial normal separation … calculated assuming the real cylinder's geometry").
 pub struct WithCircularProfile {
-    /// The model giving the flexibility.
-    pub inner: Box<dyn BodyModel>,
+    /// The model giving the flexibility and the fields.
+    pub inner: Box<dyn Body>,
     /// Profile radius [length].
     pub radius: f64,
 }
@@ -192,20 +268,14 @@ impl BodyModel for WithCircularProfile {
     fn stage_seconds(&self) -> (f64, f64) {
         self.inner.stage_seconds()
     }
+}
 
-    fn boundary_field(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Option<Result<BoundaryField, String>> {
-        self.inner.boundary_field(grid, p, q)
+impl BodyFields for WithCircularProfile {
+    fn boundary_field(&self, load: &ContactLoad) -> Option<Result<BoundaryField, FieldError>> {
+        self.inner.boundary_field(load)
     }
 
-    fn interior(
-        &self,
-        grid: &ContactGrid,
-        side: Side,
-        p: &[f64],
-        q: &[f64],
-        points: &[[f64; 2]],
-        options: &InteriorOptions,
-    ) -> Result<Vec<InteriorSample>, InteriorError> {
-        self.inner.interior(grid, side, p, q, points, options)
+    fn interior(&self, query: &InteriorQuery) -> InteriorResult {
+        self.inner.interior(query)
     }
 }

@@ -19,19 +19,24 @@
 //! min(0, p_n + r T_n) becomes −max(0, p − r g).
 
 mod creep_secant;
+pub mod direction;
 pub mod friction_check;
 pub mod gauss_seidel;
 pub mod methods;
 pub mod newton;
 pub mod norm_tang;
+pub mod report;
 pub mod residual;
+pub mod restart;
 pub mod slip_operator;
 pub mod solution;
 
 use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;
+use crate::linalg::mat_vec2;
 use faer::Mat;
-pub use methods::{Method, SolveReport, SolverSettings};
+pub use report::{GaussSeidelSettings, IterationRecord, Method, NewtonSettings, SolveReport, SolverSettings};
+pub use residual::{Formulation, State};
 use serde::{Deserialize, Serialize};
 pub use slip_operator::{SlipDerivative, SlipOperator};
 
@@ -242,27 +247,4 @@ impl ContactProblem {
             tangential_b: mat_vec2(&b.wp, p, &b.wq, q).into_iter().map(|v| -v).collect(),
         }
     }
-}
-
-/// y = A x + B z for square dense matrices and slices.
-pub fn mat_vec2(a: &Mat<f64>, x: &[f64], b: &Mat<f64>, z: &[f64]) -> Vec<f64> {
-    let m = a.nrows();
-    let mut y = vec![0.0; m];
-    // Column-major storage: accumulate column by column.
-    for j in 0..a.ncols() {
-        let (xj, zj) = (x[j], z[j]);
-        if xj != 0.0 {
-            let col = a.col(j);
-            for (i, yi) in y.iter_mut().enumerate() {
-                *yi += col[i] * xj;
-            }
-        }
-        if zj != 0.0 {
-            let col = b.col(j);
-            for (i, yi) in y.iter_mut().enumerate() {
-                *yi += col[i] * zj;
-            }
-        }
-    }
-    y
 }

@@ -38,17 +38,14 @@ pub enum Error {
         body: String,
         /// Why (boxed: a BEM error is large, and errors travel by value).
         #[source]
-        source: Box<crate::interior::InteriorError>,
+        source: Box<crate::body::FieldError>,
     },
     /// A body's contact segment does not cover the contact grid.
     #[error(transparent)]
     Transfer(#[from] crate::body::transfer::TransferError),
-    /// A feature the case asks for is not available in this version.
-    #[error("not available: {what}")]
-    Unsupported {
-        /// What and what to do instead.
-        what: String,
-    },
+    /// The boundary solution of a body could not be evaluated for the VTK output.
+    #[error("the boundary solution of a bem body for output failed: {0}")]
+    BoundaryField(#[source] Box<crate::body::FieldError>),
     /// The solved contact touches the end of the grid, so the grid does not contain it.
     #[error("{case}: the contact reaches the {end} end of the grid (x = {x:.6}): the grid is too short. {advice}")]
     GridTooShort {
@@ -93,6 +90,10 @@ pub enum Error {
         /// What is wrong and what to do.
         message: String,
     },
+    /// The output folder cannot be written (it holds files rollbem did not write, another
+    /// process writes it, its path names no folder).
+    #[error(transparent)]
+    Folder(#[from] crate::output::folder::FolderError),
     /// Writing results failed.
     #[error("cannot write results to {path}: {message}")]
     Output {
@@ -109,10 +110,17 @@ impl Error {
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::NotFinite { .. } => EXIT_NOT_CONVERGED,
-            _ => 1,
+            _ => EXIT_BAD_INPUT,
         }
     }
 }
 
+/// Exit code of bad input or bad usage (a message says what to change; nothing written).
+pub const EXIT_BAD_INPUT: i32 = 1;
+
 /// Exit code of a run that finished but did not converge (diagnostics written).
 pub const EXIT_NOT_CONVERGED: i32 = 2;
+
+/// Exit code of an internal error: a bug (a panic) caught before it could pass for a result;
+/// nothing is written.
+pub const EXIT_INTERNAL_ERROR: i32 = 3;

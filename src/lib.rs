@@ -32,6 +32,7 @@ pub mod error;
 pub mod grid;
 pub mod interior;
 pub mod limits;
+pub mod linalg;
 pub mod material;
 pub mod mesh;
 pub mod output;

@@ -1,20 +1,22 @@
 //! Results on disk (DESIGN §5): summary.json, contact.csv, contact.svg, and the terminal table.
 //!
 //! Everything is written to a temporary sibling folder and renamed onto the output folder only
-//! when complete, so a failed run never leaves a half-written result.
+//! when complete, so a failed run never leaves a half-written result; an output folder that
+//! holds anything rollbem did not write is refused ([`folder`]).
 
+pub mod folder;
 pub mod svg;
 pub mod vtk;
 
 use crate::app::{Estimates, Timings};
 use crate::case::LoadedCase;
 use crate::contact::friction_check::{check_friction_law, FrictionCheck, DEFAULT_THRESHOLD_FRACTION};
-use crate::contact::newton::{IterationRecord, NewtonReport};
-use crate::contact::solution::{ContactSolution, NodeState, Zone};
+use crate::contact::solution::{ContactSolution, NodeState, SlipDirection, SlipRegime, Zone};
 use crate::contact::ContactProblem;
+use crate::contact::{IterationRecord, SolveReport};
 use crate::error::Error;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 /// Contact extent in summary.json.
@@ -77,11 +79,11 @@ pub struct Summary {
     /// Slip zones [[x0, x1], …].
     pub slip_zones: Vec<[f64; 2]>,
     /// Sign of the slip in each slip zone, in the order of `slip_zones`.
-    pub slip_directions: Vec<i8>,
+    pub slip_directions: Vec<SlipDirection>,
     /// All zones in increasing x, with node counts.
     pub zones: Vec<Zone>,
     /// Slip regime 1–4 of paper §5.2 (0: none of them, e.g. full stick).
-    pub slip_regime: u8,
+    pub slip_regime: SlipRegime,
     /// Peak pressure [stress].
     pub max_pressure: f64,
     /// Stage timings [s].
@@ -126,7 +128,7 @@ pub struct SolverSummary {
     /// Solution method used.
     pub method: crate::contact::Method,
     /// Formulation used.
-    pub formulation: crate::contact::newton::Formulation,
+    pub formulation: crate::contact::Formulation,
     /// Normal penalty r_n [stress/length].
     pub penalty_normal: f64,
     /// Tangential penalty r_t [stress].
@@ -145,8 +147,8 @@ pub fn summary(
     est: &Estimates,
     pb: &ContactProblem,
     sol: &ContactSolution,
-    newton: &NewtonReport,
-    regime: u8,
+    report: &SolveReport,
+    regime: SlipRegime,
     timings: Timings,
 ) -> Summary {
     let mu = case.case.contact.friction;
@@ -157,9 +159,9 @@ pub fn summary(
     };
     Summary {
         title: case.case.title.clone(),
-        converged: newton.converged,
-        iterations: newton.iterations,
-        residual: newton.residual,
+        converged: report.converged,
+        iterations: report.iterations,
+        residual: report.residual,
         normal_force: sol.normal_force,
         tangential_force: sol.tangential_force,
         load_ratio: (mu > 0.0 && sol.normal_force > 0.0).then(|| sol.tangential_force / (mu * sol.normal_force)),
@@ -193,13 +195,13 @@ pub fn summary(
             slip_derivative: pb.slip_operator.scheme,
         },
         solver: SolverSummary {
-            method: newton.method,
+            method: report.method,
             formulation: case.case.solver.formulation,
-            penalty_normal: newton.penalty_normal,
-            penalty_tangential: newton.penalty_tangential,
-            traction_scale: newton.traction_scale,
-            history: newton.history.clone(),
-            fallbacks: newton.fallbacks.clone(),
+            penalty_normal: report.penalty_normal,
+            penalty_tangential: report.penalty_tangential,
+            traction_scale: report.traction_scale,
+            history: report.history.clone(),
+            fallbacks: report.fallbacks.clone(),
         },
         hbem_check: check_friction_law(sol, mu, DEFAULT_THRESHOLD_FRACTION),
         notices: Vec::new(),
@@ -315,7 +317,7 @@ pub fn write_run(
     interior: Option<&crate::interior::InteriorField>,
     start: Instant,
 ) -> Result<(), Error> {
-    write_atomically(dir, |tmp| {
+    write_atomically(dir, folder::Kind::Run, |tmp| {
         if summary.converged {
             write_csv(&tmp.join("contact.csv"), sol, pb)?;
             if let Some(f) = interior {
@@ -365,35 +367,15 @@ pub fn write_run(
     })
 }
 
-/// Creates a temporary sibling of `dir`, lets `write` fill it, then renames it onto `dir`
-/// (replacing an older result); on failure the temporary folder is removed and `dir` is left
-/// as it was (DESIGN §5: nothing half-written).
-pub fn write_atomically(dir: &Path, write: impl FnOnce(&Path) -> Result<(), Error>) -> Result<(), Error> {
-    let err = |path: &Path, e: &dyn std::fmt::Display| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
-    let name = dir
-        .file_name()
-        .map_or("out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp: PathBuf = dir.with_file_name(format!(".{name}.partial-{}", std::process::id()));
-    if let Some(parent) = tmp.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent).map_err(|e| err(parent, &e))?;
-    }
-    if tmp.exists() {
-        std::fs::remove_dir_all(&tmp).map_err(|e| err(&tmp, &e))?;
-    }
-    std::fs::create_dir(&tmp).map_err(|e| err(&tmp, &e))?;
-    let result = write(&tmp).and_then(|()| {
-        if dir.exists() {
-            std::fs::remove_dir_all(dir).map_err(|e| err(dir, &e))?;
-        }
-        std::fs::rename(&tmp, dir).map_err(|e| err(dir, &e))
-    });
-    if result.is_err() {
-        let _ = std::fs::remove_dir_all(&tmp);
-    }
-    result
+/// Writes a result of `kind` atomically into `dir` through a temporary sibling folder, replacing
+/// an earlier rollbem result of the same kind and refusing a folder that holds anything else
+/// (see [`folder`]: the manifest, the lock, the rules). On failure `dir` is left as it was.
+pub fn write_atomically(
+    dir: &Path,
+    kind: folder::Kind,
+    write: impl FnOnce(&Path) -> Result<(), Error>,
+) -> Result<(), Error> {
+    folder::write_atomically(dir, kind, write)
 }
 
 /// The terminal summary table of a run.
@@ -452,7 +434,7 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
         format!(
             "{}  directions {:?}  regime {}",
             zones(&s.slip_zones),
-            s.slip_directions,
+            s.slip_directions.iter().map(|d| d.sign()).collect::<Vec<_>>(),
             s.slip_regime
         ),
     );

@@ -14,7 +14,8 @@
 //! a discretisation error of the BEM under a single discontinuous shape-function load), and
 //! under a smooth Hertz-like load 8e-5 (nn, tt) and 0.25–0.7 % (coupling blocks).
 
-use rollbem::bem::{BemBody, BemModel, BemOptions, BoundaryCondition};
+use rollbem::bem::{BemModel, BemOptions, BoundaryCondition};
+use rollbem::body::bem::BemBody;
 use rollbem::body::half_space::HalfSpace;
 use rollbem::body::{BodyModel, Flexibility, Side};
 use rollbem::grid::{ContactGrid, ElementKind};

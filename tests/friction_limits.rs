@@ -18,7 +18,7 @@ fn free_rolling_friction_limits_converge_in_few_newton_steps() {
                 "free_rolling_al_steel",
                 &[&format!("contact.friction={mu}"), &format!("contact.grid.elements={n}")],
             );
-            let r = &s.newton;
+            let r = &s.report;
             assert!(
                 r.fallbacks.iter().all(|f| f == "creep iteration"),
                 "μ = {mu}, {n} elements: fallbacks {:?}",
@@ -43,7 +43,7 @@ fn creep_iteration_answer_is_the_solution() {
         &["contact.friction=1e-4", "contact.grid.elements=81"],
     );
     assert_eq!(
-        load.newton.fallbacks,
+        load.report.fallbacks,
         ["creep iteration"],
         "this scene exercises the creepage iteration"
     );
@@ -59,7 +59,7 @@ fn creep_iteration_answer_is_the_solution() {
             &half,
         ],
     );
-    assert!(kin.newton.fallbacks.is_empty());
+    assert!(kin.report.fallbacks.is_empty());
     let mu_p = 1e-4 * load.solution.normal_force;
     assert!(
         kin.solution.tangential_force.abs() < 1e-6 * mu_p,

@@ -225,9 +225,9 @@ fn lame_interior_stresses_converge_and_stay_accurate_near_the_boundary() {
 // ---------------------------------------------------------------------------------------------
 // Hertz pressure with a sliding traction q = μp (reference sheet §7): BEM blocks and half-space
 
-use rollbem::bem::condense::BemBody;
+use rollbem::body::bem::BemBody;
 use rollbem::body::half_space::HalfSpace;
-use rollbem::body::{BodyModel, Side};
+use rollbem::body::{Body, BodyFields, ContactLoad, InteriorQuery, Side};
 use rollbem::grid::ContactGrid;
 
 /// McEwen's maxima (reference sheet §7, ν = 0.3): (μ, max τ1/p0, x/a, z/a, max σ_VM/p0, x/a, z/a).
@@ -239,7 +239,7 @@ const MCEWEN: [(f64, f64, f64, f64, f64, f64, f64); 2] = [
 /// Body `side` of cases/carter_051_block.yaml (an 80 × 40 mm steel block, far face fixed, 21
 /// contact elements of 0.118 mm whose edges include ±a = ±1 mm) as the application builds it,
 /// and its contact grid.
-fn shipped_block(side: Side) -> (Box<dyn BodyModel>, ContactGrid) {
+fn shipped_block(side: Side) -> (Box<dyn Body>, ContactGrid) {
     let case = rollbem::case::load(&common::case_path("carter_051_block"), &[]).unwrap();
     let bodies = rollbem::app::prepare_bodies(&case).unwrap();
     let est = rollbem::app::estimates(&case, &bodies);
@@ -302,16 +302,24 @@ struct Peak {
 /// |x| ≤ 1.5a, 0.025a ≤ z ≤ 2a, then two refinements (steps 0.005a and 0.0005a) around the
 /// best point; the position is thus resolved to 0.0005a and the value to round-off.
 fn maximum(
-    model: &dyn BodyModel,
+    model: &dyn BodyFields,
     grid: &ContactGrid,
     side: Side,
     (p, q): (&[f64], &[f64]),
     criterion: fn(&[f64; 4]) -> f64,
 ) -> Peak {
     let best = |points: Vec<[f64; 2]>| -> Peak {
-        let samples = model
-            .interior(grid, side, p, q, &points, &InteriorOptions::default())
-            .unwrap();
+        let query = InteriorQuery {
+            side,
+            load: ContactLoad {
+                grid,
+                pressure: p,
+                shear: q,
+            },
+            points: &points,
+            options: InteriorOptions::default(),
+        };
+        let samples = model.interior(&query).unwrap();
         points
             .iter()
             .zip(&samples)
@@ -349,7 +357,7 @@ fn von_mises(s: &[f64; 4]) -> f64 {
 }
 
 /// Both maxima (τ1, von Mises) of a model under the Hertz pressure and q = μp.
-fn peaks(model: &dyn BodyModel, grid: &ContactGrid, side: Side, mu: f64) -> [Peak; 2] {
+fn peaks(model: &dyn BodyFields, grid: &ContactGrid, side: Side, mu: f64) -> [Peak; 2] {
     let (p, q) = hertz_tractions(grid, mu);
     [max_shear, von_mises].map(|c| maximum(model, grid, side, (&p, &q), c))
 }
@@ -409,12 +417,12 @@ fn hertz_maxima_from_the_half_space_and_from_a_block_with_half_plane_data() {
             if x[1] == 0.0 {
                 return [0.0, 0.0]; // the unloaded surface
             }
-            let s = rollbem::interior::halfplane_stress(&gr, &pp, &qq, nu, x[0], x[1]);
+            let s = rollbem::body::flamant::halfplane_stress(&gr, &pp, &qq, nu, x[0], x[1]);
             [s.sxx * n[0] + s.txz * n[1], s.txz * n[0] + s.szz * n[1]]
         }));
         let (pp, qq, gr) = (p.clone(), q.clone(), grid.clone());
         let flamant_displacement = BoundaryCondition::DisplacementField(Arc::new(move |x: [f64; 2], _| {
-            rollbem::interior::halfplane_displacement(&gr, &pp, &qq, g, nu, datum, x[0], x[1])
+            rollbem::body::flamant::halfplane_displacement(&gr, &pp, &qq, g, nu, datum, x[0], x[1])
         }));
         let block = block_body(40.0, 40.0, side, &grid, flamant_traction, flamant_displacement);
         let bem = peaks(&block, &grid, side, mu);
@@ -450,8 +458,8 @@ fn hertz_maxima_of_the_shipped_block_differ_from_the_half_plane_by_its_finite_si
     for mu in [0.0, 0.2] {
         let (shipped_a, grid) = shipped_block(Side::A);
         let (shipped_b, _) = shipped_block(Side::B);
-        let a = peaks(shipped_a.as_ref(), &grid, Side::A, mu);
-        let b = peaks(shipped_b.as_ref(), &grid, Side::B, mu);
+        let a = peaks(shipped_a.fields(), &grid, Side::A, mu);
+        let b = peaks(shipped_b.fields(), &grid, Side::B, mu);
         let hs = peaks(&half_space, &grid, Side::A, mu);
         for (k, name) in ["tau1", "von Mises"].iter().enumerate() {
             println!(

@@ -77,7 +77,10 @@ fn peak_rss(args: &[&str]) -> f64 {
     // SAFETY: waits for our own child by its pid; `status` and `usage` are valid for writes.
     let pid = unsafe { libc::wait4(child.id() as libc::pid_t, &mut status, 0, &mut usage) };
     assert_eq!(pid, child.id() as libc::pid_t, "wait4 failed");
-    assert!(libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0, "run failed: {args:?}");
+    assert!(
+        libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0,
+        "run failed: {args:?}"
+    );
     // Linux reports ru_maxrss in kilobytes.
     usage.ru_maxrss as f64 * 1024.0
 }

@@ -207,3 +207,22 @@ fn non_regular_files_are_refused_before_opening() {
     assert_eq!(code, 1, "{stderr}");
     assert!(stderr.contains("FIFO"), "{stderr}");
 }
+
+/// Inputs on which `cargo fuzz` found a panic, kept as regression tests (tests/data/msh/fuzz/:
+/// the sections after the `$MeshFormat` header, which the fuzz targets fix). Each must be
+/// refused with a message that names the problem.
+#[test]
+fn fuzz_findings_are_refused_cleanly() {
+    let ascii = b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n".as_slice();
+    let binary = b"$MeshFormat\n4.1 1 8\n\x01\x00\x00\x00\n$EndMeshFormat\n".as_slice();
+    for (name, header, expected) in [
+        // `8 0 1 2` in $Nodes: no nodes; mshio computed 0 - 1 in unsigned arithmetic.
+        ("empty_node_section_ascii.sections", ascii, "announces no nodes"),
+        ("empty_node_section_binary.sections", binary, "announces no nodes"),
+    ] {
+        let mut bytes = header.to_vec();
+        bytes.extend(std::fs::read(data("fuzz").join(name)).unwrap());
+        let err = mesh::parse_msh_bytes(&bytes, name).unwrap_err();
+        assert!(err.to_string().contains(expected), "{name}: {err}");
+    }
+}

@@ -5,8 +5,8 @@ mod common;
 use common::{case_path, solve};
 use rollbem::app;
 use rollbem::case;
-use rollbem::contact::methods::{self, Method, SolverSettings};
-use rollbem::contact::newton::Formulation;
+use rollbem::contact::Formulation;
+use rollbem::contact::{methods, Method, SolverSettings};
 
 /// Solves a shipped case with a method (Gauss–Seidel gets its sweep budget); panics with the
 /// history if it does not converge.
@@ -67,7 +67,7 @@ fn every_method_gives_newtons_solution_on_carter() {
                     assert!((q - carter.shear(*x)).abs() < 0.02 * mu_p0, "{method}: q({x})");
                 }
             }
-            assert_eq!(s.newton.method.name(), method);
+            assert_eq!(s.report.method.name(), method);
         }
     }
 }
@@ -77,9 +77,9 @@ fn every_method_gives_newtons_solution_on_carter() {
 #[test]
 fn norm_tang_needs_one_alternation_for_similar_bodies_and_more_for_dissimilar_ones() {
     let (_, similar) = solve_with("carter_051", "norm_tang", &[]);
-    assert_eq!(similar.newton.iterations, 1, "{:?}", similar.newton.history);
+    assert_eq!(similar.report.iterations, 1, "{:?}", similar.report.history);
     let (_, dissimilar) = solve_with("dissimilar_beta0288_004", "norm_tang", &[]);
-    assert!(dissimilar.newton.iterations > 2, "{:?}", dissimilar.newton.history);
+    assert!(dissimilar.report.iterations > 2, "{:?}", dissimilar.report.history);
 }
 
 /// Every load control reaches every method: force control (δ0 and ξ unknown, Lagrange-type rows),
@@ -132,7 +132,7 @@ fn every_method_reports_in_the_same_form() {
     for method in Method::ALL {
         let mut settings = SolverSettings {
             method,
-            newton: app::newton_settings(&loaded),
+            ..app::solver_settings(&loaded)
         };
         settings.newton.max_iterations = if method == Method::GaussSeidel { 20_000 } else { 100 };
         let (state, report) = methods::solve(&problem, &settings);
@@ -159,11 +159,11 @@ fn gauss_seidel_over_relaxed_beyond_two_fails_and_says_so() {
     )
     .unwrap();
     let s = app::solve(&loaded).unwrap();
-    assert!(!s.newton.converged);
+    assert!(!s.report.converged);
     assert!(
-        s.newton.residual.is_finite() && s.newton.residual > 1e-3,
+        s.report.residual.is_finite() && s.report.residual > 1e-3,
         "{}",
-        s.newton.residual
+        s.report.residual
     );
 }
 

@@ -200,7 +200,7 @@ proptest! {
             Ok(s) => {
                 prop_assert_eq!(first_non_finite(&s.solution), None, "{:?}", set);
                 let summary = rollbem::output::summary(
-                    &loaded, &s.estimates, &s.problem, &s.solution, &s.newton, s.regime, s.timings,
+                    &loaded, &s.estimates, &s.problem, &s.solution, &s.report, s.regime, s.timings,
                 );
                 prop_assert_eq!(first_non_finite(&summary), None, "{:?}", set);
                 if let Some(f) = &s.interior {

@@ -108,14 +108,15 @@ fn dissimilar_regimes_of_the_paper_with_dundurs_beta_over_mu_2_88() {
             ("dissimilar_beta0288_004", 4, vec![-1, 1, -1]),
         ] {
             let (_, s) = solve(name, &[&grid]);
-            assert_eq!(s.regime, regime, "{name}/{n}: zones {:?}", s.solution.zones);
-            assert_eq!(s.solution.slip_directions(), directions, "{name}/{n}");
+            assert_eq!(s.regime.number(), regime, "{name}/{n}: zones {:?}", s.solution.zones);
+            let signs: Vec<i8> = s.solution.slip_directions().iter().map(|d| d.sign()).collect();
+            assert_eq!(signs, directions, "{name}/{n}");
         }
     }
     // Reading A (aluminium on steel, β_D/μ = 1.44): Q/μP = 0.04 gives regime 2, not 4
     // (reference sheet §4.3).
     let (_, s) = solve("dissimilar_al_steel_004", &["contact.grid.elements=81"]);
-    assert_eq!(s.regime, 2, "zones {:?}", s.solution.zones);
+    assert_eq!(s.regime.number(), 2, "zones {:?}", s.solution.zones);
 }
 
 /// Free rolling of aluminium on steel: ξ → 0.914772 β a/R as μ → 0 and ξ → 2εa/R with

@@ -19,7 +19,7 @@ fn solve(name: &str) -> (LoadedCase, Solved) {
     let path = root().join("cases").join(format!("{name}.yaml"));
     let case = case::load(&path, &[]).expect("case loads");
     let s = app::solve(&case).expect("case solves");
-    assert!(s.newton.converged, "{name} did not converge");
+    assert!(s.report.converged, "{name} did not converge");
     (case, s)
 }
 

@@ -8,8 +8,8 @@
 
 use rollbem::app;
 use rollbem::case;
-use rollbem::contact::methods::{self, Method, SolverSettings};
-use rollbem::contact::newton::Formulation;
+use rollbem::contact::Formulation;
+use rollbem::contact::{methods, Method, SolverSettings};
 use std::path::PathBuf;
 
 fn main() {
@@ -33,7 +33,7 @@ fn main() {
         for (label, method, formulation, max_iterations) in variants {
             let mut settings = SolverSettings {
                 method,
-                newton: app::newton_settings(&loaded),
+                ..app::solver_settings(&loaded)
             };
             settings.newton.formulation = formulation;
             settings.newton.max_iterations = max_iterations;

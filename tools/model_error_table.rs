@@ -113,7 +113,7 @@ fn layer_solution(b: Option<f64>, p_total: f64, a: f64) -> ContactSolution {
         });
     }
     let s = app::solve_prepared(&c, &bodies, Instant::now()).expect("layer solve");
-    assert!(s.newton.converged, "layer b = {b:?}");
+    assert!(s.report.converged, "layer b = {b:?}");
     s.solution
 }
 

@@ -25,7 +25,7 @@ fn main() {
         ];
         let loaded = case::load(&case_path, &set).unwrap();
         let s = app::solve(&loaded).unwrap();
-        assert!(s.newton.converged);
+        assert!(s.report.converged);
         let c = app::carter_reference(&loaded, &s.estimates).unwrap();
         let mu_p0 = c.friction * c.peak_pressure;
         let errs: Vec<f64> = s
@@ -58,14 +58,14 @@ fn main() {
             assert!(status.status.success());
             best = best.min(t.elapsed().as_secs_f64());
         }
-        let largest = s.newton.history.iter().map(|h| h.system_size).max().unwrap_or(0);
+        let largest = s.report.history.iter().map(|h| h.system_size).max().unwrap_or(0);
         println!(
             "| {n} | {} | {} | {largest} | {:.1} | {:.1} | {:.2} | {best:.3} | {rms:.2e} | {:+.2e} | {:.2e} |",
             s.problem.n_nodes(),
-            s.newton.iterations,
+            s.report.iterations,
             1e3 * s.timings.assembly_s,
             1e3 * s.timings.solve_s,
-            1e3 * s.timings.solve_s / s.newton.iterations as f64,
+            1e3 * s.timings.solve_s / s.report.iterations as f64,
             s.solution.creep / xi - 1.0,
             0.24 * s.problem.grid.element_length() / c.half_width,
         );

@@ -5,7 +5,7 @@
 use rollbem::analytic::{self, hertz_pressure};
 use rollbem::app::{self, Solved};
 use rollbem::case::{self, LoadedCase};
-use rollbem::contact::solution::{slip_regime, ContactSolution, NodeState};
+use rollbem::contact::solution::{slip_regime, ContactSolution, NodeState, SlipDirection};
 use std::path::PathBuf;
 
 fn solve(name: &str, set: &[String]) -> (LoadedCase, Solved) {
@@ -64,7 +64,7 @@ fn main() {
             pmax / p0 - 1.0,
             rms,
             mx,
-            s.newton.iterations
+            s.report.iterations
         );
     }
 
@@ -93,7 +93,7 @@ fn main() {
                     "| {name} | {n} | {der} | {mx:.4} | {rms:.2e} | {:+.3} | {:+.3e} | {} |",
                     (width - (c1 - c0)) / s.problem.grid.element_length(),
                     s.solution.creep / xi - 1.0,
-                    s.newton.iterations
+                    s.report.iterations
                 );
             }
         }
@@ -121,8 +121,8 @@ fn main() {
         let dq = max_abs_diff(&phi.solution.shear, &psi.solution.shear) / qmax;
         println!(
             "| {name} | {} | {} | {:.6} | {:.6} | {:.6e} | {:.6e} | {dp:.1e} | {dq:.1e} | {} |",
-            phi.newton.iterations,
-            psi.newton.iterations,
+            phi.report.iterations,
+            psi.report.iterations,
             phi.solution.normal_force,
             phi.solution.tangential_force,
             phi.solution.creep,
@@ -152,9 +152,9 @@ fn main() {
                         "{}{}[{:.3}, {:.3}]",
                         z.state.name(),
                         match z.direction {
-                            1 => "+",
-                            -1 => "−",
-                            _ => "",
+                            Some(SlipDirection::PlusX) => "+",
+                            Some(SlipDirection::MinusX) => "−",
+                            None => "",
                         },
                         z.x0 / a,
                         z.x1 / a
@@ -165,7 +165,11 @@ fn main() {
                 "| {name} | {n} | {:.5} | {} | {:?} | {} |",
                 s.solution.creep * r / (mu * a),
                 s.regime,
-                s.solution.slip_directions(),
+                s.solution
+                    .slip_directions()
+                    .iter()
+                    .map(|d| d.sign())
+                    .collect::<Vec<_>>(),
                 zones.join(" ")
             );
         }
@@ -219,9 +223,9 @@ fn main() {
                     .filter(|z| z.state != NodeState::Open)
                     .map(|z| {
                         let sign = match z.direction {
-                            1 => "+",
-                            -1 => "−",
-                            _ => "",
+                            Some(SlipDirection::PlusX) => "+",
+                            Some(SlipDirection::MinusX) => "−",
+                            None => "",
                         };
                         format!(
                             "{}{sign}[{:.2}, {:.2}]({})",
@@ -238,7 +242,7 @@ fn main() {
                     e.dundurs_beta / mu,
                     slip_regime(&s.solution, 1.0, 1),
                     zones.join(" "),
-                    s.newton.iterations
+                    s.report.iterations
                 );
             }
         }

@@ -12,11 +12,12 @@
 //! columns of A have comparable magnitudes.
 
 use super::discretise::{Discretisation, FieldNode};
-use super::integrate::{Quadrature, QuadratureOptions, SourcePosition};
+use super::integrate::{element_integrals, SourcePosition};
 use super::kernel::Kelvin;
 use super::{BemError, BoundaryCondition, Component};
 use crate::material::Elastic;
 use crate::mesh::{boundary_loops, validate_and_orient, BoundaryMesh};
+use crate::quadrature::{Quadrature, QuadratureOptions};
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 use rayon::prelude::*;
@@ -245,8 +246,14 @@ impl BemModel {
                 },
                 None => SourcePosition::Off,
             };
-            let ints =
-                quadrature.element_integrals(&self.kernel, &d.geometry[e], &d.interpolation[e], source, position);
+            let ints = element_integrals(
+                quadrature,
+                &self.kernel,
+                &d.geometry[e],
+                &d.interpolation[e],
+                source,
+                position,
+            );
             for (a, &col) in ids.iter().enumerate() {
                 for ic in 0..2 {
                     for jc in 0..2 {

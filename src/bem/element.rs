@@ -66,9 +66,16 @@ impl ElementGeometry {
 
     /// Unit normal out of the material (material on the left of the walking direction).
     pub fn normal(&self, xi: f64) -> [f64; 2] {
+        self.jacobian_and_normal(xi).1
+    }
+
+    /// (J [length], unit outward normal) at ξ from one tangent evaluation: what every
+    /// boundary integrand needs at a quadrature point.
+    #[inline]
+    pub fn jacobian_and_normal(&self, xi: f64) -> (f64, [f64; 2]) {
         let t = self.tangent(xi);
         let j = t[0].hypot(t[1]);
-        [t[1] / j, -t[0] / j]
+        (j, [t[1] / j, -t[0] / j])
     }
 
     /// Arc length [length] (16-point Gauss on J: round-off for straight elements, ~1e-12

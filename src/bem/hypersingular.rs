@@ -69,9 +69,9 @@
 
 use super::assemble::BemModel;
 use super::element::{ElementGeometry, FieldInterpolation};
-use super::integrate::Quadrature;
 use super::kernel::{GradientKernels, Kelvin};
 use super::BemError;
+use crate::quadrature::Quadrature;
 use faer::Mat;
 
 /// Where the displacement gradient is evaluated.
@@ -168,9 +168,7 @@ fn add_point(
     weight: f64,
     out: &mut GradientIntegrals,
 ) {
-    let tangent = geometry.tangent(xi);
-    let jac = tangent[0].hypot(tangent[1]);
-    let normal = [tangent[1] / jac, -tangent[0] / jac];
+    let (jac, normal) = geometry.jacobian_and_normal(xi);
     let k = kernel.gradient([0.0, 0.0], offset, normal);
     let n = field.shape(xi);
     for a in 0..3 {
@@ -211,7 +209,7 @@ pub fn off_element_integrals(
     source: [f64; 2],
 ) -> GradientIntegrals {
     let mut out = GradientIntegrals::default();
-    quadrature.off_element_points(geometry, source, |xi, weight| {
+    quadrature.off_element_points(&geometry.nodes, source, |xi, weight| {
         add_point(
             kernel,
             geometry,

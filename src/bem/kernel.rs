@@ -26,6 +26,53 @@
 use crate::material::Elastic;
 use std::f64::consts::PI;
 
+/// The geometry every kernel starts from: for a source X and a field point x, r⃗ = x − X,
+/// r = |r⃗| and the unit vector g = r⃗/r (r,i in the index notation of the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KernelFrame {
+    /// r = |x − X| [length].
+    pub r: f64,
+    /// 1/r [1/length].
+    pub inv_r: f64,
+    /// g = r⃗/r, i.e. r,i [-].
+    pub g: [f64; 2],
+}
+
+impl KernelFrame {
+    /// The frame of `source` X and `field` x, with r by `hypot` (safe against over- and
+    /// underflow; the boundary kernels U*, T*, W, V, D, S).
+    #[inline]
+    pub fn new(source: [f64; 2], field: [f64; 2]) -> Self {
+        let d = [field[0] - source[0], field[1] - source[1]];
+        let r = d[0].hypot(d[1]);
+        Self {
+            r,
+            inv_r: 1.0 / r,
+            g: [d[0] / r, d[1] / r],
+        }
+    }
+
+    /// The frame with r = √(r⃗·r⃗) and g = r⃗·(1/r): `sqrt` rather than `hypot` (several times
+    /// slower), for the inner loop of interior grids, where r is never near over- or underflow.
+    #[inline]
+    pub fn interior(source: [f64; 2], field: [f64; 2]) -> Self {
+        let d = [field[0] - source[0], field[1] - source[1]];
+        let r = (d[0] * d[0] + d[1] * d[1]).sqrt();
+        let inv_r = 1.0 / r;
+        Self {
+            r,
+            inv_r,
+            g: [d[0] * inv_r, d[1] * inv_r],
+        }
+    }
+
+    /// ∂r/∂n = g·n for the unit normal `normal` at the field point [-].
+    #[inline]
+    pub fn drdn(&self, normal: [f64; 2]) -> f64 {
+        self.g[0] * normal[0] + self.g[1] * normal[1]
+    }
+}
+
 /// The Kelvin kernels of one material, with the constants precomputed.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Kelvin {
@@ -63,9 +110,7 @@ impl Kelvin {
     /// U*_ij(X, x) [1/stress]: displacement j at `field` due to a unit line force i at
     /// `source`.
     pub fn displacement(&self, source: [f64; 2], field: [f64; 2]) -> [[f64; 2]; 2] {
-        let d = [field[0] - source[0], field[1] - source[1]];
-        let r = d[0].hypot(d[1]);
-        let g = [d[0] / r, d[1] / r];
+        let KernelFrame { r, g, .. } = KernelFrame::new(source, field);
         let log = (3.0 - 4.0 * self.poisson) * (self.length_scale / r).ln();
         let mut u = [[0.0; 2]; 2];
         for (i, row) in u.iter_mut().enumerate() {
@@ -80,10 +125,8 @@ impl Kelvin {
     /// T*_ij(X, x, n) [1/length]: traction j on a surface of unit outward normal `normal` at
     /// `field` due to a unit force i at `source`.
     pub fn traction(&self, source: [f64; 2], field: [f64; 2], normal: [f64; 2]) -> [[f64; 2]; 2] {
-        let d = [field[0] - source[0], field[1] - source[1]];
-        let r = d[0].hypot(d[1]);
-        let g = [d[0] / r, d[1] / r];
-        let drdn = g[0] * normal[0] + g[1] * normal[1];
+        let frame = KernelFrame::new(source, field);
+        let (r, g, drdn) = (frame.r, frame.g, frame.drdn(normal));
         let c12 = 1.0 - 2.0 * self.poisson;
         let scale = -self.c_t / r;
         let mut t = [[0.0; 2]; 2];
@@ -123,9 +166,7 @@ impl Kelvin {
     /// W and V at `field` (outward normal `normal`) for a source at `source` (see
     /// [`GradientKernels`]).
     pub fn gradient(&self, source: [f64; 2], field: [f64; 2], normal: [f64; 2]) -> GradientKernels {
-        let d = [field[0] - source[0], field[1] - source[1]];
-        let r = d[0].hypot(d[1]);
-        let g = [d[0] / r, d[1] / r];
+        let KernelFrame { r, g, .. } = KernelFrame::new(source, field);
         let mut out = self.gradient_angular(g, normal);
         let (sw, sv) = (1.0 / r, 1.0 / (r * r));
         for i in 0..2 {
@@ -236,10 +277,8 @@ impl Kelvin {
     /// D and S at `field` (outward normal `normal`) for an interior point at `source` (see
     /// [`StressKernels`]).
     pub fn stress(&self, source: [f64; 2], field: [f64; 2], normal: [f64; 2]) -> StressKernels {
-        let d = [field[0] - source[0], field[1] - source[1]];
-        let r = d[0].hypot(d[1]);
-        let g = [d[0] / r, d[1] / r];
-        let drdn = g[0] * normal[0] + g[1] * normal[1];
+        let frame = KernelFrame::new(source, field);
+        let (r, g, drdn) = (frame.r, frame.g, frame.drdn(normal));
         let nu = self.poisson;
         let c12 = 1.0 - 2.0 * nu;
         let c14 = 1.0 - 4.0 * nu;
@@ -311,15 +350,11 @@ impl Kelvin {
         u: [f64; 2],
         t: [f64; 2],
     ) -> SomiglianaIntegrand {
-        let d = [field[0] - source[0], field[1] - source[1]];
-        // sqrt rather than hypot (several times slower): r is never near over- or underflow.
-        let r2 = d[0] * d[0] + d[1] * d[1];
-        let inv_r = 1.0 / r2.sqrt();
-        let g = [d[0] * inv_r, d[1] * inv_r];
+        let frame = KernelFrame::interior(source, field);
+        let (inv_r, g, drdn) = (frame.inv_r, frame.g, frame.drdn(normal));
         let n = normal;
         let nu = self.poisson;
         let (c12, c14) = (1.0 - 2.0 * nu, 1.0 - 4.0 * nu);
-        let drdn = g[0] * n[0] + g[1] * n[1];
         let (gu, gt, nu_n) = (
             g[0] * u[0] + g[1] * u[1],
             g[0] * t[0] + g[1] * t[1],

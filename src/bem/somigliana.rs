@@ -38,8 +38,8 @@
 
 use super::assemble::{BemModel, BemSolution};
 use super::element::{ElementGeometry, FieldInterpolation};
-use super::integrate::{FarFieldRules, Quadrature};
 use crate::interior::{InteriorOptions, InteriorSample, InteriorValue};
+use crate::quadrature::{FarFieldRules, Quadrature};
 use rayon::prelude::*;
 
 /// Chords per element of the polyline used by the ray-crossing test.
@@ -261,7 +261,7 @@ impl ElementData {
         Self {
             nodal_u,
             nodal_t,
-            far: quadrature.far_field_rules(&d.geometry[e], FAR_MAX_POINTS),
+            far: quadrature.far_field_rules(&d.geometry[e].nodes, FAR_MAX_POINTS),
             rules,
             first,
         }
@@ -277,6 +277,8 @@ fn boundary_point(
     nodal_t: &[[f64; 2]; 3],
     xi: f64,
 ) -> TabulatedPoint {
+    // sqrt rather than the hypot of `ElementGeometry::jacobian_and_normal`: this runs for every
+    // near-field point of an interior grid (as `KernelFrame::interior`).
     let tangent = geometry.tangent(xi);
     let jac = (tangent[0] * tangent[0] + tangent[1] * tangent[1]).sqrt();
     let n = interpolation.shape(xi);
@@ -347,7 +349,7 @@ fn somigliana(model: &BemModel, elements: &[ElementData], quadrature: &Quadratur
             Some(n) if n >= data.first && n <= FAR_MAX_POINTS => data.rules[n - data.first].iter().for_each(&mut add),
             _ => {
                 let (geometry, interpolation) = (&d.geometry[e], &d.interpolation[e]);
-                quadrature.off_element_points(geometry, source, |xi, weight| {
+                quadrature.off_element_points(&geometry.nodes, source, |xi, weight| {
                     let p = boundary_point(geometry, interpolation, &data.nodal_u, &data.nodal_t, xi);
                     add(&TabulatedPoint {
                         weight: weight * p.weight,

@@ -24,9 +24,9 @@
 //! loses digits to cancellation (relative error ≈ ε·(d/L)³), so a 12-point Gauss rule is used
 //! there, which is exact to round-off for those smooth integrands.
 
-use super::{circle_profile, BodyModel, Flexibility, Side, StrainOperator};
+use super::flamant::halfplane_interior;
+use super::{circle_profile, BodyFields, BodyModel, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator};
 use crate::grid::{ContactGrid, ElementKind};
-use crate::interior::{halfplane_interior, InteriorError, InteriorOptions, InteriorSample};
 use crate::material::Elastic;
 use crate::quadrature::gauss_legendre;
 use faer::Mat;
@@ -248,29 +248,21 @@ impl BodyModel for HalfSpace {
             q: Mat::from_fn(m, m, |i, j| -b_coef * cauchy[(i, j)]),
         })
     }
+}
 
-    /// Flamant / Boussinesq–Cerruti superposition ([`crate::interior`], Eq. H1–H2), the
+impl BodyFields for HalfSpace {
+    /// Flamant / Boussinesq–Cerruti superposition ([`super::flamant`], Eq. H1–H2), the
     /// displacement measured from this model's datum [`HalfSpace::datum_length`], so that at
     /// the surface it equals the displacement the flexibility gives.
-    fn interior(
-        &self,
-        grid: &ContactGrid,
-        side: Side,
-        p: &[f64],
-        q: &[f64],
-        points: &[[f64; 2]],
-        options: &InteriorOptions,
-    ) -> Result<Vec<InteriorSample>, InteriorError> {
+    fn interior(&self, query: &InteriorQuery) -> InteriorResult {
         Ok(halfplane_interior(
-            grid,
-            p,
-            q,
+            &query.load,
             self.material.shear(),
             self.material.poisson,
             self.datum_length(),
-            side,
-            points,
-            options,
+            query.side,
+            query.points,
+            &query.options,
         ))
     }
 }
@@ -403,6 +395,58 @@ mod tests {
                 for (e, g) in exact.iter().zip(&gauss) {
                     assert!((e - g).abs() < 1e-13, "{kernel:?} x={x}: {e} vs {g}");
                 }
+            }
+        }
+    }
+
+    /// At a small depth the interior displacement meets the half-space model's surface
+    /// displacement (same datum), for a Hertz pressure and a Carter-like shear, on both sides:
+    /// h = u_z (into the body) and w = ±u_x of the pair convention. The depth z = 1e-3 of an
+    /// element moves u by about z·|∂u/∂z| ~ 1e-4 of its range.
+    #[test]
+    fn interior_displacement_meets_the_half_space_surface_displacement() {
+        use crate::body::flamant::halfplane_interior;
+        use crate::body::ContactLoad;
+        use crate::interior::{InteriorOptions, InteriorSample};
+        let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 21, -1.3, 1.3);
+        let hs = HalfSpace {
+            material: Elastic::new(210_000.0, 0.3),
+            radius: 100.0,
+        };
+        let p: Vec<f64> = grid
+            .nodes
+            .iter()
+            .map(|x| 1000.0 * (1.0 - x * x).max(0.0).sqrt())
+            .collect();
+        let q: Vec<f64> = grid.nodes.iter().zip(&p).map(|(x, p)| 0.1 * p * x).collect();
+        let z = 1e-3 * grid.element_length();
+        for side in [Side::A, Side::B] {
+            let f = hs.flexibility(&grid, side);
+            let (h, w) = (f.normal(&p, &q), f.tangential(&p, &q));
+            let range = h.iter().chain(&w).fold(0.0f64, |m, v| m.max(v.abs()));
+            let points: Vec<[f64; 2]> = grid.nodes.iter().map(|&x| [x, side.sign() * z]).collect();
+            let load = ContactLoad {
+                grid: &grid,
+                pressure: &p,
+                shear: &q,
+            };
+            let samples = halfplane_interior(
+                &load,
+                hs.material.shear(),
+                0.3,
+                hs.datum_length(),
+                side,
+                &points,
+                &InteriorOptions { boundary_layer: 1e-4 },
+            );
+            for (i, s) in samples.iter().enumerate() {
+                let InteriorSample::Inside(v) = s else {
+                    panic!("{side:?} node {i}: {s:?}")
+                };
+                // Contact frame → pair convention: h = ±u_y into the body, w = ±u_x.
+                let (hi, wi) = (side.sign() * v.displacement[1], side.sign() * v.displacement[0]);
+                assert!((hi - h[i]).abs() < 1e-3 * range, "{side:?} h[{i}]: {hi} vs {}", h[i]);
+                assert!((wi - w[i]).abs() < 1e-3 * range, "{side:?} w[{i}]: {wi} vs {}", w[i]);
             }
         }
     }

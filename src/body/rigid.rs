@@ -1,6 +1,8 @@
 //! The rigid body model: zero flexibility, circular profile.
 
-use super::{circle_profile, BodyModel, Flexibility, Side, StrainOperator};
+use super::{
+    circle_profile, BodyFields, BodyModel, FieldError, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator,
+};
 use crate::grid::ContactGrid;
 
 /// A rigid cylinder of the given radius [length].
@@ -28,6 +30,15 @@ impl BodyModel for Rigid {
         Some(StrainOperator {
             p: faer::Mat::zeros(m, m),
             q: faer::Mat::zeros(m, m),
+        })
+    }
+}
+
+/// A rigid body has neither a boundary solution nor interior fields.
+impl BodyFields for Rigid {
+    fn interior(&self, _query: &InteriorQuery) -> InteriorResult {
+        Err(FieldError::NoInteriorField {
+            model: self.model_name(),
         })
     }
 }

@@ -12,8 +12,12 @@
 //! so F_grid = D · F_body · T for every block. When the grids coincide the transfer is the
 //! identity, and the flexibility is returned unchanged (bit for bit).
 
-use super::{Flexibility, StrainOperator};
+use super::{
+    Body, BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery, InteriorResult,
+    Side, StrainOperator,
+};
 use crate::grid::ContactGrid;
+use crate::linalg::mat_vec;
 use faer::Mat;
 
 /// The contact grid reaches beyond the body's contact segment: the body cannot say what its
@@ -101,20 +105,20 @@ fn operators(body: &ContactGrid, grid: &ContactGrid) -> Result<(Mat<f64>, Mat<f6
 /// transfer of this module (identity when the nodes coincide).
 pub struct Transferred {
     /// The model, whose flexibility is asked on `own_grid`.
-    pub inner: Box<dyn super::BodyModel>,
+    pub inner: Box<dyn Body>,
     /// The body's own contact grid.
     pub own_grid: ContactGrid,
     /// Which body of the pair the inner model was built for.
-    pub side: super::Side,
+    pub side: Side,
 }
 
-impl super::BodyModel for Transferred {
+impl BodyModel for Transferred {
     fn model_name(&self) -> &'static str {
         self.inner.model_name()
     }
 
     /// Panics if the grid reaches beyond the body's segment; [`Transferred::check`] first.
-    fn flexibility(&self, grid: &ContactGrid, side: super::Side) -> Flexibility {
+    fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
         let own = self.inner.flexibility(&self.own_grid, side);
         transfer_flexibility(&own, &self.own_grid, grid).expect("grid checked against the body segment")
     }
@@ -123,7 +127,7 @@ impl super::BodyModel for Transferred {
         self.inner.profile(x)
     }
 
-    fn strain_operator(&self, grid: &ContactGrid, side: super::Side) -> Option<StrainOperator> {
+    fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
         let own = self.inner.strain_operator(&self.own_grid, side)?;
         transfer_strain(&own, &self.own_grid, grid).ok()
     }
@@ -131,28 +135,37 @@ impl super::BodyModel for Transferred {
     fn stage_seconds(&self) -> (f64, f64) {
         self.inner.stage_seconds()
     }
+}
 
+impl Transferred {
+    /// The load's nodal tractions carried to the body's own nodes by the grid's interpolation:
+    /// (pressure, shear) there.
+    fn own_tractions(&self, load: &ContactLoad) -> (Vec<f64>, Vec<f64>) {
+        let t = interpolation_matrix(load.grid, &self.own_grid);
+        (mat_vec(&t, load.pressure), mat_vec(&t, load.shear))
+    }
+}
+
+impl BodyFields for Transferred {
     /// Tractions are carried to the body's own nodes by the grid's interpolation first.
-    fn boundary_field(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> Option<Result<super::BoundaryField, String>> {
-        let t = interpolation_matrix(grid, &self.own_grid);
-        let own = |v: &[f64]| crate::contact::mat_vec2(&t, v, &t, &vec![0.0; v.len()]);
-        self.inner.boundary_field(&self.own_grid, &own(p), &own(q))
+    fn boundary_field(&self, load: &ContactLoad) -> Option<Result<BoundaryField, FieldError>> {
+        let (p, q) = self.own_tractions(load);
+        self.inner.boundary_field(&ContactLoad {
+            grid: &self.own_grid,
+            pressure: &p,
+            shear: &q,
+        })
     }
 
     /// Tractions are carried to the body's own nodes by the grid's interpolation first.
-    fn interior(
-        &self,
-        grid: &ContactGrid,
-        side: super::Side,
-        p: &[f64],
-        q: &[f64],
-        points: &[[f64; 2]],
-        options: &crate::interior::InteriorOptions,
-    ) -> Result<Vec<crate::interior::InteriorSample>, crate::interior::InteriorError> {
-        let t = interpolation_matrix(grid, &self.own_grid);
-        let own = |v: &[f64]| crate::contact::mat_vec2(&t, v, &t, &vec![0.0; v.len()]);
-        self.inner
-            .interior(&self.own_grid, side, &own(p), &own(q), points, options)
+    fn interior(&self, query: &InteriorQuery) -> InteriorResult {
+        let (p, q) = self.own_tractions(&query.load);
+        let load = ContactLoad {
+            grid: &self.own_grid,
+            pressure: &p,
+            shear: &q,
+        };
+        self.inner.interior(&InteriorQuery { load, ..*query })
     }
 }
 
@@ -167,7 +180,6 @@ impl Transferred {
 mod tests {
     use super::*;
     use crate::body::half_space::HalfSpace;
-    use crate::body::{BodyModel, Side};
     use crate::grid::ElementKind;
     use crate::material::Elastic;
 
@@ -202,8 +214,7 @@ mod tests {
             .map(|x| 0.3 * (1.0 - x * x).max(0.0).sqrt() * x)
             .collect();
         let apply = |f: &Flexibility| {
-            let h = crate::contact::mat_vec2(&f.hp, &p, &f.hq, &q);
-            let w = crate::contact::mat_vec2(&f.wp, &p, &f.wq, &q);
+            let (h, w) = (f.normal(&p, &q), f.tangential(&p, &q));
             let c = h.len() / 2;
             (
                 h.iter().map(|v| v - h[c]).collect::<Vec<_>>(),

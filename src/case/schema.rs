@@ -1,7 +1,7 @@
 //! The case file schema (DESIGN §5). Every struct rejects unknown keys; each field documents its
 //! unit and default. Lengths, forces and stresses are in the case's consistent units.
 
-pub use crate::contact::newton::Formulation;
+pub use crate::contact::Formulation;
 pub use crate::contact::Method;
 use crate::contact::{RollingDirection, SlipDerivative};
 use crate::grid::ElementKind;

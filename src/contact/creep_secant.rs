@@ -1,5 +1,5 @@
 //! Creepage iteration for a prescribed tangential load (Q, or Q/μP) when the coupled Newton
-//! stalls: the first restart of [`super::newton::solve_with`] when ξ is unknown.
+//! stalls: the first restart of [`super::restart`] when ξ is unknown.
 //!
 //! **Why it is needed.** Near complete slip (small μ) every loaded node slips except where the
 //! slip changes sign. With ξ unknown, the Q equation is the only row that fixes ξ, and ξ enters
@@ -17,7 +17,9 @@
 //! solution. The returned iterate solves the whole problem (G6 included) when F is below the
 //! tolerance, and is judged by the common [`ConvergenceMeasure`].
 
-use super::newton::{damped_newton, Block, BlockOutcome, NewtonSettings};
+use super::direction::Block;
+use super::newton::{damped_newton, BlockOutcome};
+use super::report::NewtonSettings;
 use super::residual::{scaled_residual, ConvergenceMeasure, State, System};
 use super::ContactProblem;
 

@@ -18,9 +18,9 @@
 //! ```
 //!
 //! and g, s are updated by the columns of H and B of node i (O(m) per node, O(m²) per sweep).
-//! ω = 1 (the penalty scale c = 1) solves each node's local normal problem exactly; the case's
-//! penalty scale c is the relaxation factor ω (projected SOR: 0 < ω < 2 for a symmetric
-//! positive definite H_p). The tangential update is relaxed further, by
+//! ω = 1 solves each node's local normal problem exactly; ω is the relaxation factor
+//! ([`GaussSeidelSettings::relaxation`]; the case's `solver.penalty` sets it) of projected SOR
+//! (0 < ω < 2 for a symmetric positive definite H_p). The tangential update is relaxed further, by
 //! [`TANGENTIAL_RELAXATION`] = 0.25: the steady-rolling slip operator B_q = σ D W_q is not
 //! diagonally dominant (its off-diagonal part is a discrete Cauchy kernel, Σ_j |B_ij| ≈ B_ii ln m),
 //! and the exact local solve overshoots. Measured on Carter (21 elements, second-order slip,
@@ -47,9 +47,8 @@
 //! the incrementally updated g and s (O(m)); when they pass, g and s are recomputed exactly and
 //! the full measure decides. g and s are also recomputed every [`RESYNC_SWEEPS`] sweeps.
 
-use super::methods::{IterationRecord, Method, SolveReport};
-use super::newton::NewtonSettings;
-use super::residual::{projection, scaled_residual, start_vector, ConvergenceMeasure, State};
+use super::report::{GaussSeidelSettings, IterationRecord, Method, SolveReport};
+use super::residual::{projection, scaled_residual, start_vector, ConvergenceMeasure, Formulation, State};
 use super::{ContactProblem, NormalControl, TangentialControl};
 
 /// Sweeps between exact recomputations of the gap and the slip (against round-off drift).
@@ -224,10 +223,14 @@ impl<'a> Sweep<'a> {
     }
 }
 
-/// Solves the contact problem by projected Gauss–Seidel sweeps from the paper's start vector;
-/// `settings.max_iterations` counts sweeps and `settings.penalty_scale` is the relaxation ω.
-pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
-    let mut it = Sweep::new(pb, settings.penalty_scale);
+/// Solves the contact problem by projected Gauss–Seidel sweeps from the paper's start vector,
+/// at most `settings.max_sweeps` sweeps with the relaxation ω = `settings.relaxation`.
+pub fn solve(
+    pb: &ContactProblem,
+    settings: &GaussSeidelSettings,
+    measure: &ConvergenceMeasure,
+) -> (State, SolveReport) {
+    let mut it = Sweep::new(pb, settings.relaxation);
     let sys = measure.system();
     let scale = measure.traction_scale();
     let cheap = |it: &Sweep| {
@@ -237,7 +240,7 @@ pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &Convergen
     let mut history = Vec::new();
     let mut residual = measure.of(&it.state());
     let mut converged = residual <= settings.tolerance;
-    while !converged && history.len() < settings.max_iterations {
+    while !converged && history.len() < settings.max_sweeps {
         history.push(IterationRecord {
             residual,
             step: it.omega,
@@ -267,7 +270,8 @@ pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &Convergen
     };
     let report = SolveReport {
         method: Method::GaussSeidel,
-        formulation: settings.formulation,
+        // The sweeps use no formulation: `methods::solve` records the one asked for.
+        formulation: Formulation::Phi,
         converged: converged && residual <= settings.tolerance,
         iterations: history.len(),
         inner_iterations: history.len(),

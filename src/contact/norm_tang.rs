@@ -24,15 +24,16 @@
 //!
 //! **What we simplify.** Kalker's NORM and TANG are active-set algorithms (iterate on the contact
 //! or stick area, solve the linear system on it, fix the violations). We solve each half with our
-//! generalized Newton restricted to the half ([`super::newton::Block`]): on these projection
+//! generalized Newton restricted to the half ([`super::direction::Block`]): on these projection
 //! equations the semismooth Newton step is itself an active-set step (contact/open and
 //! stick/slip sets from the current iterate, a linear solve on them), so it plays the same role;
 //! it adds the line search as a safeguard. Each half is solved to 1/10 of the outer tolerance in
 //! its own scaled residual, with at most [`INNER_ITERATIONS`] Newton steps.
 
-use super::methods::{IterationRecord, Method, SolveReport};
-use super::newton::{solve_block, Block, NewtonSettings};
-use super::residual::{automatic_penalties, start_vector, ConvergenceMeasure};
+use super::direction::Block;
+use super::newton::solve_block;
+use super::report::{IterationRecord, Method, NewtonSettings, SolveReport};
+use super::residual::{automatic_penalties, start_vector, ConvergenceMeasure, State};
 use super::ContactProblem;
 
 /// Newton steps allowed for each NORM or TANG solve.
@@ -42,11 +43,7 @@ pub const INNER_ITERATIONS: usize = 50;
 pub const INNER_TOLERANCE_RATIO: f64 = 0.1;
 
 /// Solves the contact problem by alternating NORM and TANG from the paper's start vector.
-pub fn solve(
-    pb: &ContactProblem,
-    settings: &NewtonSettings,
-    measure: &ConvergenceMeasure,
-) -> (crate::contact::residual::State, SolveReport) {
+pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
     let inner = NewtonSettings {
         max_iterations: INNER_ITERATIONS,
         tolerance: INNER_TOLERANCE_RATIO * settings.tolerance,

@@ -120,7 +120,7 @@ impl<'a> System<'a> {
         for i in 0..m {
             r.push(self.rn * (z.gap[i] - pb.h0[i] + z.overlap - h[i]));
         }
-        let b = super::mat_vec2(&pb.bp, &z.pressure, &pb.bq, &z.shear);
+        let b = crate::linalg::mat_vec2(&pb.bp, &z.pressure, &pb.bq, &z.shear);
         for i in 0..m {
             let e = pb.slip_operator.creep_weight[i];
             r.push(self.rt * (z.slip[i] - pb.flow_sign * z.creep * e - b[i]));

@@ -1,8 +1,8 @@
 //! The converged solution in user-facing terms: forces, contact extent, stick/slip zones.
 
-use super::newton::State;
+use super::residual::State;
 use super::ContactProblem;
-use serde::Serialize;
+use serde::{Serialize, Serializer};
 
 /// State of a contact node (DESIGN §5 `state` column).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -27,6 +27,87 @@ impl NodeState {
     }
 }
 
+/// Direction of the slip in a slip zone: the sign of the slip s, the velocity of A's surface
+/// relative to B's divided by |V|. Written as +1 / −1 in summary.json.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SlipDirection {
+    /// s ≥ 0: A's surface slips in +x relative to B's.
+    PlusX,
+    /// s < 0: A's surface slips in −x relative to B's.
+    MinusX,
+}
+
+impl SlipDirection {
+    /// The direction of a slip s [-] (s = 0 counts as +x).
+    pub fn of(slip: f64) -> Self {
+        if slip >= 0.0 {
+            SlipDirection::PlusX
+        } else {
+            SlipDirection::MinusX
+        }
+    }
+
+    /// +1 or −1.
+    pub fn sign(self) -> i8 {
+        match self {
+            SlipDirection::PlusX => 1,
+            SlipDirection::MinusX => -1,
+        }
+    }
+}
+
+impl Serialize for SlipDirection {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_i8(self.sign())
+    }
+}
+
+/// Writes a zone's direction as +1 / −1, and 0 for a zone that does not slip.
+fn serialize_zone_direction<S: Serializer>(direction: &Option<SlipDirection>, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_i8(direction.map_or(0, SlipDirection::sign))
+}
+
+/// Slip regime of the classification in paper §5.2 (and reference sheet §4.2), from the slip
+/// zones ordered from the leading edge. Written as its number 0–4 in summary.json.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SlipRegime {
+    /// 0: full stick, or any pattern not below (e.g. four slip zones).
+    Unclassified,
+    /// 1: one slip zone.
+    OneZone,
+    /// 2: two zones slipping in the same direction.
+    TwoZonesSameDirection,
+    /// 3: two zones slipping in opposite directions.
+    TwoZonesOpposite,
+    /// 4: three zones, the outer two alike and the middle one opposite.
+    ThreeZones,
+}
+
+impl SlipRegime {
+    /// The number of the paper's classification, 1–4, or 0 for [`SlipRegime::Unclassified`].
+    pub fn number(self) -> u8 {
+        match self {
+            SlipRegime::Unclassified => 0,
+            SlipRegime::OneZone => 1,
+            SlipRegime::TwoZonesSameDirection => 2,
+            SlipRegime::TwoZonesOpposite => 3,
+            SlipRegime::ThreeZones => 4,
+        }
+    }
+}
+
+impl std::fmt::Display for SlipRegime {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.number())
+    }
+}
+
+impl Serialize for SlipRegime {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_u8(self.number())
+    }
+}
+
 /// A run of neighbouring nodes in the same state.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Zone {
@@ -36,8 +117,9 @@ pub struct Zone {
     pub x0: f64,
     /// End x [length].
     pub x1: f64,
-    /// Sign of the slip in a slip zone (+1/−1), 0 otherwise.
-    pub direction: i8,
+    /// Direction of the slip in a slip zone, None otherwise (written +1 / −1 / 0).
+    #[serde(serialize_with = "serialize_zone_direction")]
+    pub direction: Option<SlipDirection>,
     /// Number of nodes in the zone.
     pub nodes: usize,
 }
@@ -174,12 +256,12 @@ impl ContactSolution {
             .collect()
     }
 
-    /// Slip-zone directions (+1/−1) in increasing x.
-    pub fn slip_directions(&self) -> Vec<i8> {
+    /// Slip-zone directions in increasing x.
+    pub fn slip_directions(&self) -> Vec<SlipDirection> {
         self.zones
             .iter()
             .filter(|z| z.state == NodeState::Slip)
-            .map(|z| z.direction)
+            .filter_map(|z| z.direction)
             .collect()
     }
 }
@@ -187,17 +269,7 @@ impl ContactSolution {
 /// Splits the nodes into runs of equal state (and, for slip, equal slip sign).
 fn zones(x: &[f64], state: &[NodeState], slip: &[f64]) -> Vec<Zone> {
     let m = x.len();
-    let dir = |i: usize| -> i8 {
-        if state[i] == NodeState::Slip {
-            if slip[i] >= 0.0 {
-                1
-            } else {
-                -1
-            }
-        } else {
-            0
-        }
-    };
+    let dir = |i: usize| (state[i] == NodeState::Slip).then(|| SlipDirection::of(slip[i]));
     let mut out: Vec<Zone> = Vec::new();
     let half = if m > 1 { 0.5 * (x[1] - x[0]) } else { 0.0 };
     for i in 0..m {
@@ -219,27 +291,24 @@ fn zones(x: &[f64], state: &[NodeState], slip: &[f64]) -> Vec<Zone> {
     out
 }
 
-/// Slip regime of the classification in paper §5.2 (and reference sheet §4.2), from the slip
-/// zones ordered from the leading edge: 1 one slip zone; 2 two zones slipping in the same
-/// direction; 3 two zones in opposite directions; 4 three zones, outer two alike and the middle
-/// one opposite. Zones of fewer than `min_nodes` nodes are ignored. Returns 0 for full stick or
-/// any other pattern.
-pub fn slip_regime(solution: &ContactSolution, leading_edge_sign: f64, min_nodes: usize) -> u8 {
-    let mut dirs: Vec<i8> = solution
+/// The [`SlipRegime`] of a solution whose leading edge lies on the side `leading_edge_sign` of
+/// the contact (+1: at +x). Zones of fewer than `min_nodes` nodes are ignored.
+pub fn slip_regime(solution: &ContactSolution, leading_edge_sign: f64, min_nodes: usize) -> SlipRegime {
+    let mut dirs: Vec<SlipDirection> = solution
         .zones
         .iter()
         .filter(|z| z.state == NodeState::Slip && z.nodes >= min_nodes)
-        .map(|z| z.direction)
+        .filter_map(|z| z.direction)
         .collect();
     if leading_edge_sign > 0.0 {
         dirs.reverse();
     }
     match dirs.as_slice() {
-        [_] => 1,
-        [a, b] if a == b => 2,
-        [_, _] => 3,
-        [a, b, c] if a == c && a != b => 4,
-        _ => 0,
+        [_] => SlipRegime::OneZone,
+        [a, b] if a == b => SlipRegime::TwoZonesSameDirection,
+        [_, _] => SlipRegime::TwoZonesOpposite,
+        [a, b, c] if a == c && a != b => SlipRegime::ThreeZones,
+        _ => SlipRegime::Unclassified,
     }
 }
 

@@ -54,11 +54,17 @@ pub fn read_msh(path: &Path) -> Result<BoundaryMesh, MeshError> {
 pub fn parse_msh_bytes(bytes: &[u8], source: &str) -> Result<BoundaryMesh, MeshError> {
     let format = check_version(bytes, source)?;
     let names = physical_names(bytes);
-    let msh = parse_with_mshio(bytes, source)?;
+    // Read first: the counts of both sections are checked here before `mshio` sees them (it
+    // computes `count - 1` in unsigned arithmetic, which overflows on an empty section).
     let records = node_records(bytes, format).map_err(|message| MeshError::Parse {
         path: source.to_string(),
         message: format!("$Nodes section: {message}"),
     })?;
+    check_element_count(bytes, format).map_err(|message| MeshError::Parse {
+        path: source.to_string(),
+        message: format!("$Elements section: {message}"),
+    })?;
+    let msh = parse_with_mshio(bytes, source)?;
 
     // Physical tags of every curve entity.
     let curve_groups: HashMap<i32, Vec<i32>> = msh
@@ -320,6 +326,9 @@ pub(crate) fn node_records(bytes: &[u8], format: Format) -> Result<Vec<(u64, [f6
     };
     let blocks = r.count("number of node blocks", block_bytes)?;
     let total = r.count("number of nodes", 0)?;
+    if total == 0 {
+        return Err("the header announces no nodes".into());
+    }
     let _min_tag = r.size("minimum node tag")?;
     let _max_tag = r.size("maximum node tag")?;
     let mut records = Vec::new();
@@ -361,6 +370,20 @@ pub(crate) fn node_records(bytes: &[u8], format: Format) -> Result<Vec<(u64, [f6
         ));
     }
     Ok(records)
+}
+
+/// The `$Elements` header must announce at least one element (`numEntityBlocks numElements
+/// minElementTag maxElementTag`).
+fn check_element_count(bytes: &[u8], format: Format) -> Result<(), String> {
+    let Some(pos) = section_body(bytes, "$Elements") else {
+        return Ok(());
+    };
+    let mut r = Numbers { bytes, pos, format };
+    r.size("number of element blocks")?;
+    if r.size("number of elements")? == 0 {
+        return Err("the header announces no elements".into());
+    }
+    Ok(())
 }
 
 /// Accumulates the boundary part of the file: only nodes used by curve elements are kept.

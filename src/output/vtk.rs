@@ -209,7 +209,7 @@ fn export_unstructured(
     cell: Vec<Attribute>,
 ) -> Result<(), Error> {
     let vtk = Vtk {
-        version: Version::new((1, 0)),
+        version: Version::new_xml(1, 0),
         title,
         byte_order: ByteOrder::LittleEndian,
         file_path: None,

@@ -437,8 +437,8 @@ fn run_one(
     }
     let solved = app::solve_prepared(&c, &bodies, start)?;
     Ok(Outcome {
-        solution_converged: solved.newton.converged,
-        iterations: solved.newton.iterations,
+        solution_converged: solved.report.converged,
+        iterations: solved.report.iterations,
         boundary_elements,
         build_s: solved.timings.assembly_s + solved.timings.condense_s,
         solve_s: solved.timings.solve_s,
@@ -571,7 +571,7 @@ pub fn write(dir: &Path, report: &AccuracyReport, title: &str) -> Result<(), Err
         path: path.to_path_buf(),
         message: e.to_string(),
     };
-    crate::output::write_atomically(dir, |tmp| {
+    crate::output::write_atomically(dir, crate::output::folder::Kind::StudyAccuracy, |tmp| {
         let csv_path = tmp.join("accuracy.csv");
         let mut w = csv::Writer::from_path(&csv_path).map_err(|e| io(&csv_path, &e))?;
         w.write_record([

@@ -27,11 +27,12 @@
 use super::heatmap::{self, CellView, Panel};
 use super::{run_parallel, solve_overridden};
 use crate::case::{self, BodySpec};
-use crate::contact::newton::Formulation;
 use crate::contact::solution::traction_ripple;
+use crate::contact::Formulation;
 use crate::contact::Method;
 use crate::error::Error;
 use crate::material::material_for_beta;
+use crate::output::folder::{Access, Claim, Kind};
 use crate::output::write_atomically;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -451,7 +452,7 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
     }
     match solve_overridden(case_path, base_set, &job.overrides) {
         Ok((case, s)) => {
-            let r = &s.newton;
+            let r = &s.report;
             cell.iterations = r.iterations;
             cell.inner_iterations = r.inner_iterations;
             cell.residual = r.residual;
@@ -466,7 +467,7 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
                 let mu_p0 = case.case.contact.friction * s.estimates.hertz_peak_pressure;
                 cell.ripple = (mu_p0 > 0.0).then(|| traction_ripple(&s.solution) / mu_p0);
                 cell.creep = Some(s.solution.creep);
-                cell.regime = Some(s.regime);
+                cell.regime = Some(s.regime.number());
             }
         }
         Err(e) => {
@@ -481,6 +482,8 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
 pub fn run(case_path: &Path, base_set: &[String], preset: Preset, out: &Path) -> Result<StabilityReport, Error> {
     let start = Instant::now();
     case::load(case_path, base_set)?;
+    // Lock and check the output folder before the study runs.
+    let _claim = Claim::acquire(out, Kind::StudyStability, Access::Exclusive)?;
     let slices = ladder(preset);
     let methods = method_variants();
     let jobs = jobs(case_path, base_set, &slices, &methods)?;
@@ -493,7 +496,7 @@ pub fn run(case_path: &Path, base_set: &[String], preset: Preset, out: &Path) ->
         wall_s: 0.0,
     };
     report.wall_s = start.elapsed().as_secs_f64();
-    write_atomically(out, |tmp| write_outputs(tmp, &report))?;
+    write_atomically(out, Kind::StudyStability, |tmp| write_outputs(tmp, &report))?;
     Ok(report)
 }
 

@@ -19,9 +19,9 @@ pub fn solve(name: &str, overrides: &[&str]) -> (LoadedCase, Solved) {
     let case = case::load(&case_path(name), &set).unwrap_or_else(|e| panic!("{name}: {e}"));
     let solved = app::solve(&case).unwrap_or_else(|e| panic!("{name}: {e}"));
     assert!(
-        solved.newton.converged,
+        solved.report.converged,
         "{name} {overrides:?} did not converge: {:?}",
-        solved.newton.history
+        solved.report.history
     );
     (case, solved)
 }
