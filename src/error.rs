@@ -1,4 +1,4 @@
-//! The library's error type and the CLI exit codes of DESIGN §5.
+//! The library's error type and the CLI exit codes (docs/reliability.md).
 
 use crate::case::CaseError;
 use std::path::PathBuf;
@@ -93,7 +93,7 @@ pub enum Error {
     /// The output folder cannot be written (it holds files rollbem did not write, another
     /// process writes it, its path names no folder).
     #[error(transparent)]
-    Folder(#[from] crate::output::folder::FolderError),
+    Folder(#[from] crate::files::FolderError),
     /// Writing results failed.
     #[error("cannot write results to {path}: {message}")]
     Output {
@@ -105,7 +105,7 @@ pub enum Error {
 }
 
 impl Error {
-    /// Exit code of DESIGN §5: 1 for bad input (nothing written). Output failures also give 1.
+    /// Exit code (docs/reliability.md): 1 for bad input (nothing written). Output failures also give 1.
     /// A solution that broke down (NaN) gives 2, as non-convergence does.
     pub fn exit_code(&self) -> i32 {
         match self {

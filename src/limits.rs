@@ -93,7 +93,7 @@ pub const BASE_BYTES: f64 = 16e6;
 /// Memory a case will need at its peak, term by term [bytes].
 ///
 /// Calibrated against the peak resident set size (`/usr/bin/time -v`, "Maximum resident set
-/// size") of `rollbem run` on grids and meshes of several sizes; tests/memory_estimate.rs checks
+/// size") of `rollbem run` on grids and meshes of several sizes; tests/input/memory.rs checks
 /// again that the estimate stays above the measured peak and within a factor 2 of it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MemoryEstimate {

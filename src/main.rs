@@ -4,6 +4,7 @@ use anyhow::Result;
 use clap::Parser;
 use rollbem::cli::{Cli, Command, StudyCommand};
 use rollbem::error::{EXIT_BAD_INPUT, EXIT_INTERNAL_ERROR, EXIT_NOT_CONVERGED};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -31,6 +32,15 @@ fn main() -> ExitCode {
             ExitCode::from(EXIT_INTERNAL_ERROR as u8)
         }
     }
+}
+
+/// The default folder of a sweep or study: the case's output folder with `_<what>` appended.
+fn default_output_dir(case: &rollbem::case::LoadedCase, what: &str) -> PathBuf {
+    let dir = case.output_dir();
+    let name = dir
+        .file_name()
+        .map_or(what.into(), |n| format!("{}_{what}", n.to_string_lossy()));
+    dir.with_file_name(name)
 }
 
 /// Help and version go to stdout with exit code 0; any other command-line error is a usage
@@ -118,14 +128,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             let shard = shard.as_deref().map(rollbem::sweep::Shard::parse).transpose()?;
             let out = match out {
                 Some(o) => o,
-                None => {
-                    let loaded = rollbem::case::load(&case, &set)?;
-                    let dir = loaded.output_dir();
-                    let name = dir
-                        .file_name()
-                        .map_or("sweep".into(), |n| format!("{}_sweep", n.to_string_lossy()));
-                    dir.with_file_name(name)
-                }
+                None => default_output_dir(&rollbem::case::load(&case, &set)?, "sweep"),
             };
             let report = rollbem::sweep::run(&case, &set, &varies, shard, &out, resume)?;
             let failed: Vec<&rollbem::sweep::RunRow> = report.rows.iter().filter(|r| r.status != "ok").collect();
@@ -197,13 +200,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
                         })
                         .collect::<Result<_>>()?;
                 }
-                let out = out.unwrap_or_else(|| {
-                    let dir = loaded.output_dir();
-                    let name = dir
-                        .file_name()
-                        .map_or("accuracy".into(), |n| format!("{}_accuracy", n.to_string_lossy()));
-                    dir.with_file_name(name)
-                });
+                let out = out.unwrap_or_else(|| default_output_dir(&loaded, "accuracy"));
                 // Lock and check the output folder before the study runs.
                 let _claim = rollbem::output::folder::Claim::acquire(
                     &out,
@@ -223,13 +220,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             StudyCommand::Stability { case, quick, out, set } => {
                 let out = match out {
                     Some(o) => o,
-                    None => {
-                        let dir = rollbem::case::load(&case, &set)?.output_dir();
-                        let name = dir
-                            .file_name()
-                            .map_or("stability".into(), |n| format!("{}_stability", n.to_string_lossy()));
-                        dir.with_file_name(name)
-                    }
+                    None => default_output_dir(&rollbem::case::load(&case, &set)?, "stability"),
                 };
                 let preset = if quick {
                     rollbem::study::stability::Preset::Quick
@@ -256,7 +247,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             if !(tolerance > 0.0 && tolerance.is_finite()) {
                 anyhow::bail!("--tolerance must be a positive fraction, e.g. 0.01 for 1 % (value = {tolerance})");
             }
-            print!("{}", rollbem::app::check_report(&case, &set, tolerance)?);
+            print!("{}", rollbem::check::check_report(&case, &set, tolerance)?);
             Ok(0)
         }
     }

@@ -3,10 +3,10 @@
 //! shipped ones, compiled into the binary, so the command needs nothing on disk.
 
 use crate::analytic;
-use crate::app::{self, Solved};
-use crate::case;
-use crate::contact::solution::NodeState;
+use crate::app::{self, CaseSource, Solved};
 use crate::error::Error;
+use crate::post::NodeState;
+use std::path::PathBuf;
 
 /// One reference comparison.
 #[derive(Debug, Clone)]
@@ -45,20 +45,8 @@ const CASES: [(&str, &str); 4] = [
 
 fn solve(name: &str, set: &[&str]) -> Result<Solved, Error> {
     let text = CASES.iter().find(|(n, _)| *n == name).expect("built-in case").1;
-    let dir = std::env::temp_dir().join(format!("rollbem-validate-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).map_err(|e| Error::Output {
-        path: dir.clone(),
-        message: e.to_string(),
-    })?;
-    let path = dir.join(format!("{name}.yaml"));
-    std::fs::write(&path, text).map_err(|e| Error::Output {
-        path: path.clone(),
-        message: e.to_string(),
-    })?;
-    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
-    let loaded = case::load(&path, &set)?;
-    let _ = std::fs::remove_dir_all(&dir);
-    app::solve(&loaded)
+    let path = PathBuf::from(format!("cases/{name}.yaml"));
+    app::solve_case(CaseSource::Text { text, path: &path }, set)
 }
 
 fn relative(name: &str, measured: f64, reference: f64, limit: f64) -> Check {
@@ -80,21 +68,21 @@ pub fn run() -> Result<Vec<Check>, Error> {
     out.push(relative(
         "Hertz half-width a [mm] (41 elements)",
         0.5 * (x1 - x0),
-        s.estimates.hertz_half_width,
+        s.scene.estimates.hertz_half_width,
         0.01,
     ));
     let pmax = s.solution.pressure.iter().fold(0.0_f64, |a, &b| a.max(b));
     out.push(relative(
         "Hertz peak pressure p0 [N/mm^2] (41 elements)",
         pmax,
-        s.estimates.hertz_peak_pressure,
+        s.scene.estimates.hertz_peak_pressure,
         0.01,
     ));
     // Carter, 81 elements.
     let s = solve("carter_051", &["contact.grid.elements=81"])?;
     let c = analytic::Carter {
-        half_width: s.estimates.hertz_half_width,
-        peak_pressure: s.estimates.hertz_peak_pressure,
+        half_width: s.scene.estimates.hertz_half_width,
+        peak_pressure: s.scene.estimates.hertz_peak_pressure,
         friction: 0.1,
         ratio: 0.51,
         leading_edge_sign: 1.0,
@@ -128,7 +116,7 @@ pub fn run() -> Result<Vec<Check>, Error> {
     out.push(relative(
         "Carter creepage [-] (81 elements)",
         s.solution.creep,
-        c.creep(s.estimates.effective_radius),
+        c.creep(s.scene.estimates.effective_radius),
         0.01,
     ));
     // Dissimilar, Dundurs beta/mu = 2.88, Q/muP = 0.04: regime 4 (three slip zones).
@@ -145,7 +133,7 @@ pub fn run() -> Result<Vec<Check>, Error> {
         "free_rolling_al_steel",
         &["contact.friction=1e-4", "contact.grid.elements=321"],
     )?;
-    let e = &s.estimates;
+    let e = &s.scene.estimates;
     let limit = analytic::free_rolling_creep_complete_slip(e.dundurs_beta, e.hertz_half_width, e.effective_radius);
     out.push(relative(
         "free rolling, mu -> 0: creepage [-] vs 0.9148 beta a/R",

@@ -1,5 +1,5 @@
-//! Case text (and `--set` overrides) → validated case → prepared bodies → Hertz estimates →
-//! preflight → contact grid: no panic, and a case that passes holds finite numbers only.
+//! Case text (and `--set` overrides) → validated case → scene (bodies and meshes, preflight,
+//! Hertz estimates, contact grid): no panic, and what passes holds finite numbers only.
 //!
 //! Input: the YAML text, then optionally a NUL byte and one `key.path=value` override per line.
 #![no_main]
@@ -18,13 +18,10 @@ fuzz_target!(|data: &[u8]| {
     let Ok(case) = rollbem::case::parse(yaml, &path, &overrides) else {
         return;
     };
-    assert_eq!(rollbem::app::finite::first_non_finite(&case.case), None);
-    let Ok(bodies) = rollbem::app::prepare_bodies(&case) else {
-        return;
-    };
-    let est = rollbem::app::estimates(&case, &bodies);
-    if rollbem::app::preflight::check(&case, &est, &bodies).is_ok() {
-        let grid = rollbem::app::contact_grid(&case, &est, &bodies);
-        assert!(grid.nodes.iter().all(|x| x.is_finite()));
+    assert_eq!(rollbem::post::finite::first_non_finite(&case.case), None);
+    // Bodies (meshes read), preflight, estimates and the contact grid: no panic, finite grid.
+    if let Ok(scene) = rollbem::scene::Scene::from_case(&case) {
+        assert!(scene.grid.nodes.iter().all(|x| x.is_finite()));
+        assert_eq!(rollbem::post::finite::first_non_finite(&scene.estimates), None);
     }
 });

@@ -9,9 +9,9 @@
 //! contact frame (u_n is positive into each body, and B lies at y < 0). Displacements are real,
 //! not scaled: use ParaView's Warp By Vector.
 
-use crate::contact::solution::{ContactSolution, NodeState};
 use crate::contact::ContactProblem;
 use crate::error::Error;
+use crate::post::{ContactSolution, NodeState};
 use std::path::Path;
 use vtkio::model::{
     Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, ElementType, UnstructuredGridPiece, Version,
