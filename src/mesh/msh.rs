@@ -54,15 +54,15 @@ pub fn read_msh(path: &Path) -> Result<BoundaryMesh, MeshError> {
 pub fn parse_msh_bytes(bytes: &[u8], source: &str) -> Result<BoundaryMesh, MeshError> {
     let format = check_version(bytes, source)?;
     let names = physical_names(bytes);
-    // Read first: the counts of both sections are checked here before `mshio` sees them (it
-    // computes `count - 1` in unsigned arithmetic, which overflows on an empty section).
+    // Checked before `mshio` sees them: it computes `count - 1` in unsigned arithmetic, which
+    // overflows on an empty section.
+    check_section_counts(bytes, format).map_err(|message| MeshError::Parse {
+        path: source.to_string(),
+        message,
+    })?;
     let records = node_records(bytes, format).map_err(|message| MeshError::Parse {
         path: source.to_string(),
         message: format!("$Nodes section: {message}"),
-    })?;
-    check_element_count(bytes, format).map_err(|message| MeshError::Parse {
-        path: source.to_string(),
-        message: format!("$Elements section: {message}"),
     })?;
     let msh = parse_with_mshio(bytes, source)?;
 
@@ -372,16 +372,29 @@ pub(crate) fn node_records(bytes: &[u8], format: Format) -> Result<Vec<(u64, [f6
     Ok(records)
 }
 
-/// The `$Elements` header must announce at least one element (`numEntityBlocks numElements
-/// minElementTag maxElementTag`).
-fn check_element_count(bytes: &[u8], format: Format) -> Result<(), String> {
-    let Some(pos) = section_body(bytes, "$Elements") else {
-        return Ok(());
-    };
-    let mut r = Numbers { bytes, pos, format };
-    r.size("number of element blocks")?;
-    if r.size("number of elements")? == 0 {
-        return Err("the header announces no elements".into());
+/// Every `$Nodes` and `$Elements` header (`numEntityBlocks count minTag maxTag`) must announce
+/// at least one node or element. All of them: `mshio` parses every section it meets (and only
+/// then refuses a second one), wherever the previous section ended.
+fn check_section_counts(bytes: &[u8], format: Format) -> Result<(), String> {
+    for (name, what) in [("$Nodes", "nodes"), ("$Elements", "elements")] {
+        let key = name.as_bytes();
+        for (at, _) in bytes.windows(key.len()).enumerate().filter(|(_, w)| *w == key) {
+            let after = &bytes[at + key.len()..];
+            let eol = match after {
+                [b'\r', b'\n', ..] => 2,
+                [b'\n', ..] => 1,
+                _ => continue,
+            };
+            let mut r = Numbers {
+                bytes,
+                pos: at + key.len() + eol,
+                format,
+            };
+            // A header that cannot be read is left to the parsers, which say where.
+            if let (Ok(_), Ok(0)) = (r.size("blocks"), r.size(what)) {
+                return Err(format!("{name} section: the header announces no {what}"));
+            }
+        }
     }
     Ok(())
 }

@@ -218,6 +218,13 @@ fn fuzz_findings_are_refused_cleanly() {
         // `8 0 1 2` in $Nodes: no nodes; mshio computed 0 - 1 in unsigned arithmetic.
         ("empty_node_section_ascii.sections", ascii, "announces no nodes"),
         ("empty_node_section_binary.sections", binary, "announces no nodes"),
+        // A second $Elements section whose header says 0 elements (mshio parses every section
+        // before it refuses a second one).
+        (
+            "second_empty_element_section_binary.sections",
+            binary,
+            "announces no elements",
+        ),
     ] {
         let mut bytes = header.to_vec();
         bytes.extend(std::fs::read(data("fuzz").join(name)).unwrap());
