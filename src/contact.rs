@@ -30,6 +30,8 @@ pub mod residual;
 pub mod restart;
 pub mod slip_operator;
 pub mod solution;
+pub mod stall;
+mod start;
 
 use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;
