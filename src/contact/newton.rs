@@ -18,7 +18,7 @@
 pub use super::direction::Block;
 use super::report::{IterationRecord, Method, NewtonSettings, SolveReport};
 use super::residual::{axpy, merit, scaled_residual, start_vector, ConvergenceMeasure, Formulation, State, System};
-use super::stall::{Progress, NEWTON_STALL};
+use super::stall::{Progress, NEWTON_STALL, PLAIN_NEWTON_STALL};
 use super::ContactProblem;
 
 /// What a damped Newton loop on one block ended with.
@@ -75,7 +75,12 @@ pub(crate) fn damped_newton(
     // Progress is judged on the merit's norm ‖G‖₂, which the Armijo search decreases
     // monotonically (the measure ‖G‖∞ may rise for a few steps of a converging run).
     let norm = |g: &[f64]| (2.0 * merit(g)).sqrt();
-    let mut progress = Progress::new(NEWTON_STALL, norm(&g));
+    let rule = if settings.max_backtracks == 0 {
+        PLAIN_NEWTON_STALL
+    } else {
+        NEWTON_STALL
+    };
+    let mut progress = Progress::new(rule, norm(&g));
     while !converged
         && history.len() < settings.max_iterations
         && failed_searches < MAX_FAILED_SEARCHES
@@ -129,7 +134,7 @@ pub(crate) fn damped_newton(
             progress.record(norm(&g));
         } else {
             // Progress counts from where the full step landed.
-            progress = Progress::new(NEWTON_STALL, norm(&g));
+            progress = Progress::new(rule, norm(&g));
         }
     }
     let residual = measure(&g, &z);
