@@ -18,7 +18,7 @@
 pub use super::direction::Block;
 use super::report::{IterationRecord, Method, NewtonSettings, SolveReport};
 use super::residual::{axpy, merit, scaled_residual, start_vector, ConvergenceMeasure, Formulation, State, System};
-use super::stall::{Progress, NEWTON_STALL, PLAIN_NEWTON_STALL};
+use super::stall::{Progress, NEWTON_STALL, NORMAL_START_STALL, PLAIN_NEWTON_STALL};
 use super::ContactProblem;
 
 /// What a damped Newton loop on one block ended with.
@@ -52,7 +52,8 @@ pub(crate) enum FirstStep {
     Searched,
     /// The first step is taken in full, the line search applies from the second on: for a start
     /// whose merit does not measure its distance from the solution (the normal start of
-    /// [`super::start`], where the friction rows vanish identically at q = s = 0).
+    /// [`super::start`], where the friction rows vanish identically at q = s = 0). Such an
+    /// attempt is also given up sooner ([`NORMAL_START_STALL`]).
     Full,
 }
 
@@ -75,10 +76,10 @@ pub(crate) fn damped_newton(
     // Progress is judged on the merit's norm ‖G‖₂, which the Armijo search decreases
     // monotonically (the measure ‖G‖∞ may rise for a few steps of a converging run).
     let norm = |g: &[f64]| (2.0 * merit(g)).sqrt();
-    let rule = if settings.max_backtracks == 0 {
-        PLAIN_NEWTON_STALL
-    } else {
-        NEWTON_STALL
+    let rule = match first_step {
+        _ if settings.max_backtracks == 0 => PLAIN_NEWTON_STALL,
+        FirstStep::Full => NORMAL_START_STALL,
+        FirstStep::Searched => NEWTON_STALL,
     };
     let mut progress = Progress::new(rule, norm(&g));
     while !converged

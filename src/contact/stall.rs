@@ -20,35 +20,48 @@ pub struct StallRule {
     pub patience: usize,
 }
 
-/// The Newton methods (each attempt of `newton`, `newton_plain`, the NORM and TANG solves):
-/// no 10 % gain on the best residual in 5 steps. A Newton step near the solution gains orders of
-/// magnitude; measured on the free-rolling ladder, an attempt creeping along a kink gains less
-/// than 1 % per step while its line search halves α towards 10⁻¹² (docs/performance.md).
+/// A line-search Newton attempt (the default method's attempts from the paper's start vector and
+/// after restarts, the creepage iteration's solves, the NORM and TANG solves): no 10 % gain of
+/// ‖G‖₂ in 50 steps. Its Armijo search decreases ‖G‖₂ at every accepted step, so what this ends
+/// is an attempt creeping along a kink of G with ever shorter steps, or wandering at round-off.
+/// Hard attempts can spend 20–30 steps at one level before they escape and converge (measured on
+/// the stability map, docs/stability.md): the patience is half the default budget.
 pub const NEWTON_STALL: StallRule = StallRule {
     margin: 0.1,
+    patience: 50,
+};
+
+/// An attempt from the normal start ([`super::start`]): no 10 % gain in 5 steps. From that start
+/// a converging attempt gains a decade in one or two steps; one that creeps is trapped against
+/// the kink of an edge node's friction bound (at μ ≥ 200, gaining < 1 % per step while its step
+/// length halves towards 10⁻¹²), and the other formulation from the same start follows at once
+/// (docs/performance.md, "Solver cost at the friction limits").
+pub const NORMAL_START_STALL: StallRule = StallRule {
+    margin: 0.1,
     patience: 5,
 };
 
-/// The plain Newton (`newton_plain`, every step in full): no 10 % gain in 20 steps. Without a
-/// line search the residual is not monotone: on Carter's case with Ψ it hovers at 0.13–0.25 for
-/// 20 steps before the active sets settle and it converges (26 steps).
+/// The plain Newton (`newton_plain`, every step in full): no 10 % gain in 100 steps, the default
+/// budget. Without a line search the residual is not monotone: on the stability map converging
+/// runs hover for up to 77 steps before the active sets settle (docs/stability.md), so only a
+/// budget far above the default meets this test (a tolerance below round-off).
 pub const PLAIN_NEWTON_STALL: StallRule = StallRule {
     margin: 0.1,
-    patience: 20,
+    patience: 100,
 };
 
-/// NORM/TANG pairs: no 10 % gain in 5 pairs (a converging alternation gains a factor 2–10 per
-/// pair, docs/stability.md).
+/// NORM/TANG pairs: no 10 % gain in 10 pairs (a converging alternation gains a decade in one to
+/// three pairs: at most 2 pairs without a 10 % gain on the stability map).
 pub const NORM_TANG_STALL: StallRule = StallRule {
     margin: 0.1,
-    patience: 5,
+    patience: 10,
 };
 
-/// Gauss–Seidel sweeps: no 10 % gain in 500 sweeps (a converging sweep gains about 2 % per
-/// sweep on Carter's case, a decade per 100 sweeps).
+/// Gauss–Seidel sweeps: no 10 % gain in 2 500 sweeps (converging runs on the stability map go
+/// up to 1 950 sweeps without one, in bursts around a flipping node).
 pub const GAUSS_SEIDEL_STALL: StallRule = StallRule {
     margin: 0.1,
-    patience: 500,
+    patience: 2_500,
 };
 
 /// The running state of a stall test.
@@ -95,7 +108,7 @@ mod tests {
     fn a_run_that_keeps_gaining_never_stalls() {
         // Linear convergence at 20 % per iteration, the slowest that passes the 10 % margin
         // every time: never stalled however long.
-        let mut p = Progress::new(NEWTON_STALL, 1.0);
+        let mut p = Progress::new(NORMAL_START_STALL, 1.0);
         let mut r = 1.0;
         for _ in 0..1000 {
             r *= 0.8;
@@ -105,10 +118,10 @@ mod tests {
 
     #[test]
     fn a_plateau_stalls_after_the_patience() {
-        let mut p = Progress::new(NEWTON_STALL, 1.0);
+        let mut p = Progress::new(NORMAL_START_STALL, 1.0);
         assert!(!p.record(0.5));
         // Within 10 % of the best: no progress.
-        for k in 1..NEWTON_STALL.patience {
+        for k in 1..NORMAL_START_STALL.patience {
             assert!(!p.record(0.46), "stalled after {k}");
         }
         assert!(p.record(0.46));

@@ -86,3 +86,70 @@ pub(crate) fn complete_slip_step(sys: &System, z: &State) -> Option<(f64, usize)
     }
     None
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analytic::free_rolling_creep_complete_slip;
+    use crate::contact::residual::Formulation;
+    use crate::contact::TangentialControl;
+
+    /// The assembled free-rolling problem (aluminium on steel, Q = 0) at `elements`, and its
+    /// Hertz estimates.
+    fn free_rolling(elements: usize) -> (ContactProblem, crate::app::Estimates) {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/free_rolling_al_steel.yaml");
+        let set = [
+            "contact.friction=1e-4".to_string(),
+            format!("contact.grid.elements={elements}"),
+            "solver.max_iterations=1".to_string(),
+        ];
+        let loaded = crate::case::load(&path, &set).expect("shipped case loads");
+        let solved = crate::app::solve(&loaded).expect("assembles");
+        (solved.problem, solved.estimates)
+    }
+
+    #[test]
+    fn complete_slip_creep_of_the_normal_start_is_bentall_and_johnsons_limit() {
+        // On the Hertz pressure of the NORM solve the staircase root is the μ → 0 limit
+        // ξ = 0.914772 β a/R, up to the slip change between the two nodes at the reversal point
+        // x ≈ 0.40a (the root is a node's flip, not interpolated): about 0.2 % at these grids.
+        // Measured: −0.18 %, +0.12 %, +0.17 % at 41, 81, 161 elements.
+        for elements in [41, 81, 161] {
+            let (pb, e) = free_rolling(elements);
+            let start = normal_start(&pb, &NewtonSettings::default());
+            assert!(start.converged, "NORM did not converge");
+            let limit = free_rolling_creep_complete_slip(e.dundurs_beta, e.hertz_half_width, e.effective_radius);
+            let err = start.state.creep / limit - 1.0;
+            assert!(
+                err.abs() < 5e-3,
+                "{elements} elements: ξ = {} vs {limit}",
+                start.state.creep
+            );
+            // The slip was recomputed with it: the elastic slip rows hold.
+            let sys = System::new(&pb, NewtonSettings::default().formulation, 1.0);
+            let g = sys.residual(&start.state);
+            let m = pb.n_nodes();
+            let slip_rows = g[m..2 * m].iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+            assert!(slip_rows < 1e-9 * sys.traction_scale(), "slip rows {slip_rows}");
+        }
+    }
+
+    #[test]
+    fn no_complete_slip_creep_when_it_is_prescribed_or_out_of_reach() {
+        let (pb, _) = free_rolling(41);
+        let z = normal_start(&pb, &NewtonSettings::default()).state;
+        let kinematic = ContactProblem {
+            tangential: TangentialControl::Creep(1e-3),
+            ..pb.clone()
+        };
+        let sys = System::new(&kinematic, Formulation::Phi, 1.0);
+        assert_eq!(complete_slip_creep(&sys, &z), None);
+        // |Q| ≥ μP: no step of the staircase holds the target.
+        let sliding = ContactProblem {
+            tangential: TangentialControl::Ratio(1.5),
+            ..pb.clone()
+        };
+        let sys = System::new(&sliding, Formulation::Phi, 1.0);
+        assert_eq!(complete_slip_creep(&sys, &z), None);
+    }
+}
