@@ -52,13 +52,15 @@ fn an_unreachable_tolerance_ends_on_the_stall_test_of_every_method() {
     let dir = tempfile::tempdir().unwrap();
     // Upper bounds on the iterations before the stall test ends the run: the residual reaches
     // round-off (about 1e-14) within the counts a converging run needs (5 Newton steps, 1 pair,
-    // about 1 100 sweeps), then the patience of the rule runs out, per attempt for the default
-    // method's chain of 9 attempts. Measured: 109, 25, 6, 2 408.
+    // about 1 100 sweeps), then the patience of the rule runs out — for the default method per
+    // attempt of its chain of 9 (most end earlier, on two failed line searches); round-off
+    // fluctuations may pass the 10 % margin a few more times in the long Gauss–Seidel runs.
+    // Measured: 110, 111, 11, 6 080 (before: 81, 100 000, 100 000, 100 000).
     let bounds = [
-        ("newton", 10 * (30 + NEWTON_STALL.patience)),
+        ("newton", 9 * (10 + NEWTON_STALL.patience)),
         ("newton_plain", 30 + PLAIN_NEWTON_STALL.patience),
         ("norm_tang", 5 + NORM_TANG_STALL.patience),
-        ("gauss_seidel", 2_000 + GAUSS_SEIDEL_STALL.patience),
+        ("gauss_seidel", 4 * GAUSS_SEIDEL_STALL.patience),
     ];
     for (method, bound) in bounds {
         let s = run_unreachable(dir.path(), method);
