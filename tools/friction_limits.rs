@@ -31,7 +31,10 @@ fn main() {
         for &n in &elements {
             for mu in FRICTIONS {
                 let set = vec![format!("contact.friction={mu}"), format!("contact.grid.elements={n}")];
-                let row = match case::load(&root.join(format!("{name}.yaml")), &set).and_then(|c| app::solve(&c)) {
+                let solved = case::load(&root.join(format!("{name}.yaml")), &set)
+                    .map_err(|e| e.to_string())
+                    .and_then(|c| app::solve(&c).map_err(|e| e.to_string()));
+                let row = match solved {
                     Ok(s) => format!(
                         "| {name} | {n} | {mu} | {}{} | {} | {:.10e} | {:.2} |",
                         s.report.iterations,

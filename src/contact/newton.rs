@@ -11,9 +11,11 @@
 //!
 //! **Attempts.** [`solve`] is one attempt from the paper's start vector. An attempt stalls when it
 //! spends a budget of at least [`MIN_RESTART_BUDGET`] steps without converging, meets a singular
-//! Newton matrix, or when [`MAX_FAILED_SEARCHES`] line searches in a row find no decrease at all
+//! Newton matrix, when [`MAX_FAILED_SEARCHES`] line searches in a row find no decrease at all
 //! (the direction is no descent direction: a kink of G lies between the iterate and the
-//! solution). What the default method does then is the restart policy of [`super::restart`].
+//! solution), or when ‖G‖₂ has not improved by 10 % on its best for a number of steps
+//! ([`super::stall`]: 5 from the normal start, 50 otherwise, 100 without line search). What the
+//! default method does then is the start and restart policy of [`super::restart`].
 
 pub use super::direction::Block;
 use super::report::{IterationRecord, Method, NewtonSettings, SolveReport};
