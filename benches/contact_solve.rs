@@ -6,14 +6,15 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use rollbem::app;
-use rollbem::case;
+use rollbem::case::LoadedCase;
 use rollbem::contact::{methods, Method, SolverSettings};
+use rollbem::scene::Scene;
 use std::path::PathBuf;
 use std::time::Duration;
 
-fn load(n: usize) -> case::LoadedCase {
+fn load(n: usize) -> LoadedCase {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/carter2d_contact.yaml");
-    case::load(&path, &[format!("contact.grid.elements={n}")]).expect("benchmark case loads")
+    app::load_case(&path, &[format!("contact.grid.elements={n}")]).expect("benchmark case loads")
 }
 
 fn contact_pipeline(c: &mut Criterion) {
@@ -24,21 +25,18 @@ fn contact_pipeline(c: &mut Criterion) {
         .warm_up_time(Duration::from_millis(500));
     for n in [21, 41, 81, 161, 321] {
         let case = load(n);
-        let bodies = app::prepare_bodies(&case).expect("bodies");
-        let est = app::estimates(&case, &bodies);
-        let (_, _, problem) = app::build_problem(&case, &est, &bodies).expect("problem");
+        let scene = Scene::from_case(&case).expect("scene");
+        let (_, problem) = scene.assemble().expect("problem");
         let settings = SolverSettings {
             method: Method::Newton,
-            ..app::solver_settings(&case)
+            ..scene.solver
         };
         let (_, report) = methods::solve(&problem, &settings);
         eprintln!(
             "carter2d {n} elements: {} Newton iterations, converged {}",
             report.iterations, report.converged
         );
-        group.bench_with_input(BenchmarkId::new("assembly", n), &n, |b, _| {
-            b.iter(|| app::build_problem(&case, &est, &bodies))
-        });
+        group.bench_with_input(BenchmarkId::new("assembly", n), &n, |b, _| b.iter(|| scene.assemble()));
         group.bench_with_input(BenchmarkId::new("newton_solve", n), &n, |b, _| {
             b.iter(|| methods::solve(&problem, &settings))
         });

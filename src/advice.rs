@@ -1,4 +1,4 @@
-//! Which body model a scene needs (issue 6, "model no more than the scene needs").
+//! Which body model a scene needs ("model no more than the scene needs").
 //!
 //! The half-space model is the classical semi-analytic model: exact for massive bodies with
 //! a ≪ R, and the cheapest by far. Its error on a user's scene is estimated from measured
@@ -9,7 +9,7 @@
 //! * [`LAYER_ERROR`] — a cover layer of thickness b bonded to a rigid core, against the BEM
 //!   layer, as a function of b/a.
 //!
-//! Both come from `cargo run --release --example model_error_table` (tools/model_error_table.rs;
+//! Both come from `cargo run --release --example model_error_table` (examples/model_error_table.rs;
 //! docs/choosing-a-model.md shows the tables and the rule). Errors are the largest nodal
 //! differences in units of p0 (pressure) and μp0 (shear), p0 the Hertz peak pressure.
 

@@ -1,7 +1,7 @@
 //! Plane-strain elastostatic boundary element method (direct BEM, collocation).
 //!
 //! The boundary displacement integral equation (Somigliana's identity at a boundary point,
-//! Brebbia–Telles–Wrobel, *Boundary Element Techniques*, 1984, Eq. 3.56 / reference sheet §9)
+//! Brebbia–Telles–Wrobel, *Boundary Element Techniques*, 1984, Eq. 3.56 / docs/references.md §9)
 //!
 //! ```text
 //! c_ij(X) u_j(X) + CPV∫_Γ T*_ij(X, x) u_j(x) dΓ = ∫_Γ U*_ij(X, x) t_j(x) dΓ
@@ -29,7 +29,7 @@
 //!
 //! **Incompressible material (ν = 0.5).** The kernels stay finite, but the Kelvin displacement
 //! field is then divergence-free, so ∮ U*_ij n_j dΓ = 0 around every closed loop: G annihilates
-//! a uniform pressure on any loop. Consequences, both checked in `tests/bem_lame.rs`:
+//! a uniform pressure on any loop. Consequences, both checked in `tests/bem/lame.rs`:
 //! * on a loop whose displacements are all prescribed (a fixed shaft or core) the computed
 //!   traction is determined only up to a uniform pressure c·n on that loop. Displacements
 //!   everywhere (hence the contact flexibility), and the resultant force and moment on the loop,

@@ -105,19 +105,10 @@ pub fn material_of(spec: &MaterialSpec) -> Elastic {
     }
 }
 
-/// Removes `.` and `name/..` pairs lexically (`cases/../out/x` → `out/x`).
+/// Removes `.` and `name/..` pairs lexically (`cases/../out/x` → `out/x`), `.` when nothing
+/// is left.
 fn normalize(path: &Path) -> PathBuf {
-    use std::path::Component;
-    let mut out = PathBuf::new();
-    for c in path.components() {
-        match c {
-            Component::CurDir => {}
-            Component::ParentDir if matches!(out.components().next_back(), Some(Component::Normal(_))) => {
-                out.pop();
-            }
-            other => out.push(other),
-        }
-    }
+    let out = crate::files::normalize(path);
     if out.as_os_str().is_empty() {
         PathBuf::from(".")
     } else {

@@ -1,4 +1,4 @@
-//! Command-line interface (DESIGN §5).
+//! Command-line interface: the verbs, their arguments and their help texts.
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -6,15 +6,32 @@ use std::path::PathBuf;
 /// rollbem — 2D steady rolling contact of elastic cylinders (half-space or BEM bodies),
 /// coupled normal–tangential, Coulomb friction, generalized Newton (González & Abascal 2000).
 ///
-/// Exit codes: 0 solved; 1 bad input (message names the file and key; nothing written);
-/// 2 the solver did not converge (summary.json written with converged: false and the
-/// residual history).
+/// Exit codes: 0 solved; 1 bad input or usage (the message names the file, key or folder;
+/// nothing written); 2 the solver did not converge (summary.json written with converged: false
+/// and the residual history); 3 internal error (a bug: please report it; nothing written).
+///
+/// rollbem never deletes or overwrites a file it did not write: it replaces only its own earlier
+/// results (atomically) and refuses an output folder that holds anything else.
 #[derive(Debug, Parser)]
 #[command(name = "rollbem", version, about, long_about)]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
+}
+
+impl Cli {
+    /// The case file of the command, if it has one (named in the internal-error report).
+    pub fn case_path(&self) -> Option<&std::path::Path> {
+        match &self.command {
+            Command::Run { case, .. } | Command::Check { case, .. } => Some(case),
+            Command::Sweep { case, .. } => case.as_deref(),
+            Command::Study { study } => match study {
+                StudyCommand::Accuracy { case, .. } | StudyCommand::Stability { case, .. } => Some(case),
+            },
+            Command::Validate => None,
+        }
+    }
 }
 
 /// The verbs.
@@ -40,8 +57,10 @@ pub enum Command {
     /// rollbem sweep cases/variable_mu_qp_0075.yaml --vary contact.friction=0.1,0.2,0.3,0.4,0.8
     ///
     /// Writes one folder per run (run_0000, …), sweep.csv (varied values, status, forces,
-    /// creepage, zones, timings) and sweep.pvd (the runs' contact lines as ParaView time steps).
-    /// A failed run is recorded as failed and the others go on; exit code 2 if any run failed.
+    /// creepage, zones, timings; a row added as each run finishes), sweep.json (what sweep this
+    /// is) and sweep.pvd (the runs' contact lines as ParaView time steps). A failed run is
+    /// recorded as failed and the others go on; exit code 2 if any run failed (3 if one hit an
+    /// internal error). An interrupted sweep is continued with --resume.
     /// Large sweeps: `--shard K/N` runs the K-th of N deterministic slices (one per Slurm array
     /// task), then `rollbem sweep --merge DIR... --out DIR` joins the shards.
     Sweep {
@@ -62,14 +81,21 @@ pub enum Command {
         #[arg(long, value_name = "K/N", conflicts_with = "merge")]
         shard: Option<String>,
         /// Join the sweep_shard_*.csv files of these folders into --out (default: the first).
+        /// Refused (exit 1) unless they make one complete sweep: every shard 1..N, all of the
+        /// same case, --set and --vary, each with all its runs.
         #[arg(long, num_args = 1.., value_name = "DIR")]
         merge: Vec<PathBuf>,
+        /// Continue an interrupted sweep (or shard) in --out: keep the runs its table records as
+        /// done, run only the missing and failed ones. The table must belong to the same sweep
+        /// (case, --set, --vary, shards).
+        #[arg(long, conflicts_with = "merge")]
+        resume: bool,
     },
     /// Solve the built-in reference problems (Hertz, Carter, dissimilar regimes, free-rolling
     /// limits) and print each measured error against its closed form and limit; exit code 2 if
     /// any fails. docs/validation.md has the full tables.
     Validate,
-    /// Studies over many runs of a case's scene (issue 6): speed against accuracy of the body
+    /// Studies over many runs of a case's scene: speed against accuracy of the body
     /// models, and where each solution method converges (parallel, with a progress bar).
     Study {
         /// Which study.

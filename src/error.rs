@@ -1,4 +1,4 @@
-//! The library's error type and the CLI exit codes of DESIGN §5.
+//! The library's error type and the CLI exit codes (docs/reliability.md).
 
 use crate::case::CaseError;
 use std::path::PathBuf;
@@ -73,6 +73,10 @@ pub enum Error {
         /// What is wrong and what to do.
         message: String,
     },
+    /// The output folder cannot be written (it holds files rollbem did not write, another
+    /// process writes it, its path names no folder).
+    #[error(transparent)]
+    Folder(#[from] crate::files::FolderError),
     /// Writing results failed.
     #[error("cannot write results to {path}: {message}")]
     Output {
@@ -84,11 +88,18 @@ pub enum Error {
 }
 
 impl Error {
-    /// Exit code of DESIGN §5: 1 for bad input (nothing written). Output failures also give 1.
+    /// Exit code (docs/reliability.md): 1 for bad input (nothing written). Output failures also give 1.
     pub fn exit_code(&self) -> i32 {
-        1
+        EXIT_BAD_INPUT
     }
 }
 
+/// Exit code of bad input or bad usage (a message says what to change; nothing written).
+pub const EXIT_BAD_INPUT: i32 = 1;
+
 /// Exit code of a run that finished but did not converge (diagnostics written).
 pub const EXIT_NOT_CONVERGED: i32 = 2;
+
+/// Exit code of an internal error: a bug (a panic) caught before it could pass for a result;
+/// nothing is written.
+pub const EXIT_INTERNAL_ERROR: i32 = 3;

@@ -4,17 +4,19 @@
 //! cylinders in plane strain with Coulomb friction, by the generalized Newton method with line
 //! search of González & Abascal (IJNME 49, 2000).
 //!
-//! ## Data flow
+//! ## Data flow (docs/architecture.md maps the stages to files)
 //! ```text
-//! case (YAML) ─▶ body models (half_space | bem | rigid) ─▶ Flexibility at the contact grid
+//! case (YAML) ─▶ scene: both bodies as BodySetup, the contact grid, controls, estimates
+//!            ─▶ body models (half_space | bem | rigid) ─▶ Flexibility at the contact grid
 //!            ─▶ ContactProblem (gap and slip affine in the tractions, paper Eq. 21)
 //!            ─▶ contact::methods::solve (newton | newton_plain | norm_tang | gauss_seidel)
-//!            ─▶ ContactSolution
-//!            ─▶ post-processing by each body model (boundary, interior fields)
-//!            ─▶ output (JSON, CSV, SVG, VTK)
+//!            ─▶ post: ContactSolution, zones and regime, friction check, body fields
+//!            ─▶ output (JSON, CSV, SVG, VTK, the terminal table)
 //! ```
+//! [`app::solve_case`] runs the stages up to post-processing for a case file or text;
+//! [`app::run`] also writes the outputs.
 //!
-//! ## Conventions (DESIGN §2)
+//! ## Conventions (docs/theory.md)
 //! x along the common tangent, y from B into A. Pressure p ≥ 0 compressive; shear q is the
 //! traction B exerts on A, positive in +x. Creepage ξ = (V_A − V_B)/V; slip s is the velocity of
 //! A's surface relative to B's divided by |V|. Overlap δ0 > 0 presses the bodies together.
@@ -26,16 +28,20 @@ pub mod app;
 pub mod bem;
 pub mod body;
 pub mod case;
+pub mod check;
 pub mod cli;
 pub mod contact;
 pub mod error;
+pub mod files;
 pub mod grid;
 pub mod interior;
 pub mod linalg;
 pub mod material;
 pub mod mesh;
 pub mod output;
+pub mod post;
 pub mod quadrature;
 pub mod reference;
+pub mod scene;
 pub mod study;
 pub mod sweep;

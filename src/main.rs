@@ -3,19 +3,82 @@
 use anyhow::Result;
 use clap::Parser;
 use rollbem::cli::{Cli, Command, StudyCommand};
-use rollbem::error::EXIT_NOT_CONVERGED;
+use rollbem::error::{EXIT_BAD_INPUT, EXIT_INTERNAL_ERROR, EXIT_NOT_CONVERGED};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    match dispatch(cli) {
-        Ok(code) => ExitCode::from(code as u8),
-        Err(e) => {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(&e),
+    };
+    let case = cli.case_path().map(|p| p.display().to_string());
+    install_panic_hook();
+    // A panic is a bug: it must not pass for a result. Writers clean up as the panic unwinds
+    // (temporary folders, locks), so nothing is written.
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| dispatch(cli))) {
+        Ok(Ok(code)) => ExitCode::from(code as u8),
+        Ok(Err(e)) => {
             let code = e.downcast_ref::<rollbem::error::Error>().map_or(1, |e| e.exit_code());
             eprintln!("error: {e}");
             ExitCode::from(code as u8)
         }
+        Err(_) => {
+            let what = PANIC.lock().ok().and_then(|mut p| p.take()).unwrap_or_default();
+            eprintln!(
+                "error: internal error — please report it (with the case file {} and this message): {what}",
+                case.as_deref().unwrap_or("(none)")
+            );
+            ExitCode::from(EXIT_INTERNAL_ERROR as u8)
+        }
     }
+}
+
+/// The default folder of a sweep or study: the case's output folder with `_<what>` appended.
+fn default_output_dir(case: &rollbem::case::LoadedCase, what: &str) -> PathBuf {
+    let dir = case.output_dir();
+    let name = dir
+        .file_name()
+        .map_or(what.into(), |n| format!("{}_{what}", n.to_string_lossy()));
+    dir.with_file_name(name)
+}
+
+/// Help and version go to stdout with exit code 0; any other command-line error is a usage
+/// error: clap's message on stderr, exit code 1 (clap's own 2 means "not converged" here).
+fn usage_error(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    let _ = e.print();
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => ExitCode::SUCCESS,
+        _ => ExitCode::from(EXIT_BAD_INPUT as u8),
+    }
+}
+
+/// The message and place of the last panic, for the internal-error report.
+static PANIC: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
+
+/// Records a panic's message and location instead of printing Rust's default report; the
+/// backtrace follows when RUST_BACKTRACE asks for it.
+fn install_panic_hook() {
+    std::panic::set_hook(Box::new(|info| {
+        let message = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "panic".into());
+        let place = info
+            .location()
+            .map_or(String::new(), |l| format!(" at {}:{}", l.file(), l.line()));
+        let backtrace = std::backtrace::Backtrace::capture();
+        let trace = match backtrace.status() {
+            std::backtrace::BacktraceStatus::Captured => format!("\n{backtrace}"),
+            _ => String::new(),
+        };
+        if let Ok(mut p) = PANIC.lock() {
+            *p = Some(format!("{message}{place}{trace}"));
+        }
+    }));
 }
 
 fn dispatch(cli: Cli) -> Result<i32> {
@@ -49,6 +112,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             out,
             shard,
             merge,
+            resume,
         } => {
             if !merge.is_empty() {
                 let out = out.unwrap_or_else(|| merge[0].clone());
@@ -64,19 +128,17 @@ fn dispatch(cli: Cli) -> Result<i32> {
             let shard = shard.as_deref().map(rollbem::sweep::Shard::parse).transpose()?;
             let out = match out {
                 Some(o) => o,
-                None => {
-                    let loaded = rollbem::case::load(&case, &set)?;
-                    let dir = loaded.output_dir();
-                    let name = dir
-                        .file_name()
-                        .map_or("sweep".into(), |n| format!("{}_sweep", n.to_string_lossy()));
-                    dir.with_file_name(name)
-                }
+                None => default_output_dir(&rollbem::case::load(&case, &set)?, "sweep"),
             };
-            let report = rollbem::sweep::run(&case, &set, &varies, shard, &out)?;
+            let report = rollbem::sweep::run(&case, &set, &varies, shard, &out, resume)?;
             let failed: Vec<&rollbem::sweep::RunRow> = report.rows.iter().filter(|r| r.status != "ok").collect();
+            let kept = if report.resumed > 0 {
+                format!(" ({} kept from the interrupted sweep)", report.resumed)
+            } else {
+                String::new()
+            };
             println!(
-                "sweep: {} of {} runs here, {} ok, {} failed or not converged; table {}",
+                "sweep: {} of {} runs here{kept}, {} ok, {} failed or not converged; table {}",
                 report.rows.len(),
                 report.total_runs,
                 report.rows.len() - failed.len(),
@@ -86,7 +148,13 @@ fn dispatch(cli: Cli) -> Result<i32> {
             for r in &failed {
                 eprintln!("  {} {}: {} {}", r.folder, r.values.join(" "), r.status, r.message);
             }
-            Ok(if failed.is_empty() { 0 } else { EXIT_NOT_CONVERGED })
+            Ok(if report.rows.iter().any(|r| r.internal_error) {
+                EXIT_INTERNAL_ERROR
+            } else if failed.is_empty() {
+                0
+            } else {
+                EXIT_NOT_CONVERGED
+            })
         }
         Command::Validate => {
             let checks = rollbem::reference::run()?;
@@ -132,13 +200,13 @@ fn dispatch(cli: Cli) -> Result<i32> {
                         })
                         .collect::<Result<_>>()?;
                 }
-                let out = out.unwrap_or_else(|| {
-                    let dir = loaded.output_dir();
-                    let name = dir
-                        .file_name()
-                        .map_or("accuracy".into(), |n| format!("{}_accuracy", n.to_string_lossy()));
-                    dir.with_file_name(name)
-                });
+                let out = out.unwrap_or_else(|| default_output_dir(&loaded, "accuracy"));
+                // Lock and check the output folder before the study runs.
+                let _claim = rollbem::output::folder::Claim::acquire(
+                    &out,
+                    rollbem::output::folder::Kind::StudyAccuracy,
+                    rollbem::output::folder::Access::Exclusive,
+                )?;
                 let report = accuracy::run(&loaded, &options, true)?;
                 accuracy::write(&out, &report, &loaded.case.title)?;
                 print!("{}", accuracy::render(&report));
@@ -152,13 +220,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             StudyCommand::Stability { case, quick, out, set } => {
                 let out = match out {
                     Some(o) => o,
-                    None => {
-                        let dir = rollbem::case::load(&case, &set)?.output_dir();
-                        let name = dir
-                            .file_name()
-                            .map_or("stability".into(), |n| format!("{}_stability", n.to_string_lossy()));
-                        dir.with_file_name(name)
-                    }
+                    None => default_output_dir(&rollbem::case::load(&case, &set)?, "stability"),
                 };
                 let preset = if quick {
                     rollbem::study::stability::Preset::Quick
@@ -185,7 +247,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             if !(tolerance > 0.0 && tolerance.is_finite()) {
                 anyhow::bail!("--tolerance must be a positive fraction, e.g. 0.01 for 1 % (value = {tolerance})");
             }
-            print!("{}", rollbem::app::check_report(&case, &set, tolerance)?);
+            print!("{}", rollbem::check::check_report(&case, &set, tolerance)?);
             Ok(0)
         }
     }

@@ -9,12 +9,21 @@
 //! one `sweep.csv` and `sweep.pvd`. A failed run is recorded as failed and does not stop the
 //! others.
 
+mod merge;
+mod record;
+mod table;
+
 use crate::app;
 use crate::error::Error;
-use crate::output::vtk::{write_collection, CollectionEntry};
+use crate::output::folder::{self, Access, Claim, FileLock, FolderError, Kind, SweepEntry};
 use indicatif::{ProgressBar, ProgressStyle};
+pub use merge::merge;
 use rayon::prelude::*;
+pub use record::{fnv1a64, SweepRecord, VaryRecord};
+use record::{read_record, write_record};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use table::{read_rows_leniently, write_pvd, write_rows, Appender};
 
 /// One `--vary key=v1,v2,…` argument.
 #[derive(Debug, Clone, PartialEq)]
@@ -133,10 +142,59 @@ pub struct RunRow {
     pub results: Vec<String>,
     /// Whether the run folder has a contact.vtu.
     pub has_vtk: bool,
+    /// Whether the run failed on an internal error (a caught panic: a bug, not bad input).
+    pub internal_error: bool,
 }
 
+impl RunRow {
+    /// The CSV record: `run, folder, status`, the values, `message`, the results.
+    fn record(&self) -> Vec<String> {
+        let mut rec = vec![self.run.to_string(), self.folder.clone(), self.status.clone()];
+        rec.extend(self.values.iter().cloned());
+        rec.push(self.message.clone());
+        rec.extend(self.results.iter().cloned());
+        rec
+    }
+}
+
+/// Runs one point of the sweep into `out/run_NNNN`; a panic in it is caught and recorded as an
+/// internal error of that run (the others go on).
 fn run_one(case: &Path, base_set: &[String], out: &Path, run: usize, overrides: &[(String, String)]) -> RunRow {
-    let folder = format!("run_{run:04}");
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        run_one_unguarded(case, base_set, out, run, overrides)
+    }));
+    outcome.unwrap_or_else(|payload| {
+        let what = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "panic".into());
+        RunRow {
+            run,
+            folder: run_folder(run),
+            status: "failed".into(),
+            values: overrides.iter().map(|(_, v)| v.clone()).collect(),
+            message: format!("internal error — please report it: {}", what.replace('\n', " ")),
+            results: vec![String::new(); RESULT_COLUMNS.len()],
+            has_vtk: false,
+            internal_error: true,
+        }
+    })
+}
+
+/// Name of the folder of run `run`.
+pub fn run_folder(run: usize) -> String {
+    format!("run_{run:04}")
+}
+
+fn run_one_unguarded(
+    case: &Path,
+    base_set: &[String],
+    out: &Path,
+    run: usize,
+    overrides: &[(String, String)],
+) -> RunRow {
+    let folder = run_folder(run);
     let mut set = base_set.to_vec();
     set.extend(overrides.iter().map(|(k, v)| format!("{k}={v}")));
     let values = overrides.iter().map(|(_, v)| v.clone()).collect();
@@ -173,6 +231,7 @@ fn run_one(case: &Path, base_set: &[String], out: &Path, run: usize, overrides: 
                 ],
                 has_vtk: s.converged && s.vtk,
                 folder,
+                internal_error: false,
             }
         }
         Err(e) => RunRow {
@@ -183,6 +242,7 @@ fn run_one(case: &Path, base_set: &[String], out: &Path, run: usize, overrides: 
             message: e.to_string().replace('\n', " "),
             results: vec![String::new(); RESULT_COLUMNS.len()],
             has_vtk: false,
+            internal_error: false,
         },
     }
 }
@@ -192,245 +252,247 @@ fn run_one(case: &Path, base_set: &[String], out: &Path, run: usize, overrides: 
 pub struct SweepReport {
     /// Output folder.
     pub dir: PathBuf,
-    /// Rows of the runs done here.
+    /// Rows of the runs of this sweep (or shard), done now or kept by `--resume`.
     pub rows: Vec<RunRow>,
     /// Total runs in the full product.
     pub total_runs: usize,
+    /// Runs kept from an earlier, interrupted sweep (`--resume`).
+    pub resumed: usize,
     /// The CSV written (sweep.csv, or the shard file).
     pub csv: PathBuf,
 }
+fn sweep_err(message: String) -> Error {
+    Error::Sweep { message }
+}
 
 /// Runs a sweep (or one shard of it) into `out`.
+///
+/// `out` must be new, empty or a sweep folder (see [`crate::output::folder`]): a folder holding
+/// anything else is refused before any run. An unsharded sweep locks `out` for itself; the
+/// shards of one sweep share it, each locking its own table. The runs' rows are appended to the
+/// table as they finish (in the order they finish; rewritten in run order at the end), so a
+/// killed sweep leaves the finished ones, and `resume` re-runs only the runs that are missing or
+/// failed (the table must belong to the same sweep). Without `resume`, an unsharded sweep into
+/// a folder of an earlier sweep replaces it atomically when complete; a shard re-runs its runs.
 pub fn run(
     case: &Path,
     base_set: &[String],
     varies: &[Vary],
     shard: Option<Shard>,
     out: &Path,
+    resume: bool,
 ) -> Result<SweepReport, Error> {
     if varies.is_empty() {
-        return Err(Error::Sweep {
-            message: "nothing to sweep: give at least one --vary key.path=v1,v2,...".into(),
-        });
+        return Err(sweep_err(
+            "nothing to sweep: give at least one --vary key.path=v1,v2,...".into(),
+        ));
     }
     // Fail fast on an unreadable case; value errors are per-run failures.
     crate::case::load(case, base_set)?;
-    let runs = product(varies);
-    let total_runs = runs.len();
-    let mine: Vec<(usize, &Vec<(String, String)>)> = runs
-        .iter()
-        .enumerate()
-        .filter(|(n, _)| shard.is_none_or(|s| s.owns(*n)))
-        .collect();
-    std::fs::create_dir_all(out).map_err(|e| Error::Output {
-        path: out.to_path_buf(),
-        message: e.to_string(),
-    })?;
-    let bar = ProgressBar::new(mine.len() as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, eta {eta} {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    let mut rows: Vec<RunRow> = mine
-        .par_iter()
-        .map(|(n, overrides)| {
-            let row = run_one(case, base_set, out, *n, overrides);
-            bar.inc(1);
-            row
-        })
-        .collect();
-    bar.finish_and_clear();
-    rows.sort_by_key(|r| r.run);
-    let keys: Vec<String> = varies.iter().map(|v| v.key.clone()).collect();
-    let csv = match shard {
-        None => out.join("sweep.csv"),
-        Some(s) => out.join(format!("sweep_shard_{}_of_{}.csv", s.index, s.count)),
+    let record = SweepRecord::new(case, base_set, varies, shard)?;
+    let access = if shard.is_some() {
+        Access::Shared
+    } else {
+        Access::Exclusive
     };
-    write_rows(&csv, &keys, &rows)?;
-    if shard.is_none() {
-        write_pvd(&out.join("sweep.pvd"), out, &rows)?;
-    }
+    let claim = Claim::acquire(out, Kind::Sweep, access)?;
+    let dir = claim.path().to_path_buf();
+    let _shard_lock = match shard {
+        Some(_) => Some(lock_table(&dir, &record)?),
+        None => None,
+    };
+    check_other_records(&dir, &record, resume)?;
+    let job = Job {
+        case,
+        base_set,
+        varies,
+        shard,
+        record: &record,
+    };
+    let holds_sweep = folder::read_manifest(&dir).is_some();
+    let (rows, resumed) = if shard.is_none() && holds_sweep && !resume {
+        // Replace the earlier sweep atomically: run into a temporary sibling, renamed at the end.
+        let mut done = None;
+        claim.write(|tmp| {
+            done = Some(job.run_in(tmp, false)?);
+            Ok::<(), Error>(())
+        })?;
+        done.unwrap_or_default()
+    } else {
+        claim.create_in_place()?;
+        job.run_in(&dir, resume)?
+    };
     Ok(SweepReport {
-        dir: out.to_path_buf(),
+        csv: dir.join(record.csv_name()),
+        dir,
         rows,
-        total_runs,
-        csv,
+        total_runs: record.runs,
+        resumed,
     })
 }
 
-fn header(keys: &[String]) -> Vec<String> {
-    let mut h: Vec<String> = ["run", "folder", "status"].map(String::from).to_vec();
-    h.extend(keys.iter().cloned());
-    h.push("message".into());
-    h.extend(RESULT_COLUMNS.map(String::from));
-    h
-}
-
-fn write_rows(path: &Path, keys: &[String], rows: &[RunRow]) -> Result<(), Error> {
-    let io = |e: &dyn std::fmt::Display| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
-    let tmp = path.with_extension("csv.partial");
-    let mut w = csv::Writer::from_path(&tmp).map_err(|e| io(&e))?;
-    w.write_record(header(keys)).map_err(|e| io(&e))?;
-    for r in rows {
-        let mut rec = vec![r.run.to_string(), r.folder.clone(), r.status.clone()];
-        rec.extend(r.values.iter().cloned());
-        rec.push(r.message.clone());
-        rec.extend(r.results.iter().cloned());
-        w.write_record(rec).map_err(|e| io(&e))?;
-    }
-    w.flush().map_err(|e| io(&e))?;
-    drop(w);
-    std::fs::rename(&tmp, path).map_err(|e| io(&e))
-}
-
-/// sweep.pvd: each successful run's contact line as one time step (the run number), with file
-/// paths relative to `dir`.
-fn write_pvd(path: &Path, dir: &Path, rows: &[RunRow]) -> Result<(), Error> {
-    let entries: Vec<CollectionEntry> = rows
-        .iter()
-        .filter(|r| r.has_vtk)
-        .map(|r| {
-            let file = Path::new(&r.folder).join("contact.vtu");
-            let rel = pathdiff(dir, &file);
-            CollectionEntry {
-                file: rel,
-                timestep: r.run as f64,
-                part: 0,
-                name: format!("contact {}", r.folder),
-            }
-        })
-        .collect();
-    write_collection(path, &entries)
-}
-
-/// `file` as written relative to `dir` (files given relative to dir stay as they are).
-fn pathdiff(dir: &Path, file: &Path) -> String {
-    file.strip_prefix(dir)
-        .unwrap_or(file)
-        .to_string_lossy()
-        .replace('\\', "/")
-}
-
-/// Joins the shard CSV files found in `dirs` (or their `sweep.csv`) into `out/sweep.csv` and
-/// `out/sweep.pvd`, rows ordered by run number. Run folders stay where they are; the `folder`
-/// column and the .pvd point to them relative to `out`.
-pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<PathBuf, Error> {
-    let mut header_row: Option<Vec<String>> = None;
-    let mut rows: Vec<(usize, Vec<String>)> = Vec::new();
-    std::fs::create_dir_all(out).map_err(|e| Error::Output {
-        path: out.to_path_buf(),
+/// Locks a shard's table in `dir` (two processes must not run the same shard).
+fn lock_table(dir: &Path, record: &SweepRecord) -> Result<FileLock, Error> {
+    let lock = dir.join(format!(".{}.rollbem-lock", record.csv_name()));
+    std::fs::create_dir_all(dir).map_err(|e| Error::Output {
+        path: dir.to_path_buf(),
         message: e.to_string(),
     })?;
-    let out_abs = std::fs::canonicalize(out).unwrap_or_else(|_| out.to_path_buf());
-    for dir in dirs {
-        let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-            .map_err(|e| Error::Sweep {
-                message: format!("--merge {}: {e}", dir.display()),
-            })?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| {
-                p.file_name()
-                    .is_some_and(|n| n.to_string_lossy().starts_with("sweep_shard_"))
-                    && p.extension().is_some_and(|e| e == "csv")
-            })
-            .collect();
-        files.sort();
-        if files.is_empty() {
-            return Err(Error::Sweep {
-                message: format!(
-                    "--merge {}: no sweep_shard_K_of_N.csv files found; run `rollbem sweep --shard K/N` into it first",
-                    dir.display()
-                ),
-            });
-        }
-        let dir_abs = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.clone());
-        for f in files {
-            let mut r = csv::Reader::from_path(&f).map_err(|e| Error::Sweep {
-                message: format!("{}: {e}", f.display()),
-            })?;
-            let h: Vec<String> = r
-                .headers()
-                .map_err(|e| Error::Sweep { message: e.to_string() })?
-                .iter()
-                .map(String::from)
-                .collect();
-            match &header_row {
-                None => header_row = Some(h),
-                Some(prev) if *prev != h => {
-                    return Err(Error::Sweep {
-                        message: format!(
-                            "{}: columns differ from the other shards (different --vary?)",
-                            f.display()
-                        ),
-                    })
-                }
-                _ => {}
-            }
-            for rec in r.records() {
-                let rec = rec.map_err(|e| Error::Sweep { message: e.to_string() })?;
-                let mut v: Vec<String> = rec.iter().map(String::from).collect();
-                let run: usize = v[0].parse().map_err(|_| Error::Sweep {
-                    message: format!("{}: bad run number {}", f.display(), v[0]),
-                })?;
-                // Folder relative to the merged output.
-                let folder = dir_abs.join(&v[1]);
-                v[1] = relative(&out_abs, &folder);
-                rows.push((run, v));
-            }
-        }
-    }
-    rows.sort_by_key(|(run, _)| *run);
-    if let Some(w) = rows.windows(2).find(|w| w[0].0 == w[1].0) {
-        return Err(Error::Sweep {
-            message: format!("run {} appears in two shards", w[0].0),
-        });
-    }
-    let header_row = header_row.unwrap_or_default();
-    let path = out.join("sweep.csv");
-    let io = |e: &dyn std::fmt::Display| Error::Output {
-        path: path.clone(),
-        message: e.to_string(),
-    };
-    let mut w = csv::Writer::from_path(&path).map_err(|e| io(&e))?;
-    w.write_record(&header_row).map_err(|e| io(&e))?;
-    for (_, v) in &rows {
-        w.write_record(v).map_err(|e| io(&e))?;
-    }
-    w.flush().map_err(|e| io(&e))?;
-    let entries: Vec<CollectionEntry> = rows
-        .iter()
-        .filter(|(_, v)| v[2] == "ok")
-        .map(|(run, v)| CollectionEntry {
-            file: format!("{}/contact.vtu", v[1]),
-            timestep: *run as f64,
-            part: 0,
-            name: format!("contact run_{run:04}"),
+    FileLock::try_acquire(&lock, Access::Exclusive)?.ok_or_else(|| {
+        Error::Folder(FolderError::Busy {
+            dir: dir.join(record.csv_name()),
+            lock,
         })
-        .filter(|e| out.join(&e.file).exists())
-        .collect();
-    write_collection(&out.join("sweep.pvd"), &entries)?;
-    Ok(path)
+    })
 }
 
-/// Path of `target` relative to `base` (both absolute), with `..` as needed.
-fn relative(base: &Path, target: &Path) -> String {
-    let b: Vec<_> = base.components().collect();
-    let t: Vec<_> = target.components().collect();
-    let common = b.iter().zip(&t).take_while(|(x, y)| x == y).count();
-    let mut parts: Vec<String> = vec!["..".to_string(); b.len() - common];
-    parts.extend(t[common..].iter().map(|c| c.as_os_str().to_string_lossy().into_owned()));
-    if parts.is_empty() {
-        ".".into()
-    } else {
-        parts.join("/")
+/// Refuses to mix sweeps in one folder: every record there (sweep.json, shard files) must
+/// belong to the same sweep as `record`. An unsharded sweep without `resume` replaces the
+/// folder, so only a resumed one is checked against sweep.json.
+fn check_other_records(dir: &Path, record: &SweepRecord, resume: bool) -> Result<(), Error> {
+    if record.shards.is_none() && !resume {
+        return Ok(());
+    }
+    let Ok(names) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let mut names: Vec<String> = names
+        .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned()))
+        .filter(|n| n == "sweep.json" || folder::shard_file_name(n).is_some_and(|(_, _, ext)| ext == "json"))
+        .collect();
+    names.sort();
+    for name in names {
+        let path = dir.join(&name);
+        let other = read_record(&path)?;
+        if let Some(diff) = record.difference(&other) {
+            let what = if record.shards.is_some() {
+                "this shard"
+            } else {
+                "this sweep"
+            };
+            return Err(sweep_err(format!(
+                "{} belongs to another sweep than {what}: {diff}. Sweeps are not mixed in one folder: \
+                 give another --out",
+                path.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// One sweep (or shard) to run.
+struct Job<'a> {
+    case: &'a Path,
+    base_set: &'a [String],
+    varies: &'a [Vary],
+    shard: Option<Shard>,
+    record: &'a SweepRecord,
+}
+
+impl Job<'_> {
+    /// Runs the sweep in the folder `dir` (which the caller has claimed): record, stale
+    /// temporaries removed, finished runs kept when resuming, the rest run in parallel with
+    /// their rows appended to the table as they finish. Returns the rows and how many were kept.
+    fn run_in(&self, dir: &Path, resume: bool) -> Result<(Vec<RunRow>, usize), Error> {
+        let runs = product(self.varies);
+        let mine = |n: usize| self.shard.is_none_or(|s| s.owns(n));
+        let csv_name = self.record.csv_name();
+        let mut tables = vec![csv_name.clone(), csv_name.replace(".csv", ".json")];
+        if self.shard.is_none() {
+            tables.extend(["sweep.pvd".to_string(), folder::MANIFEST.to_string()]);
+        }
+        clean_stale(dir, &mine, &tables);
+        write_record(dir, self.record)?;
+        let csv_path = dir.join(self.record.csv_name());
+        let keys: Vec<String> = self.varies.iter().map(|v| v.key.clone()).collect();
+        let kept: Vec<RunRow> = if resume {
+            read_rows_leniently(&csv_path, &keys, &runs)
+                .into_iter()
+                .filter(|r| mine(r.run) && (r.status == "ok" || r.status == "not_converged"))
+                .filter(|r| folder::read_manifest(&dir.join(&r.folder)).is_some())
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let done: std::collections::HashSet<usize> = kept.iter().map(|r| r.run).collect();
+        let todo: Vec<(usize, &Vec<(String, String)>)> = runs
+            .iter()
+            .enumerate()
+            .filter(|(n, _)| mine(*n) && !done.contains(n))
+            .collect();
+        write_rows(&csv_path, &keys, &kept)?;
+        let table = Mutex::new(Appender::open(&csv_path)?);
+        let bar = ProgressBar::new(todo.len() as u64);
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, eta {eta} {msg}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        let new_rows: Vec<Result<RunRow, Error>> = todo
+            .par_iter()
+            .map(|(n, overrides)| {
+                let row = run_one(self.case, self.base_set, dir, *n, overrides);
+                let appended = table
+                    .lock()
+                    .map_err(|_| sweep_err("the table writer failed in another thread".into()))
+                    .and_then(|mut t| t.append(&row));
+                bar.inc(1);
+                appended.map(|()| row)
+            })
+            .collect();
+        bar.finish_and_clear();
+        drop(table);
+        let resumed = kept.len();
+        let mut rows = kept;
+        for r in new_rows {
+            rows.push(r?);
+        }
+        rows.sort_by_key(|r| r.run);
+        write_rows(&csv_path, &keys, &rows)?;
+        if self.shard.is_none() {
+            write_pvd(&dir.join("sweep.pvd"), dir, &rows)?;
+        }
+        Ok((rows, resumed))
+    }
+}
+
+/// Removes temporaries that killed writers left for this sweep's runs (`.run_NNNN.partial-PID`,
+/// `.run_NNNN.old-PID`, unheld `.run_NNNN.rollbem-lock`) and for its own files (`tables`:
+/// `.sweep.csv.partial-PID`, ...); the caller holds the sweep's (or the shard's) lock, so no live
+/// writer owns them.
+fn clean_stale(dir: &Path, mine: &dyn Fn(usize) -> bool, tables: &[String]) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for name in entries.filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned())) {
+        let Some(hidden) = name.strip_prefix('.') else { continue };
+        let base = hidden
+            .rsplit_once(".partial-")
+            .or_else(|| hidden.rsplit_once(".old-"))
+            .map_or(hidden.strip_suffix(".rollbem-lock").unwrap_or(""), |(b, _)| b);
+        let ours = match base.strip_prefix("run_").map(str::parse::<usize>) {
+            Some(Ok(n)) => mine(n),
+            _ => tables.iter().any(|t| t == base),
+        };
+        let path = dir.join(&name);
+        match folder::sweep_owns(&name) {
+            Some(SweepEntry::Temporary) if ours && path.is_dir() => {
+                let _ = folder::remove_owned(&path);
+            }
+            Some(SweepEntry::Temporary) if ours => {
+                let _ = std::fs::remove_file(&path);
+            }
+            Some(SweepEntry::File) if ours && name.ends_with(".rollbem-lock") && base.starts_with("run_") => {
+                // Taking the lock removes the file when it is released; a held one stays.
+                if let Ok(lock) = FileLock::try_acquire(&path, Access::Exclusive) {
+                    drop(lock);
+                }
+            }
+            _ => {}
+        }
     }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::merge::relative;
     use super::*;
 
     #[test]

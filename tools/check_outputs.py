@@ -1,12 +1,10 @@
 #!/usr/bin/env python3
 """Check rollbem outputs with the real clients (meshio and pyvista).
 
-Usage: check_outputs.py DIR [DIR ...]
-
 Each DIR is a run folder (summary.json, contact.csv, contact.vtu, result.pvd), a sweep folder
-(sweep.csv, sweep.pvd, run_NNNN/) or a stability-study folder (stability.csv, img/*.svg). For every file: it opens in meshio and in pyvista, carries the
-documented arrays with the right shapes, and its values equal contact.csv / summary.json to 1e-12
-relative. Exits 1 with one line per defect.
+(sweep.csv, sweep.pvd, run_NNNN/) or a stability-study folder (stability.csv, img/*.svg). For
+every file: it opens in meshio and in pyvista, carries the documented arrays with the right
+shapes, and its values equal contact.csv / summary.json to 1e-12 relative. Prints one line per defect and exits 1 if there is any, 0 otherwise.
 """
 import os
 import sys
@@ -15,9 +13,9 @@ import sys
 # import: keep this folder off the module path.
 sys.path = [p for p in sys.path if os.path.abspath(p or ".") != os.path.dirname(os.path.abspath(__file__))]
 
+import argparse
 import csv
 import json
-import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -288,10 +286,12 @@ def check_stability(d):
             fail(d / "img" / f"{s}.svg", "overview missing")
 
 
-def main(dirs):
-    if not dirs:
-        print(__doc__)
-        return 2
+def main(argv=None):
+    ap = argparse.ArgumentParser(
+        prog="check_outputs.py", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    ap.add_argument("dirs", nargs="+", metavar="DIR", help="run, sweep or stability-study folder written by rollbem")
+    dirs = ap.parse_args(argv).dirs
     for name in dirs:
         d = Path(name)
         if (d / "sweep.csv").exists():
@@ -309,4 +309,4 @@ def main(dirs):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    sys.exit(main())

@@ -1,5 +1,5 @@
 //! Displacement gradient at boundary points by the hypersingular boundary integral equation
-//! (HBEM; González & Abascal Eq. 79, reference sheet §9), from the nodal boundary displacements
+//! (HBEM; González & Abascal Eq. 79, docs/references.md §9), from the nodal boundary displacements
 //! and tractions of a solved BEM model.
 //!
 //! # The identity
@@ -57,7 +57,7 @@
 //! These agree with the sheet's formulas; the unit tests check them against the integrand
 //! itself (F − F₋₂/δ² − F₋₁/δ stays bounded as δ → 0 on a curved element) and the whole
 //! evaluation against rigid motions on curved meshes, the uniform-stress patch and Lamé
-//! (`tests/hbem.rs`).
+//! (`tests/bem/hbem.rs`).
 //!
 //! # Output
 //! [`GradientRows`]: the linear map from the nodal (u, t) of all field nodes to u_i,k(X), so

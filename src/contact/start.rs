@@ -96,16 +96,15 @@ mod tests {
 
     /// The assembled free-rolling problem (aluminium on steel, Q = 0) at `elements`, and its
     /// Hertz estimates.
-    fn free_rolling(elements: usize) -> (ContactProblem, crate::app::Estimates) {
+    fn free_rolling(elements: usize) -> (ContactProblem, crate::scene::Estimates) {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/free_rolling_al_steel.yaml");
         let set = [
             "contact.friction=1e-4".to_string(),
             format!("contact.grid.elements={elements}"),
             "solver.max_iterations=1".to_string(),
         ];
-        let loaded = crate::case::load(&path, &set).expect("shipped case loads");
-        let solved = crate::app::solve(&loaded).expect("assembles");
-        (solved.problem, solved.estimates)
+        let solved = crate::app::solve_case(&path, &set).expect("shipped case assembles");
+        (solved.problem, solved.scene.estimates)
     }
 
     #[test]

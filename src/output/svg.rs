@@ -1,7 +1,7 @@
 //! contact.svg: pressure, shear with the ±μp bounds, and slip along x (plotters, SVG backend).
 
-use crate::contact::solution::ContactSolution;
 use crate::error::Error;
+use crate::post::ContactSolution;
 use plotters::prelude::*;
 use std::path::Path;
 

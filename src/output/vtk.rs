@@ -9,9 +9,9 @@
 //! contact frame (u_n is positive into each body, and B lies at y < 0). Displacements are real,
 //! not scaled: use ParaView's Warp By Vector.
 
-use crate::contact::solution::{ContactSolution, NodeState};
 use crate::contact::ContactProblem;
 use crate::error::Error;
+use crate::post::{ContactSolution, NodeState};
 use std::path::Path;
 use vtkio::model::{
     Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, ElementType, UnstructuredGridPiece, Version,
@@ -209,7 +209,7 @@ fn export_unstructured(
     cell: Vec<Attribute>,
 ) -> Result<(), Error> {
     let vtk = Vtk {
-        version: Version::new((1, 0)),
+        version: Version::new_xml(1, 0),
         title,
         byte_order: ByteOrder::LittleEndian,
         file_path: None,

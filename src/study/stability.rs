@@ -1,4 +1,4 @@
-//! `rollbem study stability CASE`: a convergence map of every solution method (issue 6).
+//! `rollbem study stability CASE`: a convergence map of every solution method.
 //!
 //! The full Cartesian product of friction, load ratio, Dundurs β, penalty, grid and element type
 //! is too large, so the map is a set of two-dimensional **slices** through the base case, each
@@ -15,7 +15,7 @@
 //! |Q/μP| ≥ 1 is outside the problem's domain (no steady rolling exists: the contact slides as a
 //! whole) and is marked `out_of_domain`, not solved and not counted as a failure. Each solved
 //! cell records the common convergence measure (converged, iterations, residual, solve time)
-//! and, when converged, the traction ripple ([`crate::contact::solution::traction_ripple`],
+//! and, when converged, the traction ripple ([`crate::post::traction_ripple`],
 //! relative to μp0).
 //!
 //! Outputs (written to a temporary folder, then renamed): `stability.csv` (one row per cell
@@ -24,15 +24,20 @@
 //! cells grey), one overview per slice with every method (`SLICE.svg`), and ripple maps of the
 //! element slices (`SLICE__METHOD__ripple.svg`).
 
-use super::heatmap::{self, CellView, Panel};
-use super::{run_parallel, solve_overridden};
+mod files;
+
+use super::run_parallel;
+use crate::app;
 use crate::case::{self, BodySpec};
-use crate::contact::solution::traction_ripple;
 use crate::contact::Formulation;
 use crate::contact::Method;
 use crate::error::Error;
 use crate::material::material_for_beta;
+use crate::output::charts::heatmap;
+use crate::output::folder::{Access, Claim, Kind};
 use crate::output::write_atomically;
+use crate::post::traction_ripple;
+pub use files::{render_summary, CSV_COLUMNS};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -130,6 +135,16 @@ pub struct Axis {
     pub key: AxisKey,
     /// The values.
     pub values: Vec<String>,
+}
+
+impl Axis {
+    /// The axis as a heat map draws it.
+    pub fn drawn(&self) -> heatmap::Axis<'_> {
+        heatmap::Axis {
+            label: self.key.label(),
+            values: &self.values,
+        }
+    }
 }
 
 fn axis(key: AxisKey, values: &[&str]) -> Axis {
@@ -261,6 +276,16 @@ pub enum Status {
 }
 
 impl Status {
+    /// How a heat map draws the cell.
+    pub fn drawn(self) -> heatmap::Status {
+        match self {
+            Status::Converged => heatmap::Status::Converged,
+            Status::NotConverged => heatmap::Status::NotConverged,
+            Status::OutOfDomain => heatmap::Status::OutOfDomain,
+            Status::Error => heatmap::Status::Error,
+        }
+    }
+
     /// Name in the CSV.
     pub fn name(self) -> &'static str {
         match self {
@@ -449,8 +474,9 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
     if job.out_of_domain {
         return cell;
     }
-    match solve_overridden(case_path, base_set, &job.overrides) {
-        Ok((case, s)) => {
+    let overrides: Vec<&String> = base_set.iter().chain(&job.overrides).collect();
+    match app::solve_case(case_path, &overrides) {
+        Ok(s) => {
             let r = &s.report;
             cell.iterations = r.iterations;
             cell.inner_iterations = r.inner_iterations;
@@ -463,7 +489,7 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
                 Status::NotConverged
             };
             if r.converged {
-                let mu_p0 = case.case.contact.friction * s.estimates.hertz_peak_pressure;
+                let mu_p0 = s.scene.friction() * s.scene.estimates.hertz_peak_pressure;
                 cell.ripple = (mu_p0 > 0.0).then(|| traction_ripple(&s.solution) / mu_p0);
                 cell.creep = Some(s.solution.creep);
                 cell.regime = Some(s.regime.number());
@@ -481,6 +507,8 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
 pub fn run(case_path: &Path, base_set: &[String], preset: Preset, out: &Path) -> Result<StabilityReport, Error> {
     let start = Instant::now();
     case::load(case_path, base_set)?;
+    // Lock and check the output folder before the study runs.
+    let _claim = Claim::acquire(out, Kind::StudyStability, Access::Exclusive)?;
     let slices = ladder(preset);
     let methods = method_variants();
     let jobs = jobs(case_path, base_set, &slices, &methods)?;
@@ -493,190 +521,6 @@ pub fn run(case_path: &Path, base_set: &[String], preset: Preset, out: &Path) ->
         wall_s: 0.0,
     };
     report.wall_s = start.elapsed().as_secs_f64();
-    write_atomically(out, |tmp| write_outputs(tmp, &report))?;
+    write_atomically(out, Kind::StudyStability, |tmp| files::write_outputs(tmp, &report))?;
     Ok(report)
-}
-
-/// Full-precision number or empty (never NaN in outputs).
-fn num(v: Option<f64>) -> String {
-    v.filter(|v| v.is_finite()).map_or(String::new(), |v| format!("{v:e}"))
-}
-
-/// Column names of stability.csv.
-pub const CSV_COLUMNS: [&str; 19] = [
-    "slice",
-    "method",
-    "x_key",
-    "x",
-    "y_key",
-    "y",
-    "beta",
-    "status",
-    "converged",
-    "iterations",
-    "inner_iterations",
-    "residual",
-    "solve_s",
-    "ripple",
-    "creep",
-    "slip_regime",
-    "iteration_unit",
-    "fallbacks",
-    "message",
-];
-
-fn write_csv(path: &Path, r: &StabilityReport) -> Result<(), Error> {
-    let io = |e: &dyn std::fmt::Display| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
-    let mut w = csv::Writer::from_path(path).map_err(|e| io(&e))?;
-    w.write_record(CSV_COLUMNS).map_err(|e| io(&e))?;
-    for c in &r.cells {
-        let s = &r.slices[c.slice];
-        let m = &r.methods[c.method];
-        let solved = !matches!(c.status, Status::OutOfDomain | Status::Error);
-        w.write_record([
-            s.name.clone(),
-            m.label.to_string(),
-            format!("{:?}", s.x.key).to_lowercase(),
-            s.x.values[c.ix].clone(),
-            format!("{:?}", s.y.key).to_lowercase(),
-            s.y.values[c.iy].clone(),
-            s.beta.map_or(String::new(), |b| b.to_string()),
-            c.status.name().to_string(),
-            (c.status == Status::Converged).to_string(),
-            if solved {
-                c.iterations.to_string()
-            } else {
-                String::new()
-            },
-            if solved {
-                c.inner_iterations.to_string()
-            } else {
-                String::new()
-            },
-            num(solved.then_some(c.residual)),
-            num(solved.then_some(c.solve_s)),
-            num(c.ripple),
-            num(c.creep),
-            c.regime.map_or(String::new(), |g| g.to_string()),
-            m.method.iteration_unit().to_string(),
-            c.fallbacks.clone(),
-            c.message.clone(),
-        ])
-        .map_err(|e| io(&e))?;
-    }
-    w.flush().map_err(|e| io(&e))
-}
-
-fn cell_views(r: &StabilityReport, slice: usize, method: usize, ripple: bool) -> Vec<CellView> {
-    r.cells
-        .iter()
-        .filter(|c| c.slice == slice && c.method == method)
-        .map(|c| CellView {
-            ix: c.ix,
-            iy: c.iy,
-            status: c.status,
-            value: if ripple {
-                c.ripple
-            } else {
-                (c.status == Status::Converged).then_some(c.iterations as f64)
-            },
-        })
-        .collect()
-}
-
-fn write_outputs(dir: &Path, r: &StabilityReport) -> Result<(), Error> {
-    write_csv(&dir.join("stability.csv"), r)?;
-    let img = dir.join("img");
-    std::fs::create_dir_all(&img).map_err(|e| Error::Output {
-        path: img.clone(),
-        message: e.to_string(),
-    })?;
-    for (si, s) in r.slices.iter().enumerate() {
-        let mut panels = Vec::new();
-        for (mi, m) in r.methods.iter().enumerate() {
-            let panel = Panel {
-                title: format!("{} ({})", m.label, m.method.iteration_unit()),
-                x: &s.x,
-                y: &s.y,
-                cells: cell_views(r, si, mi, false),
-                ripple: false,
-            };
-            heatmap::write(&img.join(format!("{}__{}.svg", s.name, m.label)), &s.title, &[&panel])?;
-            if s.ripple_maps {
-                let rp = Panel {
-                    title: format!("{}: ripple / (mu p0)", m.label),
-                    cells: cell_views(r, si, mi, true),
-                    ripple: true,
-                    ..panel.clone()
-                };
-                heatmap::write(
-                    &img.join(format!("{}__{}__ripple.svg", s.name, m.label)),
-                    &s.title,
-                    &[&rp],
-                )?;
-            }
-            panels.push(panel);
-        }
-        let refs: Vec<&Panel> = panels.iter().collect();
-        heatmap::write(&img.join(format!("{}.svg", s.name)), &s.title, &refs)?;
-    }
-    std::fs::write(dir.join("summary.txt"), render_summary(r)).map_err(|e| Error::Output {
-        path: dir.join("summary.txt"),
-        message: e.to_string(),
-    })
-}
-
-/// Median of a non-empty list (0 for an empty one).
-fn median(mut v: Vec<usize>) -> usize {
-    v.sort_unstable();
-    v.get(v.len() / 2).copied().unwrap_or(0)
-}
-
-/// The per-slice, per-method table: converged / in-domain cells, median and max iterations,
-/// total solve time, and every failure of the default method.
-pub fn render_summary(r: &StabilityReport) -> String {
-    let mut t = format!(
-        "{:<28} {:<13} {:>10} {:>8} {:>8} {:>10}  failures (x, y)\n",
-        "slice", "method", "converged", "median", "max it", "solve [s]"
-    );
-    for (si, s) in r.slices.iter().enumerate() {
-        for (mi, m) in r.methods.iter().enumerate() {
-            let cells: Vec<&CellResult> = r.cells.iter().filter(|c| c.slice == si && c.method == mi).collect();
-            let domain: Vec<&&CellResult> = cells.iter().filter(|c| c.status != Status::OutOfDomain).collect();
-            let ok: Vec<usize> = domain
-                .iter()
-                .filter(|c| c.status == Status::Converged)
-                .map(|c| c.iterations)
-                .collect();
-            let failures: Vec<String> = domain
-                .iter()
-                .filter(|c| c.status != Status::Converged)
-                .map(|c| {
-                    let (x, y) = r.coordinates(c);
-                    format!("({x}, {y})")
-                })
-                .collect();
-            let shown = if failures.len() > 6 {
-                format!("{} ... ({} cells)", failures[..6].join(" "), failures.len())
-            } else {
-                failures.join(" ")
-            };
-            t.push_str(&format!(
-                "{:<28} {:<13} {:>4} / {:<3} {:>8} {:>8} {:>10.3}  {}\n",
-                s.name,
-                m.label,
-                ok.len(),
-                domain.len(),
-                median(ok.clone()),
-                ok.iter().max().copied().unwrap_or(0),
-                domain.iter().map(|c| c.solve_s).sum::<f64>(),
-                shown
-            ));
-        }
-    }
-    t.push_str(&format!("wall time {:.1} s\n", r.wall_s));
-    t
 }

@@ -1,4 +1,4 @@
-//! The Lamé thick cylinder of reference sheet §8.1: a = 10, b = 20 mm, p_i = 100, p_o = 30 MPa.
+//! The Lamé thick cylinder of docs/references.md §8.1: a = 10, b = 20 mm, p_i = 100, p_o = 30 MPa.
 
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition, Pin};
 use rollbem::material::Elastic;
@@ -99,4 +99,19 @@ pub fn lame_pins(model: &BemModel) -> [Pin; 3] {
             value: ub[0],
         },
     ]
+}
+
+/// The Lamé annulus with n elements per circle, held fixed inside and free outside: a body
+/// with no load, for tests of what the BEM does to rigid motions (ν = 0.3, steel).
+pub fn fixed_ring(n: usize) -> BemModel {
+    BemModel::new(
+        annulus(A_IN, B_OUT, n, n, ["inner", "outer"], true),
+        Elastic::new(210_000.0, 0.3),
+        vec![
+            ("inner".into(), BoundaryCondition::Fixed),
+            ("outer".into(), BoundaryCondition::Free),
+        ],
+        BemOptions::default(),
+    )
+    .expect("the fixed annulus is well posed")
 }

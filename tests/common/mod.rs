@@ -2,8 +2,7 @@
 #![allow(dead_code)]
 
 use rollbem::app::{self, Solved};
-use rollbem::case::{self, LoadedCase};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// Path of a shipped case by its stem.
@@ -13,35 +12,52 @@ pub fn case_path(name: &str) -> PathBuf {
         .join(format!("{name}.yaml"))
 }
 
-/// Loads a shipped case with `key=value` overrides and solves it (no files written).
-pub fn solve(name: &str, overrides: &[&str]) -> (LoadedCase, Solved) {
-    let set: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    let case = case::load(&case_path(name), &set).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let solved = app::solve(&case).unwrap_or_else(|e| panic!("{name}: {e}"));
+/// Loads a shipped case with `key=value` overrides and solves it (no files written); panics
+/// with the residual history if it does not converge.
+pub fn solve(name: &str, overrides: &[&str]) -> Solved {
+    let solved = app::solve_case(&case_path(name), overrides).unwrap_or_else(|e| panic!("{name}: {e}"));
     assert!(
         solved.report.converged,
         "{name} {overrides:?} did not converge: {:?}",
         solved.report.history
     );
-    (case, solved)
+    solved
 }
 
-/// Max and RMS of |f(x_i) − g_i| / scale over the nodes with |x_i| < limit.
-pub fn nodal_error(x: &[f64], values: &[f64], exact: impl Fn(f64) -> f64, limit: f64, scale: f64) -> (f64, f64) {
-    let errs: Vec<f64> = x
-        .iter()
-        .zip(values)
-        .filter(|(x, _)| x.abs() < limit)
-        .map(|(x, v)| (v - exact(*x)).abs() / scale)
-        .collect();
-    let max = errs.iter().fold(0.0_f64, |a, &b| a.max(b));
-    let rms = (errs.iter().map(|e| e * e).sum::<f64>() / errs.len() as f64).sqrt();
-    (max, rms)
-}
+/// A fast half-space case (Carter, Q/μP = 0.51, 21 elements), without an output folder.
+pub const CARTER_CASE: &str = r#"
+title: "cli test"
+materials:
+  steel: {E: 210000.0, nu: 0.3}
+bodies:
+  A: {model: half_space, material: steel, radius: 100.0}
+  B: {model: half_space, material: steel, radius: 100.0}
+contact:
+  friction: 0.1
+  grid: {elements: 21, extent: 1.3}
+load:
+  normal: {force: 1812.4573}
+  tangential: {ratio: 0.51}
+"#;
 
 /// Runs the `rollbem` binary: (exit code, stdout, stderr).
 pub fn rollbem(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rollbem")).args(args).output().unwrap();
+    rollbem_with(None, &[], args)
+}
+
+/// Runs the `rollbem` binary in `cwd` (None: this process's folder) with extra environment
+/// (the fault injection of the tests is cleared first): (exit code, stdout, stderr); -1 when
+/// it was killed by a signal.
+pub fn rollbem_with(cwd: Option<&Path>, env: &[(&str, &str)], args: &[&str]) -> (i32, String, String) {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_rollbem"));
+    if let Some(dir) = cwd {
+        cmd.current_dir(dir);
+    }
+    cmd.args(args).env_remove("ROLLBEM_TEST_FAULT");
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    let out = cmd.output().unwrap();
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stdout).into_owned(),
@@ -68,7 +84,10 @@ pub fn fitted_rate(ns: &[usize], errors: &[f64]) -> f64 {
 /// Labels: "P and Q", "P with ξ", "δ0 with Q", "δ0 and ξ".
 pub fn equivalent_load_controls(load: &Solved) -> Vec<(&'static str, Vec<String>)> {
     let s = &load.solution;
-    let half = format!("contact.grid.half_length={:.17e}", load.estimates.grid_half_length);
+    let half = format!(
+        "contact.grid.half_length={:.17e}",
+        load.scene.estimates.grid_half_length
+    );
     let overlap = format!("load.normal.overlap={:.17e}", s.overlap);
     let creep = format!("load.tangential.creep={:.17e}", s.creep);
     let force = format!("load.normal.force={:.17e}", s.normal_force);

@@ -1,4 +1,4 @@
-//! The uniform-stress patch (reference sheet §8.3): a plane-strain stress SIGMA, its linear
+//! The uniform-stress patch (docs/references.md §8.3): a plane-strain stress SIGMA, its linear
 //! displacement and its constant traction, exact for any BEM mesh.
 
 use rollbem::bem::{BemModel, BemOptions, BoundaryCondition};
@@ -10,7 +10,7 @@ use std::sync::Arc;
 /// The uniform stress σ⁰ [MPa].
 pub const SIGMA: [[f64; 2]; 2] = [[50.0, 20.0], [20.0, -30.0]];
 
-/// Plane-strain strain of the uniform stress SIGMA (reference sheet §8 Hooke's law).
+/// Plane-strain strain of the uniform stress SIGMA (docs/references.md §8 Hooke's law).
 pub fn strain(m: &Elastic) -> [[f64; 2]; 2] {
     let (e, nu) = (m.young, m.poisson);
     let exx = ((1.0 - nu * nu) * SIGMA[0][0] - nu * (1.0 + nu) * SIGMA[1][1]) / e;

@@ -1,4 +1,4 @@
-"""Regenerates the test meshes of tests/msh_reader.rs with the gmsh Python wheel.
+"""Regenerates the test meshes of tests/bem/msh_reader.rs with the gmsh Python wheel.
 
     pip install gmsh && python3 tests/data/msh/generate.py
 

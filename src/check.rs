@@ -1,0 +1,194 @@
+//! `rollbem check`: the case as understood — bodies, meshes, the contact grid, Hertz
+//! estimates and the model advice — without solving.
+
+use crate::case::{self, BodySpec, NormalSpec};
+use crate::error::Error;
+use crate::scene::{BodySetup, Scene};
+use std::path::Path;
+
+/// The text printed by `rollbem check`: the case as understood, with Hertz estimates.
+/// `tolerance` is the accuracy the user needs (a fraction of p0 and μp0), for the model advice.
+pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> Result<String, Error> {
+    let case = case::load(case_path, overrides)?;
+    let scene = Scene::from_case(&case)?;
+    let (bodies, est, grid) = (&scene.bodies, &scene.estimates, &scene.grid);
+    let c = &case.case;
+    let mut t = format!("rollbem check {}: valid\n", case_path.display());
+    let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
+    line("title", c.title.clone());
+    for (side, spec) in [("A", &c.bodies.a), ("B", &c.bodies.b)] {
+        let text = match spec {
+            BodySpec::HalfSpace { material, radius } => {
+                let m = case.material(material);
+                format!(
+                    "half_space, R = {radius}, material `{material}` (E = {:.6}, G = {:.6}, nu = {})",
+                    m.young,
+                    m.shear(),
+                    m.poisson
+                )
+            }
+            BodySpec::Rigid { radius: Some(r), .. } => format!("rigid, R = {r}"),
+            BodySpec::Rigid { mesh, contact, .. } => format!(
+                "rigid, R = {:.6} (circle fitted to group `{contact}` of {})",
+                bodies[if side == "A" { 0 } else { 1 }].radius(),
+                mesh.as_deref().unwrap_or("")
+            ),
+            BodySpec::Bem { mesh, material, .. } => {
+                let m = case.material(material);
+                format!(
+                    "bem, mesh {mesh}, material `{material}` (E = {:.6}, G = {:.6}, nu = {})",
+                    m.young,
+                    m.shear(),
+                    m.poisson
+                )
+            }
+        };
+        line(&format!("body {side}"), text);
+    }
+    let mut ranges = Vec::new();
+    for (side, body) in ["A", "B"].iter().zip(bodies) {
+        let Some(lm) = body.mesh() else { continue };
+        for (g, group) in lm.mesh.groups.iter().enumerate() {
+            line(
+                &format!("  {side}: group `{}`", group.name),
+                format!(
+                    "{} elements, length {:.6}",
+                    lm.mesh.count_in_group(g),
+                    lm.group_length(g)
+                ),
+            );
+        }
+        let loops = crate::mesh::check::boundary_loops(&lm.mesh)?;
+        let holes = loops.iter().filter(|l| l.is_hole()).count();
+        line(
+            &format!("  {side}: loops"),
+            format!("{} ({} outer, {holes} holes)", loops.len(), loops.len() - holes),
+        );
+        for n in &lm.notices {
+            line(&format!("  {side}: notice"), n.clone());
+        }
+        let [x0, x1] = lm.contact_range();
+        ranges.push([x0, x1]);
+        line(
+            &format!("  {side}: contact segment"),
+            format!("x in [{x0:.6}, {x1:.6}], profile radius {:.6}", body.radius()),
+        );
+    }
+    for (side, body) in ["A", "B"].iter().zip(bodies) {
+        let Some(lm) = body.mesh() else { continue };
+        let own = lm.contact_grid();
+        if own.coincides_with(grid) {
+            line(
+                &format!("  {side}: contact nodes"),
+                "paired node to node with the contact grid".into(),
+            );
+        } else {
+            let ratio = own.element_length() / grid.element_length();
+            let advice = if ratio <= 0.5 {
+                "fine enough"
+            } else {
+                "coarser than half the grid's elements: the transferred slip loses accuracy (about 8 % of the creepage at equal size); mesh the contact group at most half the grid's element length, or match the nodes"
+            };
+            line(
+                &format!("  {side}: contact nodes"),
+                format!("transferred to the grid by interpolation (element length ratio {ratio:.2}: {advice})"),
+            );
+        }
+    }
+    if let [[a0, a1], [b0, b1]] = ranges.as_slice() {
+        let overlap = a1.min(*b1) - a0.max(*b0);
+        line(
+            "contact segments",
+            if overlap > 0.0 {
+                format!("A and B overlap on [{:.6}, {:.6}]", a0.max(*b0), a1.min(*b1))
+            } else {
+                "A and B DO NOT overlap in x: the bodies cannot touch there".to_string()
+            },
+        );
+    }
+    let (l, f) = (&c.units.length, &c.units.force);
+    line("effective radius R", format!("{:.6} {l}", est.effective_radius));
+    line("contact modulus E*", format!("{:.6} {f}/{l}^2", est.e_star));
+    line(
+        "Dundurs beta (kappa=2beta)",
+        format!(
+            "{:.6} ({:.6}); beta/mu = {:.4}",
+            est.dundurs_beta,
+            2.0 * est.dundurs_beta,
+            est.dundurs_beta / c.contact.friction.max(f64::MIN_POSITIVE)
+        ),
+    );
+    let given = matches!(c.load.normal(), NormalSpec::Force(_));
+    line(
+        "normal force P",
+        format!(
+            "{:.6} {f}/{l}{}",
+            est.normal_force,
+            if given { "" } else { " (estimated from the overlap)" }
+        ),
+    );
+    line(
+        "Hertz half-width a",
+        format!(
+            "{:.6} {l}  (a/R = {:.3e})",
+            est.hertz_half_width, est.half_width_over_radius
+        ),
+    );
+    line(
+        "Hertz peak pressure p0",
+        format!("{:.6} {f}/{l}^2", est.hertz_peak_pressure),
+    );
+    let from_mesh = if scene.grid_from_mesh() {
+        " (from the bem mesh)"
+    } else {
+        ""
+    };
+    line(
+        "contact grid",
+        format!(
+            "{} {} elements on [{:.6}, {:.6}] {l}{from_mesh}; node spacing {:.4e} {l} ({:.4} a)",
+            grid.n_elements(),
+            grid.kind.name(),
+            grid.edges[0],
+            grid.edges[grid.n_elements()],
+            grid.node_spacing(),
+            grid.node_spacing() / est.hertz_half_width
+        ),
+    );
+    if let Some(w) = est.carter_stick_width {
+        line(
+            "stick zone (Carter)",
+            format!(
+                "width {:.6} {l} = {:.4} a, at the leading edge (similar bodies; beta shifts it)",
+                w,
+                w / est.hertz_half_width
+            ),
+        );
+    }
+    // The half-space error of the scene: a layer's if a bem body is held fixed closer under
+    // its contact than half its radius (a cover layer on a core), else the rollers'.
+    let layer = bodies
+        .iter()
+        .filter_map(BodySetup::layer_thickness)
+        .fold(f64::INFINITY, f64::min);
+    let error = if layer.is_finite() {
+        // Under overlap control the half-plane estimate of a means nothing for a layer; the
+        // thin-layer chord a² = 2Rδ0 (compressible) or 6Rδ0 (ν = 0.5) does (the thin-layer limit of docs/tyre.md).
+        let a = match c.load.normal() {
+            NormalSpec::Overlap(d) => {
+                let incompressible = bodies.iter().any(|b| b.material().is_some_and(|m| m.poisson > 0.45));
+                ((if incompressible { 6.0 } else { 2.0 }) * est.effective_radius * d).sqrt()
+            }
+            NormalSpec::Force(_) => est.hertz_half_width,
+        };
+        line(
+            "layer thickness b",
+            format!("{layer:.6} {l} (b/a = {:.4}, a = {a:.4} {l})", layer / a),
+        );
+        crate::advice::layer_error(layer / a)
+    } else {
+        crate::advice::roller_error(est.half_width_over_radius)
+    };
+    line("model advice", crate::advice::advise(&error, tolerance));
+    Ok(t)
+}

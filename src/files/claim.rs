@@ -1,0 +1,241 @@
+//! Claims on output folders and the atomic replacement of a result.
+
+use super::contents::{clean_stale_siblings, contents, is_dir, list, remove_owned, written_entries, Contents};
+use super::lock::{Access, FileLock};
+use super::{
+    create_dirs, io_err, lock_path, name_of, old_path, parent_of, partial_path, read_manifest, remove_empty_dirs,
+    resolve, write_manifest, FolderError, Kind, Manifest, FAULT_ENV,
+};
+use std::fs;
+use std::io;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+// ---------------------------------------------------------------------------------------------
+// Claims
+
+/// Folders this process holds the lock of (so that the writer does not lock them twice).
+static HELD: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn held(target: &Path) -> bool {
+    HELD.lock().map(|h| h.iter().any(|p| p == target)).unwrap_or(false)
+}
+
+/// The right to write one output folder: locked, checked (empty, new, or an earlier rollbem
+/// result of the same kind), stale temporaries removed. Taken before solving; released when
+/// dropped, with the lock file and any folder it created that stayed empty.
+#[derive(Debug)]
+pub struct Claim {
+    target: PathBuf,
+    kind: Kind,
+    lock: Option<FileLock>,
+    created: Vec<PathBuf>,
+}
+
+impl Claim {
+    /// Claims `dir` for a result of `kind`: checks the path, creates its parent folders, locks
+    /// it (exclusively, or shared for the shards of one sweep) without waiting, and checks that
+    /// it holds nothing but an earlier rollbem result of the same kind.
+    pub fn acquire(dir: &Path, kind: Kind, access: Access) -> Result<Claim, FolderError> {
+        let target = resolve(dir)?;
+        // Refuse a foreign folder before creating anything (the lock's parent, the lock).
+        check_replaceable(&target, kind)?;
+        let created = create_dirs(parent_of(&target))?;
+        let mut claim = Claim {
+            target,
+            kind,
+            lock: None,
+            created,
+        };
+        let lock_file = lock_path(&claim.target);
+        match FileLock::try_acquire(&lock_file, access)? {
+            Some(lock) => claim.lock = Some(lock),
+            None => {
+                return Err(FolderError::Busy {
+                    dir: claim.target.clone(),
+                    lock: lock_file,
+                })
+            }
+        }
+        // Again under the lock: the folder may have changed since the first look.
+        check_replaceable(&claim.target, kind)?;
+        if access == Access::Exclusive {
+            clean_stale_siblings(&claim.target);
+        }
+        if let Ok(mut h) = HELD.lock() {
+            h.push(claim.target.clone());
+        }
+        Ok(claim)
+    }
+
+    /// The folder (absolute).
+    pub fn path(&self) -> &Path {
+        &self.target
+    }
+
+    /// What it is claimed for.
+    pub fn kind(&self) -> Kind {
+        self.kind
+    }
+
+    /// Creates the folder to be written in place (a sweep), with its manifest, if it does not
+    /// hold one yet.
+    pub fn create_in_place(&self) -> Result<(), FolderError> {
+        if !self.target.exists() {
+            fs::create_dir(&self.target)
+                .or_else(|e| {
+                    if e.kind() == io::ErrorKind::AlreadyExists {
+                        Ok(())
+                    } else {
+                        Err(e)
+                    }
+                })
+                .map_err(|e| io_err(&self.target, e))?;
+        }
+        match read_manifest(&self.target) {
+            Some(m) if m.kind == self.kind && !m.partial => Ok(()),
+            _ => write_manifest(&self.target, &Manifest::new(self.kind, false, Vec::new())),
+        }
+    }
+
+    /// Writes the result through [`write_atomically`] (the lock is already held).
+    pub fn write<E: From<FolderError>>(&self, write: impl FnOnce(&Path) -> Result<(), E>) -> Result<(), E> {
+        swap_in(&self.target, self.kind, write)
+    }
+}
+
+impl Drop for Claim {
+    fn drop(&mut self) {
+        if let Ok(mut h) = HELD.lock() {
+            if let Some(i) = h.iter().position(|p| p == &self.target) {
+                h.swap_remove(i);
+            }
+        }
+        // Release the lock (removing its file) before the folders it sits in.
+        self.lock.take();
+        remove_empty_dirs(&self.created);
+    }
+}
+
+/// Whether `target` may receive a result of `kind`: absent, empty, or holding only an earlier
+/// rollbem result of that kind.
+fn check_replaceable(target: &Path, kind: Kind) -> Result<(), FolderError> {
+    // Not followed: [`resolve`] resolved a link that points somewhere; one that is left points
+    // nowhere, and renaming onto it would replace the user's link.
+    match fs::symlink_metadata(target) {
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(io_err(target, e)),
+        Ok(m) if !m.is_dir() => {
+            return Err(FolderError::NotAFolder {
+                path: target.to_path_buf(),
+            })
+        }
+        Ok(_) => {}
+    }
+    match contents(target)? {
+        Contents::Empty => Ok(()),
+        Contents::Result { kind: found, .. } if found == kind => Ok(()),
+        Contents::Result { kind: found, .. } => Err(FolderError::OtherKind {
+            dir: target.to_path_buf(),
+            found: found.name(),
+            kind: kind.name(),
+        }),
+    }
+}
+
+/// Writes a result of `kind` into the folder `dir`: `write` fills a fresh temporary sibling,
+/// which then replaces `dir` (see the module docs). Without a [`Claim`] on `dir` held by this
+/// process, one is taken for the write. On failure the temporary folder is removed and `dir` is
+/// left as it was.
+pub fn write_atomically<E: From<FolderError>>(
+    dir: &Path,
+    kind: Kind,
+    write: impl FnOnce(&Path) -> Result<(), E>,
+) -> Result<(), E> {
+    let target = resolve(dir)?;
+    if held(&target) {
+        swap_in(&target, kind, write)
+    } else {
+        Claim::acquire(dir, kind, Access::Exclusive)?.write(write)
+    }
+}
+
+fn swap_in<E: From<FolderError>>(
+    target: &Path,
+    kind: Kind,
+    write: impl FnOnce(&Path) -> Result<(), E>,
+) -> Result<(), E> {
+    let tmp = partial_path(target);
+    if is_dir(&tmp) {
+        // Left by an earlier process with our process id (ids are reused).
+        remove_owned(&tmp)?;
+    }
+    fs::create_dir(&tmp).map_err(|e| io_err(&tmp, e))?;
+    // Removes the temporary folder on every way out but success, a panic included.
+    let guard = TempFolder(tmp.clone());
+    write_manifest(&tmp, &Manifest::new(kind, true, Vec::new()))?;
+    write(&tmp)?;
+    inject_fault(&name_of(target));
+    let mut files = Vec::new();
+    if kind != Kind::Sweep {
+        // A sweep folder owns the names of its layout, and its run folders list their own files.
+        written_entries(&tmp, "", &mut files)?;
+    }
+    write_manifest(&tmp, &Manifest::new(kind, false, files))?;
+    replace(target, kind, &tmp)?;
+    // Renamed into place: the guard finds nothing left to remove.
+    drop(guard);
+    Ok(())
+}
+
+/// A temporary folder this process created and fills: removed when dropped (if still there).
+struct TempFolder(PathBuf);
+
+impl Drop for TempFolder {
+    fn drop(&mut self) {
+        if is_dir(&self.0) {
+            let _ = fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+/// Renames the complete `tmp` onto `target`, replacing an earlier result (checked again: only
+/// rollbem's files) that is then removed file by file.
+fn replace(target: &Path, kind: Kind, tmp: &Path) -> Result<(), FolderError> {
+    check_replaceable(target, kind)?;
+    if !target.exists() {
+        return fs::rename(tmp, target).map_err(|e| io_err(target, e));
+    }
+    if list(target)?.is_empty() {
+        fs::remove_dir(target).map_err(|e| io_err(target, e))?;
+        return fs::rename(tmp, target).map_err(|e| io_err(target, e));
+    }
+    let old = old_path(target);
+    fs::rename(target, &old).map_err(|e| io_err(target, e))?;
+    if let Err(e) = fs::rename(tmp, target) {
+        let _ = fs::rename(&old, target);
+        return Err(io_err(target, e));
+    }
+    // The old result holds only what rollbem wrote (checked above, under the lock); anything
+    // that appeared since stays in `.NAME.old-PID`.
+    let _ = remove_owned(&old);
+    Ok(())
+}
+
+/// The fault injection of the tests (`ROLLBEM_TEST_FAULT`, see the module docs).
+pub fn inject_fault(name: &str) {
+    let Ok(spec) = std::env::var(FAULT_ENV) else {
+        return;
+    };
+    let (what, only) = spec
+        .split_once('@')
+        .map_or((spec.as_str(), None), |(w, n)| (w, Some(n)));
+    if only.is_some_and(|n| n != name) {
+        return;
+    }
+    match what {
+        "panic" => panic!("{FAULT_ENV}={spec}: injected panic while writing {name}"),
+        "abort" => std::process::abort(),
+        _ => {}
+    }
+}

@@ -1,0 +1,189 @@
+//! summary.json: what a run found, in one JSON document.
+
+use crate::contact::IterationRecord;
+use crate::post::friction_check::FrictionCheck;
+use crate::post::{NodeState, SlipDirection, SlipRegime, Solved, Timings, Zone};
+use crate::scene::Estimates;
+use serde::Serialize;
+
+/// Contact extent in summary.json.
+#[derive(Debug, Clone, Serialize)]
+pub struct ContactExtent {
+    /// Left end of the contact [length].
+    pub x_min: f64,
+    /// Right end [length].
+    pub x_max: f64,
+    /// Half the contact length [length].
+    pub half_width: f64,
+    /// Centre of the contact [length].
+    pub centre: f64,
+}
+
+/// Grid description in summary.json.
+#[derive(Debug, Clone, Serialize)]
+pub struct GridSummary {
+    /// Number of elements.
+    pub elements: usize,
+    /// Element interpolation.
+    pub element: crate::grid::ElementKind,
+    /// Number of contact nodes.
+    pub nodes: usize,
+    /// Left end [length].
+    pub x_min: f64,
+    /// Right end [length].
+    pub x_max: f64,
+    /// Node spacing [length].
+    pub spacing: f64,
+    /// Slip derivative scheme.
+    pub slip_derivative: crate::contact::SlipDerivative,
+}
+
+/// summary.json (the fields are described in cases/README.md).
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// Case title.
+    pub title: String,
+    /// Whether the solver converged.
+    pub converged: bool,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// Final scaled residual.
+    pub residual: f64,
+    /// P [force/length].
+    pub normal_force: f64,
+    /// Q [force/length].
+    pub tangential_force: f64,
+    /// Q/(μP) (null when μ = 0).
+    pub load_ratio: Option<f64>,
+    /// δ0 [length] (half-space bodies: relative to the datum ℓ = 2R/e, see docs/theory.md).
+    pub overlap: f64,
+    /// ξ = (V_A − V_B)/V.
+    pub creep: f64,
+    /// Contact extent (null if nothing is in contact).
+    pub contact: Option<ContactExtent>,
+    /// Stick zones [[x0, x1], …].
+    pub stick_zones: Vec<[f64; 2]>,
+    /// Slip zones [[x0, x1], …].
+    pub slip_zones: Vec<[f64; 2]>,
+    /// Direction of the slip in each slip zone (written ±1), in the order of `slip_zones`.
+    pub slip_directions: Vec<SlipDirection>,
+    /// All zones in increasing x, with node counts.
+    pub zones: Vec<Zone>,
+    /// Slip regime 1–4 of González & Abascal §5.2 (written 0 for none of them, e.g. full stick).
+    pub slip_regime: SlipRegime,
+    /// Peak pressure [stress].
+    pub max_pressure: f64,
+    /// Stage timings [s].
+    pub timings: Timings,
+    /// Model of each body.
+    pub models: Models,
+    /// Hertz estimates and derived constants.
+    pub estimates: Estimates,
+    /// The contact grid.
+    pub grid: GridSummary,
+    /// Solver diagnostics (penalties, residual history).
+    pub solver: SolverSummary,
+    /// Where the boundary-integral (HBEM) slip contradicts the friction law, with the
+    /// threshold used (null when no HBEM slip exists or μ = 0; see
+    /// [`crate::post::friction_check`]).
+    pub hbem_check: Option<FrictionCheck>,
+    /// Notices for the user (requested features not available, adjustments made).
+    pub notices: Vec<String>,
+    /// The interior grid of `output.interior` (null when not asked): body, model, point
+    /// counts by status, and the maxima of the principal shear and von Mises stress.
+    pub interior: Option<crate::interior::InteriorSummary>,
+    /// Whether VTK files (contact.vtu, result.pvd) were requested.
+    pub vtk: bool,
+    /// The case as resolved after `--set` overrides.
+    pub case: serde_json::Value,
+}
+
+/// Models of A and B.
+#[derive(Debug, Clone, Serialize)]
+pub struct Models {
+    /// Model of A.
+    #[serde(rename = "A")]
+    pub a: String,
+    /// Model of B.
+    #[serde(rename = "B")]
+    pub b: String,
+}
+
+/// Solver diagnostics.
+#[derive(Debug, Clone, Serialize)]
+pub struct SolverSummary {
+    /// Solution method used.
+    pub method: crate::contact::Method,
+    /// Formulation used.
+    pub formulation: crate::contact::Formulation,
+    /// Normal penalty r_n [stress/length].
+    pub penalty_normal: f64,
+    /// Tangential penalty r_t [stress].
+    pub penalty_tangential: f64,
+    /// Traction scale of the convergence test [stress].
+    pub traction_scale: f64,
+    /// Residual, step length and system size per iteration.
+    pub history: Vec<IterationRecord>,
+    /// Restarts the default method needed (empty when its first attempt converged).
+    pub fallbacks: Vec<String>,
+}
+
+/// Builds the summary of a solved run (timings as measured so far; [`super::write_run`] fills
+/// in the total).
+pub fn summary(s: &Solved) -> Summary {
+    let (scene, pb, sol, report) = (&s.scene, &s.problem, &s.solution, &s.report);
+    let case = &scene.case;
+    let mu = scene.friction();
+    Summary {
+        title: case.case.title.clone(),
+        converged: report.converged,
+        iterations: report.iterations,
+        residual: report.residual,
+        normal_force: sol.normal_force,
+        tangential_force: sol.tangential_force,
+        load_ratio: (mu > 0.0 && sol.normal_force > 0.0).then(|| sol.tangential_force / (mu * sol.normal_force)),
+        overlap: sol.overlap,
+        creep: sol.creep,
+        contact: sol.contact_extent().map(|[x0, x1]| ContactExtent {
+            x_min: x0,
+            x_max: x1,
+            half_width: 0.5 * (x1 - x0),
+            centre: 0.5 * (x0 + x1),
+        }),
+        stick_zones: sol.zones_of(NodeState::Stick),
+        slip_zones: sol.zones_of(NodeState::Slip),
+        slip_directions: sol.slip_directions(),
+        zones: sol.zones.clone(),
+        slip_regime: s.regime,
+        max_pressure: sol.pressure.iter().fold(0.0, |a, &b| a.max(b)),
+        timings: s.timings,
+        models: Models {
+            a: scene.bodies[0].model_name().to_string(),
+            b: scene.bodies[1].model_name().to_string(),
+        },
+        estimates: scene.estimates.clone(),
+        grid: GridSummary {
+            elements: pb.grid.n_elements(),
+            element: pb.grid.kind,
+            nodes: pb.grid.n_nodes(),
+            x_min: pb.grid.edges[0],
+            x_max: pb.grid.edges[pb.grid.n_elements()],
+            spacing: pb.grid.node_spacing(),
+            slip_derivative: pb.slip_operator.scheme,
+        },
+        solver: SolverSummary {
+            method: report.method,
+            formulation: case.case.solver.formulation,
+            penalty_normal: report.penalty_normal,
+            penalty_tangential: report.penalty_tangential,
+            traction_scale: report.traction_scale,
+            history: report.history.clone(),
+            fallbacks: report.fallbacks.clone(),
+        },
+        hbem_check: s.friction_check.clone(),
+        notices: s.notices.clone(),
+        interior: s.interior.as_ref().map(crate::interior::InteriorField::summary),
+        vtk: case.case.output.vtk,
+        case: case.resolved.clone(),
+    }
+}

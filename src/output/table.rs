@@ -1,0 +1,105 @@
+//! The terminal table of a run.
+
+use super::summary::Summary;
+use std::path::Path;
+
+/// The terminal summary table of a run.
+pub fn render_table(s: &Summary, output_dir: &Path) -> String {
+    let mut t = String::new();
+    let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<22} {v}\n"));
+    let status = if s.converged { "converged" } else { "NOT CONVERGED" };
+    line("title", s.title.clone());
+    line("models (A / B)", format!("{} / {}", s.models.a, s.models.b));
+    line(
+        "solver",
+        format!("{status} in {} iterations, residual {:.2e}", s.iterations, s.residual),
+    );
+    line("normal force P", format!("{:.6}", s.normal_force));
+    line(
+        "tangential force Q",
+        format!(
+            "{:.6}{}",
+            s.tangential_force,
+            s.load_ratio.map_or(String::new(), |r| format!("  (Q/muP = {r:.4})"))
+        ),
+    );
+    line("overlap delta0", format!("{:.6e}", s.overlap));
+    line("creepage xi", format!("{:.6e}", s.creep));
+    // Hertz comparisons only mean something when both bodies are half-spaces.
+    let hertzian = s.models.a == "half_space" && s.models.b == "half_space";
+    if let Some(c) = &s.contact {
+        let hertz = if hertzian {
+            format!(" (Hertz {:.5})", s.estimates.hertz_half_width)
+        } else {
+            String::new()
+        };
+        line(
+            "contact",
+            format!(
+                "[{:.5}, {:.5}]  half-width {:.5}, centre {:+.5}{hertz}",
+                c.x_min, c.x_max, c.half_width, c.centre
+            ),
+        );
+    }
+    let hertz = if hertzian {
+        format!(" (Hertz p0 {:.6})", s.estimates.hertz_peak_pressure)
+    } else {
+        String::new()
+    };
+    line("max pressure", format!("{:.6}{hertz}", s.max_pressure));
+    let zones = |z: &[[f64; 2]]| {
+        z.iter()
+            .map(|[a, b]| format!("[{a:.4}, {b:.4}]"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    line("stick zones", zones(&s.stick_zones));
+    line(
+        "slip zones",
+        format!(
+            "{}  directions {:?}  regime {}",
+            zones(&s.slip_zones),
+            s.slip_directions.iter().map(|d| d.sign()).collect::<Vec<_>>(),
+            s.slip_regime
+        ),
+    );
+    if let Some(check) = s.hbem_check.as_ref().and_then(|c| c.summary_line()) {
+        line("HBEM slip check", check);
+    }
+    line(
+        "grid",
+        format!(
+            "{} {} elements, {} nodes, spacing {:.4e}",
+            s.grid.elements,
+            s.grid.element.name(),
+            s.grid.nodes,
+            s.grid.spacing
+        ),
+    );
+    if let Some(i) = &s.interior {
+        let peak = |p: &Option<crate::interior::Peak>| {
+            p.map_or("-".to_string(), |p| {
+                format!("{:.6} at ({:.4}, {:.4})", p.value, p.x, p.y)
+            })
+        };
+        line(
+            &format!("interior {} ({})", i.body, i.model),
+            format!(
+                "{} of {} points evaluated; max shear {}; max von Mises {}",
+                i.inside,
+                i.points,
+                peak(&i.max_shear),
+                peak(&i.max_von_mises)
+            ),
+        );
+    }
+    line(
+        "time [s]",
+        format!(
+            "assembly {:.4}  condense {:.4}  solve {:.4}  interior {:.4}  total {:.4}",
+            s.timings.assembly_s, s.timings.condense_s, s.timings.solve_s, s.timings.interior_s, s.timings.total_s
+        ),
+    );
+    line("results", output_dir.display().to_string());
+    t
+}

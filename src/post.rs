@@ -1,0 +1,128 @@
+//! Post-processing: what a solved contact means — the solution in user-facing terms, its
+//! stick/slip zones and slip regime, the friction-law check of the boundary-integral slip, and
+//! the fields each body model shows under the solved tractions (its boundary, its interior).
+//!
+//! Everything here is physics derived from the solver's state; [`crate::output`] only writes
+//! it. [`process`] runs the whole stage and returns a [`Solved`] run.
+
+pub mod fields;
+pub mod friction_check;
+pub mod norms;
+pub mod regime;
+pub mod solution;
+pub mod zones;
+
+use crate::body::BoundaryField;
+use crate::contact::residual::State;
+use crate::contact::{ContactProblem, SolveReport};
+use crate::error::Error;
+use crate::interior::InteriorField;
+use crate::scene::{BodyModels, Scene};
+use friction_check::{check_friction_law, FrictionCheck, DEFAULT_THRESHOLD_FRACTION};
+pub use regime::{slip_regime, traction_ripple};
+use serde::Serialize;
+pub use solution::ContactSolution;
+use std::time::Instant;
+pub use zones::{NodeState, SlipDirection, SlipRegime, Zone};
+
+/// Wall-clock time of each stage [s].
+#[derive(Debug, Clone, Copy, Default, Serialize)]
+pub struct Timings {
+    /// Influence coefficients / BEM assembly.
+    pub assembly_s: f64,
+    /// Condensation to the contact nodes (zero for closed-form models).
+    pub condense_s: f64,
+    /// Contact solve.
+    pub solve_s: f64,
+    /// Interior fields of `output.interior` (post-processing; 0 when not asked).
+    pub interior_s: f64,
+    /// Whole run including output.
+    pub total_s: f64,
+}
+
+/// A solved scene with everything post-processing derived from it, before anything is written.
+#[derive(Debug, Clone)]
+pub struct Solved {
+    /// The scene that was solved (case, bodies, grid, estimates).
+    pub scene: Scene,
+    /// The assembled problem.
+    pub problem: ContactProblem,
+    /// The solution (for a non-converged run: the last iterate).
+    pub solution: ContactSolution,
+    /// Solver report (for every method).
+    pub report: SolveReport,
+    /// Stage timings (total excludes output).
+    pub timings: Timings,
+    /// Slip regime (González & Abascal §5.2).
+    pub regime: SlipRegime,
+    /// Where the boundary-integral slip contradicts the friction law (None without HBEM slip
+    /// or friction).
+    pub friction_check: Option<FrictionCheck>,
+    /// Whole-boundary fields of A and B (bem bodies, when VTK output is on).
+    pub boundary: [Option<BoundaryField>; 2],
+    /// Interior displacements and stresses, when `output.interior` asks for them.
+    pub interior: Option<InteriorField>,
+    /// Notices for the user (e.g. mesh loops turned round, interior points not evaluated).
+    pub notices: Vec<String>,
+}
+
+/// Post-processes a solver state: the user-facing solution, its regime and friction check,
+/// and (for a converged run) the boundary and interior fields the case's output asks for.
+/// `timings` are those of the stages before; the interior time is added here.
+pub fn process(
+    scene: Scene,
+    models: &BodyModels,
+    problem: ContactProblem,
+    state: &State,
+    report: SolveReport,
+    mut timings: Timings,
+) -> Result<Solved, Error> {
+    let solution = ContactSolution::from_state(&problem, state);
+    if report.converged {
+        check_grid_contains_contact(&scene, &solution)?;
+    }
+    let regime = slip_regime(&solution, scene.leading_edge_sign(), 1);
+    let friction_check = check_friction_law(&solution, scene.friction(), DEFAULT_THRESHOLD_FRACTION);
+    let output = &scene.case.case.output;
+    let boundary = if report.converged && output.vtk {
+        fields::boundary_fields(models, &problem.grid, &solution)?
+    } else {
+        [None, None]
+    };
+    let mut notices = scene.notices();
+    let t_interior = Instant::now();
+    let interior = match (&output.interior, report.converged) {
+        (Some(spec), true) => Some(fields::interior_field(&scene, spec, models, &problem.grid, &solution)?),
+        _ => None,
+    };
+    timings.interior_s = t_interior.elapsed().as_secs_f64();
+    notices.extend(interior.as_ref().and_then(fields::unevaluated_points_notice));
+    Ok(Solved {
+        scene,
+        problem,
+        solution,
+        report,
+        timings,
+        regime,
+        friction_check,
+        boundary,
+        interior,
+        notices,
+    })
+}
+
+/// A converged contact must end inside the grid: a loaded end node means the grid cut it off.
+fn check_grid_contains_contact(scene: &Scene, sol: &ContactSolution) -> Result<(), Error> {
+    let m = sol.x.len();
+    for (i, end) in [(0, "left"), (m - 1, "right")] {
+        if sol.pressure[i] > 0.0 {
+            return Err(Error::GridTooShort {
+                case: scene.case.path.clone(),
+                end,
+                x: sol.x[i],
+                extent: scene.case.case.contact.grid.extent,
+            });
+        }
+    }
+    Ok(())
+}

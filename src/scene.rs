@@ -1,0 +1,182 @@
+//! The scene: a validated case resolved into what the solver stages need — both bodies as one
+//! [`BodySetup`] each, the contact grid, the load controls, the solver settings and the Hertz
+//! estimates of the grid actually used.
+//!
+//! The scene is the only stage that reads body specs and meshes from a case; everything
+//! after it (body models, contact problem, post-processing, output) sees the scene. Studies
+//! that solve a variant of a case (another body model, a procedural mesh) build a scene from
+//! their own [`BodySetup`]s with [`Scene::new`] instead of rewriting the case.
+
+pub mod body_setup;
+pub mod estimates;
+pub mod loaded_mesh;
+
+use crate::analytic::Carter;
+use crate::body::{Body, Side};
+use crate::case::{LoadedCase, NormalSpec, TangentialSpec};
+use crate::contact::{ContactProblem, NewtonSettings, NormalControl, SolverSettings, TangentialControl};
+use crate::error::Error;
+use crate::grid::ContactGrid;
+pub use body_setup::{BemSetup, BodySetup};
+pub use estimates::{aligned_half_length, Estimates};
+pub use loaded_mesh::LoadedMesh;
+
+/// The built body models of A and B.
+pub type BodyModels = [Box<dyn Body>; 2];
+
+/// A case resolved for solving.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// The case it was built from (title, contact and output settings, the resolved values).
+    pub case: LoadedCase,
+    /// Bodies A and B.
+    pub bodies: [BodySetup; 2],
+    /// The contact grid: a `bem` body's own contact elements (A's first), else the case's
+    /// uniform grid around the Hertz contact.
+    pub grid: ContactGrid,
+    /// Hertz estimates; their grid entries describe [`Self::grid`].
+    pub estimates: Estimates,
+    /// What is prescribed normally.
+    pub normal: NormalControl,
+    /// What is prescribed tangentially.
+    pub tangential: TangentialControl,
+    /// Solution method and its settings.
+    pub solver: SolverSettings,
+}
+
+impl Scene {
+    /// The scene of a case: loads the meshes of its `bem` bodies.
+    pub fn from_case(case: &LoadedCase) -> Result<Self, Error> {
+        Ok(Self::new(case.clone(), BodySetup::of_case(case)?))
+    }
+
+    /// The scene of a case's contact, load and solver settings with the given bodies (which
+    /// may differ from the case's body specs, e.g. a study's procedural meshes).
+    pub fn new(case: LoadedCase, bodies: [BodySetup; 2]) -> Self {
+        let c = &case.case;
+        let estimates = Estimates::of(c, &bodies);
+        let (grid, estimates) = match bodies.iter().find_map(BodySetup::mesh) {
+            Some(mesh) => {
+                let grid = mesh.contact_grid();
+                let estimates = estimates.with_grid(&grid);
+                (grid, estimates)
+            }
+            None => {
+                let g = &c.contact.grid;
+                let l = estimates.grid_half_length;
+                (ContactGrid::uniform(g.element, g.elements, -l, l), estimates)
+            }
+        };
+        let normal = match c.load.normal() {
+            NormalSpec::Force(p) => NormalControl::Force(p),
+            NormalSpec::Overlap(d) => NormalControl::Overlap(d),
+        };
+        let tangential = match c.load.tangential() {
+            TangentialSpec::Ratio(r) => TangentialControl::Ratio(r),
+            TangentialSpec::Force(q) => TangentialControl::Force(q),
+            TangentialSpec::Creep(x) => TangentialControl::Creep(x),
+        };
+        let solver = solver_settings(&case);
+        Scene {
+            case,
+            bodies,
+            grid,
+            estimates,
+            normal,
+            tangential,
+            solver,
+        }
+    }
+
+    /// Coulomb friction coefficient μ.
+    pub fn friction(&self) -> f64 {
+        self.case.case.contact.friction
+    }
+
+    /// +1 when the leading edge is at x = +a (rolling in +x), −1 otherwise.
+    pub fn leading_edge_sign(&self) -> f64 {
+        -self.case.case.contact.rolling_direction.flow_sign()
+    }
+
+    /// Whether a `bem` body's mesh sets the contact grid.
+    pub fn grid_from_mesh(&self) -> bool {
+        self.bodies.iter().any(|b| b.mesh().is_some())
+    }
+
+    /// The notices of the loaded meshes (loops turned round), A's first.
+    pub fn notices(&self) -> Vec<String> {
+        self.bodies
+            .iter()
+            .filter_map(BodySetup::mesh)
+            .flat_map(|m| m.notices.clone())
+            .collect()
+    }
+
+    /// Builds both body models on the contact grid.
+    pub fn body_models(&self) -> Result<BodyModels, Error> {
+        Ok([
+            self.bodies[0].model(&self.grid, Side::A)?,
+            self.bodies[1].model(&self.grid, Side::B)?,
+        ])
+    }
+
+    /// Builds the body models and assembles the contact problem.
+    pub fn assemble(&self) -> Result<(BodyModels, ContactProblem), Error> {
+        let models = self.body_models()?;
+        let problem = self.contact_problem(&models);
+        Ok((models, problem))
+    }
+
+    /// Assembles the contact problem of the scene from its body models.
+    pub fn contact_problem(&self, models: &BodyModels) -> ContactProblem {
+        let c = &self.case.case.contact;
+        ContactProblem::assemble(
+            self.grid.clone(),
+            models[0].model(),
+            models[1].model(),
+            c.slip_derivative,
+            c.friction,
+            c.rolling_direction,
+            self.normal,
+            self.tangential,
+        )
+    }
+
+    /// Carter's solution for the scene's similar-body estimates, when the case prescribes
+    /// Q/μP (Carter 1926).
+    pub fn carter_reference(&self) -> Option<Carter> {
+        let ratio = match self.case.case.load.tangential() {
+            TangentialSpec::Ratio(r) => r,
+            _ => return None,
+        };
+        Some(Carter {
+            half_width: self.estimates.hertz_half_width,
+            peak_pressure: self.estimates.hertz_peak_pressure,
+            friction: self.friction(),
+            ratio,
+            leading_edge_sign: self.leading_edge_sign(),
+        })
+    }
+}
+
+/// The Newton settings of a case (formulation, penalty scale, tolerance, iteration limit).
+pub fn newton_settings(case: &LoadedCase) -> NewtonSettings {
+    let s = &case.case.solver;
+    NewtonSettings {
+        formulation: s.formulation,
+        penalty_scale: s.penalty.scale(),
+        tolerance: s.tolerance,
+        max_iterations: s.max_iterations,
+        ..NewtonSettings::default()
+    }
+}
+
+/// The solver settings of a case: its method, the Newton settings it shares, and the
+/// Gauss–Seidel relaxation ω, which `solver.penalty` sets for `gauss_seidel`.
+pub fn solver_settings(case: &LoadedCase) -> SolverSettings {
+    SolverSettings {
+        method: case.case.solver.method,
+        newton: newton_settings(case),
+        relaxation: case.case.solver.penalty.scale(),
+    }
+}

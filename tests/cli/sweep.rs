@@ -1,0 +1,392 @@
+//! `rollbem sweep`: 15-run product, failure isolation, sharding and merging.
+
+use crate::common::rollbem;
+use std::path::Path;
+use std::process::Command;
+
+fn case() -> String {
+    format!("{}/cases/dissimilar_beta0288_075.yaml", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Rows of sweep.csv without the wall-clock and folder columns.
+fn rows(path: &Path) -> Vec<Vec<String>> {
+    let mut r = csv::Reader::from_path(path).unwrap();
+    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    let keep: Vec<usize> = (0..header.len())
+        .filter(|&i| !header[i].ends_with("_s") && header[i] != "folder")
+        .collect();
+    r.records()
+        .map(|rec| keep.iter().map(|&i| rec.as_ref().unwrap()[i].to_string()).collect())
+        .collect()
+}
+
+fn pvd_entries(path: &Path) -> usize {
+    std::fs::read_to_string(path).unwrap().matches("<DataSet").count()
+}
+
+const MU: &str = "contact.friction=0.1,0.2,0.3,0.4,0.8";
+const RATIO: &str = "load.tangential.ratio=0.2,0.5,0.75";
+
+/// The 15-run sweep (5 μ × 3 Q/μP) into `out`.
+fn full_sweep(out: &Path) -> (i32, String, String) {
+    rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        MU,
+        "--vary",
+        RATIO,
+        "--out",
+        out.to_str().unwrap(),
+    ])
+}
+
+#[test]
+fn fifteen_runs_write_fifteen_rows_and_pvd_entries() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let (code, stdout, stderr) = full_sweep(&out);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let r = rows(&out.join("sweep.csv"));
+    assert_eq!(r.len(), 15);
+    assert!(r.iter().all(|row| row[1] == "ok"));
+    assert_eq!(pvd_entries(&out.join("sweep.pvd")), 15);
+    for k in 0..15 {
+        assert!(out.join(format!("run_{k:04}/contact.vtu")).exists());
+    }
+    // The varied values are in the table, first --vary slowest.
+    assert_eq!((r[1][2].as_str(), r[1][3].as_str()), ("0.1", "0.5"));
+}
+
+#[test]
+fn a_failing_run_is_recorded_and_the_others_complete() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    // Q = 0.06 P is full sliding only for μ = 0.05: exactly one of the 15 runs fails.
+    let p = 470.805575;
+    let q = format!("load.tangential.force={},{},{}", 0.01 * p, 0.03 * p, 0.06 * p);
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        &case(),
+        "--set",
+        "load.tangential.ratio=null",
+        "--vary",
+        "contact.friction=0.05,0.2,0.3,0.4,0.8",
+        "--vary",
+        &q,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    let r = rows(&out.join("sweep.csv"));
+    assert_eq!(r.len(), 15);
+    let failed: Vec<_> = r.iter().filter(|row| row[1] == "failed").collect();
+    assert_eq!(failed.len(), 1, "{r:?}");
+    assert!(failed[0][4].contains("load.tangential.force"), "{:?}", failed[0]);
+    assert_eq!(pvd_entries(&out.join("sweep.pvd")), 14);
+    assert!(stderr.contains("run_0002"), "{stderr}");
+}
+
+#[test]
+fn four_shards_merged_equal_the_unsharded_sweep() {
+    let dir = tempfile::tempdir().unwrap();
+    let whole = dir.path().join("whole");
+    let (code, _, stderr) = full_sweep(&whole);
+    assert_eq!(code, 0, "{stderr}");
+    // Four separate processes, each into its own folder (as on four machines).
+    let children: Vec<_> = (1..=4)
+        .map(|k| {
+            let out = dir.path().join(format!("shard{k}"));
+            Command::new(env!("CARGO_BIN_EXE_rollbem"))
+                .args([
+                    "sweep",
+                    &case(),
+                    "--vary",
+                    MU,
+                    "--vary",
+                    RATIO,
+                    "--shard",
+                    &format!("{k}/4"),
+                    "--out",
+                ])
+                .arg(&out)
+                .spawn()
+                .unwrap()
+        })
+        .collect();
+    for mut c in children {
+        assert!(c.wait().unwrap().success());
+    }
+    let merged = dir.path().join("merged");
+    let shard_dirs: Vec<String> = (1..=4)
+        .map(|k| dir.path().join(format!("shard{k}")).to_string_lossy().into_owned())
+        .collect();
+    let mut args = vec!["sweep", "--merge"];
+    args.extend(shard_dirs.iter().map(String::as_str));
+    args.extend(["--out", merged.to_str().unwrap()]);
+    let (code, _, stderr) = rollbem(&args);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(rows(&merged.join("sweep.csv")), rows(&whole.join("sweep.csv")));
+    assert_eq!(pvd_entries(&merged.join("sweep.pvd")), 15);
+    // The merged .pvd points at the shards' run folders.
+    let pvd = std::fs::read_to_string(merged.join("sweep.pvd")).unwrap();
+    assert!(pvd.contains("../shard2/run_0001/contact.vtu"), "{pvd}");
+}
+
+#[test]
+fn bad_sweep_arguments_are_input_errors() {
+    let (code, _, stderr) = rollbem(&["sweep", &case(), "--vary", "contact.friction"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--vary contact.friction"), "{stderr}");
+    let (code, _, stderr) = rollbem(&["sweep", &case(), "--vary", MU, "--shard", "5/4"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--shard 5/4"), "{stderr}");
+}
+
+/// As [`rollbem`], with extra environment (the fault injection of the tests).
+fn rollbem_env(env: &[(&str, &str)], args: &[&str]) -> (i32, String, String) {
+    crate::common::rollbem_with(None, env, args)
+}
+
+/// Hidden entries of a folder (locks, temporaries).
+fn hidden(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.') && n != ".rollbem-manifest")
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn a_killed_sweep_keeps_its_finished_runs_and_resume_runs_only_the_rest() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let args = [
+        "sweep",
+        &case(),
+        "--vary",
+        MU,
+        "--vary",
+        RATIO,
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    // Killed (abort: no cleanup) while writing the last run, which every thread reaches last.
+    let (code, _, _) = rollbem_env(&[("ROLLBEM_TEST_FAULT", "abort@run_0014")], &args);
+    assert_ne!(code, 0);
+    assert_ne!(code, 2);
+    // The table holds the runs that finished, as they finished; run 14's temporary folder stays.
+    let done = rows(&out.join("sweep.csv"));
+    assert!((1..15).contains(&done.len()), "{} rows", done.len());
+    assert!(done.iter().all(|r| r[1] == "ok"), "{done:?}");
+    assert!(
+        hidden(&out).iter().any(|n| n.starts_with(".run_0014.partial-")),
+        "{:?}",
+        hidden(&out)
+    );
+    let (code, stdout, stderr) = rollbem(&[&args[..], &["--resume"]].concat());
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(
+        stdout.contains(&format!("({} kept from the interrupted sweep)", done.len())),
+        "{stdout}"
+    );
+    // Complete, in run order, equal to an uninterrupted sweep; no temporaries or locks left.
+    let whole = dir.path().join("whole");
+    let (code, _, stderr) = full_sweep(&whole);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(rows(&out.join("sweep.csv")), rows(&whole.join("sweep.csv")));
+    assert_eq!(pvd_entries(&out.join("sweep.pvd")), 15);
+    assert!(hidden(&out).is_empty(), "{:?}", hidden(&out));
+    assert!(hidden(dir.path()).is_empty(), "{:?}", hidden(dir.path()));
+    // --resume of another sweep into this folder is refused, naming the difference.
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        "contact.friction=0.1,0.2",
+        "--out",
+        out.to_str().unwrap(),
+        "--resume",
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        stderr.contains("belongs to another sweep") && stderr.contains("varied values differ"),
+        "{stderr}"
+    );
+    // Without --resume a new sweep replaces the earlier one whole.
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        "contact.friction=0.1,0.2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(rows(&out.join("sweep.csv")).len(), 2);
+    assert!(!out.join("run_0002").exists());
+}
+
+#[test]
+fn a_panicking_run_is_recorded_as_an_internal_error_and_the_sweep_exits_3() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let (code, _, stderr) = rollbem_env(
+        &[("ROLLBEM_TEST_FAULT", "panic@run_0002")],
+        &["sweep", &case(), "--vary", MU, "--out", out.to_str().unwrap()],
+    );
+    assert_eq!(code, 3, "{stderr}");
+    let r = rows(&out.join("sweep.csv"));
+    assert_eq!(r.len(), 5);
+    assert_eq!(r[2][1], "failed");
+    assert!(r[2][3].contains("internal error — please report"), "{:?}", r[2]);
+    assert!(r.iter().enumerate().all(|(i, row)| i == 2 || row[1] == "ok"));
+    assert!(!out.join("run_0002").exists());
+    assert!(hidden(&out).is_empty(), "{:?}", hidden(&out));
+}
+
+/// Runs shard K of N of the 5-run friction sweep (`values` as the friction list) into `out`.
+fn shard(values: &str, k: usize, n: usize, out: &Path) -> (i32, String, String) {
+    rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        values,
+        "--shard",
+        &format!("{k}/{n}"),
+        "--out",
+        out.to_str().unwrap(),
+    ])
+}
+
+#[test]
+fn merge_refuses_incomplete_mixed_malformed_and_empty_shard_sets() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b, other) = (dir.path().join("a"), dir.path().join("b"), dir.path().join("other"));
+    assert_eq!(shard(MU, 1, 2, &a).0, 0);
+    assert_eq!(shard(MU, 2, 2, &b).0, 0);
+    // The same keys, other values: shard 2 of another sweep.
+    assert_eq!(shard("contact.friction=0.1,0.2,0.3,0.4,0.9", 2, 2, &other).0, 0);
+    let merged = dir.path().join("merged");
+    let merge = |dirs: &[&Path]| {
+        let mut args: Vec<String> = vec!["sweep".into(), "--merge".into()];
+        args.extend(dirs.iter().map(|d| d.to_string_lossy().into_owned()));
+        args.extend(["--out".into(), merged.to_string_lossy().into_owned()]);
+        rollbem(&args.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let refused = |dirs: &[&Path], says: &[&str]| {
+        let (code, stdout, stderr) = merge(dirs);
+        assert_eq!(code, 1, "{says:?}: {stdout}{stderr}");
+        for s in says {
+            assert!(stderr.contains(s), "expected `{s}` in: {stderr}");
+        }
+        assert!(!merged.join("sweep.csv").exists());
+    };
+    refused(&[&a], &["incomplete", "2/2 missing"]);
+    refused(&[&a, &other], &["different sweeps", "varied values differ"]);
+    // The same shard twice (a copy of b's table and record).
+    let copy = dir.path().join("copy");
+    std::fs::create_dir(&copy).unwrap();
+    for f in ["sweep_shard_2_of_2.csv", "sweep_shard_2_of_2.json"] {
+        std::fs::copy(b.join(f), copy.join(f)).unwrap();
+    }
+    refused(&[&a, &b, &copy], &["shard 2/2 is given twice"]);
+    let table = b.join("sweep_shard_2_of_2.csv");
+    let good = std::fs::read_to_string(&table).unwrap();
+    // A shard that was killed after one of its two runs.
+    let mut lines: Vec<&str> = good.lines().collect();
+    lines.pop();
+    std::fs::write(&table, lines.join("\n") + "\n").unwrap();
+    refused(&[&a, &b], &["shard 2/2 is incomplete", "run_0003"]);
+    // Malformed tables are named, never a panic.
+    for text in ["run\n0\n", "run,folder\n0,x\n"] {
+        std::fs::write(&table, text).unwrap();
+        refused(&[&a, &b], &["sweep_shard_2_of_2.csv", "header"]);
+    }
+    std::fs::write(&table, good.replacen("\n1,", "\nx,", 1)).unwrap();
+    refused(&[&a, &b], &["line 2", "not a number"]);
+    std::fs::write(&table, "").unwrap();
+    refused(&[&a, &b], &["sweep_shard_2_of_2.csv is empty"]);
+    std::fs::write(&table, &good).unwrap();
+    std::fs::remove_file(b.join("sweep_shard_2_of_2.json")).unwrap();
+    refused(&[&a, &b], &["no record sweep_shard_2_of_2.json"]);
+    // Rerun, the set merges.
+    assert_eq!(shard(MU, 2, 2, &b).0, 0);
+    let (code, _, stderr) = merge(&[&a, &b]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(rows(&merged.join("sweep.csv")).len(), 5);
+}
+
+#[test]
+fn shards_share_a_folder_and_a_second_writer_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("shared");
+    // Three shards at once into one folder.
+    let children: Vec<_> = (1..=3)
+        .map(|k| {
+            Command::new(env!("CARGO_BIN_EXE_rollbem"))
+                .args([
+                    "sweep",
+                    &case(),
+                    "--vary",
+                    MU,
+                    "--vary",
+                    RATIO,
+                    "--shard",
+                    &format!("{k}/3"),
+                    "--out",
+                ])
+                .arg(&out)
+                .env_remove("ROLLBEM_TEST_FAULT")
+                .output()
+                .unwrap()
+        })
+        .collect();
+    for c in &children {
+        assert!(c.status.success(), "{}", String::from_utf8_lossy(&c.stderr));
+    }
+    let (code, _, stderr) = rollbem(&["sweep", "--merge", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(rows(&out.join("sweep.csv")).len(), 15);
+    // A shard of another split into that folder is refused.
+    let (code, _, stderr) = shard(MU, 1, 2, &out);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("belongs to another sweep"), "{stderr}");
+    // A second sweep while one writes the folder: refused at once; the first one's runs are all
+    // valid (a lost race must never mark a run failed).
+    let busy = dir.path().join("busy");
+    let many = "contact.friction=0.1,0.12,0.14,0.16,0.18,0.2,0.25,0.3,0.35,0.4,0.5,0.6,0.7,0.8";
+    let mut first = Command::new(env!("CARGO_BIN_EXE_rollbem"))
+        .args(["sweep", &case(), "--vary", many, "--vary", RATIO, "--out"])
+        .arg(&busy)
+        .env_remove("ROLLBEM_TEST_FAULT")
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while !busy.join("sweep.json").exists() && start.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        many,
+        "--vary",
+        RATIO,
+        "--out",
+        busy.to_str().unwrap(),
+    ]);
+    let first_code = first.wait().unwrap().code();
+    assert_eq!(first_code, Some(0));
+    let r = rows(&busy.join("sweep.csv"));
+    assert_eq!(r.len(), 42);
+    assert!(r.iter().all(|row| row[1] == "ok"));
+    // The second one started while the first held the folder (it writes sweep.json first and
+    // runs 42 solves after it).
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("being written by another rollbem process"), "{stderr}");
+}

@@ -1,0 +1,197 @@
+//! The rules of docs/architecture.md, checked on the source: the imports of `src/` have no
+//! cycle, neither between its top-level modules nor between the files of one folder; no source
+//! file is over 700 lines and the driver (`src/app.rs`) stays under 400.
+//!
+//! Imports are read as text: every `crate::a::b` and `super::b` path (and the items of
+//! `crate::{…}` / `super::{…}` groups) outside comments and outside the `#[cfg(test)]` module
+//! at the end of a file (tests may use any stage).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// Every `.rs` file under `dir`.
+fn sources(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()) {
+        if entry.is_dir() {
+            out.extend(sources(&entry));
+        } else if entry.extension().is_some_and(|e| e == "rs") {
+            out.push(entry);
+        }
+    }
+    out.sort();
+    out
+}
+
+/// The module path of a file: src/post/zones.rs → [post, zones]; src/post.rs → [post].
+fn module_path(src: &Path, file: &Path) -> Vec<String> {
+    let rel = file.strip_prefix(src).unwrap().with_extension("");
+    let mut parts: Vec<String> = rel.iter().map(|p| p.to_string_lossy().into_owned()).collect();
+    if matches!(parts.last().map(String::as_str), Some("lib" | "main" | "mod")) {
+        parts.pop();
+    }
+    parts
+}
+
+/// The code of a file without comments and without its test module.
+fn code(text: &str) -> String {
+    let text = text.split("#[cfg(test)]").next().unwrap_or_default();
+    text.lines()
+        .filter(|l| !l.trim_start().starts_with("//"))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The identifier at the start of `s`.
+fn ident(s: &str) -> &str {
+    let end = s.find(|c: char| !(c.is_alphanumeric() || c == '_')).unwrap_or(s.len());
+    &s[..end]
+}
+
+/// The first two path segments after each `prefix` (`crate::` or `super::`), reading the
+/// items of a `{…}` group one by one.
+fn paths_after(code: &str, prefix: &str) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    for (at, _) in code.match_indices(prefix) {
+        let rest = &code[at + prefix.len()..];
+        if let Some(group) = rest.strip_prefix('{') {
+            // Top-level items of the group.
+            let (mut depth, mut item_start) = (0, 0);
+            for (k, c) in group.char_indices() {
+                match c {
+                    '{' => depth += 1,
+                    '}' if depth == 0 => {
+                        out.push(segments(&group[item_start..k]));
+                        break;
+                    }
+                    '}' => depth -= 1,
+                    ',' if depth == 0 => {
+                        out.push(segments(&group[item_start..k]));
+                        item_start = k + 1;
+                    }
+                    _ => {}
+                }
+            }
+        } else {
+            out.push(segments(rest));
+        }
+    }
+    out.into_iter().filter(|p| !p.is_empty()).collect()
+}
+
+/// Up to two identifier segments of a path (`a::b::{…}` → [a, b]).
+fn segments(s: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut rest = s.trim();
+    while out.len() < 2 {
+        let id = ident(rest);
+        if id.is_empty() || id == "self" {
+            break;
+        }
+        out.push(id.to_string());
+        match rest[id.len()..].strip_prefix("::") {
+            Some(r) => rest = r,
+            None => break,
+        }
+    }
+    out
+}
+
+/// Edges `a → b` of the import graphs: the top level, and each folder's files.
+fn graphs() -> BTreeMap<String, BTreeSet<(String, String)>> {
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut graphs: BTreeMap<String, BTreeSet<(String, String)>> = BTreeMap::new();
+    for file in sources(&src) {
+        let m = module_path(&src, &file);
+        if m.is_empty() {
+            continue;
+        }
+        let text = code(&std::fs::read_to_string(&file).unwrap());
+        let mut targets = paths_after(&text, "crate::");
+        for p in paths_after(&text, "super::") {
+            let mut full = m[..m.len() - 1].to_vec();
+            full.extend(p);
+            targets.push(full);
+        }
+        for t in targets {
+            if t[0] != m[0] {
+                graphs
+                    .entry("src".into())
+                    .or_default()
+                    .insert((m[0].clone(), t[0].clone()));
+            } else if m.len() > 1 && t.len() > 1 && t[1] != m[1] {
+                let folder = format!("src/{}", m[0]);
+                graphs.entry(folder).or_default().insert((m[1].clone(), t[1].clone()));
+            }
+        }
+    }
+    graphs
+}
+
+/// The edges of `edges` that lie on a cycle.
+fn cyclic(edges: &BTreeSet<(String, String)>) -> Vec<(String, String)> {
+    let reaches = |from: &str, to: &str| {
+        let (mut seen, mut stack) = (BTreeSet::new(), vec![from.to_string()]);
+        while let Some(x) = stack.pop() {
+            if x == to {
+                return true;
+            }
+            if seen.insert(x.clone()) {
+                stack.extend(edges.iter().filter(|(a, _)| *a == x).map(|(_, b)| b.clone()));
+            }
+        }
+        false
+    };
+    edges.iter().filter(|(a, b)| reaches(b, a)).cloned().collect()
+}
+
+#[test]
+fn imports_have_no_cycle_between_modules_or_sibling_files() {
+    let graphs = graphs();
+    assert!(
+        graphs["src"].contains(&("output".into(), "post".into())),
+        "the reader finds imports"
+    );
+    let cycles: Vec<String> = graphs
+        .iter()
+        .flat_map(|(folder, edges)| {
+            cyclic(edges)
+                .into_iter()
+                .map(move |(a, b)| format!("{folder}: {a} → {b}"))
+        })
+        .collect();
+    assert!(cycles.is_empty(), "imports on a cycle:\n  {}", cycles.join("\n  "));
+}
+
+/// The stages in the order of their imports: each may use the ones before it, never one
+/// after (the numerical core first: the case schema names the solver's option types, the
+/// scene builds body models and the contact problem, post-processing reads the scene).
+#[test]
+fn stages_import_only_the_stages_below_them() {
+    let edges = &graphs()["src"];
+    let layers = ["body", "contact", "case", "scene", "post", "output", "app"];
+    for (i, low) in layers.iter().enumerate() {
+        for high in &layers[i + 1..] {
+            assert!(
+                !edges.contains(&(low.to_string(), high.to_string())),
+                "{low} imports {high}, a stage above it"
+            );
+        }
+    }
+}
+
+#[test]
+fn source_files_stay_small() {
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
+    let long: Vec<String> = sources(&src)
+        .into_iter()
+        .map(|f| (std::fs::read_to_string(&f).unwrap().lines().count(), f))
+        .filter(|(n, f)| *n > 700 || (f.ends_with("app.rs") && *n >= 400))
+        .map(|(n, f)| format!("{}: {n} lines", f.display()))
+        .collect();
+    assert!(
+        long.is_empty(),
+        "over 700 lines (app.rs: 400):\n  {}",
+        long.join("\n  ")
+    );
+}

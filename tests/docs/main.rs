@@ -1,0 +1,250 @@
+//! What the docs say is true: they cite only what the repository holds
+//! ([`no_external_references`]), the source keeps the rules of docs/architecture.md
+//! ([`architecture`]), and the numbers they quote are the numbers the report programs print:
+//! every table of
+//! docs/*.md that a program in examples/ prints is compared here, cell by cell, with what the
+//! program prints now (within the rounding of the printed digits, see [`markdown`]), and the
+//! numbers the prose repeats from those tables are checked against them. A change of the
+//! solver that moves a quoted number fails here until the page is regenerated with the
+//! program; a page edited by hand fails too.
+//!
+//! Times are not compared (they depend on the machine and its load).
+
+// Each report is a program of its own and declares the shared examples/common/mod.rs itself;
+// compiled together here, that file is one module per report.
+#![allow(clippy::duplicate_mod)]
+
+mod architecture;
+#[path = "../common/mod.rs"]
+mod common;
+#[allow(dead_code)]
+#[path = "../../examples/hbem_report.rs"]
+mod hbem_report;
+mod markdown;
+#[allow(dead_code)]
+#[path = "../../examples/methods_perf.rs"]
+mod methods_perf;
+#[allow(dead_code)]
+#[path = "../../examples/model_error_table.rs"]
+mod model_error_table;
+mod no_external_references;
+#[allow(dead_code)]
+#[path = "../../examples/perf_report.rs"]
+mod perf_report;
+#[allow(dead_code)]
+#[path = "../../examples/validation_report.rs"]
+mod validation_report;
+
+use markdown::{assert_table, cell_mismatch, number_after, page, Printed, Rows};
+
+/// The page's table of the same header holds every printed row and no other.
+fn assert_same(page_name: &str, t: &validation_report::common::Table) {
+    let p = page(page_name);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&p, printed, Rows::All, &[], (&[], 0.0));
+}
+
+/// A number the prose quotes (right after `before`) is the printed one.
+fn assert_quoted(page_name: &str, before: &str, printed: &str) {
+    let quoted = number_after(&page(page_name), before);
+    if let Some(why) = cell_mismatch(&quoted, printed) {
+        panic!("{page_name}, after `{before}`: {why}");
+    }
+}
+
+/// A cell of a printed table: the column `column` of the row whose first cell is `row`.
+fn cell<'a>(header: &[String], rows: &'a [Vec<String>], row: &str, column: &str) -> &'a str {
+    let j = header.iter().position(|h| h == column).expect("a column of the table");
+    &rows.iter().find(|r| r[0] == row).expect("a row of the table")[j]
+}
+
+/// The number of a percentage cell ("1.46 %" → "1.46").
+fn percent(cell: &str) -> &str {
+    cell.trim().trim_end_matches('%').trim()
+}
+
+#[test]
+fn validation_hertz_table() {
+    assert_same("validation.md", &validation_report::hertz());
+}
+
+#[test]
+fn validation_carter_table() {
+    assert_same("validation.md", &validation_report::carter());
+}
+
+/// Φ and Ψ converge to the same solution of the discrete problem, so their differences are
+/// round-off: the page and the report must both show them below 1e-12 (their digits change
+/// with any reordering of the arithmetic).
+#[test]
+fn validation_phi_psi_table() {
+    let t = validation_report::phi_psi();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    let noise = ["max |p_Φ − p_Ψ|/p_max", "max |q_Φ − q_Ψ|/max|q|"];
+    assert_table(&page("validation.md"), printed, Rows::All, &[], (&noise, 1e-12));
+}
+
+/// Every method converges to the default Newton's solution of the same discrete problem: the
+/// differences are round-off (Gauss–Seidel stops on the common residual 1e-10, so its shear
+/// differs by up to its stopping tolerance): compared below 1e-9, the other cells exactly.
+#[test]
+fn validation_methods_table() {
+    let t = validation_report::methods();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    let noise = ["max Δq / μp0", "max Δp / p0"];
+    assert_table(&page("validation.md"), printed, Rows::All, &[], (&noise, 1e-9));
+}
+
+#[test]
+fn validation_regimes_table() {
+    assert_same("validation.md", &validation_report::regimes());
+}
+
+#[test]
+fn validation_free_rolling_table() {
+    assert_same("validation.md", &validation_report::free_rolling());
+}
+
+#[test]
+fn validation_variable_friction_table() {
+    assert_same("validation.md", &validation_report::variable_friction());
+}
+
+/// docs/hbem.md: Carter with true rollers (the error table), Fig. 4's nodes (a selection of
+/// the printed rows), and the friction check of the shipped cases; the prose of hbem.md and
+/// validation.md repeats some of them.
+#[test]
+fn hbem_tables_and_quoted_numbers() {
+    let carter = common_solve("carter_051_true");
+    let t = hbem_report::carter_errors(&carter);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("hbem.md"), printed, Rows::All, &[], (&[], 0.0));
+    let (hbem_slip, fd_slip) = (&t.rows[0][1], &t.rows[1][1]);
+    assert_quoted("validation.md", "largest slip: HBEM slip", percent(hbem_slip));
+    assert_quoted(
+        "validation.md",
+        "in the slip zone (finite differences",
+        percent(fd_slip.split('(').next().unwrap_or_default()),
+    );
+
+    let fig4 = common_solve("fig4_true_geometry");
+    let t = hbem_report::node_table(&fig4, false);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("hbem.md"), printed, Rows::Selection { key: 1 }, &[], (&[], 0.0));
+
+    let t = hbem_report::check_table();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("hbem.md"), printed, Rows::All, &[], (&[], 0.0));
+    let stick = r"max \|s_hbem\| at stick nodes";
+    let slip = r"max \|s_hbem − s\| at slip nodes";
+    let fig4_stick = percent(cell(&t.header, &t.rows, "fig4_true_geometry", stick));
+    assert_quoted("hbem.md", "In the stick zone the HBEM slip is at most", fig4_stick);
+    assert_quoted("validation.md", "stick nodes ≤", fig4_stick);
+    let hs = "dissimilar_beta0288_075 (Fig. 4)";
+    let (hs_stick, hs_slip) = (
+        percent(cell(&t.header, &t.rows, hs, stick)),
+        percent(cell(&t.header, &t.rows, hs, slip)),
+    );
+    assert_quoted("hbem.md", "stick nodes at most", hs_stick);
+    assert_quoted("hbem.md", "slip nodes differ by at most", hs_slip);
+    assert_quoted("validation.md", "closed-form derivative):", hs_stick);
+}
+
+fn common_solve(name: &str) -> rollbem::app::Solved {
+    hbem_report::common::solve(name, &[] as &[&str])
+}
+
+/// docs/choosing-a-model.md's two tables, and the constants of src/advice.rs that
+/// `rollbem check` interpolates: the report prints them to four figures, so the constants must
+/// be the measured values within half a unit of their fourth figure.
+#[test]
+fn model_error_tables_and_advice_constants() {
+    let rollers = model_error_table::rollers();
+    let t = model_error_table::roller_table(&rollers);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("choosing-a-model.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_eq!(rollers.len(), rollbem::advice::ROLLER_ERROR.len());
+    for (r, &(a_over_r, p, q)) in rollers.iter().zip(&rollbem::advice::ROLLER_ERROR) {
+        assert_eq!(r.a_over_r, a_over_r);
+        assert_four_figures(p, r.pressure, "ROLLER_ERROR pressure");
+        assert_four_figures(q, r.shear, "ROLLER_ERROR shear");
+    }
+    let layers = model_error_table::layers();
+    let t = model_error_table::layer_table(&layers);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("choosing-a-model.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_eq!(layers.len(), rollbem::advice::LAYER_ERROR.len());
+    for (r, &(b_over_a, p)) in layers.iter().zip(&rollbem::advice::LAYER_ERROR) {
+        assert_eq!(r.b_over_a, b_over_a);
+        assert_four_figures(p, r.pressure, "LAYER_ERROR pressure");
+    }
+}
+
+/// `constant`, written with four significant figures, is `measured` rounded (one unit of the
+/// fourth figure: a rounding of the measured value either side of a boundary).
+fn assert_four_figures(constant: f64, measured: f64, what: &str) {
+    let unit = 10f64.powi(constant.abs().log10().floor() as i32 - 3);
+    assert!(
+        (constant - measured).abs() <= unit,
+        "{what}: src/advice.rs has {constant:e}, the report measures {measured:.4e}"
+    );
+}
+
+/// docs/performance.md: the carter2d table without its times.
+#[test]
+fn performance_carter2d_table() {
+    let mut t = perf_report::common::Table::new(&perf_report::HEADER);
+    for n in perf_report::ELEMENTS {
+        t.push(perf_report::row(n, &perf_report::solve_grid(n, "second_order"), None));
+    }
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    let times = ["assembly [ms]", "solve [ms]", "per iteration [ms]", "whole process [s]"];
+    assert_table(&page("performance.md"), printed, Rows::All, &times, (&[], 0.0));
+}
+
+/// docs/performance.md: the methods table without its times. A difference from Newton below
+/// 1e-9 μp0 is the methods' common stopping tolerance (scaled residual 1e-10), not a number to
+/// reproduce digit by digit.
+#[test]
+fn performance_methods_table() {
+    let t = methods_perf::table(&[21, 41, 81, 161], |_| 1);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    let noise = ["max |Δq| vs newton (μp0)"];
+    assert_table(
+        &page("performance.md"),
+        printed,
+        Rows::All,
+        &["solve [ms]"],
+        (&noise, 1e-9),
+    );
+}

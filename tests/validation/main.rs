@@ -1,0 +1,19 @@
+//! The contact solver on the shipped cases against closed forms and against itself: Hertz and
+//! Carter, equilibrium and load controls, Φ against Ψ, the solution methods, the friction
+//! limits of free rolling, BEM bodies (true geometry) and the tyred cylinder; and the closed
+//! forms themselves (the conformal Michell series, the free-rolling creepage of unequal rollers).
+//!
+//! Run one file's tests with its module name, e.g. `cargo test --release --test validation
+//! hertz_carter::`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod conformal_series;
+mod free_rolling_creepage;
+mod friction_limits;
+mod hertz_carter;
+mod methods;
+mod solver;
+mod true_geometry;
+mod tyre;
