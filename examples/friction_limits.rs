@@ -24,11 +24,22 @@ pub const CASES: [&str; 2] = ["free_rolling_al_steel", "carter_051"];
 /// The ladder on `grids` (element counts); `first` is the header's first cell, which tells the
 /// page's two tables apart.
 pub fn table(first: &str, grids: &[usize]) -> Table {
-    let mut t = Table::new(&[first, "elements", "μ", "Newton steps", "restarts", "creepage ξ", "solve [s]"]);
+    let mut t = Table::new(&[
+        first,
+        "elements",
+        "μ",
+        "Newton steps",
+        "restarts",
+        "creepage ξ",
+        "solve [s]",
+    ]);
     for name in CASES {
         for &n in grids {
             for mu in FRICTIONS {
-                let s = solve(name, &[format!("contact.friction={mu}"), format!("contact.grid.elements={n}")]);
+                let s = solve(
+                    name,
+                    &[format!("contact.friction={mu}"), format!("contact.grid.elements={n}")],
+                );
                 let restarts = if s.report.fallbacks.is_empty() {
                     "–".to_string()
                 } else {
