@@ -128,7 +128,7 @@ struct Attempts<'a> {
 impl Attempts<'_> {
     /// From the paper's start vector or the normal start: the outcome (NORM steps included the
     /// first time the normal start is used) and the penalties [r_n, r_t] used.
-    fn from_start(&mut self, start: Start) -> (BlockOutcome, [f64; 2]) {
+    fn attempt_from(&mut self, start: Start) -> (BlockOutcome, [f64; 2]) {
         let (pb, settings, measure) = (self.pb, self.settings, self.measure);
         match start {
             Start::Normal(form) => {
@@ -183,7 +183,7 @@ impl Attempts<'_> {
                     Start::Paper(f, c) if f == own.0 => format!("penalty/{}", own.1 / c),
                     Start::Paper(f, _) => format!("{} (paper start)", form(f)),
                 };
-                let (out, used) = self.from_start(start);
+                let (out, used) = self.attempt_from(start);
                 Some((out, used, label))
             }
         }
@@ -204,7 +204,7 @@ pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &Convergen
         measure,
         normal: None,
     };
-    let (mut out, mut penalties) = attempts.from_start(first);
+    let (mut out, mut penalties) = attempts.attempt_from(first);
     let mut fallbacks = Vec::new();
     for restart in restarts {
         if !out.stalled {

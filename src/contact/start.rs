@@ -1,5 +1,7 @@
-//! The start of the default method: the normal problem first (Kalker's NORM, with q = 0), and
-//! the creepage of complete slip on its pressure when ξ is unknown.
+//! The normal start of the default method (its first attempt above μ = 1, a restart below, see
+//! [`super::restart`]): the normal problem first (Kalker's NORM, with q = 0), and the creepage
+//! of complete slip on its pressure when ξ is unknown. The creepage iteration
+//! ([`super::creep_secant`]) steps with the same creepage of complete slip.
 //!
 //! **Why not the paper's start vector.** The paper's start (Eq. 74: p = q = 0, g = −h0) puts
 //! every node of the grid at a tie with a positive augmented pressure r_n h0, so the first Newton
