@@ -10,5 +10,6 @@ mod common;
 mod commands;
 mod files;
 mod stability;
+mod stall;
 mod study;
 mod sweep;

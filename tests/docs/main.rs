@@ -18,6 +18,9 @@ mod architecture;
 #[path = "../common/mod.rs"]
 mod common;
 #[allow(dead_code)]
+#[path = "../../examples/friction_limits.rs"]
+mod friction_limits;
+#[allow(dead_code)]
 #[path = "../../examples/hbem_report.rs"]
 mod hbem_report;
 mod markdown;
@@ -88,6 +91,20 @@ fn validation_phi_psi_table() {
     };
     let noise = ["max |p_Φ − p_Ψ|/p_max", "max |q_Φ − q_Ψ|/max|q|"];
     assert_table(&page("validation.md"), printed, Rows::All, &[], (&noise, 1e-12));
+}
+
+/// Every method converges to the default Newton's solution of the same discrete problem: the
+/// differences are round-off (Gauss–Seidel stops on the common residual 1e-10, so its shear
+/// differs by up to its stopping tolerance): compared below 1e-9, the other cells exactly.
+#[test]
+fn validation_methods_table() {
+    let t = validation_report::methods();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    let noise = ["max Δq / μp0", "max Δp / p0"];
+    assert_table(&page("validation.md"), printed, Rows::All, &[], (&noise, 1e-9));
 }
 
 #[test]
@@ -233,4 +250,17 @@ fn performance_methods_table() {
         &["solve [ms]"],
         (&noise, 1e-9),
     );
+}
+
+/// docs/performance.md, "Solver cost at the friction limits": the ladder at 41 and 81 elements
+/// (the page's second table, 161–481 elements, takes minutes and is checked by running the
+/// program).
+#[test]
+fn performance_friction_limits_table() {
+    let t = friction_limits::table("case", &[41, 81]);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("performance.md"), printed, Rows::All, &["solve [s]"], (&[], 0.0));
 }
