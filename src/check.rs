@@ -190,5 +190,14 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
         crate::advice::roller_error(est.half_width_over_radius)
     };
     line("model advice", crate::advice::advise(&error, tolerance));
+    let memory = crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
+    line(
+        "memory estimate",
+        format!(
+            "{} (peak; {} available)",
+            crate::limits::human_bytes(memory.bytes()),
+            crate::limits::available_memory().map_or("unknown".into(), crate::limits::human_bytes)
+        ),
+    );
     Ok(t)
 }
