@@ -351,12 +351,9 @@ pub enum MeshError {
         /// Groups of the elements meeting there.
         groups: String,
     },
-    /// An element has (numerically) zero length.
-    #[error(
-        "{path}: element {element} of group `{group}` at ({x}, {y}) has zero length; remove \
-         duplicated points or degenerate curves from the geometry"
-    )]
-    ZeroLengthElement {
+    /// An element that cannot be integrated: zero length or a folded mapping.
+    #[error("{path}: element {element} of group `{group}` at ({x}, {y}) {defect}")]
+    BadElement {
         /// The mesh.
         path: String,
         /// Group name.
@@ -367,23 +364,8 @@ pub enum MeshError {
         x: f64,
         /// y of its first node.
         y: f64,
-    },
-    /// The mid node of a 3-node element is so far off-centre that the mapping folds over.
-    #[error(
-        "{path}: element {element} of group `{group}` at ({x}, {y}) is distorted (its mid node is \
-         not in the middle third between its ends); regenerate the mesh"
-    )]
-    DistortedElement {
-        /// The mesh.
-        path: String,
-        /// Group name.
-        group: String,
-        /// Element index (0-based).
-        element: usize,
-        /// x of its first node.
-        x: f64,
-        /// y of its first node.
-        y: f64,
+        /// What is wrong with it.
+        defect: ElementDefect,
     },
     /// Two pieces of the boundary cross or touch: a bow-tie outline, or a hole that crosses the
     /// outer contour or another hole.
@@ -435,4 +417,25 @@ pub enum MeshError {
         /// The names that exist.
         available: String,
     },
+}
+
+/// What makes an element of a mesh unusable ([`MeshError::BadElement`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElementDefect {
+    /// Its ends coincide (numerically).
+    ZeroLength,
+    /// The mid node of a 3-node element is so far off-centre that the mapping folds over.
+    Distorted,
+}
+
+impl std::fmt::Display for ElementDefect {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::ZeroLength => "has zero length; remove duplicated points or degenerate curves from the geometry",
+            Self::Distorted => {
+                "is distorted (its mid node is not in the middle third between its ends); \
+                 regenerate the mesh"
+            }
+        })
+    }
 }

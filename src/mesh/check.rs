@@ -11,7 +11,7 @@
 //! directly inside it. A bow-tie outline, a hole that crosses the outer contour or a loop outside
 //! the body is refused with the groups concerned named.
 
-use super::{BoundaryMesh, MeshError};
+use super::{BoundaryMesh, ElementDefect, MeshError};
 use crate::quadrature::gauss_legendre;
 
 /// One closed loop of the boundary.
@@ -117,19 +117,20 @@ fn check_elements(mesh: &BoundaryMesh) -> Result<(), MeshError> {
                 count: mesh.nodes.len(),
             });
         }
-        let group = mesh.groups[el.group].name.clone();
         let [x0, y0] = mesh.nodes[el.nodes[0]];
+        let bad = |defect| MeshError::BadElement {
+            path: path(),
+            group: mesh.groups[el.group].name.clone(),
+            element: i,
+            x: x0,
+            y: y0,
+            defect,
+        };
         let [x1, y1] = mesh.nodes[el.nodes[1]];
         let chord = [x1 - x0, y1 - y0];
         let length2 = chord[0] * chord[0] + chord[1] * chord[1];
         if length2.sqrt() <= tolerance {
-            return Err(MeshError::ZeroLengthElement {
-                path: path(),
-                group,
-                element: i,
-                x: x0,
-                y: y0,
-            });
+            return Err(bad(ElementDefect::ZeroLength));
         }
         if el.nodes.len() == 3 {
             // The Jacobian along the chord is |c|²(1/2 + ξ(1 − 2s)), with s the mid node's
@@ -137,13 +138,7 @@ fn check_elements(mesh: &BoundaryMesh) -> Result<(), MeshError> {
             let [xm, ym] = mesh.nodes[el.nodes[2]];
             let s = ((xm - x0) * chord[0] + (ym - y0) * chord[1]) / length2;
             if !(0.25 < s && s < 0.75) {
-                return Err(MeshError::DistortedElement {
-                    path: path(),
-                    group,
-                    element: i,
-                    x: x0,
-                    y: y0,
-                });
+                return Err(bad(ElementDefect::Distorted));
             }
         }
     }
@@ -496,13 +491,33 @@ mod tests {
             group: 0,
         });
         let err = validate_and_orient(&mut mesh).unwrap_err();
-        assert!(matches!(err, MeshError::ZeroLengthElement { element: 4, .. }), "{err}");
+        assert!(
+            matches!(
+                err,
+                MeshError::BadElement {
+                    element: 4,
+                    defect: ElementDefect::ZeroLength,
+                    ..
+                }
+            ),
+            "{err}"
+        );
 
         let mut mesh = square([[0, 1], [1, 2], [2, 3], [3, 0]]);
         mesh.nodes.push([0.9, 0.0]);
         mesh.elements[0].nodes.push(4);
         let err = validate_and_orient(&mut mesh).unwrap_err();
-        assert!(matches!(err, MeshError::DistortedElement { element: 0, .. }), "{err}");
+        assert!(
+            matches!(
+                err,
+                MeshError::BadElement {
+                    element: 0,
+                    defect: ElementDefect::Distorted,
+                    ..
+                }
+            ),
+            "{err}"
+        );
     }
 
     #[test]

@@ -37,16 +37,7 @@ pub fn read_msh(path: &Path) -> Result<BoundaryMesh, MeshError> {
     if let Some(kind) = crate::limits::input_file_problem(path, crate::limits::MAX_MESH_BYTES).map_err(io_error)? {
         return Err(MeshError::NotRegularFile { path: label, kind });
     }
-    let bytes = std::fs::read(path).map_err(|source| {
-        if source.kind() == std::io::ErrorKind::NotFound {
-            MeshError::NotFound { path: label.clone() }
-        } else {
-            MeshError::Io {
-                path: label.clone(),
-                source,
-            }
-        }
-    })?;
+    let bytes = std::fs::read(path).map_err(io_error)?;
     parse_msh_bytes(&bytes, &label)
 }
 
@@ -221,59 +212,40 @@ impl<'a> Numbers<'a> {
         Ok(out)
     }
 
-    /// A `size_t` (8 bytes in binary files).
-    fn size(&mut self, what: &str) -> Result<u64, String> {
+    /// One number: a token in ASCII files, `N` bytes in the file's byte order in binary ones;
+    /// `kind` says what the token must be.
+    fn number<T: std::str::FromStr, const N: usize>(
+        &mut self,
+        what: &str,
+        kind: &str,
+        from_le: fn([u8; N]) -> T,
+        from_be: fn([u8; N]) -> T,
+    ) -> Result<T, String> {
         match self.format {
             Format::Ascii => {
                 let t = self.token()?;
-                t.parse()
-                    .map_err(|_| format!("{what}: `{t}` is not a non-negative integer"))
+                t.parse().map_err(|_| format!("{what}: `{t}` is not {kind}"))
             }
             Format::Binary { little_endian } => {
-                let b = self.raw::<8>()?;
-                Ok(if little_endian {
-                    u64::from_le_bytes(b)
-                } else {
-                    u64::from_be_bytes(b)
-                })
+                let b = self.raw::<N>()?;
+                Ok(if little_endian { from_le(b) } else { from_be(b) })
             }
         }
+    }
+
+    /// A `size_t` (8 bytes in binary files).
+    fn size(&mut self, what: &str) -> Result<u64, String> {
+        self.number(what, "a non-negative integer", u64::from_le_bytes, u64::from_be_bytes)
     }
 
     /// An `int` (4 bytes in binary files).
     fn int(&mut self, what: &str) -> Result<i32, String> {
-        match self.format {
-            Format::Ascii => {
-                let t = self.token()?;
-                t.parse().map_err(|_| format!("{what}: `{t}` is not an integer"))
-            }
-            Format::Binary { little_endian } => {
-                let b = self.raw::<4>()?;
-                Ok(if little_endian {
-                    i32::from_le_bytes(b)
-                } else {
-                    i32::from_be_bytes(b)
-                })
-            }
-        }
+        self.number(what, "an integer", i32::from_le_bytes, i32::from_be_bytes)
     }
 
     /// A `double`.
     fn double(&mut self, what: &str) -> Result<f64, String> {
-        match self.format {
-            Format::Ascii => {
-                let t = self.token()?;
-                t.parse().map_err(|_| format!("{what}: `{t}` is not a number"))
-            }
-            Format::Binary { little_endian } => {
-                let b = self.raw::<8>()?;
-                Ok(if little_endian {
-                    f64::from_le_bytes(b)
-                } else {
-                    f64::from_be_bytes(b)
-                })
-            }
-        }
+        self.number(what, "a number", f64::from_le_bytes, f64::from_be_bytes)
     }
 
     /// A count of items of at least `item_bytes` bytes each, refused if the rest of the file
