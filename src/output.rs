@@ -20,7 +20,7 @@ use crate::error::Error;
 pub use crate::files as folder;
 use crate::interior::InteriorField;
 use crate::post::ContactSolution;
-pub use csv_files::{write_csv, write_interior_csv, CSV_COLUMNS};
+pub use csv_files::{number, write_csv, write_interior_csv, CSV_COLUMNS};
 use std::path::Path;
 use std::time::Instant;
 pub use summary::{summary, Summary};
