@@ -12,6 +12,7 @@ mod csv_files;
 pub mod summary;
 pub mod svg;
 mod table;
+pub mod units;
 pub mod vtk;
 
 use crate::body::BoundaryField;

@@ -12,3 +12,4 @@ mod files;
 mod stability;
 mod study;
 mod sweep;
+mod units;
