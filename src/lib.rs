@@ -36,6 +36,7 @@ pub mod files;
 pub mod grid;
 pub mod interior;
 pub mod linalg;
+pub mod logging;
 pub mod material;
 pub mod mesh;
 pub mod output;

@@ -38,6 +38,7 @@ pub fn write_run(
     interior: Option<&InteriorField>,
     start: Instant,
 ) -> Result<(), Error> {
+    log::info!(target: crate::logging::PROGRESS, "writing the results to {}", dir.display());
     write_atomically(dir, folder::Kind::Run, |tmp| {
         if summary.converged {
             write_csv(&tmp.join("contact.csv"), sol, pb)?;

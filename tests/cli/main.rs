@@ -13,3 +13,4 @@ mod stability;
 mod study;
 mod sweep;
 mod units;
+mod verbosity;
