@@ -265,8 +265,67 @@ pub fn variable_friction() -> Table {
 /// A section of the report: its title and the function that measures its table.
 type Section = (&'static str, fn() -> Table);
 
+/// Every solution method on Carter, Q/μP = 0.51, 21 elements (cases/carter_051.yaml): iterations
+/// and the nodal differences from the default Newton (Φ), and the creepage against Carter.
+pub fn methods() -> Table {
+    let mut t = Table::new(&[
+        "method",
+        "formulation",
+        "iterations",
+        "max Δq / μp0",
+        "max Δp / p0",
+        "creepage vs Carter",
+    ]);
+    let reference = solve("carter_051", &[] as &[&str]);
+    let c = reference
+        .scene
+        .carter_reference()
+        .expect("Carter's case prescribes Q/μP");
+    let (mu_p0, p0) = (c.friction * c.peak_pressure, c.peak_pressure);
+    let xi = c.creep(reference.scene.estimates.effective_radius);
+    let runs: [(&str, &str, &[&str]); 7] = [
+        ("newton", "phi", &[]),
+        ("newton", "psi", &["solver.formulation=psi"]),
+        ("newton_plain", "phi", &["solver.method=newton_plain"]),
+        (
+            "newton_plain",
+            "psi",
+            &["solver.method=newton_plain", "solver.formulation=psi"],
+        ),
+        ("norm_tang", "phi", &["solver.method=norm_tang"]),
+        (
+            "norm_tang",
+            "psi",
+            &["solver.method=norm_tang", "solver.formulation=psi"],
+        ),
+        (
+            "gauss_seidel",
+            "—",
+            &["solver.method=gauss_seidel", "solver.max_iterations=20000"],
+        ),
+    ];
+    for (method, formulation, set) in runs {
+        let s = solve("carter_051", set);
+        t.push(vec![
+            format!("`{method}`"),
+            formulation.to_string(),
+            s.report.iterations.to_string(),
+            format!(
+                "{:.1e}",
+                max_abs_diff(&s.solution.shear, &reference.solution.shear) / mu_p0
+            ),
+            format!(
+                "{:.1e}",
+                max_abs_diff(&s.solution.pressure, &reference.solution.pressure) / p0
+            ),
+            format!("{:.2} %", 100.0 * (s.solution.creep / xi - 1.0).abs()),
+        ]);
+    }
+    t
+}
+
 fn main() {
-    let sections: [Section; 6] = [
+    let sections: [Section; 7] = [
         ("Hertz (cases/hertz.yaml)", hertz),
         ("Carter (cases/carter_051.yaml, carter_084.yaml)", carter),
         ("Φ versus Ψ on every shipped case", phi_psi),
@@ -276,6 +335,7 @@ fn main() {
             free_rolling,
         ),
         ("Variable friction (Figs 7–9), 21 and 81 elements", variable_friction),
+        ("Solution methods on Carter, Q/μP = 0.51, 21 elements", methods),
     ];
     for (title, table) in sections {
         println!("## {title}\n\n{}", table().markdown());

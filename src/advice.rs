@@ -1,4 +1,4 @@
-//! Which body model a scene needs (issue 6, "model no more than the scene needs").
+//! Which body model a scene needs ("model no more than the scene needs").
 //!
 //! The half-space model is the classical semi-analytic model: exact for massive bodies with
 //! a ≪ R, and the cheapest by far. Its error on a user's scene is estimated from measured

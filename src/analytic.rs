@@ -1,7 +1,7 @@
 //! Closed-form reference solutions in plane strain: the oracles of the validation tests and the
 //! estimates printed by `rollbem check`.
 //!
-//! Conventions of DESIGN §2 (reference sheet §0–§4): P per unit length, E* the contact modulus,
+//! Conventions of docs/theory.md (docs/references.md §0–§4): P per unit length, E* the contact modulus,
 //! R the effective radius 1/R = 1/R_A + 1/R_B, β Dundurs' parameter with A first.
 
 pub mod conformal;
@@ -10,7 +10,7 @@ pub mod michell;
 
 use std::f64::consts::PI;
 
-/// Hertz half-width a = √(4PR/(πE*)) [length] (Johnson eq. 4.43; reference sheet §1).
+/// Hertz half-width a = √(4PR/(πE*)) [length] (Johnson eq. 4.43; docs/references.md §1).
 pub fn hertz_half_width(load: f64, radius: f64, e_star: f64) -> f64 {
     (4.0 * load * radius / (PI * e_star)).sqrt()
 }
@@ -35,8 +35,8 @@ pub fn hertz_pressure(x: f64, half_width: f64, peak: f64) -> f64 {
     }
 }
 
-/// Carter's steady rolling solution for similar bodies (β = 0), reference sheet §2, in the
-/// frame of DESIGN §2 with the leading edge at x = `leading_edge_sign`·a.
+/// Carter's steady rolling solution for similar bodies (β = 0), docs/references.md §2, in the
+/// frame of docs/theory.md with the leading edge at x = `leading_edge_sign`·a.
 #[derive(Debug, Clone, Copy)]
 pub struct Carter {
     /// Hertz half-width a [length].
@@ -76,8 +76,8 @@ impl Carter {
         self.ratio.signum() * self.friction * (outer - inner)
     }
 
-    /// Slip s(x) = velocity of A relative to B divided by |V| [-] (reference sheet §2, mirrored
-    /// into the frame of DESIGN §2): zero in the stick zone and outside the contact, and in the
+    /// Slip s(x) = velocity of A relative to B divided by |V| [-] (docs/references.md §2, mirrored
+    /// into the frame of docs/theory.md): zero in the stick zone and outside the contact, and in the
     /// slip zone s = −sgn(Q)·(μ/R)·√((x − d)² − c²), with d the stick-zone centre, c its
     /// half-width and R the effective radius. The sign does not depend on the rolling
     /// direction: Coulomb's q = −μp·sgn(s) with q = sgn(Q)·μp in the slip zone.
@@ -90,7 +90,7 @@ impl Carter {
     }
 
     /// Magnitude of the creepage |ξ| = (μa/R)(1 − √(1 − |Q|/(μP))) for effective radius R.
-    /// Its sign: ξ has the sign of −Q for material flowing in +x (reference sheet §2) and of Q
+    /// Its sign: ξ has the sign of −Q for material flowing in +x (docs/references.md §2) and of Q
     /// for flow in −x, i.e. sgn ξ = sgn(Q)·`leading_edge_sign`.
     pub fn creep(&self, radius: f64) -> f64 {
         let magnitude = self.friction * self.half_width / radius * (1.0 - (1.0 - self.ratio.abs()).sqrt());
@@ -98,7 +98,7 @@ impl Carter {
     }
 }
 
-/// Free rolling, complete-slip limit μ → 0: ξ = 0.914772·β·a/R (reference sheet §4.4a).
+/// Free rolling, complete-slip limit μ → 0: ξ = 0.914772·β·a/R (docs/references.md §4.4a).
 pub fn free_rolling_creep_complete_slip(beta: f64, half_width: f64, radius: f64) -> f64 {
     // t0 solves t√(1−t²) + asin t = π/4: the central zone carries half the load.
     let mut t: f64 = 0.4;
@@ -116,7 +116,7 @@ pub fn bufler_epsilon(beta: f64) -> f64 {
 }
 
 /// Free rolling, no-slip limit μ → ∞ (Bufler): ξ = 2εa/R with a the actual half-width
-/// a = a_Hertz/√(1+4ε²) (reference sheet §4.4b). Returns (ξ, a, p(0)).
+/// a = a_Hertz/√(1+4ε²) (docs/references.md §4.4b). Returns (ξ, a, p(0)).
 pub fn free_rolling_no_slip(beta: f64, load: f64, radius: f64, e_star: f64) -> (f64, f64, f64) {
     let eps = bufler_epsilon(beta);
     let a = hertz_half_width(load, radius, e_star) / (1.0 + 4.0 * eps * eps).sqrt();
@@ -129,7 +129,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn hertz_worked_example_of_reference_sheet() {
+    fn hertz_worked_example_of_the_references() {
         // Steel rollers R = 100 mm each: E* = 115 384.6 MPa, R = 50 mm, a = 1 mm.
         let e_star = 210_000.0 / (2.0 * (1.0 - 0.09));
         let p = hertz_load(1.0, 50.0, e_star);
@@ -139,7 +139,7 @@ mod tests {
     }
 
     #[test]
-    fn carter_worked_example_of_reference_sheet() {
+    fn carter_worked_example_of_the_references() {
         // Q/μP = 0.51, flow in +x (leading edge −a): ξR/(μa) = −0.3; q/(μp0) table.
         let c = Carter {
             half_width: 1.0,
@@ -168,7 +168,7 @@ mod tests {
     }
 
     #[test]
-    fn free_rolling_limits_of_reference_sheet() {
+    fn free_rolling_limits_of_the_references() {
         // CONTACT's Bentall–Johnson case: β = 0.143834, a = 0.1 mm, R = 25 mm → ξ = 5.26300e−4.
         let xi = free_rolling_creep_complete_slip(0.143834, 0.1, 25.0);
         assert!((xi - 5.26300e-4).abs() < 2e-9, "xi = {xi}");
@@ -180,7 +180,7 @@ mod tests {
 }
 
 /// Shape factor h(ρ, ν) of the approach of an annulus bonded to a rigid shaft (ρ = r_s/R) under
-/// one Hertz contact (reference sheet §6c, Michell series with the n = 1 log terms):
+/// one Hertz contact (docs/references.md §6c, Michell series with the n = 1 log terms):
 /// h = t0 + t1 + t2 + t3, t3 = −Σ_{n≥2} [c_n(ρ) − c_n(0)].
 pub fn shaft_roller_shape_factor(rho: f64, nu: f64) -> f64 {
     let k = 3.0 - 4.0 * nu;
@@ -202,7 +202,7 @@ pub fn shaft_roller_shape_factor(rho: f64, nu: f64) -> f64 {
     t0 + t1 + t2 + t3
 }
 
-/// c_n(ρ) of reference sheet §6c: ½[−(n+4ν−2)b1 − n b2 + (n−4ν+2)b3' ρ^{n−1} + n b4' ρ^{n+1}]
+/// c_n(ρ) of docs/references.md §6c: ½[−(n+4ν−2)b1 − n b2 + (n−4ν+2)b3' ρ^{n−1} + n b4' ρ^{n+1}]
 /// with (b1, b2, b3', b4') from the 4×4 boundary-condition system of the Michell term n.
 fn shaft_series_coefficient(n: f64, x: f64, nu: f64) -> f64 {
     let (xm, xp) = (x.powf(n - 1.0), x.powf(n + 1.0));
@@ -233,7 +233,7 @@ fn shaft_series_coefficient(n: f64, x: f64, nu: f64) -> f64 {
 
 /// Approach of the contact point towards the centre of a roller of radius R bonded to a rigid
 /// shaft of radius r_s, under one Hertz contact of half-width a and load P per unit length
-/// (reference sheet §6c): δ = (2P(1−ν²)/(πE))(ln(4R/a) − ½) + (P/(πG))·h(r_s/R, ν), up to
+/// (docs/references.md §6c): δ = (2P(1−ν²)/(πE))(ln(4R/a) − ½) + (P/(πG))·h(r_s/R, ν), up to
 /// O(a/R) [length].
 pub fn shaft_roller_approach(
     load: f64,
@@ -252,7 +252,7 @@ mod shaft_tests {
     use super::*;
 
     #[test]
-    fn shape_factor_matches_the_reference_sheet_table() {
+    fn shape_factor_matches_the_references_table() {
         for (rho, nu, h) in [
             (0.1, 0.3, 0.268286),
             (0.2, 0.3, 0.003146),
@@ -266,7 +266,7 @@ mod shaft_tests {
 
     #[test]
     fn approach_of_the_steel_rollers_worked_example() {
-        // Reference sheet §6c: R = 150 and 300 mm on shafts ρ = 0.1, steel, a = 1 mm, P = 906.229.
+        // docs/references.md §6c: R = 150 and 300 mm on shafts ρ = 0.1, steel, a = 1 mm, P = 906.229.
         let steel = crate::material::Elastic::new(210_000.0, 0.3);
         let d1 = shaft_roller_approach(906.229, 150.0, 15.0, 1.0, &steel);
         let d2 = shaft_roller_approach(906.229, 300.0, 30.0, 1.0, &steel);

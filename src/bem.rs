@@ -1,7 +1,7 @@
 //! Plane-strain elastostatic boundary element method (direct BEM, collocation).
 //!
 //! The boundary displacement integral equation (Somigliana's identity at a boundary point,
-//! Brebbia–Telles–Wrobel, *Boundary Element Techniques*, 1984, Eq. 3.56 / reference sheet §9)
+//! Brebbia–Telles–Wrobel, *Boundary Element Techniques*, 1984, Eq. 3.56 / docs/references.md §9)
 //!
 //! ```text
 //! c_ij(X) u_j(X) + CPV∫_Γ T*_ij(X, x) u_j(x) dΓ = ∫_Γ U*_ij(X, x) t_j(x) dΓ

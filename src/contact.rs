@@ -8,7 +8,7 @@
 //! s = σ (ξ + D w),  w = W_p p + W_q q        (Eq. 15–20; B = σ D W)
 //! ```
 //!
-//! with the user-facing signs of DESIGN §2: p ≥ 0 compressive, q the shear on A in +x, g ≥ 0,
+//! with the user-facing signs of docs/theory.md: p ≥ 0 compressive, q the shear on A in +x, g ≥ 0,
 //! s the slip velocity of A relative to B divided by |V|, ξ = (V_A − V_B)/V, δ0 the overlap.
 //! σ = sgn(V) is the sign of the material flow through the contact: material enters at the
 //! leading edge, so rolling in +x (the contact moves +x over the bodies) means flow in −x, σ = −1.
@@ -38,7 +38,7 @@ pub use residual::{Formulation, State};
 use serde::{Deserialize, Serialize};
 pub use slip_operator::{SlipDerivative, SlipOperator};
 
-/// Direction in which the contact moves over the bodies (DESIGN §2).
+/// Direction in which the contact moves over the bodies (docs/theory.md, conventions).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum RollingDirection {
     /// The contact moves in +x over the bodies; material flows in −x; leading edge at x = +a.

@@ -1,4 +1,4 @@
-//! The library's error type and the CLI exit codes of DESIGN §5.
+//! The library's error type and the CLI exit codes (docs/reliability.md).
 
 use crate::case::CaseError;
 use std::path::PathBuf;
@@ -88,7 +88,7 @@ pub enum Error {
 }
 
 impl Error {
-    /// Exit code of DESIGN §5: 1 for bad input (nothing written). Output failures also give 1.
+    /// Exit code (docs/reliability.md): 1 for bad input (nothing written). Output failures also give 1.
     pub fn exit_code(&self) -> i32 {
         EXIT_BAD_INPUT
     }

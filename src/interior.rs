@@ -95,7 +95,7 @@ pub struct InteriorOptions {
     /// Points inside the body but closer to a boundary element than this fraction of that
     /// element's length (for a half-space: closer to the surface than this fraction of the
     /// contact grid's longest element) are reported as [`InteriorSample::Boundary`] and not
-    /// evaluated. Default = 0.05 (docs/validation.md, "Interior stresses (issue 4)", measures
+    /// evaluated. Default = 0.05 (docs/validation.md, "Interior stresses", measures
     /// the accuracy down to this distance).
     pub boundary_layer: f64,
 }

@@ -37,13 +37,13 @@ impl Elastic {
     }
 
     /// Half-plane sliding coefficient A = (1−2ν)(1+ν)/(2E) [1/stress] of the surface
-    /// displacement u_x = −A·P·sgn(x) under a normal line load P (reference sheet §3.1).
+    /// displacement u_x = −A·P·sgn(x) under a normal line load P (docs/references.md §3.1).
     pub fn halfplane_sgn_coefficient(&self) -> f64 {
         (1.0 - 2.0 * self.poisson) * (1.0 + self.poisson) / (2.0 * self.young)
     }
 
     /// Half-plane logarithmic coefficient B = 2(1−ν²)/(πE) [1/stress] of u_z = −B·P·ln|x|
-    /// under a normal line load P (reference sheet §3.1).
+    /// under a normal line load P (docs/references.md §3.1).
     pub fn halfplane_log_coefficient(&self) -> f64 {
         2.0 * self.plane_strain_compliance() / std::f64::consts::PI
     }
@@ -57,7 +57,7 @@ pub fn contact_modulus(a: Option<&Elastic>, b: Option<&Elastic>) -> f64 {
     1.0 / c
 }
 
-/// Dundurs' second parameter β with body A first (reference sheet §0):
+/// Dundurs' second parameter β with body A first (docs/references.md §0):
 /// β = ½·[(1−2ν_A)/G_A − (1−2ν_B)/G_B] / [(1−ν_A)/G_A + (1−ν_B)/G_B].
 ///
 /// β > 0 when A has the larger (1−2ν)/G (aluminium as A on steel gives β ≈ 0.144). The
@@ -102,14 +102,14 @@ mod tests {
     use super::*;
 
     #[test]
-    fn aluminium_on_steel_beta_matches_reference_sheet() {
-        // Reference sheet §3.3: G = 23 000 / 82 000 MPa, ν = 0.31 / 0.28 give β_D = 0.143834.
+    fn aluminium_on_steel_beta_matches_the_references() {
+        // docs/references.md §3.3: G = 23 000 / 82 000 MPa, ν = 0.31 / 0.28 give β_D = 0.143834.
         let al = Elastic::from_shear(23_000.0, 0.31);
         let st = Elastic::from_shear(82_000.0, 0.28);
         let beta = dundurs_beta(Some(&al), Some(&st));
         assert!((beta - 0.143834).abs() < 1e-6, "beta = {beta}");
         assert!((dundurs_beta(Some(&st), Some(&al)) + beta).abs() < 1e-15);
-        // E* = 51 572.3 MPa (reference sheet §4.4).
+        // E* = 51 572.3 MPa (docs/references.md §4.4).
         let e_star = contact_modulus(Some(&al), Some(&st));
         assert!((e_star - 51_572.3).abs() < 0.1, "E* = {e_star}");
     }
@@ -130,7 +130,7 @@ mod tests {
 
     #[test]
     fn sgn_coefficient_difference_is_beta_over_e_star() {
-        // A_A − A_B = β/E* (reference sheet §3.3).
+        // A_A − A_B = β/E* (docs/references.md §3.3).
         let a = Elastic::new(70_000.0, 0.33);
         let b = Elastic::new(210_000.0, 0.3);
         let lhs = a.halfplane_sgn_coefficient() - b.halfplane_sgn_coefficient();

@@ -1,5 +1,5 @@
 //! Displacement gradient at boundary points by the hypersingular boundary integral equation
-//! (HBEM; González & Abascal Eq. 79, reference sheet §9), from the nodal boundary displacements
+//! (HBEM; González & Abascal Eq. 79, docs/references.md §9), from the nodal boundary displacements
 //! and tractions of a solved BEM model.
 //!
 //! # The identity

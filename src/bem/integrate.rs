@@ -6,7 +6,7 @@
 //! h[a][i][j] = ∫ T*_ij(X, x(ξ)) N_a(ξ) J(ξ) dξ        g[a][i][j] = ∫ U*_ij(X, x(ξ)) N_a(ξ) J(ξ) dξ
 //! ```
 //!
-//! Three cases (Brebbia–Telles–Wrobel ch. 3; reference sheet §9):
+//! Three cases (Brebbia–Telles–Wrobel ch. 3; docs/references.md §9):
 //! * **Source off the element** — Gauss–Legendre with the number of points chosen from the
 //!   distance. The integrand is analytic except where r² = 0 at complex ξ; with ρ the Bernstein
 //!   ellipse parameter of the nearest such point relative to the (sub)interval, n-point Gauss

@@ -1,7 +1,7 @@
 //! Plane-strain Kelvin fundamental solution: displacement kernel U* and traction kernel T*.
 //!
 //! Convention of Brebbia, Telles & Wrobel, *Boundary Element Techniques* (1984), §3.2
-//! (reference sheet §9): X is the source (collocation) point, x the field point, r⃗ = x − X,
+//! (docs/references.md §9): X is the source (collocation) point, x the field point, r⃗ = x − X,
 //! r = |r⃗|, r,i = r_i/r, ∂r/∂n = r,i n_i with n the unit normal at x pointing out of the
 //! material. Entry (i, j) is the j-component at x due to a unit line force in direction i at X:
 //!
@@ -140,7 +140,7 @@ impl Kelvin {
     }
 }
 
-/// Derivatives of U* and T* with respect to the source point X (reference sheet §9; the kernels
+/// Derivatives of U* and T* with respect to the source point X (docs/references.md §9; the kernels
 /// of the displacement-gradient identity, paper Eq. 79):
 ///
 /// ```text
@@ -211,7 +211,7 @@ impl Kelvin {
 
     /// Directional derivative d/ds V̂(g + s·dg, n + s·dn) at s = 0 [-] of the angular part of
     /// V (see [`Kelvin::gradient_angular`]): the product rule applied term by term. Needed for
-    /// the 1/δ Laurent coefficient of the hypersingular integral (reference sheet §9,
+    /// the 1/δ Laurent coefficient of the hypersingular integral (docs/references.md §9,
     /// "∂K̂/∂g · c + ∂K̂/∂n · n1").
     pub fn v_angular_derivative(&self, g: [f64; 2], n: [f64; 2], dg: [f64; 2], dn: [f64; 2]) -> [[[f64; 2]; 2]; 2] {
         let drdn = g[0] * n[0] + g[1] * n[1];
@@ -251,7 +251,7 @@ fn delta(a: usize, b: usize) -> f64 {
 }
 
 /// Kernels of the interior stress identity (Somigliana's identity differentiated and passed
-/// through Hooke's law; reference sheet §9, Brebbia–Telles–Wrobel Eq. 3.60):
+/// through Hooke's law; docs/references.md §9, Brebbia–Telles–Wrobel Eq. 3.60):
 ///
 /// ```text
 /// σ_ij(X) = ∫ D_kij t_k dΓ − ∫ S_kij u_k dΓ

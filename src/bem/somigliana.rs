@@ -17,7 +17,7 @@
 //! complex singularity lies outside a Bernstein ellipse, points chosen for the target
 //! accuracy), so the integration error stays at the quadrature tolerance down to points a small
 //! fraction of an element from the boundary; what remains there is the discretisation error of
-//! the boundary data, amplified like h/d (docs/validation.md, "Interior stresses (issue 4)").
+//! the boundary data, amplified like h/d (docs/validation.md, "Interior stresses").
 //! Elements provably far from X ([`FarFieldRules`]) use a whole-element Gauss rule with at
 //! least as many points as the adaptive rule would take, tabulated once per element.
 //!

@@ -2,7 +2,7 @@
 //! line-load superposition, the interior fields of the [`super::half_space`] model.
 //!
 //! For a half-plane z ≥ 0 (z into the body) loaded on its surface by a pressure p(s) ≥ 0 and a
-//! shear q(s) on the body in +x (reference sheet §7, Johnson §2.2), with d = x − s,
+//! shear q(s) on the body in +x (docs/references.md §7, Johnson §2.2), with d = x − s,
 //! r² = d² + z², θ = atan2(d, z) the angle from the inward normal:
 //!
 //! ```text
@@ -18,7 +18,7 @@
 //! σ_rr = −2(P cos θ + Q sin θ)/(πr) in polar coordinates; checked against Hooke's law in the
 //! tests), with the rigid translation chosen so that on the surface z = 0 they are exactly the
 //! half-space model's surface displacements, u_x = −A∫p sgn − B∫q ln(|x−s|/ℓ) and
-//! u_z = −B∫p ln(|x−s|/ℓ) + A∫q sgn (reference sheet §3.1), with the model's datum length ℓ
+//! u_z = −B∫p ln(|x−s|/ℓ) + A∫q sgn (docs/references.md §3.1), with the model's datum length ℓ
 //! ([`super::half_space::HalfSpace::datum_length`]). Displacements of a half-plane are
 //! defined only up to that datum (a rigid translation); their differences are physical.
 //!
@@ -162,7 +162,7 @@ mod tests {
     use super::*;
     use crate::grid::ElementKind;
 
-    /// McEwen's closed form (reference sheet §7): Hertz pressure p0 = 1, a = 1 and the sliding
+    /// McEwen's closed form (docs/references.md §7): Hertz pressure p0 = 1, a = 1 and the sliding
     /// shear q = μp. The tractions are interpolated from nodal values on 161 discontinuous
     /// quadratic elements whose edges include ±a, so the only error is the interpolation of the
     /// square root near the edges (≈ 1e-4 here).
@@ -201,7 +201,7 @@ mod tests {
         }
     }
 
-    /// Hertz: max τ1 = 0.300283 p0 at depth 0.786151 a on the axis (reference sheet §7).
+    /// Hertz: max τ1 = 0.300283 p0 at depth 0.786151 a on the axis (docs/references.md §7).
     #[test]
     fn hertz_maximum_shear_below_the_surface() {
         let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 161, -1.3, 1.3);

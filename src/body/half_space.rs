@@ -1,7 +1,7 @@
 //! The half-space body model: closed-form plane-strain half-plane influence coefficients.
 //!
 //! For a half-plane z ≥ 0 (z into the body) loaded on its surface by a pressure p(s) and a
-//! shear q(s) in +x (reference sheet §3.1; Johnson, *Contact Mechanics*, eqs 2.24–2.25):
+//! shear q(s) in +x (docs/references.md §3.1; Johnson, *Contact Mechanics*, eqs 2.24–2.25):
 //!
 //! ```text
 //! u_x(x) = −A ∫ p(s) sgn(x−s) ds − B ∫ q(s) ln|x−s| ds
@@ -11,12 +11,12 @@
 //!
 //! Body B sees the shear −q and its x-displacement enters w with a minus sign, so in the pair
 //! convention of [`crate::body`] the coupling terms change sign with the side; summed over the
-//! two bodies this gives the dissimilar coupling 2β/E* = 2(A_A − A_B) of reference sheet §3.3.
+//! two bodies this gives the dissimilar coupling 2β/E* = 2(A_A − A_B) of docs/references.md §3.3.
 //!
 //! **Datum.** The logarithm fixes displacements only up to a constant. We measure them from the
 //! datum length ℓ = 2R/e, i.e. use ln(|x−s|/ℓ): with it the normal approach under a Hertz
 //! pressure equals the centre-to-contact approach of a disc of radius R compressed between two
-//! opposite contacts, (2P(1−ν²)/(πE))(ln(4R/a) − ½) (reference sheet §6b, Johnson eq. 5.36).
+//! opposite contacts, (2P(1−ν²)/(πE))(ln(4R/a) − ½) (docs/references.md §6b, Johnson eq. 5.36).
 //! Under load control the datum only shifts the overlap δ0; nothing else depends on it.
 //!
 //! The element integrals are exact (closed form in u = s − x) for elements near the field point;
@@ -55,7 +55,7 @@ impl Kernel {
         }
     }
 
-    /// Moments M_k = ∫_{u1}^{u2} u^k K du, k = 0, 1, 2, with u = s − x (reference sheet §3.2).
+    /// Moments M_k = ∫_{u1}^{u2} u^k K du, k = 0, 1, 2, with u = s − x (docs/references.md §3.2).
     fn moments(self, u1: f64, u2: f64) -> [f64; 3] {
         match self {
             Kernel::Log => {
@@ -275,7 +275,7 @@ mod tests {
         (a - b).abs() < 5e-9
     }
 
-    /// Reference sheet §3.2 table: quadratic element s ∈ [−0.4, 0.25] with nodes at its ends and
+    /// docs/references.md §3.2 table: quadratic element s ∈ [−0.4, 0.25] with nodes at its ends and
     /// midpoint. Our elements place nodes at ξ = ±2/3, so rebuild the end-node shape functions
     /// from ours by the change of basis N_end = Σ_b N_end(ξ_b) N_b (exact for quadratics).
     fn end_node_integrals(kernel: Kernel, x: f64) -> [f64; 3] {
@@ -293,7 +293,7 @@ mod tests {
     }
 
     #[test]
-    fn quadratic_element_integrals_match_reference_sheet() {
+    fn quadratic_element_integrals_match_the_references() {
         let cases = [
             (
                 -0.9,
@@ -345,7 +345,7 @@ mod tests {
     }
 
     #[test]
-    fn constant_element_integrals_match_reference_sheet() {
+    fn constant_element_integrals_match_the_references() {
         let k = ElementKind::Constant;
         for (x, refs) in [
             (0.0, [-2.0, 0.0, 0.0]),

@@ -2,7 +2,7 @@
 //!
 //! When the two bodies' meshes do not share contact-node x-coordinates, each body's
 //! flexibility, known at its own contact nodes (its own elements and interpolation), is carried
-//! to the one contact grid by its own interpolation (DESIGN §4):
+//! to the one contact grid by its own interpolation (docs/theory.md):
 //!
 //! * tractions grid → body: the traction at body node k is the grid's interpolant at x_k,
 //!   T[k, j] = N_j^grid(x_k);

@@ -1,4 +1,4 @@
-//! The case file schema (DESIGN §5). Every struct rejects unknown keys; each field documents its
+//! The case file schema (cases/README.md documents every key). Every struct rejects unknown keys; each field documents its
 //! unit and default. Lengths, forces and stresses are in the case's consistent units.
 
 pub use crate::contact::Formulation;

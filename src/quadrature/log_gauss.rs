@@ -73,7 +73,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn log_gauss_matches_the_reference_sheet_and_integrates_log_moments() {
+    fn log_gauss_matches_the_references_and_integrates_log_moments() {
         // Reference sheet §9 (Stroud & Secrest for n = 2).
         let (t, w) = log_gauss(2);
         assert!((t[0] - 0.112008806166976).abs() < 1e-13 && (t[1] - 0.602276908118738).abs() < 1e-13);

@@ -58,7 +58,7 @@ use crate::common::lame::{
 };
 
 #[test]
-fn lame_formula_matches_the_reference_sheet_table() {
+fn lame_formula_matches_the_references_table() {
     let m = Elastic::new(210_000.0, 0.3);
     for (r, ur) in [(10.0, 5.612698e-3), (15.0, 3.604233e-3), (20.0, 2.558730e-3)] {
         assert!((lame_ur(&m, r) / ur - 1.0).abs() < 1e-6, "r = {r}");
@@ -228,7 +228,7 @@ fn core_errors(nu: f64, n: usize) -> (f64, f64) {
 }
 
 #[test]
-fn rigid_core_formula_matches_the_reference_sheet() {
+fn rigid_core_formula_matches_the_references() {
     let (ur, srr) = core_exact(&Elastic::new(210_000.0, 0.3));
     assert!((ur / -1.098748e-2 - 1.0).abs() < 1e-6, "{ur}");
     assert!((srr / -41.832669 - 1.0).abs() < 1e-7, "{srr}");

@@ -91,6 +91,20 @@ fn validation_phi_psi_table() {
     assert_table(&page("validation.md"), printed, Rows::All, &[], (&noise, 1e-12));
 }
 
+/// Every method converges to the default Newton's solution of the same discrete problem: the
+/// differences are round-off (Gauss–Seidel stops on the common residual 1e-10, so its shear
+/// differs by up to its stopping tolerance): compared below 1e-9, the other cells exactly.
+#[test]
+fn validation_methods_table() {
+    let t = validation_report::methods();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    let noise = ["max Δq / μp0", "max Δp / p0"];
+    assert_table(&page("validation.md"), printed, Rows::All, &[], (&noise, 1e-9));
+}
+
 #[test]
 fn validation_regimes_table() {
     assert_same("validation.md", &validation_report::regimes());
