@@ -45,7 +45,17 @@ pub fn write_run(
             if let Some(f) = interior {
                 write_interior_csv(&tmp.join(format!("interior_{}.csv", f.body)), f)?;
             }
-            svg::write_contact_plot(&tmp.join("contact.svg"), sol, pb.friction, &summary.title)?;
+            let unit = |key: &str| summary.units.get(key).map_or("", String::as_str);
+            let plot = svg::ContactPlot {
+                solution: sol,
+                friction: pb.friction,
+                flow_sign: pb.flow_sign,
+                title: &summary.title,
+                length_unit: unit("overlap"),
+                stress_unit: unit("max_pressure"),
+                force_unit: unit("normal_force"),
+            };
+            svg::write_contact_plot(&tmp.join("contact.svg"), &plot)?;
             if summary.vtk {
                 vtk::write_contact_line(&tmp.join("contact.vtu"), sol, pb)?;
                 let mut entries = vec![vtk::CollectionEntry {
