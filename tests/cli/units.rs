@@ -147,3 +147,34 @@ fn csv_numbers_are_shortest_round_trip() {
         .fold(0.0, f64::max);
     assert_eq!(max_p, summary["max_pressure"].as_f64().unwrap());
 }
+
+/// contact.svg: units on every axis, the zones and the rolling direction named, the slip axis
+/// with a tick at 0.
+#[test]
+fn contact_svg_labels_its_axes_zones_and_rolling_direction() {
+    let dir = tempfile::tempdir().unwrap();
+    run(dir.path(), "", &[]);
+    let svg = std::fs::read_to_string(dir.path().join("out/contact.svg")).unwrap();
+    for text in [
+        "x [mm]",
+        "pressure p [N/mm²]",
+        "shear q, ±μp [N/mm²]",
+        "/ |V| [-]",
+        "rolling direction →",
+        "leading edge",
+        "stick",
+        "← slip",
+        "P = 1812.45730 N/mm",
+    ] {
+        assert!(svg.contains(text), "contact.svg lacks `{text}`");
+    }
+    // Tick labels are the text elements that hold only a number: the slip panel's include 0
+    // among negative ones (Carter's slip is ≤ 0).
+    let numbers: Vec<f64> = svg
+        .split("</text>")
+        .filter_map(|t| t.rsplit('>').next())
+        .filter_map(|t| t.trim().parse::<f64>().ok())
+        .collect();
+    assert!(numbers.iter().any(|v| *v < 0.0 && v.abs() < 1e-2), "no slip ticks: {numbers:?}");
+    assert!(numbers.contains(&0.0));
+}
