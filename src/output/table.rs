@@ -111,9 +111,10 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
         ),
     );
     line("results", output_dir.display().to_string());
-    // The label column is as wide as the widest label (units make some long), at least 22.
+    // The label column is as wide as the widest label (units make some long), at least 22,
+    // and two spaces apart from the values.
     let width = rows.iter().map(|(k, _)| k.chars().count()).max().unwrap_or(0).max(22);
     rows.iter()
-        .map(|(k, v)| format!("  {k:<width$} {v}\n"))
+        .map(|(k, v)| format!("  {k:<width$}  {v}\n"))
         .collect()
 }
