@@ -28,6 +28,8 @@ pub mod report;
 pub mod residual;
 pub mod restart;
 pub mod slip_operator;
+pub mod stall;
+mod start;
 
 use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;

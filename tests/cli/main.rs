@@ -10,6 +10,7 @@ mod common;
 mod commands;
 mod files;
 mod stability;
+mod stall;
 mod study;
 mod sweep;
 mod units;

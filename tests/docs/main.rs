@@ -18,6 +18,9 @@ mod architecture;
 #[path = "../common/mod.rs"]
 mod common;
 #[allow(dead_code)]
+#[path = "../../examples/friction_limits.rs"]
+mod friction_limits;
+#[allow(dead_code)]
 #[path = "../../examples/hbem_report.rs"]
 mod hbem_report;
 mod markdown;
@@ -249,4 +252,17 @@ fn performance_methods_table() {
         &["solve [ms]"],
         (&noise, 1e-9),
     );
+}
+
+/// docs/performance.md, "Solver cost at the friction limits": the ladder at 41 and 81 elements
+/// (the page's second table, 161–481 elements, takes minutes and is checked by running the
+/// program).
+#[test]
+fn performance_friction_limits_table() {
+    let t = friction_limits::table("case", &[41, 81]);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("performance.md"), printed, Rows::All, &["solve [s]"], (&[], 0.0));
 }
