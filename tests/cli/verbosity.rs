@@ -115,3 +115,27 @@ fn restarts_are_warnings_and_quiet_keeps_only_the_error() {
         "-q prints errors only:\n{stderr}"
     );
 }
+
+/// `check` estimates time and memory for the grid the case asks for (not a fixed one).
+#[test]
+fn check_estimates_the_cost_of_the_cases_own_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    let (case, _) = carter(dir.path());
+    let cost = |elements: &str| {
+        let set = format!("contact.grid.elements={elements}");
+        let (code, stdout, stderr) = rollbem(&["check", case.to_str().unwrap(), "--set", &set]);
+        assert_eq!(code, 0, "{stderr}");
+        stdout
+            .lines()
+            .find(|l| l.trim_start().starts_with("cost of this run"))
+            .unwrap_or_else(|| panic!("no cost line:\n{stdout}"))
+            .to_string()
+    };
+    let small = cost("21");
+    assert!(small.contains("(63 contact nodes"), "{small}");
+    assert!(small.contains(" ms, "), "{small}");
+    // The run of 2001 elements took about 3 minutes and ~10 GB.
+    let large = cost("2001");
+    assert!(large.contains("(6003 contact nodes"), "{large}");
+    assert!(large.contains(" min, ") && large.contains(" GB"), "{large}");
+}

@@ -63,3 +63,43 @@ fn readme_worked_example_is_what_the_run_prints() {
         }
     }
 }
+
+/// The `rollbem check` output quoted in docs/choosing-a-model.md: each quoted row (continuation
+/// lines joined, a trailing `...` standing for the rest of the row) begins a row that `check`
+/// prints now, white space aside.
+#[test]
+fn choosing_a_model_quotes_what_check_prints() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let page = std::fs::read_to_string(root.join("docs/choosing-a-model.md")).unwrap();
+    let start = page.find("```text\n$ rollbem check").expect("the quoted check runs") + 8;
+    let block = &page[start..start + page[start..].find("```").unwrap()];
+    let squeeze = |s: &str| s.split_whitespace().collect::<Vec<_>>().join(" ");
+    let mut runs: Vec<(Vec<String>, Vec<String>)> = Vec::new();
+    for line in block.lines() {
+        if let Some(command) = line.strip_prefix("$ rollbem ") {
+            runs.push((command.split_whitespace().map(str::to_string).collect(), Vec::new()));
+        } else if line.starts_with("                  ") {
+            let rows = &mut runs.last_mut().unwrap().1;
+            let last = rows.pop().unwrap();
+            rows.push(format!("{last} {}", line.trim()));
+        } else {
+            runs.last_mut().unwrap().1.push(line.to_string());
+        }
+    }
+    assert_eq!(runs.len(), 3);
+    for (args, rows) in runs {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, stdout, stderr) = rollbem_with(Some(&root), &[], &args);
+        assert_eq!(code, 0, "{stderr}");
+        let printed: Vec<String> = stdout.lines().map(squeeze).collect();
+        for row in rows {
+            let quoted = squeeze(&row);
+            let prefix = quoted.trim_end_matches("...").trim_end();
+            assert!(
+                printed.iter().any(|p| p.starts_with(prefix)),
+                "rollbem {}: no printed row begins with\n  {prefix}\nprinted:\n{stdout}",
+                args.join(" ")
+            );
+        }
+    }
+}
