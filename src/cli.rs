@@ -20,7 +20,8 @@ pub struct Cli {
     pub command: Command,
     /// Say more on stderr: -v each stage and Newton step with its residual, as it happens;
     /// -vv debugging detail. (Without it, a run that takes over a second shows its progress on
-    /// one line, and restarts of the solver are printed as warnings.)
+    /// one line, and restarts of the solver are printed as warnings; the environment variable
+    /// ROLLBEM_PROGRESS_AFTER=SECONDS changes that second.)
     #[arg(short, long, action = clap::ArgAction::Count, global = true)]
     pub verbose: u8,
     /// Say nothing on stderr but errors (no progress, warnings or notices; the results table

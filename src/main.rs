@@ -91,7 +91,11 @@ fn warn_restarts(s: &rollbem::output::Summary) {
     if fallbacks.is_empty() {
         return;
     }
-    let outcome = if s.converged { "converged" } else { "still did not converge" };
+    let outcome = if s.converged {
+        "converged"
+    } else {
+        "still did not converge"
+    };
     log::warn!(
         "the Newton method stalled and restarted {} time{} ({}); it {outcome} after {} iterations in all",
         fallbacks.len(),

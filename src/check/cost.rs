@@ -161,13 +161,19 @@ mod tests {
     fn reproduces_the_measured_tables() {
         for (elements, measured) in [(81, 0.0334), (161, 0.1217), (321, 0.6037)] {
             let t = Cost::of(&half_space(elements)).seconds;
-            assert!(t / measured < 1.5 && measured / t < 1.5, "{elements}: {t} s against {measured} s");
+            assert!(
+                t / measured < 1.5 && measured / t < 1.5,
+                "{elements}: {t} s against {measured} s"
+            );
         }
         for (elements, measured) in [(161, 0.90), (321, 5.5)] {
             let mut sizes = half_space(elements);
             sizes.bem_bodies = vec![roller_mesh(elements); 2];
             let t = Cost::of(&sizes).seconds;
-            assert!(t / measured < 1.5 && measured / t < 1.5, "bem {elements}: {t} s against {measured} s");
+            assert!(
+                t / measured < 1.5 && measured / t < 1.5,
+                "bem {elements}: {t} s against {measured} s"
+            );
         }
     }
 
@@ -177,7 +183,10 @@ mod tests {
     fn memory_bounds_the_measured_peak() {
         for (elements, measured) in [(321, 216e6), (641, 888e6)] {
             let b = Cost::of(&half_space(elements)).bytes;
-            assert!(b >= measured && b < 1.3 * measured, "{elements}: {b} bytes against {measured}");
+            assert!(
+                b >= measured && b < 1.3 * measured,
+                "{elements}: {b} bytes against {measured}"
+            );
         }
     }
 

@@ -241,6 +241,9 @@ mod tests {
         assert_eq!(shell_quoted("a b"), "'a b'");
         assert_eq!(shell_quoted("it's"), r"'it'\''s'");
         assert_eq!(shell_quoted(""), "''");
-        assert_eq!(shell_quoted("materials.x={E: 1, nu: 0.3}"), "'materials.x={E: 1, nu: 0.3}'");
+        assert_eq!(
+            shell_quoted("materials.x={E: 1, nu: 0.3}"),
+            "'materials.x={E: 1, nu: 0.3}'"
+        );
     }
 }

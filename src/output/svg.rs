@@ -82,7 +82,7 @@ pub fn tick_label(v: f64, step: f64) -> String {
     if v == 0.0 {
         return "0".into();
     }
-    if step >= 1e-3 && step < 1e5 {
+    if (1e-3..1e5).contains(&step) {
         let decimals = (-step.log10().floor()).max(0.0) as usize + 1;
         let s = format!("{v:.decimals$}");
         let s = if s.contains('.') {
@@ -250,8 +250,7 @@ fn draw(path: &Path, plot: &ContactPlot) -> Result<(), Box<dyn std::error::Error
         let bound: Vec<f64> = sol.pressure.iter().map(|p| mu * p).collect();
         let neg: Vec<f64> = bound.iter().map(|b| -b).collect();
         let dashed = ShapeStyle::from(BLACK.mix(0.75)).stroke_width(1);
-        chart
-            .draw_secondary_series(DashedLineSeries::new(series(&bound), 6, 4, dashed))?;
+        chart.draw_secondary_series(DashedLineSeries::new(series(&bound), 6, 4, dashed))?;
         chart.draw_secondary_series(DashedLineSeries::new(series(&neg), 6, 4, dashed))?;
     }
     chart.draw_series(LineSeries::new(series(&sol.pressure), PRESSURE.stroke_width(2)))?;
@@ -263,10 +262,16 @@ fn draw(path: &Path, plot: &ContactPlot) -> Result<(), Box<dyn std::error::Error
         (Sample::Line(SHEAR, 2), "shear q on A (right axis)".to_string()),
     ];
     if mu > 0.0 {
-        entries.push((Sample::Dashed(BLACK.mix(0.75)), "±μp, the friction bounds (right axis)".to_string()));
+        entries.push((
+            Sample::Dashed(BLACK.mix(0.75)),
+            "±μp, the friction bounds (right axis)".to_string(),
+        ));
     }
     legend_row(&head, (90, 88), &entries)?;
-    let mut entries = vec![(Sample::Line(SLIP_LINE, 2), "slip (finite difference, as solved)".to_string())];
+    let mut entries = vec![(
+        Sample::Line(SLIP_LINE, 2),
+        "slip (finite difference, as solved)".to_string(),
+    )];
     if sol.slip_strain.is_some() {
         entries.push((Sample::Dot(HBEM), "slip (boundary-integral derivative)".to_string()));
     }
@@ -294,7 +299,10 @@ fn legend_row(
     (mut x, y): (i32, i32),
     entries: &[(Sample, String)],
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let style = (FONT, 13).into_font().color(&BLACK).pos(Pos::new(HPos::Left, VPos::Center));
+    let style = (FONT, 13)
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Left, VPos::Center));
     for (sample, label) in entries {
         match *sample {
             Sample::Line(c, w) => area.draw(&PathElement::new(vec![(x, y), (x + 26, y)], c.stroke_width(w)))?,
@@ -313,12 +321,22 @@ fn legend_row(
 }
 
 /// Title, the loads and the rolling direction.
-fn header(area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>, plot: &ContactPlot) -> Result<(), Box<dyn std::error::Error>> {
+fn header(
+    area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+    plot: &ContactPlot,
+) -> Result<(), Box<dyn std::error::Error>> {
     let sol = plot.solution;
-    area.draw(&Text::new(plot.title.to_string(), (20, 10), (FONT, 19).into_font().style(FontStyle::Bold)))?;
+    area.draw(&Text::new(
+        plot.title.to_string(),
+        (20, 10),
+        (FONT, 19).into_font().style(FontStyle::Bold),
+    ))?;
     let force = pretty(plot.force_unit);
     let ratio = if plot.friction > 0.0 && sol.normal_force > 0.0 {
-        format!(",  Q/μP = {:.3}", sol.tangential_force / (plot.friction * sol.normal_force))
+        format!(
+            ",  Q/μP = {:.3}",
+            sol.tangential_force / (plot.friction * sol.normal_force)
+        )
     } else {
         String::new()
     };
@@ -327,9 +345,19 @@ fn header(area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>, plot: &Con
         plot.friction, sol.normal_force, sol.tangential_force, sol.creep
     );
     area.draw(&Text::new(loads, (20, 38), (FONT, 14)))?;
-    let (arrow, edge) = if plot.flow_sign < 0.0 { ("→", "+x") } else { ("←", "−x") };
-    let rolling = format!("rolling direction {arrow}  (the contact moves in {edge} over the bodies; leading edge on the {edge} side)");
-    area.draw(&Text::new(rolling, (20, 58), (FONT, 14).into_font().color(&BLACK.mix(0.8))))?;
+    let (arrow, edge) = if plot.flow_sign < 0.0 {
+        ("→", "+x")
+    } else {
+        ("←", "−x")
+    };
+    let rolling = format!(
+        "rolling direction {arrow}  (the contact moves in {edge} over the bodies; leading edge on the {edge} side)"
+    );
+    area.draw(&Text::new(
+        rolling,
+        (20, 58),
+        (FONT, 14).into_font().color(&BLACK.mix(0.8)),
+    ))?;
     let legend = "shaded: stick (blue), slip (orange, arrow: direction in which A slips relative to B)";
     let right = Pos::new(HPos::Right, VPos::Top);
     area.draw(&Text::new(
@@ -349,24 +377,31 @@ fn label_zones(
 ) -> Result<(), Box<dyn std::error::Error>> {
     let centre = Pos::new(HPos::Center, VPos::Top);
     let span = x1 - x0;
-    let labels = zones.iter().filter(|z| (z.1 - z.0) > 0.025 * span).map(|&(a, b, state, dir)| {
-        let wide = (b - a) > 0.07 * span;
-        let text = match (state, dir, wide) {
-            (NodeState::Slip, d, true) if d > 0 => "slip →",
-            (NodeState::Slip, d, true) if d < 0 => "← slip",
-            (NodeState::Slip, d, false) if d > 0 => "→",
-            (NodeState::Slip, d, false) if d < 0 => "←",
-            (NodeState::Slip, _, _) => "slip",
-            (_, _, true) => "stick",
-            _ => "",
-        };
-        let colour = if state == NodeState::Slip {
-            RGBColor(170, 90, 0)
-        } else {
-            RGBColor(30, 70, 150)
-        };
-        Text::new(text, (0.5 * (a + b), top), (FONT, 15).into_font().color(&colour).pos(centre))
-    });
+    let labels = zones
+        .iter()
+        .filter(|z| (z.1 - z.0) > 0.025 * span)
+        .map(|&(a, b, state, dir)| {
+            let wide = (b - a) > 0.07 * span;
+            let text = match (state, dir, wide) {
+                (NodeState::Slip, d, true) if d > 0 => "slip →",
+                (NodeState::Slip, d, true) if d < 0 => "← slip",
+                (NodeState::Slip, d, false) if d > 0 => "→",
+                (NodeState::Slip, d, false) if d < 0 => "←",
+                (NodeState::Slip, _, _) => "slip",
+                (_, _, true) => "stick",
+                _ => "",
+            };
+            let colour = if state == NodeState::Slip {
+                RGBColor(170, 90, 0)
+            } else {
+                RGBColor(30, 70, 150)
+            };
+            Text::new(
+                text,
+                (0.5 * (a + b), top),
+                (FONT, 15).into_font().color(&colour).pos(centre),
+            )
+        });
     chart.draw_series(labels)?;
     Ok(())
 }
@@ -378,7 +413,9 @@ fn mark_leading_edge(
     flow_sign: f64,
     (y0, y1): (f64, f64),
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let Some([a, b]) = sol.contact_extent() else { return Ok(()) };
+    let Some([a, b]) = sol.contact_extent() else {
+        return Ok(());
+    };
     let (edge, pos) = if flow_sign < 0.0 {
         (b, Pos::new(HPos::Right, VPos::Top))
     } else {

@@ -56,7 +56,10 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     } else {
         String::new()
     };
-    line(&format!("max pressure [{stress}]"), format!("{:.6}{hertz}", s.max_pressure));
+    line(
+        &format!("max pressure [{stress}]"),
+        format!("{:.6}{hertz}", s.max_pressure),
+    );
     let zones = |z: &[[f64; 2]]| {
         z.iter()
             .map(|[a, b]| format!("[{a:.4}, {b:.4}]"))
@@ -114,7 +117,5 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     // The label column is as wide as the widest label (units make some long), at least 22,
     // and two spaces apart from the values.
     let width = rows.iter().map(|(k, _)| k.chars().count()).max().unwrap_or(0).max(22);
-    rows.iter()
-        .map(|(k, v)| format!("  {k:<width$}  {v}\n"))
-        .collect()
+    rows.iter().map(|(k, v)| format!("  {k:<width$}  {v}\n")).collect()
 }

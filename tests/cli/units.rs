@@ -16,7 +16,11 @@ fn run(dir: &Path, extra: &str, args: &[&str]) -> (String, serde_json::Value, St
     let (code, stdout, stderr) = rollbem(&all);
     assert_eq!(code, 0, "{stderr}");
     let summary = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    (stdout, summary, std::fs::read_to_string(out.join("contact.csv")).unwrap())
+    (
+        stdout,
+        summary,
+        std::fs::read_to_string(out.join("contact.csv")).unwrap(),
+    )
 }
 
 /// Every number of a JSON value, by path (`.` between keys, `[]` for array items).
@@ -26,7 +30,11 @@ fn number_paths(v: &serde_json::Value, path: &str, out: &mut Vec<String>) {
         serde_json::Value::Array(items) => items.iter().for_each(|i| number_paths(i, &format!("{path}[]"), out)),
         serde_json::Value::Object(map) => {
             for (k, v) in map {
-                let p = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
+                let p = if path.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{path}.{k}")
+                };
                 number_paths(v, &p, out);
             }
         }
@@ -66,7 +74,10 @@ fn the_table_and_summary_json_name_the_units_of_the_case() {
         "slip zones [mm]",
         "time [s]",
     ] {
-        assert!(stdout.lines().any(|l| l.trim_start().starts_with(row)), "no row `{row}` in\n{stdout}");
+        assert!(
+            stdout.lines().any(|l| l.trim_start().starts_with(row)),
+            "no row `{row}` in\n{stdout}"
+        );
     }
     assert!(stdout.contains("spacing 3.9216e-2 mm"), "{stdout}");
     assert!(stdout.contains(" N/mm^2 at ("), "interior peaks with units: {stdout}");
@@ -79,7 +90,10 @@ fn the_table_and_summary_json_name_the_units_of_the_case() {
     assert_eq!(units["solver.penalty_normal"], "N/mm^3");
     assert_eq!(units["interior.max_von_mises.value"], "N/mm^2");
     let missing = numbers_without_unit(&summary);
-    assert!(missing.is_empty(), "numbers of summary.json without a unit: {missing:?}");
+    assert!(
+        missing.is_empty(),
+        "numbers of summary.json without a unit: {missing:?}"
+    );
 }
 
 #[test]
@@ -124,11 +138,17 @@ fn version_flag_prints_the_version() {
 fn csv_numbers_are_shortest_round_trip() {
     let dir = tempfile::tempdir().unwrap();
     let (_, summary, csv) = run(dir.path(), "", &[]);
-    let mut rows = csv.lines().skip(1).map(|l| l.split(',').map(str::to_string).collect::<Vec<_>>());
+    let mut rows = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect::<Vec<_>>());
     let first = rows.next().unwrap();
     assert_eq!(first[1], "0", "pressure at the open first node: {first:?}");
     for row in rows.chain(std::iter::once(first)) {
-        for cell in row.iter().filter(|c| !c.is_empty() && !["open", "stick", "slip"].contains(&c.as_str())) {
+        for cell in row
+            .iter()
+            .filter(|c| !c.is_empty() && !["open", "stick", "slip"].contains(&c.as_str()))
+        {
             let v: f64 = cell.parse().unwrap_or_else(|_| panic!("`{cell}` is no number"));
             let (mantissa, exponent) = cell.split_once('e').unwrap_or((cell, ""));
             let digits = mantissa.trim_start_matches('-').replace('.', "");
@@ -175,6 +195,9 @@ fn contact_svg_labels_its_axes_zones_and_rolling_direction() {
         .filter_map(|t| t.rsplit('>').next())
         .filter_map(|t| t.trim().parse::<f64>().ok())
         .collect();
-    assert!(numbers.iter().any(|v| *v < 0.0 && v.abs() < 1e-2), "no slip ticks: {numbers:?}");
+    assert!(
+        numbers.iter().any(|v| *v < 0.0 && v.abs() < 1e-2),
+        "no slip ticks: {numbers:?}"
+    );
     assert!(numbers.contains(&0.0));
 }

@@ -104,7 +104,10 @@ fn restarts_are_warnings_and_quiet_keeps_only_the_error() {
         assert!(warning.contains(f.as_str()), "`{warning}` lacks `{f}`");
     }
     let restarts = format!("after {} restart", fallbacks.len());
-    assert!(stdout.contains(&restarts), "the table's solver row says {restarts}:\n{stdout}");
+    assert!(
+        stdout.contains(&restarts),
+        "the table's solver row says {restarts}:\n{stdout}"
+    );
 
     let mut quiet = args.to_vec();
     quiet.push("-q");

@@ -32,10 +32,10 @@ mod methods_perf;
 mod model_error_table;
 mod no_external_references;
 mod outputs;
-mod readme;
 #[allow(dead_code)]
 #[path = "../../examples/perf_report.rs"]
 mod perf_report;
+mod readme;
 #[allow(dead_code)]
 #[path = "../../examples/validation_report.rs"]
 mod validation_report;

@@ -9,7 +9,8 @@ use rollbem::output::units::{CONTACT_CSV_UNITS, SUMMARY_KEYS};
 /// The page has a table row `| `name` | unit |`.
 fn has_row(text: &str, name: &str, unit: &str) -> bool {
     let wanted = format!("| `{name}` | {unit} |");
-    text.lines().any(|l| l.split_whitespace().collect::<Vec<_>>().join(" ").starts_with(&wanted))
+    text.lines()
+        .any(|l| l.split_whitespace().collect::<Vec<_>>().join(" ").starts_with(&wanted))
 }
 
 #[test]
@@ -27,13 +28,29 @@ fn every_summary_number_and_contact_column_is_documented_with_its_unit() {
         .filter(|(key, unit)| !has_row(&text, key, unit))
         .map(|(key, unit)| format!("| `{key}` | {unit} |"))
         .collect();
-    assert!(missing.is_empty(), "docs/outputs.md lacks the rows\n  {}", missing.join("\n  "));
+    assert!(
+        missing.is_empty(),
+        "docs/outputs.md lacks the rows\n  {}",
+        missing.join("\n  ")
+    );
 }
 
 #[test]
 fn every_column_of_the_other_tables_is_named() {
     let text = page("outputs.md");
-    let interior = ["x", "y", "sxx", "syy", "szz", "txy", "von_mises", "max_shear", "ux", "uy", "status"];
+    let interior = [
+        "x",
+        "y",
+        "sxx",
+        "syy",
+        "szz",
+        "txy",
+        "von_mises",
+        "max_shear",
+        "ux",
+        "uy",
+        "status",
+    ];
     let missing: Vec<&str> = interior
         .iter()
         .chain(&rollbem::sweep::RESULT_COLUMNS)
@@ -41,5 +58,8 @@ fn every_column_of_the_other_tables_is_named() {
         .copied()
         .filter(|c| !text.contains(&format!("`{c}`")))
         .collect();
-    assert!(missing.is_empty(), "docs/outputs.md does not name the columns {missing:?}");
+    assert!(
+        missing.is_empty(),
+        "docs/outputs.md does not name the columns {missing:?}"
+    );
 }

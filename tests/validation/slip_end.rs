@@ -33,7 +33,10 @@ fn assert_no_spike(name: &str, overrides: &[&str]) {
     );
     // Against the independent boundary-integral slip: at the end no worse than at the three
     // nodes next to it (both are O(h²) approximations of the same derivative there).
-    let hbem = sol.slip_strain.as_ref().expect("both models give the boundary-integral slip");
+    let hbem = sol
+        .slip_strain
+        .as_ref()
+        .expect("both models give the boundary-integral slip");
     let error = |k: usize| (slip(k) - hbem[node(k)]).abs();
     let neighbours = (1..=3).map(error).fold(0.0_f64, f64::max);
     assert!(
