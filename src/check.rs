@@ -195,6 +195,15 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
     let (this, other) = costs(&scene);
     line("cost of this run", this);
     line("cost with the other model", other);
+    let memory = crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
+    line(
+        "memory estimate",
+        format!(
+            "{} at most (the bound that refuses cases larger than the memory available: {})",
+            crate::limits::human_bytes(memory.bytes()),
+            crate::limits::available_memory().map_or("unknown".into(), crate::limits::human_bytes)
+        ),
+    );
     Ok(t)
 }
 

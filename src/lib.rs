@@ -35,6 +35,7 @@ pub mod error;
 pub mod files;
 pub mod grid;
 pub mod interior;
+pub mod limits;
 pub mod linalg;
 pub mod logging;
 pub mod material;

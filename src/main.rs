@@ -105,6 +105,31 @@ fn warn_restarts(s: &rollbem::output::Summary) {
     );
 }
 
+/// What to tell the user when a run ends without converging: whether the iteration budget ran
+/// out (then more `solver.max_iterations` may help) or the residual stopped improving (then it
+/// will not), and where the history is.
+fn not_converged_message(summary: &rollbem::output::Summary, output_dir: &std::path::Path) -> String {
+    let budget = summary
+        .case
+        .pointer("/solver/max_iterations")
+        .and_then(serde_json::Value::as_u64)
+        .unwrap_or(u64::MAX);
+    let cause = if summary.iterations as u64 >= budget {
+        "the iteration budget ran out: give more solver.max_iterations (gauss_seidel counts sweeps and \
+         needs thousands), or try"
+    } else {
+        "the residual stopped improving (more iterations will not help): try"
+    };
+    format!(
+        "the solver did not converge in {} iterations (scaled residual {:.3e}); {cause} \
+         solver.method: newton (the default), solver.formulation: psi, a different solver.penalty \
+         scale, or a finer contact grid. The residual history is in {}.",
+        summary.iterations,
+        summary.residual,
+        output_dir.join("summary.json").display()
+    )
+}
+
 fn dispatch(cli: Cli) -> Result<i32> {
     let quiet = cli.quiet;
     match cli.command {
@@ -122,15 +147,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             if report.summary.converged {
                 Ok(0)
             } else {
-                eprintln!(
-                    "error: the solver did not converge in {} iterations (scaled residual {:.3e}); \
-                     the residual history is in {}. Try solver.method: newton (the default), \
-                     solver.formulation: psi, a different solver.penalty scale, or more \
-                     solver.max_iterations (gauss_seidel counts sweeps and needs thousands).",
-                    report.summary.iterations,
-                    report.summary.residual,
-                    report.output_dir.join("summary.json").display()
-                );
+                eprintln!("error: {}", not_converged_message(&report.summary, &report.output_dir));
                 Ok(EXIT_NOT_CONVERGED)
             }
         }

@@ -6,6 +6,7 @@
 //! it. [`process`] runs the whole stage and returns a [`Solved`] run.
 
 pub mod fields;
+pub mod finite;
 pub mod friction_check;
 pub mod norms;
 pub mod regime;
@@ -78,6 +79,9 @@ pub fn process(
     mut timings: Timings,
 ) -> Result<Solved, Error> {
     let solution = ContactSolution::from_state(&problem, state);
+    let case_path = &scene.case.path;
+    finite::check(case_path, "the solver's residual history", &report.history)?;
+    finite::check(case_path, "the contact solution", &solution)?;
     if report.converged {
         check_grid_contains_contact(&scene, &solution)?;
     }
@@ -105,6 +109,7 @@ pub fn process(
         _ => None,
     };
     timings.interior_s = t_interior.elapsed().as_secs_f64();
+    finite::check_fields(&scene.case.path, interior.as_ref(), &boundary)?;
     notices.extend(interior.as_ref().and_then(fields::unevaluated_points_notice));
     Ok(Solved {
         scene,
@@ -130,6 +135,7 @@ fn check_grid_contains_contact(scene: &Scene, sol: &ContactSolution) -> Result<(
                 end,
                 x: sol.x[i],
                 extent: scene.case.case.contact.grid.extent,
+                advice: crate::scene::preflight::grid_too_short_advice(&scene.case, &scene.bodies),
             });
         }
     }

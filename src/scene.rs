@@ -10,6 +10,7 @@
 pub mod body_setup;
 pub mod estimates;
 pub mod loaded_mesh;
+pub mod preflight;
 
 use crate::analytic::Carter;
 use crate::body::{Body, Side};
@@ -47,7 +48,10 @@ pub struct Scene {
 impl Scene {
     /// The scene of a case: loads the meshes of its `bem` bodies.
     pub fn from_case(case: &LoadedCase) -> Result<Self, Error> {
-        Ok(Self::new(case.clone(), BodySetup::of_case(case)?))
+        let bodies = BodySetup::of_case(case)?;
+        // Before the grid is built: the checks keep it finite and the matrices within memory.
+        preflight::check(case, &bodies)?;
+        Ok(Self::new(case.clone(), bodies))
     }
 
     /// The scene of a case's contact, load and solver settings with the given bodies (which

@@ -43,6 +43,11 @@ fn run_unreachable(dir: &Path, method: &str) -> serde_json::Value {
     ]);
     assert_eq!(code, 2, "{method}: {stderr}");
     assert!(stderr.contains("did not converge"), "{method}: {stderr}");
+    // The budget of 100 000 was not spent: the message must not send the user for more.
+    assert!(
+        stderr.contains("stopped improving") && !stderr.contains("give more solver.max_iterations"),
+        "{method}: {stderr}"
+    );
     serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
 }
 
