@@ -76,6 +76,12 @@ pub fn solve_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
         ..Timings::default()
     };
     let t_solve = Instant::now();
+    log::info!(
+        target: crate::logging::PROGRESS,
+        "solving: {}, {} contact nodes",
+        scene.solver.method.name(),
+        problem.n_nodes()
+    );
     let (state, report) = methods::solve(&problem, &scene.solver);
     timings.solve_s = t_solve.elapsed().as_secs_f64();
     timings.total_s = start.elapsed().as_secs_f64();

@@ -37,6 +37,7 @@ pub mod grid;
 pub mod interior;
 pub mod limits;
 pub mod linalg;
+pub mod logging;
 pub mod material;
 pub mod mesh;
 pub mod output;

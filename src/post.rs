@@ -96,7 +96,16 @@ pub fn process(
     let mut notices = scene.notices();
     let t_interior = Instant::now();
     let interior = match (&output.interior, report.converged) {
-        (Some(spec), true) => Some(fields::interior_field(&scene, spec, models, &problem.grid, &solution)?),
+        (Some(spec), true) => {
+            log::info!(
+                target: crate::logging::PROGRESS,
+                "interior stresses of body {}: {} × {} points",
+                spec.body,
+                spec.x[2],
+                spec.y[2]
+            );
+            Some(fields::interior_field(&scene, spec, models, &problem.grid, &solution)?)
+        }
         _ => None,
     };
     timings.interior_s = t_interior.elapsed().as_secs_f64();

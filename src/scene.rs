@@ -118,9 +118,20 @@ impl Scene {
 
     /// Builds both body models on the contact grid.
     pub fn body_models(&self) -> Result<BodyModels, Error> {
+        let build = |body: &BodySetup, side: Side, name: &str| {
+            if let Some(mesh) = body.mesh() {
+                log::info!(
+                    target: crate::logging::PROGRESS,
+                    "body {name}: BEM of {} boundary elements ({} nodes), condensing to the contact nodes",
+                    mesh.mesh.elements.len(),
+                    mesh.mesh.nodes.len()
+                );
+            }
+            body.model(&self.grid, side)
+        };
         Ok([
-            self.bodies[0].model(&self.grid, Side::A)?,
-            self.bodies[1].model(&self.grid, Side::B)?,
+            build(&self.bodies[0], Side::A, "A")?,
+            build(&self.bodies[1], Side::B, "B")?,
         ])
     }
 
@@ -134,6 +145,11 @@ impl Scene {
     /// Assembles the contact problem of the scene from its body models.
     pub fn contact_problem(&self, models: &BodyModels) -> ContactProblem {
         let c = &self.case.case.contact;
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "assembling the contact problem: {} contact nodes",
+            self.grid.n_nodes()
+        );
         ContactProblem::assemble(
             self.grid.clone(),
             models[0].model(),

@@ -256,6 +256,14 @@ pub fn solve(
             it.resync();
         }
         residual = cheap(&it);
+        if history.len() % 100 == 0 {
+            log::info!(
+                target: crate::logging::PROGRESS,
+                "Gauss-Seidel sweep {}: scaled residual {residual:.2e} (tolerance {:.0e})",
+                history.len(),
+                settings.tolerance
+            );
+        }
         if !residual.is_finite() || residual > DIVERGED {
             break;
         }

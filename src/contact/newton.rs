@@ -126,6 +126,12 @@ pub(crate) fn damped_newton(
         });
         // A full step without line search can overflow: keep the last finite iterate.
         let next = measure(&g_trial, &trial);
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "Newton step {}: scaled residual {next:.2e} (tolerance {:.0e}), step length {alpha}, system of {size}",
+            history.len(),
+            settings.tolerance
+        );
         if !next.is_finite() {
             overflow = true;
             break;

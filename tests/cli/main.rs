@@ -13,3 +13,5 @@ mod stability;
 mod stall;
 mod study;
 mod sweep;
+mod units;
+mod verbosity;

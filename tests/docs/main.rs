@@ -31,9 +31,11 @@ mod methods_perf;
 #[path = "../../examples/model_error_table.rs"]
 mod model_error_table;
 mod no_external_references;
+mod outputs;
 #[allow(dead_code)]
 #[path = "../../examples/perf_report.rs"]
 mod perf_report;
+mod readme;
 #[allow(dead_code)]
 #[path = "../../examples/validation_report.rs"]
 mod validation_report;

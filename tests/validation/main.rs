@@ -14,6 +14,7 @@ mod free_rolling_creepage;
 mod friction_limits;
 mod hertz_carter;
 mod methods;
+mod slip_end;
 mod solver;
 mod true_geometry;
 mod tyre;
