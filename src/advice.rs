@@ -52,10 +52,6 @@ pub const LAYER_ERROR: [(f64, f64); 6] = [
     (5e1, 1.748e-3),
 ];
 
-/// Measured wall time [s] of one run of the Carter scene at 41 contact elements on the
-/// 2-core development machine (docs/performance.md): half-space model, true-geometry BEM.
-pub const COST_41_ELEMENTS: (f64, f64) = (0.005, 0.07);
-
 /// Log–log interpolation of `table` (x increasing) at x; beyond the ends the end segments
 /// are extended (flagged by the second return value).
 pub fn interpolate(table: &[(f64, f64)], x: f64) -> (f64, bool) {
@@ -133,7 +129,6 @@ pub fn advise(error: &HalfSpaceError, tolerance: f64) -> String {
         ),
         None => format!("half-space error ≈ {:.1} % of p0 in pressure", 100.0 * error.pressure),
     };
-    let (t_hs, t_bem) = COST_41_ELEMENTS;
     let verdict = if worst <= tolerance {
         format!("half_space is enough for a tolerance of {:.2} %", 100.0 * tolerance)
     } else {
@@ -143,8 +138,7 @@ pub fn advise(error: &HalfSpaceError, tolerance: f64) -> String {
         )
     };
     format!(
-        "{verdict} ({estimate}; {}{}). Cost at 41 contact elements on the development machine: \
-         half_space {t_hs} s, bem rollers {t_bem} s (docs/choosing-a-model.md)",
+        "{verdict} ({estimate}; {}{}; docs/choosing-a-model.md)",
         error.basis,
         if error.extrapolated {
             ", extrapolated beyond the measured range"

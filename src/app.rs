@@ -66,6 +66,8 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
 /// Solves a scene: builds the body models, assembles and solves the contact problem and
 /// post-processes it; `start` is when the run began, for the timings.
 pub fn solve_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
+    // Scenes of a study's own bodies are not checked by `Scene::from_case`.
+    crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
     let (models, problem) = scene.assemble()?;
     let condense_s = models[0].stage_seconds().1 + models[1].stage_seconds().1;
     let mut timings = Timings {
@@ -74,6 +76,12 @@ pub fn solve_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
         ..Timings::default()
     };
     let t_solve = Instant::now();
+    log::info!(
+        target: crate::logging::PROGRESS,
+        "solving: {}, {} contact nodes",
+        scene.solver.method.name(),
+        problem.n_nodes()
+    );
     let (state, report) = methods::solve(&problem, &scene.solver);
     timings.solve_s = t_solve.elapsed().as_secs_f64();
     timings.total_s = start.elapsed().as_secs_f64();
@@ -110,6 +118,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
     )?;
     let s = solve_scene(Scene::from_case(&case)?, start)?;
     let mut summary = output::summary(&s);
+    post::finite::check(&case.path, "summary.json", &summary)?;
     output::write_run(
         &output_dir,
         &mut summary,

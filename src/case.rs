@@ -123,6 +123,18 @@ fn parse_yaml(text: &str) -> Result<serde_norway::Value, String> {
 
 /// Loads, overrides and validates a case file.
 pub fn load(path: &Path, overrides: &[String]) -> Result<LoadedCase, CaseError> {
+    // Checked before opening: reading a FIFO would block for ever.
+    let problem = crate::limits::input_file_problem(path, crate::limits::MAX_CASE_BYTES);
+    let problem = problem.map_err(|source| CaseError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    if let Some(why) = problem {
+        return Err(CaseError::Read {
+            path: path.to_path_buf(),
+            source: std::io::Error::new(std::io::ErrorKind::InvalidInput, why),
+        });
+    }
     let text = std::fs::read_to_string(path).map_err(|source| CaseError::Read {
         path: path.to_path_buf(),
         source,
@@ -140,6 +152,14 @@ pub fn parse(text: &str, path: &Path, overrides: &[String]) -> Result<LoadedCase
     })?;
     for argument in overrides {
         apply_override(&mut value, argument)?;
+    }
+    let mut violations = Vec::new();
+    check_tree(&value, "", &mut violations);
+    if !violations.is_empty() {
+        return Err(CaseError::Invalid {
+            path: path.to_path_buf(),
+            violations,
+        });
     }
     let case: Case = serde_path_to_error::deserialize(value.clone()).map_err(|e| CaseError::Schema {
         path: path.to_path_buf(),
@@ -162,6 +182,57 @@ pub fn parse(text: &str, path: &Path, overrides: &[String]) -> Result<LoadedCase
         path: path.to_path_buf(),
         resolved,
     })
+}
+
+/// What the typed schema cannot see in the raw YAML tree: local tags (`friction: !weird 0.1`,
+/// which deserialisation would strip silently, so the user's intent is lost) and numbers that are
+/// not finite (`.nan`, `.inf`, which no key of a case accepts). Each is reported by its dotted key.
+fn check_tree(value: &serde_norway::Value, key: &str, out: &mut Vec<Violation>) {
+    use serde_norway::Value;
+    let named = |key: &str| {
+        if key.is_empty() {
+            "(top level)".to_string()
+        } else {
+            key.to_string()
+        }
+    };
+    match value {
+        Value::Tagged(tagged) => out.push(Violation {
+            key: named(key),
+            message: format!(
+                "YAML tag `{}` is not allowed: case values are plain numbers, strings, lists and \
+                 mappings; remove the tag",
+                tagged.tag
+            ),
+        }),
+        Value::Number(n) => {
+            if let Some(v) = n.as_f64().filter(|v| !v.is_finite()) {
+                out.push(Violation {
+                    key: named(key),
+                    message: format!("must be a finite number (value = {v})"),
+                });
+            }
+        }
+        Value::Sequence(items) => {
+            for (i, item) in items.iter().enumerate() {
+                check_tree(item, &format!("{key}[{i}]"), out);
+            }
+        }
+        Value::Mapping(map) => {
+            for (k, v) in map {
+                let name = match k {
+                    Value::String(s) => s.clone(),
+                    other => serde_norway::to_string(other).map_or_else(|_| "?".into(), |s| s.trim().to_string()),
+                };
+                if let Value::Tagged(_) = k {
+                    check_tree(k, &name, out);
+                }
+                let child = if key.is_empty() { name } else { format!("{key}.{name}") };
+                check_tree(v, &child, out);
+            }
+        }
+        Value::Null | Value::Bool(_) | Value::String(_) => {}
+    }
 }
 
 /// Applies `key.path=value` to the value tree, creating missing mappings on the way. The value

@@ -1,6 +1,8 @@
 //! `rollbem check`: the case as understood — bodies, meshes, the contact grid, Hertz
 //! estimates and the model advice — without solving.
 
+pub mod cost;
+
 use crate::case::{self, BodySpec, NormalSpec};
 use crate::error::Error;
 use crate::scene::{BodySetup, Scene};
@@ -194,6 +196,18 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
         crate::advice::roller_error(est.half_width_over_radius)
     };
     line("model advice", crate::advice::advise(&error, tolerance));
+    let (this, other) = costs(&scene);
+    line("cost of this run", this);
+    line("cost with the other model", other);
+    let memory = crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
+    line(
+        "memory estimate",
+        format!(
+            "{} at most (the bound that refuses cases larger than the memory available: {})",
+            crate::limits::human_bytes(memory.bytes()),
+            crate::limits::available_memory().map_or("unknown".into(), crate::limits::human_bytes)
+        ),
+    );
     Ok(t)
 }
 
@@ -206,4 +220,53 @@ fn convex_radius_in_a_bore(bodies: &[BodySetup; 2]) -> Option<f64> {
         (false, true) => Some(ra),
         _ => None,
     }
+}
+
+/// The estimated cost of the case as it stands and with the other model: BEM rollers on shafts
+/// in place of half-spaces, or half-spaces in place of `bem` bodies ([`cost`]).
+fn costs(scene: &Scene) -> (String, String) {
+    let output = &scene.case.case.output;
+    let sizes = cost::Sizes {
+        contact_nodes: scene.grid.n_nodes(),
+        bem_bodies: scene
+            .bodies
+            .iter()
+            .filter_map(BodySetup::mesh)
+            .map(|m| (m.mesh.nodes.len(), m.mesh.elements.len()))
+            .collect(),
+        interior_points: output.interior.as_ref().map_or(0, |i| (i.x[2] * i.y[2]) as usize),
+        vtk: output.vtk,
+    };
+    let elements = scene.grid.n_elements();
+    let bodies = match sizes.bem_bodies.as_slice() {
+        [] => String::new(),
+        b => format!(
+            ", bem bodies of {} boundary elements",
+            b.iter().map(|(_, e)| e.to_string()).collect::<Vec<_>>().join(" and ")
+        ),
+    };
+    let this = format!(
+        "{} ({} contact nodes{bodies}; estimated for the 2-core development machine of docs/performance.md)",
+        cost::Cost::of(&sizes).describe(),
+        sizes.contact_nodes
+    );
+    let other = if sizes.bem_bodies.is_empty() {
+        let roller = cost::roller_mesh(elements);
+        let rollers = cost::Sizes {
+            bem_bodies: vec![roller; 2],
+            ..sizes.clone()
+        };
+        format!(
+            "{} with bem rollers on shafts ({} boundary elements each)",
+            cost::Cost::of(&rollers).describe(),
+            roller.1
+        )
+    } else {
+        let half = cost::Sizes {
+            bem_bodies: Vec::new(),
+            ..sizes.clone()
+        };
+        format!("{} with half_space bodies", cost::Cost::of(&half).describe())
+    };
+    (this, other)
 }

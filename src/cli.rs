@@ -18,9 +18,27 @@ pub struct Cli {
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
+    /// Say more on stderr: -v each stage and Newton step with its residual, as it happens;
+    /// -vv debugging detail. (Without it, a run that takes over a second shows its progress on
+    /// one line, and restarts of the solver are printed as warnings; the environment variable
+    /// ROLLBEM_PROGRESS_AFTER=SECONDS changes that second.)
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    pub verbose: u8,
+    /// Say nothing on stderr but errors (no progress, warnings or notices; the results table
+    /// still goes to stdout).
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    pub quiet: bool,
 }
 
 impl Cli {
+    /// How much to say on stderr: the level of `-q`/`-v`, and progress for a single run.
+    pub fn verbosity(&self) -> crate::logging::Verbosity {
+        crate::logging::Verbosity {
+            level: if self.quiet { -1 } else { self.verbose.min(3) as i8 },
+            progress: matches!(self.command, Command::Run { .. }),
+        }
+    }
+
     /// The case file of the command, if it has one (named in the internal-error report).
     pub fn case_path(&self) -> Option<&std::path::Path> {
         match &self.command {

@@ -29,6 +29,8 @@ pub mod report;
 pub mod residual;
 pub mod restart;
 pub mod slip_operator;
+pub mod stall;
+mod start;
 
 use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;
@@ -229,6 +231,32 @@ impl ContactProblem {
             .zip(&self.rigid_slip)
             .map(|((v, e), k)| self.flow_sign * (creep * e + k) + v)
             .collect()
+    }
+
+    /// Slip velocity s = σ(ξ + k + ∂w/∂x) at every node [-] (k the rigid slip of [`frame`]), for
+    /// the outputs: [`Self::slip`] at every
+    /// node but the upstream end, whose row in the problem is the datum equation of w (see
+    /// [`SlipOperator`]); there the derivative is taken downstream
+    /// ([`SlipOperator::derivative`]). Same tractions, same solution: only that node differs.
+    pub fn slip_velocity(&self, p: &[f64], q: &[f64], creep: f64) -> Vec<f64> {
+        let mut s = self.slip(p, q, creep);
+        let op = &self.slip_operator;
+        if !op.end_velocity_row.is_empty() {
+            let dw: f64 = op
+                .end_velocity_row
+                .iter()
+                .map(|&(j, c)| c * self.relative_tangential_at(j, p, q))
+                .sum();
+            let k = self.frame.rigid_slip[op.upstream_end];
+            s[op.upstream_end] = self.flow_sign * (creep + k + dw);
+        }
+        s
+    }
+
+    /// w_j = (W_p p + W_q q)_j, one node of [`Self::relative_tangential`] [length].
+    fn relative_tangential_at(&self, j: usize, p: &[f64], q: &[f64]) -> f64 {
+        let (wp, wq) = (&self.flex.wp, &self.flex.wq);
+        (0..p.len()).map(|k| wp[(j, k)] * p[k] + wq[(j, k)] * q[k]).sum()
     }
 
     /// Slip from the boundary-integral strain operator, s = σ(ξ + k + ∂w/∂x), if available.

@@ -47,10 +47,7 @@ pub enum Error {
     #[error("the boundary solution of a bem body for output failed: {0}")]
     BoundaryField(#[source] Box<crate::body::FieldError>),
     /// The solved contact touches the end of the grid, so the grid does not contain it.
-    #[error(
-        "{case}: the contact reaches the {end} end of the grid (x = {x:.6}): the grid is too short. \
-         Increase contact.grid.extent (now {extent}) or contact.grid.half_length"
-    )]
+    #[error("{case}: the contact reaches the {end} end of the grid (x = {x:.6}): the grid is too short. {advice}")]
     GridTooShort {
         /// Case file.
         case: PathBuf,
@@ -60,6 +57,26 @@ pub enum Error {
         x: f64,
         /// The grid extent in Hertz half-widths.
         extent: f64,
+        /// What to change: the grid keys, or the contact group of the mesh that gives the grid.
+        advice: String,
+    },
+    /// The case needs more memory than is available (checked before anything large is built).
+    #[error(transparent)]
+    Memory(#[from] crate::limits::MemoryError),
+    /// A number of the solution or of its post-processing is NaN or infinite: the numerics broke
+    /// down. Exit code 2 (like non-convergence); nothing is written.
+    #[error(
+        "{case}: {what} is {value}, not a finite number: the solution broke down numerically and \
+         nothing was written. Check that the case's values are consistent (units of E, the radii and \
+         the load); try solver.formulation: psi or another solver.method"
+    )]
+    NotFinite {
+        /// Case file.
+        case: PathBuf,
+        /// Which value, by its path in the output.
+        what: String,
+        /// The value.
+        value: f64,
     },
     /// A sweep argument or a merge input is wrong.
     #[error("sweep: {message}")]
@@ -89,8 +106,12 @@ pub enum Error {
 
 impl Error {
     /// Exit code (docs/reliability.md): 1 for bad input (nothing written). Output failures also give 1.
+    /// A solution that broke down (NaN) gives 2, as non-convergence does.
     pub fn exit_code(&self) -> i32 {
-        EXIT_BAD_INPUT
+        match self {
+            Error::NotFinite { .. } => EXIT_NOT_CONVERGED,
+            _ => EXIT_BAD_INPUT,
+        }
     }
 }
 

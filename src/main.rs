@@ -13,10 +13,13 @@ fn main() -> ExitCode {
         Err(e) => return usage_error(&e),
     };
     let case = cli.case_path().map(|p| p.display().to_string());
+    rollbem::logging::init(cli.verbosity());
     install_panic_hook();
     // A panic is a bug: it must not pass for a result. Writers clean up as the panic unwinds
     // (temporary folders, locks), so nothing is written.
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| dispatch(cli))) {
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| dispatch(cli)));
+    rollbem::logging::finish();
+    match outcome {
         Ok(Ok(code)) => ExitCode::from(code as u8),
         Ok(Err(e)) => {
             let code = e.downcast_ref::<rollbem::error::Error>().map_or(1, |e| e.exit_code());
@@ -81,27 +84,70 @@ fn install_panic_hook() {
     }));
 }
 
+/// The restarts the default method needed, as one warning: a converged run that needed them
+/// took longer than it should, and a different `solver.*` setting may avoid them.
+fn warn_restarts(s: &rollbem::output::Summary) {
+    let fallbacks = &s.solver.fallbacks;
+    if fallbacks.is_empty() {
+        return;
+    }
+    let outcome = if s.converged {
+        "converged"
+    } else {
+        "still did not converge"
+    };
+    log::warn!(
+        "the Newton method stalled and restarted {} time{} ({}); it {outcome} after {} iterations in all",
+        fallbacks.len(),
+        if fallbacks.len() == 1 { "" } else { "s" },
+        fallbacks.join(", "),
+        s.iterations
+    );
+}
+
+/// What to tell the user when a run ends without converging: whether the iteration budget ran
+/// out (then more `solver.max_iterations` may help) or the residual stopped improving (then it
+/// will not), and where the history is.
+fn not_converged_message(summary: &rollbem::output::Summary, output_dir: &std::path::Path) -> String {
+    let budget = summary
+        .case
+        .pointer("/solver/max_iterations")
+        .and_then(serde_json::Value::as_u64)
+        .unwrap_or(u64::MAX);
+    let cause = if summary.iterations as u64 >= budget {
+        "the iteration budget ran out: give more solver.max_iterations (gauss_seidel counts sweeps and \
+         needs thousands), or try"
+    } else {
+        "the residual stopped improving (more iterations will not help): try"
+    };
+    format!(
+        "the solver did not converge in {} iterations (scaled residual {:.3e}); {cause} \
+         solver.method: newton (the default), solver.formulation: psi, a different solver.penalty \
+         scale, or a finer contact grid. The residual history is in {}.",
+        summary.iterations,
+        summary.residual,
+        output_dir.join("summary.json").display()
+    )
+}
+
 fn dispatch(cli: Cli) -> Result<i32> {
+    let quiet = cli.quiet;
     match cli.command {
         Command::Run { case, out, set } => {
             let report = rollbem::app::run(&case, &set, out.as_deref())?;
-            for notice in &report.summary.notices {
-                eprintln!("notice: {notice}");
+            rollbem::logging::finish();
+            if !quiet {
+                for notice in &report.summary.notices {
+                    eprintln!("notice: {notice}");
+                }
             }
+            warn_restarts(&report.summary);
             println!("rollbem run {}", case.display());
             print!("{}", rollbem::output::render_table(&report.summary, &report.output_dir));
             if report.summary.converged {
                 Ok(0)
             } else {
-                eprintln!(
-                    "error: the solver did not converge in {} iterations (scaled residual {:.3e}); \
-                     the residual history is in {}. Try solver.method: newton (the default), \
-                     solver.formulation: psi, a different solver.penalty scale, or more \
-                     solver.max_iterations (gauss_seidel counts sweeps and needs thousands).",
-                    report.summary.iterations,
-                    report.summary.residual,
-                    report.output_dir.join("summary.json").display()
-                );
+                eprintln!("error: {}", not_converged_message(&report.summary, &report.output_dir));
                 Ok(EXIT_NOT_CONVERGED)
             }
         }

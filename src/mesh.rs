@@ -222,6 +222,45 @@ pub enum MeshError {
         /// The group names (or tags).
         groups: String,
     },
+    /// The path is not a regular file (a folder, a FIFO, a device: reading it could block or
+    /// never end), or the file is beyond [`crate::limits::MAX_MESH_BYTES`].
+    #[error("cannot read mesh file {path}: {kind}; give the path of a Gmsh .msh file")]
+    NotRegularFile {
+        /// The path as given.
+        path: String,
+        /// What it is instead, or why it is too large.
+        kind: String,
+    },
+    /// Two nodes of the `$Nodes` section carry the same tag.
+    #[error(
+        "{path}: node tag {node} is defined twice, at ({}, {}, {}) and at ({}, {}, {}); every node \
+         needs its own tag: regenerate the mesh or renumber it (`Coherence Mesh;`, `RenumberMeshNodes;`)",
+        first[0], first[1], first[2], second[0], second[1], second[2]
+    )]
+    DuplicateNode {
+        /// The file.
+        path: String,
+        /// Gmsh node tag.
+        node: u64,
+        /// Its first coordinates.
+        first: [f64; 3],
+        /// Its second coordinates.
+        second: [f64; 3],
+    },
+    /// A node coordinate is NaN or infinite.
+    #[error(
+        "{path}: node {node} has a coordinate that is not a finite number ({}, {}, {}); fix or \
+         regenerate the mesh",
+        xyz[0], xyz[1], xyz[2]
+    )]
+    NonFiniteNode {
+        /// The file.
+        path: String,
+        /// Gmsh node tag.
+        node: u64,
+        /// Its coordinates.
+        xyz: [f64; 3],
+    },
     /// An element refers to a node tag that the `$Nodes` section does not define.
     #[error("{path}: element {element} refers to node {node}, which is not in the $Nodes section")]
     UnknownNode {
@@ -312,12 +351,9 @@ pub enum MeshError {
         /// Groups of the elements meeting there.
         groups: String,
     },
-    /// An element has (numerically) zero length.
-    #[error(
-        "{path}: element {element} of group `{group}` at ({x}, {y}) has zero length; remove \
-         duplicated points or degenerate curves from the geometry"
-    )]
-    ZeroLengthElement {
+    /// An element that cannot be integrated: zero length or a folded mapping.
+    #[error("{path}: element {element} of group `{group}` at ({x}, {y}) {defect}")]
+    BadElement {
         /// The mesh.
         path: String,
         /// Group name.
@@ -327,24 +363,49 @@ pub enum MeshError {
         /// x of its first node.
         x: f64,
         /// y of its first node.
+        y: f64,
+        /// What is wrong with it.
+        defect: ElementDefect,
+    },
+    /// Two pieces of the boundary cross or touch: a bow-tie outline, or a hole that crosses the
+    /// outer contour or another hole.
+    #[error(
+        "{path}: the boundary crosses itself near ({x}, {y}): an element of group `{first}` meets one \
+         of group `{second}`; a body's boundary must be closed loops that neither cross nor touch \
+         (check the order of the points of the outline, and that every hole lies inside the body)"
+    )]
+    CrossingBoundary {
+        /// The mesh.
+        path: String,
+        /// Group of one of the two elements.
+        first: String,
+        /// Group of the other.
+        second: String,
+        /// x near the crossing.
+        x: f64,
+        /// y near the crossing.
         y: f64,
     },
-    /// The mid node of a 3-node element is so far off-centre that the mapping folds over.
+    /// A loop lies outside the body's outer contour (a second body), or inside a hole (an island).
     #[error(
-        "{path}: element {element} of group `{group}` at ({x}, {y}) is distorted (its mid node is \
-         not in the middle third between its ends); regenerate the mesh"
+        "{path}: the loop of group(s) `{groups}` through ({x}, {y}) lies {}; a mesh describes one body: \
+         one outer contour (here group(s) `{outer}`) and holes directly inside it. Move the loop into \
+         the body or remove it",
+        if *island { "inside a hole of the body (an island)" } else { "outside the body's outer contour" }
     )]
-    DistortedElement {
+    LoopOutsideBody {
         /// The mesh.
         path: String,
-        /// Group name.
-        group: String,
-        /// Element index (0-based).
-        element: usize,
-        /// x of its first node.
+        /// Groups of the offending loop.
+        groups: String,
+        /// Groups of the outer contour.
+        outer: String,
+        /// x of a node of the loop.
         x: f64,
-        /// y of its first node.
+        /// y of that node.
         y: f64,
+        /// Whether the loop lies inside a hole rather than outside the outer contour.
+        island: bool,
     },
     /// A boundary condition (or the contact) names a group that the mesh does not have.
     #[error("{path}: no physical group named `{name}`; the mesh has: {available}")]
@@ -356,4 +417,25 @@ pub enum MeshError {
         /// The names that exist.
         available: String,
     },
+}
+
+/// What makes an element of a mesh unusable ([`MeshError::BadElement`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElementDefect {
+    /// Its ends coincide (numerically).
+    ZeroLength,
+    /// The mid node of a 3-node element is so far off-centre that the mapping folds over.
+    Distorted,
+}
+
+impl std::fmt::Display for ElementDefect {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::ZeroLength => "has zero length; remove duplicated points or degenerate curves from the geometry",
+            Self::Distorted => {
+                "is distorted (its mid node is not in the middle third between its ends); \
+                 regenerate the mesh"
+            }
+        })
+    }
 }

@@ -12,6 +12,7 @@ mod csv_files;
 pub mod summary;
 pub mod svg;
 mod table;
+pub mod units;
 pub mod vtk;
 
 use crate::body::BoundaryField;
@@ -20,7 +21,7 @@ use crate::error::Error;
 pub use crate::files as folder;
 use crate::interior::InteriorField;
 use crate::post::ContactSolution;
-pub use csv_files::{write_csv, write_interior_csv, CSV_COLUMNS};
+pub use csv_files::{number, write_csv, write_interior_csv, CSV_COLUMNS};
 use std::path::Path;
 use std::time::Instant;
 pub use summary::{summary, Summary};
@@ -37,13 +38,24 @@ pub fn write_run(
     interior: Option<&InteriorField>,
     start: Instant,
 ) -> Result<(), Error> {
+    log::info!(target: crate::logging::PROGRESS, "writing the results to {}", dir.display());
     write_atomically(dir, folder::Kind::Run, |tmp| {
         if summary.converged {
             write_csv(&tmp.join("contact.csv"), sol, pb)?;
             if let Some(f) = interior {
                 write_interior_csv(&tmp.join(format!("interior_{}.csv", f.body)), f)?;
             }
-            svg::write_contact_plot(&tmp.join("contact.svg"), sol, pb.friction, &summary.title)?;
+            let unit = |key: &str| summary.units.get(key).map_or("", String::as_str);
+            let plot = svg::ContactPlot {
+                solution: sol,
+                friction: pb.friction,
+                flow_sign: pb.flow_sign,
+                title: &summary.title,
+                length_unit: unit("overlap"),
+                stress_unit: unit("max_pressure"),
+                force_unit: unit("normal_force"),
+            };
+            svg::write_contact_plot(&tmp.join("contact.svg"), &plot)?;
             if summary.vtk {
                 vtk::write_contact_line(&tmp.join("contact.vtu"), sol, pb)?;
                 let mut entries = vec![vtk::CollectionEntry {

@@ -6,6 +6,7 @@
 //! it. [`process`] runs the whole stage and returns a [`Solved`] run.
 
 pub mod fields;
+pub mod finite;
 pub mod friction_check;
 pub mod norms;
 pub mod regime;
@@ -78,6 +79,9 @@ pub fn process(
     mut timings: Timings,
 ) -> Result<Solved, Error> {
     let solution = ContactSolution::from_state(&problem, state);
+    let case_path = &scene.case.path;
+    finite::check(case_path, "the solver's residual history", &report.history)?;
+    finite::check(case_path, "the contact solution", &solution)?;
     if report.converged {
         check_grid_contains_contact(&scene, &solution)?;
     }
@@ -92,17 +96,27 @@ pub fn process(
     let mut notices = scene.notices();
     let t_interior = Instant::now();
     let interior = match (&output.interior, report.converged) {
-        (Some(spec), true) => Some(fields::interior_field(
-            &scene,
-            spec,
-            models,
-            &problem.grid,
-            &problem.frame,
-            &solution,
-        )?),
+        (Some(spec), true) => {
+            log::info!(
+                target: crate::logging::PROGRESS,
+                "interior stresses of body {}: {} × {} points",
+                spec.body,
+                spec.x[2],
+                spec.y[2]
+            );
+            Some(fields::interior_field(
+                &scene,
+                spec,
+                models,
+                &problem.grid,
+                &problem.frame,
+                &solution,
+            )?)
+        }
         _ => None,
     };
     timings.interior_s = t_interior.elapsed().as_secs_f64();
+    finite::check_fields(&scene.case.path, interior.as_ref(), &boundary)?;
     notices.extend(interior.as_ref().and_then(fields::unevaluated_points_notice));
     Ok(Solved {
         scene,
@@ -128,6 +142,7 @@ fn check_grid_contains_contact(scene: &Scene, sol: &ContactSolution) -> Result<(
                 end,
                 x: sol.x[i],
                 extent: scene.case.case.contact.grid.extent,
+                advice: crate::scene::preflight::grid_too_short_advice(&scene.case, &scene.bodies),
             });
         }
     }

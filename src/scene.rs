@@ -11,6 +11,7 @@ pub mod body_setup;
 pub mod contact_frame;
 pub mod estimates;
 pub mod loaded_mesh;
+pub mod preflight;
 
 use crate::analytic::Carter;
 use crate::body::{Body, Side};
@@ -50,7 +51,10 @@ pub struct Scene {
 impl Scene {
     /// The scene of a case: loads the meshes of its `bem` bodies.
     pub fn from_case(case: &LoadedCase) -> Result<Self, Error> {
-        Ok(Self::new(case.clone(), BodySetup::of_case(case)?))
+        let bodies = BodySetup::of_case(case)?;
+        // Before the grid is built: the checks keep it finite and the matrices within memory.
+        preflight::check(case, &bodies)?;
+        Ok(Self::new(case.clone(), bodies))
     }
 
     /// The scene of a case's contact, load and solver settings with the given bodies (which
@@ -119,9 +123,20 @@ impl Scene {
 
     /// Builds both body models on the contact grid.
     pub fn body_models(&self) -> Result<BodyModels, Error> {
+        let build = |body: &BodySetup, side: Side, name: &str| {
+            if let Some(mesh) = body.mesh() {
+                log::info!(
+                    target: crate::logging::PROGRESS,
+                    "body {name}: BEM of {} boundary elements ({} nodes), condensing to the contact nodes",
+                    mesh.mesh.elements.len(),
+                    mesh.mesh.nodes.len()
+                );
+            }
+            body.model(&self.grid, side)
+        };
         Ok([
-            self.bodies[0].model(&self.grid, Side::A)?,
-            self.bodies[1].model(&self.grid, Side::B)?,
+            build(&self.bodies[0], Side::A, "A")?,
+            build(&self.bodies[1], Side::B, "B")?,
         ])
     }
 
@@ -135,6 +150,11 @@ impl Scene {
     /// Assembles the contact problem of the scene from its body models.
     pub fn contact_problem(&self, models: &BodyModels) -> ContactProblem {
         let c = &self.case.case.contact;
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "assembling the contact problem: {} contact nodes",
+            self.grid.n_nodes()
+        );
         ContactProblem::assemble(
             self.grid.clone(),
             models[0].model(),

@@ -202,7 +202,7 @@ fn run_one_unguarded(
         Ok(report) => {
             let s = &report.summary;
             let c = s.contact.as_ref();
-            let f = |v: f64| format!("{v:e}");
+            let f = crate::output::number;
             RunRow {
                 run,
                 status: if s.converged { "ok" } else { "not_converged" }.into(),

@@ -221,12 +221,47 @@ def check_pvd(path, expected_count=None):
             fail(path, f"time step {t} reads as empty in pyvista")
 
 
+def number_paths(value, path, out):
+    """Every number of a JSON value, by path: `.` between keys, `[]` for array items."""
+    if isinstance(value, bool) or value is None:
+        return
+    if isinstance(value, (int, float)):
+        out.add(path)
+    elif isinstance(value, list):
+        for item in value:
+            number_paths(item, path + "[]", out)
+    elif isinstance(value, dict):
+        for k, v in value.items():
+            number_paths(v, f"{path}.{k}" if path else k, out)
+
+
+def check_units(d, summary):
+    """summary.json names the unit of every number it holds (outside the resolved case)."""
+    units = summary.get("units")
+    if not isinstance(units, dict):
+        fail(d / "summary.json", "no `units` block")
+        return
+    paths = set()
+    for key, value in summary.items():
+        if key not in ("units", "case"):
+            number_paths(value, key, paths)
+    for p in sorted(paths - set(units)):
+        fail(d / "summary.json", f"`{p}` has no unit in the units block")
+    case_units = (summary.get("case") or {}).get("units") or {}
+    length, force = case_units.get("length", "mm"), case_units.get("force", "N")
+    for key, unit in [("normal_force", f"{force}/{length}"), ("max_pressure", f"{force}/{length}^2"),
+                      ("overlap", length), ("creep", "-")]:
+        if units.get(key) != unit:
+            fail(d / "summary.json", f"unit of `{key}` is {units.get(key)!r}, expected {unit!r}")
+
+
 def check_run(d):
     summary = json.loads((d / "summary.json").read_text())
-    for key in ["converged", "iterations", "residual", "normal_force", "tangential_force", "overlap", "creep",
-                "contact", "stick_zones", "slip_zones", "timings", "models", "case"]:
+    for key in ["version", "command", "converged", "iterations", "residual", "normal_force", "tangential_force",
+                "overlap", "creep", "contact", "stick_zones", "slip_zones", "timings", "models", "units", "case"]:
         if key not in summary:
             fail(d / "summary.json", f"missing `{key}`")
+    check_units(d, summary)
     if not summary.get("converged"):
         return
     cols = read_contact_csv(d / "contact.csv")

@@ -44,6 +44,23 @@ pub struct Units {
     pub force: String,
 }
 
+impl Units {
+    /// Unit of a force per unit length of the cylinders (P, Q), e.g. `N/mm`.
+    pub fn force_per_length(&self) -> String {
+        format!("{}/{}", self.force, self.length)
+    }
+
+    /// Unit of a stress (p, q, E, G), e.g. `N/mm^2`.
+    pub fn stress(&self) -> String {
+        format!("{}/{}^2", self.force, self.length)
+    }
+
+    /// Unit of a stress per length (the normal penalty r_n), e.g. `N/mm^3`.
+    pub fn stress_per_length(&self) -> String {
+        format!("{}/{}^3", self.force, self.length)
+    }
+}
+
 impl Default for Units {
     fn default() -> Self {
         Self {

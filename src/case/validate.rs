@@ -3,6 +3,67 @@
 
 use super::schema::*;
 
+/// Magnitudes that a dimensional input (a length, force per length or stress) may take, in any
+/// consistent units: [1e-30, 1e30]. Derived quantities are products and quotients of a few of
+/// them (the Hertz half-width a = √(4PR/πE*), the peak pressure p0 = 2P/πa, the influence
+/// coefficients ~ ln(x)/E*, the gap x²/2R), so they stay far inside the range of a double
+/// (1e±308) and never overflow to infinity or underflow to zero. Every real unit system (SI, mm–N–MPa,
+/// µm–mN–GPa) puts physical values well inside it.
+pub const MAGNITUDE: [f64; 2] = [1e-30, 1e30];
+
+/// Largest friction coefficient: beyond any measured value (μ ≈ 0.05–1.5); large values stand in for full stick.
+pub const MAX_FRICTION: f64 = 1e6;
+
+/// Largest grid extent in Hertz half-widths: beyond it the Hertz contact lies inside one or two elements.
+pub const MAX_EXTENT: f64 = 100.0;
+
+/// Range of the penalty scale c (`solver.penalty`): the automatic penalty times 1e±12 covers every
+/// useful choice; beyond, the projections lose all digits of one of their two terms.
+pub const PENALTY_RANGE: [f64; 2] = [1e-12, 1e12];
+
+/// Largest number of contact elements: no machine holds the dense matrices of more (the memory
+/// estimate refuses far fewer); the bound keeps the node counts far from integer overflow.
+pub const MAX_ELEMENTS: usize = 1_000_000_000;
+
+/// Smallest number of elements of a uniform contact grid: with one or two, the elements that hold
+/// the Hertz contact are also the end elements of the grid, so no grid length contains the contact.
+pub const MIN_UNIFORM_ELEMENTS: usize = 3;
+
+/// A value as the user would write it: plain for everyday magnitudes, in exponent form for tiny
+/// or huge ones (so that 1.79e308 is not printed with 300 digits).
+pub fn shown(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// Why a positive dimensional value `v` is out of range, if it is.
+fn positive_quantity(v: f64) -> Option<String> {
+    if !(v > 0.0 && v.is_finite()) {
+        Some(format!("must be positive and finite (value = {})", shown(v)))
+    } else {
+        magnitude(v)
+    }
+}
+
+/// Why a dimensional value `v` (that may be zero or negative) is out of range, if it is.
+fn magnitude(v: f64) -> Option<String> {
+    let [lo, hi] = MAGNITUDE;
+    if !v.is_finite() {
+        Some(format!("must be a finite number (value = {})", shown(v)))
+    } else if v != 0.0 && !(lo..=hi).contains(&v.abs()) {
+        Some(format!(
+            "|value| = {:e} lies outside [{lo:e}, {hi:e}], the range of physical values in any consistent \
+             units: check the units of the case",
+            v.abs()
+        ))
+    } else {
+        None
+    }
+}
+
 /// One broken rule.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Violation {
@@ -31,18 +92,21 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 key("E"),
                 "missing: give Young's modulus E (or the shear modulus G)".into(),
             ),
-            (Some(e), None) if !(e > 0.0 && e.is_finite()) => {
-                bad(key("E"), format!("Young's modulus must be positive (value = {e})"))
+            (Some(e), None) => {
+                if let Some(why) = positive_quantity(e) {
+                    bad(key("E"), format!("Young's modulus {why}"));
+                }
             }
-            (None, Some(g)) if !(g > 0.0 && g.is_finite()) => {
-                bad(key("G"), format!("shear modulus must be positive (value = {g})"))
+            (None, Some(g)) => {
+                if let Some(why) = positive_quantity(g) {
+                    bad(key("G"), format!("shear modulus {why}"));
+                }
             }
-            _ => {}
         }
         if !(m.nu > -1.0 && m.nu <= 0.5) {
             bad(
                 key("nu"),
-                format!("Poisson's ratio must lie in (-1, 0.5] (value = {})", m.nu),
+                format!("Poisson's ratio must lie in (-1, 0.5] (value = {})", shown(m.nu)),
             );
         }
     }
@@ -132,12 +196,17 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 radius.unwrap_or(1.0)
             }
         };
-        if !(radius != 0.0 && radius.is_finite()) {
+        let nonzero = if radius == 0.0 {
+            Some("must be non-zero and finite (value = 0)".to_string())
+        } else {
+            magnitude(radius)
+        };
+        if let Some(why) = nonzero {
             bad(
                 format!("bodies.{side}.radius"),
                 format!(
-                    "radius must be non-zero and finite (value = {radius}): positive for a convex body, \
-                     negative for a concave one (a ring's bore); model a flat as a large radius"
+                    "radius {why}: positive for a convex body, negative for a concave one (a ring's bore); \
+                     model a flat as a large radius"
                 ),
             );
         }
@@ -155,30 +224,53 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     }
 
     let c = &case.contact;
-    if !(c.friction >= 0.0 && c.friction.is_finite()) {
+    if !(c.friction >= 0.0 && c.friction <= MAX_FRICTION) {
         bad(
             "contact.friction".into(),
-            format!("friction coefficient must be >= 0 (value = {})", c.friction),
-        );
-    }
-    if c.grid.elements == 0 {
-        bad(
-            "contact.grid.elements".into(),
-            "need at least one contact element (value = 0); 21 is the paper's grid".into(),
-        );
-    }
-    if !(c.grid.extent > 1.0 && c.grid.extent.is_finite()) {
-        bad(
-            "contact.grid.extent".into(),
             format!(
-                "the grid must extend beyond the Hertz contact: extent > 1 (value = {}); 1.3 is typical",
-                c.grid.extent
+                "friction coefficient must be >= 0 and <= {MAX_FRICTION:e} (value = {})",
+                shown(c.friction)
             ),
         );
     }
     let bem_body = [&case.bodies.a, &case.bodies.b]
         .into_iter()
         .any(|b| matches!(b, BodySpec::Bem { .. }));
+    if c.grid.elements == 0 {
+        bad(
+            "contact.grid.elements".into(),
+            "need at least one contact element (value = 0); 21 is the paper's grid".into(),
+        );
+    } else if c.grid.elements > MAX_ELEMENTS {
+        bad(
+            "contact.grid.elements".into(),
+            format!(
+                "{} elements are beyond the memory of any machine (at most {MAX_ELEMENTS}); 21 is the paper's grid",
+                c.grid.elements
+            ),
+        );
+    } else if c.grid.elements < MIN_UNIFORM_ELEMENTS && !bem_body {
+        bad(
+            "contact.grid.elements".into(),
+            format!(
+                "need at least {MIN_UNIFORM_ELEMENTS} elements (value = {}): with fewer, the elements that \
+                 carry the contact are the end elements of the grid, which must stay unloaded; 21 is the \
+                 paper's grid",
+                c.grid.elements
+            ),
+        );
+    }
+    if !(c.grid.extent > 1.0 && c.grid.extent <= MAX_EXTENT) {
+        bad(
+            "contact.grid.extent".into(),
+            format!(
+                "the grid must extend beyond the Hertz contact and hold it in more than a couple of \
+                 elements: 1 < extent <= {MAX_EXTENT} (value = {}); 1.3 is typical, use \
+                 contact.grid.half_length for a long grid",
+                shown(c.grid.extent)
+            ),
+        );
+    }
     if bem_body && c.grid.element != crate::grid::ElementKind::DiscontinuousQuadratic {
         bad(
             "contact.grid.element".into(),
@@ -191,11 +283,8 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         );
     }
     if let Some(h) = c.grid.half_length {
-        if !(h > 0.0 && h.is_finite()) {
-            bad(
-                "contact.grid.half_length".into(),
-                format!("must be positive (value = {h})"),
-            );
+        if let Some(why) = positive_quantity(h) {
+            bad("contact.grid.half_length".into(), why);
         }
     }
 
@@ -207,20 +296,14 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     }
     let normal_force = match case.load.normal() {
         NormalSpec::Force(p) => {
-            if !(p > 0.0 && p.is_finite()) {
-                bad(
-                    "load.normal.force".into(),
-                    format!("normal force must be positive (value = {p})"),
-                );
+            if let Some(why) = positive_quantity(p) {
+                bad("load.normal.force".into(), format!("normal force {why}"));
             }
             Some(p)
         }
         NormalSpec::Overlap(d) => {
-            if !(d > 0.0 && d.is_finite()) {
-                bad(
-                    "load.normal.overlap".into(),
-                    format!("overlap must be positive (value = {d})"),
-                );
+            if let Some(why) = positive_quantity(d) {
+                bad("load.normal.overlap".into(), format!("overlap {why}"));
             }
             None
         }
@@ -231,7 +314,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             if r.is_nan() || r.abs() >= 1.0 {
                 bad(
                     "load.tangential.ratio".into(),
-                    format!("|Q/(muP)| must be < 1 (value = {r}): {full_sliding}"),
+                    format!("|Q/(muP)| must be < 1 (value = {}): {full_sliding}", shown(r)),
                 );
             } else if c.friction == 0.0 && r != 0.0 {
                 bad(
@@ -241,7 +324,9 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             }
         }
         TangentialSpec::Force(q) => {
-            if let Some(p) = normal_force {
+            if let Some(why) = magnitude(q) {
+                bad("load.tangential.force".into(), format!("tangential force: {why}"));
+            } else if let Some(p) = normal_force {
                 if q.is_nan() || q.abs() >= c.friction * p {
                     bad(
                         "load.tangential.force".into(),
@@ -251,30 +336,46 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             }
         }
         TangentialSpec::Creep(x) => {
-            if !x.is_finite() {
+            // ξ = (V_A − V_B)/V with V the mean speed: |ξ| = 2 means that one surface stands still.
+            if x.is_nan() || x.abs() >= 2.0 {
                 bad(
                     "load.tangential.creep".into(),
-                    format!("creepage must be finite (value = {x})"),
+                    format!(
+                        "creepage (V_A - V_B)/V must lie in (-2, 2) (value = {}): at |xi| = 2 one surface \
+                         stands still and nothing rolls",
+                        shown(x)
+                    ),
                 );
             }
         }
     }
 
     let s = &case.solver;
+    // A tolerance below round-off (about 1e-14) is allowed: it enters no derived quantity, and
+    // the stall test of every method ends such a run with exit 2 and its history.
     if !(s.tolerance > 0.0 && s.tolerance < 1.0) {
         bad(
             "solver.tolerance".into(),
-            format!("must lie in (0, 1) (value = {})", s.tolerance),
+            format!(
+                "must lie in (0, 1) (value = {}); 1e-10 is the default",
+                shown(s.tolerance)
+            ),
         );
     }
     if s.max_iterations == 0 {
         bad("solver.max_iterations".into(), "must be >= 1 (value = 0)".into());
     }
     if let Penalty::Scale(p) = s.penalty {
-        if !(p > 0.0 && p.is_finite()) {
+        if !(PENALTY_RANGE[0]..=PENALTY_RANGE[1]).contains(&p) {
             bad(
                 "solver.penalty".into(),
-                format!("penalty scale must be positive or `auto` (value = {p})"),
+                format!(
+                    "penalty scale must be `auto` or lie in [{:e}, {:e}] (value = {}); it multiplies the \
+                     automatic penalty",
+                    PENALTY_RANGE[0],
+                    PENALTY_RANGE[1],
+                    shown(p)
+                ),
             );
         }
     }
@@ -300,7 +401,9 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             ),
         }
         for (k, v) in [("x", g.x), ("y", g.y)] {
-            if !(v[2] >= 2.0 && v[2].fract() == 0.0 && v[2] <= 10_000.0 && v[1] > v[0]) {
+            if let Some(why) = magnitude(v[0]).or_else(|| magnitude(v[1])) {
+                bad(format!("output.interior.{k}"), format!("start and end: {why}"));
+            } else if !(v[2] >= 2.0 && v[2].fract() == 0.0 && v[2] <= 10_000.0 && v[1] > v[0]) {
                 bad(
                     format!("output.interior.{k}"),
                     format!("give [start, end, points] with end > start and 2..10000 points (value = {v:?})"),

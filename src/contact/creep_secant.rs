@@ -18,9 +18,10 @@
 //! tolerance, and is judged by the common [`ConvergenceMeasure`].
 
 use super::direction::Block;
-use super::newton::{damped_newton, BlockOutcome};
+use super::newton::{damped_newton, BlockOutcome, FirstStep};
 use super::report::NewtonSettings;
 use super::residual::{scaled_residual, ConvergenceMeasure, State, System};
+use super::start::complete_slip_step;
 use super::ContactProblem;
 
 /// Largest number of creepage evaluations (each a warm-started Newton solve with ξ fixed).
@@ -42,7 +43,14 @@ fn evaluate(
     scale: f64,
 ) -> Evaluation {
     let z = State { creep, ..start.clone() };
-    let outcome = damped_newton(fixed, Block::Coupled, z, settings, &|g, z| scaled_residual(g, z, scale));
+    let outcome = damped_newton(
+        fixed,
+        Block::Coupled,
+        z,
+        settings,
+        &|g, z| scaled_residual(g, z, scale),
+        FirstStep::Searched,
+    );
     let load_error = load_error(fixed.pb, load, &outcome.state);
     Evaluation { outcome, load_error }
 }
@@ -101,8 +109,25 @@ pub(crate) fn solve(
             above = Some((x, f));
             kept_twice = Some(true);
         }
+        // The staircase of complete slip on this solution's tractions: exact for the flips of
+        // slipping nodes, off by how much their shear changes the others' slip (O(μ)).
+        let z = &current.outcome.state;
+        // Creepages closer than this to ξ count as ξ itself (round-off of the flip points).
+        let same = 1e-9 * x.abs().max(creep_scale);
+        let predicted = match complete_slip_step(&full, z) {
+            // The root lies on the ramp of the node that sticks here (or sits at its flip): F is
+            // linear along that ramp and the coupled Newton step (ξ free) follows it.
+            Some((p, k)) if is_stick(&full, z, k) || (p - x).abs() <= same => ramp_step(&full, z).map(|d| x + d),
+            other => other.map(|(p, _)| p),
+        }
+        .filter(|&p| (p - x).abs() > same);
         let next = match (below, above, previous) {
-            (Some((xl, fl)), Some((xh, fh)), _) => (xl * fh - xh * fl) / (fh - fl),
+            (Some((xl, fl)), Some((xh, fh)), _) => match predicted {
+                Some(p) if (p - xl) * (p - xh) < 0.0 => p,
+                _ => (xl * fh - xh * fl) / (fh - fl),
+            },
+            // Downhill: F decreases as ξ moves by σ (a larger ξ lowers every shear by σ μ p̂).
+            _ if predicted.is_some_and(|p| (p - x) * f * pb.flow_sign > 0.0) => predicted.unwrap_or(x),
             (_, _, Some((xp, fp))) if fp != f => {
                 // Secant, at most 4 × the last step until the root is bracketed.
                 let secant = x - f * (x - xp) / (f - fp);
@@ -132,4 +157,17 @@ pub(crate) fn solve(
         history,
         stalled: !converged,
     })
+}
+
+/// Whether node `k` sticks at `z` under `sys`: |q − r_t s| within its friction bound.
+fn is_stick(sys: &System, z: &State, k: usize) -> bool {
+    let bound = sys.pb.friction * sys.bound_pressure(z.pressure[k], z.gap[k]);
+    bound > 0.0 && (z.shear[k] - sys.rt * z.slip[k]).abs() <= bound
+}
+
+/// The creepage change of the coupled Newton step (ξ free) from `z`: on a ramp of F, where the
+/// stick and slip sets do not change, the step that zeroes F.
+fn ramp_step(sys: &System, z: &State) -> Option<f64> {
+    let g = sys.block_residual(z, Block::Coupled);
+    sys.newton_direction(z, &g, Block::Coupled).ok().map(|(dz, _)| dz.creep)
 }

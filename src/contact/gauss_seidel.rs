@@ -45,10 +45,13 @@
 //!
 //! **Stopping.** After each sweep the projection rows of the common measure are evaluated from
 //! the incrementally updated g and s (O(m)); when they pass, g and s are recomputed exactly and
-//! the full measure decides. g and s are also recomputed every [`RESYNC_SWEEPS`] sweeps.
+//! the full measure decides. g and s are also recomputed every [`RESYNC_SWEEPS`] sweeps. The
+//! sweeps also stop when they stall ([`super::stall::GAUSS_SEIDEL_STALL`]: no 10 % gain on the
+//! best residual in 500 sweeps).
 
 use super::report::{GaussSeidelSettings, IterationRecord, Method, SolveReport};
 use super::residual::{projection, scaled_residual, start_vector, ConvergenceMeasure, Formulation, State};
+use super::stall::{Progress, GAUSS_SEIDEL_STALL};
 use super::{ContactProblem, NormalControl, TangentialControl};
 
 /// Sweeps between exact recomputations of the gap and the slip (against round-off drift).
@@ -240,7 +243,8 @@ pub fn solve(
     let mut history = Vec::new();
     let mut residual = measure.of(&it.state());
     let mut converged = residual <= settings.tolerance;
-    while !converged && history.len() < settings.max_sweeps {
+    let mut progress = Progress::new(GAUSS_SEIDEL_STALL, residual);
+    while !converged && history.len() < settings.max_sweeps && !progress.stalled() {
         history.push(IterationRecord {
             residual,
             step: it.omega,
@@ -252,6 +256,14 @@ pub fn solve(
             it.resync();
         }
         residual = cheap(&it);
+        if history.len() % 100 == 0 {
+            log::info!(
+                target: crate::logging::PROGRESS,
+                "Gauss-Seidel sweep {}: scaled residual {residual:.2e} (tolerance {:.0e})",
+                history.len(),
+                settings.tolerance
+            );
+        }
         if !residual.is_finite() || residual > DIVERGED {
             break;
         }
@@ -260,6 +272,7 @@ pub fn solve(
             residual = measure.of(&it.state());
             converged = residual <= settings.tolerance;
         }
+        progress.record(residual);
     }
     it.resync();
     let z = it.state();

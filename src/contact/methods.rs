@@ -1,7 +1,8 @@
 //! The solution methods of the contact problem: one entry point that dispatches to them.
 //!
 //! Every method takes the same [`ContactProblem`] (same flexibilities, slip operator, controls),
-//! starts from the paper's start vector (Eq. 74: no tractions, δ0 = 0, ξ = 0 unless prescribed),
+//! starts from the paper's start vector (Eq. 74: no tractions, δ0 = 0, ξ = 0 unless prescribed;
+//! the default `newton` above μ = 1 from the normal start of [`super::restart`]),
 //! stops on the same [`ConvergenceMeasure`] (‖G_Φ‖∞/p_ref at the automatic penalties, scale 1)
 //! and returns the same [`State`] and [`SolveReport`] ([`super::report`]), so that their iteration
 //! counts, residuals and failures can be set side by side (`rollbem study stability`,
@@ -19,7 +20,7 @@ use super::residual::{ConvergenceMeasure, State};
 use super::{gauss_seidel, newton, norm_tang, restart, ContactProblem};
 use std::time::Instant;
 
-/// Solves the contact problem with the chosen method from the paper's start vector.
+/// Solves the contact problem with the chosen method (start and restarts as in the module docs).
 pub fn solve(pb: &ContactProblem, settings: &SolverSettings) -> (State, SolveReport) {
     let start = Instant::now();
     let measure = ConvergenceMeasure::new(pb);

@@ -11,16 +11,20 @@
 //!
 //! **Attempts.** [`solve`] is one attempt from the paper's start vector. An attempt stalls when it
 //! spends a budget of at least [`MIN_RESTART_BUDGET`] steps without converging, meets a singular
-//! Newton matrix, or when [`MAX_FAILED_SEARCHES`] line searches in a row find no decrease at all
+//! Newton matrix, when [`MAX_FAILED_SEARCHES`] line searches in a row find no decrease at all
 //! (the direction is no descent direction: a kink of G lies between the iterate and the
-//! solution). What the default method does then is the restart policy of [`super::restart`].
+//! solution), or when ‖G‖₂ has not improved by 10 % on its best for a number of steps
+//! ([`super::stall`]: 5 from the normal start, 50 otherwise, 100 without line search). What the
+//! default method does then is the start and restart policy of [`super::restart`].
 
 pub use super::direction::Block;
 use super::report::{IterationRecord, Method, NewtonSettings, SolveReport};
 use super::residual::{axpy, merit, scaled_residual, start_vector, ConvergenceMeasure, Formulation, State, System};
+use super::stall::{Progress, NEWTON_STALL, NORMAL_START_STALL, PLAIN_NEWTON_STALL};
 use super::ContactProblem;
 
 /// What a damped Newton loop on one block ended with.
+#[derive(Clone)]
 pub(crate) struct BlockOutcome {
     /// The last iterate.
     pub state: State,
@@ -43,22 +47,48 @@ pub const MIN_RESTART_BUDGET: usize = 10;
 /// Consecutive line searches without an Armijo decrease after which an attempt is stalled.
 pub const MAX_FAILED_SEARCHES: usize = 2;
 
+/// How an attempt's line search treats its first step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum FirstStep {
+    /// Armijo backtracking from the first step on (the paper's rule).
+    Searched,
+    /// The first step is taken in full, the line search applies from the second on: for a start
+    /// whose merit does not measure its distance from the solution (the normal start of
+    /// [`super::start`], where the friction rows vanish identically at q = s = 0). Such an
+    /// attempt is also given up sooner ([`NORMAL_START_STALL`]).
+    Full,
+}
+
 /// Generalized Newton with Armijo line search on `block` from `z`, stopping when
 /// `measure(G_block(z), z) ≤ settings.tolerance` or after `settings.max_iterations` steps, or when
-/// the Newton matrix is singular.
+/// the Newton matrix is singular, or when the attempt stalls ([`super::stall`]).
 pub(crate) fn damped_newton(
     sys: &System,
     block: Block,
     mut z: State,
     settings: &NewtonSettings,
     measure: &dyn Fn(&[f64], &State) -> f64,
+    first_step: FirstStep,
 ) -> BlockOutcome {
     let mut g = sys.block_residual(&z, block);
     let mut history = Vec::new();
     let mut converged = measure(&g, &z) <= settings.tolerance;
     let (mut singular, mut overflow) = (false, false);
     let mut failed_searches = 0;
-    while !converged && history.len() < settings.max_iterations && failed_searches < MAX_FAILED_SEARCHES {
+    // Progress is judged on the merit's norm ‖G‖₂, which the Armijo search decreases
+    // monotonically (the measure ‖G‖∞ may rise for a few steps of a converging run).
+    let norm = |g: &[f64]| (2.0 * merit(g)).sqrt();
+    let rule = match first_step {
+        _ if settings.max_backtracks == 0 => PLAIN_NEWTON_STALL,
+        FirstStep::Full => NORMAL_START_STALL,
+        FirstStep::Searched => NEWTON_STALL,
+    };
+    let mut progress = Progress::new(rule, norm(&g));
+    while !converged
+        && history.len() < settings.max_iterations
+        && failed_searches < MAX_FAILED_SEARCHES
+        && !progress.stalled()
+    {
         let residual = measure(&g, &z);
         let (dz, size) = match sys.newton_direction(&z, &g, block) {
             Ok(d) => d,
@@ -72,7 +102,8 @@ pub(crate) fn damped_newton(
         let mut trial = axpy(&z, alpha, &dz);
         let mut g_trial = sys.block_residual(&trial, block);
         let armijo = |g: &[f64], alpha: f64| merit(g) <= (1.0 - 2.0 * settings.armijo * alpha) * theta;
-        for _ in 0..settings.max_backtracks {
+        let searched = !(first_step == FirstStep::Full && history.is_empty());
+        for _ in 0..if searched { settings.max_backtracks } else { 0 } {
             if armijo(&g_trial, alpha) {
                 break;
             }
@@ -82,7 +113,7 @@ pub(crate) fn damped_newton(
         }
         // No decrease along the direction even at the shortest step: not a descent direction
         // (a kink of G between the iterate and the solution). Repeated, the iteration is stuck.
-        if settings.max_backtracks > 0 && !armijo(&g_trial, alpha) {
+        if searched && settings.max_backtracks > 0 && !armijo(&g_trial, alpha) {
             failed_searches += 1;
         } else {
             failed_searches = 0;
@@ -95,6 +126,12 @@ pub(crate) fn damped_newton(
         });
         // A full step without line search can overflow: keep the last finite iterate.
         let next = measure(&g_trial, &trial);
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "Newton step {}: scaled residual {next:.2e} (tolerance {:.0e}), step length {alpha}, system of {size}",
+            history.len(),
+            settings.tolerance
+        );
         if !next.is_finite() {
             overflow = true;
             break;
@@ -102,6 +139,12 @@ pub(crate) fn damped_newton(
         z = trial;
         g = g_trial;
         converged = next <= settings.tolerance;
+        if searched {
+            progress.record(norm(&g));
+        } else {
+            // Progress counts from where the full step landed.
+            progress = Progress::new(rule, norm(&g));
+        }
     }
     let residual = measure(&g, &z);
     let exhausted = history.len() >= settings.max_iterations.max(MIN_RESTART_BUDGET);
@@ -110,7 +153,8 @@ pub(crate) fn damped_newton(
         converged,
         residual,
         history,
-        stalled: !converged && (singular || overflow || exhausted || failed_searches >= MAX_FAILED_SEARCHES),
+        stalled: !converged
+            && (singular || overflow || exhausted || failed_searches >= MAX_FAILED_SEARCHES || progress.stalled()),
     }
 }
 
@@ -124,7 +168,14 @@ pub(crate) fn solve_block(pb: &ContactProblem, block: Block, z: State, settings:
     };
     let sys = System::new(pb, form, settings.penalty_scale);
     let scale = sys.traction_scale();
-    damped_newton(&sys, block, z, settings, &|g, z| scaled_residual(g, z, scale))
+    damped_newton(
+        &sys,
+        block,
+        z,
+        settings,
+        &|g, z| scaled_residual(g, z, scale),
+        FirstStep::Searched,
+    )
 }
 
 /// One attempt of the generalized Newton method on the coupled problem from `start`, with
@@ -132,28 +183,33 @@ pub(crate) fn solve_block(pb: &ContactProblem, block: Block, z: State, settings:
 /// common `measure`. Returns the outcome and the penalties [r_n, r_t] used.
 pub(crate) fn coupled_attempt(
     pb: &ContactProblem,
-    form: Formulation,
-    penalty_scale: f64,
+    (form, penalty_scale): (Formulation, f64),
     start: State,
+    first_step: FirstStep,
     settings: &NewtonSettings,
     measure: &ConvergenceMeasure,
 ) -> (BlockOutcome, [f64; 2]) {
     let sys = System::new(pb, form, penalty_scale);
-    let out = damped_newton(&sys, Block::Coupled, start, settings, &|g, z| {
-        measure.of_with(&sys, g, z)
-    });
+    let out = damped_newton(
+        &sys,
+        Block::Coupled,
+        start,
+        settings,
+        &|g, z| measure.of_with(&sys, g, z),
+        first_step,
+    );
     (out, [sys.rn, sys.rt])
 }
 
-/// The first attempt of a solve: from the paper's start vector with the formulation and penalty
-/// scale of `settings` ([`coupled_attempt`]).
-pub(crate) fn first_attempt(
+/// An attempt from the paper's start vector (Eq. 74) with the formulation and penalty scale of
+/// `settings` ([`coupled_attempt`]).
+pub(crate) fn paper_attempt(
     pb: &ContactProblem,
     settings: &NewtonSettings,
     measure: &ConvergenceMeasure,
 ) -> (BlockOutcome, [f64; 2]) {
-    let (form, scale) = (settings.formulation, settings.penalty_scale);
-    coupled_attempt(pb, form, scale, start_vector(pb), settings, measure)
+    let own = (settings.formulation, settings.penalty_scale);
+    coupled_attempt(pb, own, start_vector(pb), FirstStep::Searched, settings, measure)
 }
 
 /// The common report of a Newton run that ended with `out`, the last attempt having used the
@@ -186,6 +242,6 @@ pub(crate) fn report(
 /// One attempt of the generalized Newton method from the paper's start vector (line search as
 /// set by `settings.max_backtracks`), stopping on the common measure; no restart.
 pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
-    let (out, penalties) = first_attempt(pb, settings, measure);
+    let (out, penalties) = paper_attempt(pb, settings, measure);
     report(settings, out, penalties, measure, Vec::new())
 }

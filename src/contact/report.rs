@@ -171,8 +171,9 @@ pub struct SolveReport {
     pub traction_scale: f64,
     /// Wall-clock time of the solve [s].
     pub wall_time_s: f64,
-    /// Restarts the default method needed, in order (empty when the first Newton run converged):
-    /// `creep iteration`, `penalty/10`, `penalty/100`, `psi` (or `phi`),
+    /// Restarts the default method needed, in order (empty when the first attempt converged):
+    /// `creep iteration`, `normal start`, `psi` (or `phi`, the other formulation from the normal
+    /// start), `paper start`, `penalty/10`, `penalty/100`, `psi (paper start)` (or `phi …`),
     /// `gauss_seidel start (omega ω, N sweeps)` ([`super::restart`]).
     pub fallbacks: Vec<String>,
 }

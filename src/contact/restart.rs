@@ -1,27 +1,50 @@
-//! The restart policy of the default method (`newton`): what to do when a line-search Newton
-//! attempt stalls ([`super::newton`]). Every fallback is tried only while the previous one left
-//! the run stalled; a run that converges on the first try is untouched (every shipped case).
+//! The start and restart policy of the default method (`newton`): where the line-search Newton
+//! ([`super::newton`]) begins, and what to do when an attempt stalls. Every restart is tried only
+//! while the run so far is stalled; the history records every Newton step of every attempt
+//! (NORM steps included) and the report lists the restarts used (`fallbacks`).
 //!
-//! 1. **Creepage iteration** (`contact/creep_secant.rs`), when ξ is unknown: near complete slip the
-//!    Q equation is a staircase in ξ that the coupled step cannot follow.
-//! 2. **Smaller penalties**: from the start vector with the penalties divided by
-//!    [`RESTART_PENALTY_DIVISORS`] (10, then 100): the projections then change branch more
-//!    gradually.
-//! 3. **The other formulation** (Ψ for Φ and conversely), whose friction bound switches
-//!    elsewhere.
-//! 4. **A Gauss–Seidel start**: from the iterate of projected Gauss–Seidel sweeps
+//! **The first attempt** depends on the friction coefficient:
+//!
+//! * μ ≤ [`NORMAL_START_FRICTION`] (= 1): from the paper's start vector (Eq. 74). Its first step
+//!   bonds the whole grid and the next ones solve the normal and the tangential problem together:
+//!   5–7 steps on Carter's and Hertz's cases, where solving the normal problem first costs
+//!   about twice as many (docs/performance.md, "Solver cost at the friction limits").
+//! * μ > 1: from the normal start of [`super::start`] (NORM, then the coupled problem with the
+//!   first step taken in full). From the paper's start vector the friction bound μ p̂ holds the
+//!   bonded edge nodes in stick while the contact shrinks from the grid to its true size, one or
+//!   two nodes per step: the steps grow with μ and the grid (84 at μ = 10 on 321 elements, 530
+//!   with five restarts on 481), where the normal start needs 7–12.
+//!
+//! **The restarts**, in order (a start already used is skipped):
+//!
+//! 1. **Creepage iteration** ([`super::creep_secant`]), when ξ is unknown and μ ≤ 1: near complete
+//!    slip the Q equation is a staircase in ξ that the coupled step cannot follow.
+//! 2. **The normal start** with the case's formulation, then with the other one (Ψ for Φ and
+//!    conversely), whose friction bound switches elsewhere: at μ ≥ 200 an edge node with a
+//!    near-zero pressure can trap Φ's line search against the kink of its augmented bound
+//!    μ max(0, p − r_n g), which Ψ's bound μ max(0, p) does not have.
+//! 3. **Creepage iteration** when ξ is unknown and μ > 1.
+//! 4. **The paper's start vector**, then with the penalties divided by
+//!    [`RESTART_PENALTY_DIVISORS`] (10, then 100; the projections then change branch more
+//!    gradually), then with the other formulation.
+//! 5. **A Gauss–Seidel start**: from the iterate of projected Gauss–Seidel sweeps
 //!    ([`super::gauss_seidel`]) run to a scaled residual of [`FALLBACK_GS_TOLERANCE`] with the
 //!    relaxations [`FALLBACK_GS_RELAXATIONS`] (0.5, then 0.25), which find the contact and stick
 //!    sets without a merit function.
 //!
-//! Stalls are met at large μ with strong coupling β, where the contact shifts far from Hertz
-//! (docs/stability.md). The report lists the restarts used (`fallbacks`) and records every
-//! Newton step of every attempt in its history.
+//! Stalls are met near complete slip (μ → 0), at large μ with strong coupling β, where the
+//! contact shifts far from Hertz (docs/stability.md), and when the tolerance is below the
+//! round-off of the residual ([`super::stall`]).
 
-use super::newton::{self, coupled_attempt, first_attempt, BlockOutcome};
+use super::newton::{self, coupled_attempt, BlockOutcome, FirstStep};
 use super::report::{GaussSeidelSettings, NewtonSettings, SolveReport};
 use super::residual::{automatic_penalties, start_vector, ConvergenceMeasure, Formulation, State};
+use super::start::normal_start;
 use super::{creep_secant, gauss_seidel, ContactProblem};
+
+/// Friction coefficient above which the first attempt starts from the normal start instead of
+/// the paper's start vector (module docs).
+pub const NORMAL_START_FRICTION: f64 = 1.0;
 
 /// Penalty divisors of the restarts of a stalled line-search Newton.
 pub const RESTART_PENALTY_DIVISORS: [f64; 2] = [10.0, 100.0];
@@ -44,67 +67,153 @@ fn then(run: BlockOutcome, retry: BlockOutcome) -> BlockOutcome {
     }
 }
 
-/// The line-search Newton from the paper's start vector with the restarts of the module docs
-/// (none when `settings.max_backtracks` is 0: a run without line search is not globalized),
-/// stopping on the common measure.
-pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
-    let (mut out, mut penalties) = first_attempt(pb, settings, measure);
-    let mut fallbacks = Vec::new();
-    if settings.max_backtracks > 0 {
-        if out.stalled {
-            if let Some(retry) = creep_secant::solve(pb, settings, measure, &out.state) {
+/// Where an attempt starts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Start {
+    /// The paper's start vector with (formulation, penalty scale).
+    Paper(Formulation, f64),
+    /// The normal start with a formulation.
+    Normal(Formulation),
+}
+
+/// One restart of the chain of the module docs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Restart {
+    /// A new attempt from a start.
+    From(Start),
+    /// The creepage iteration from the last iterate.
+    CreepIteration,
+    /// A Gauss–Seidel start with relaxation ω.
+    GaussSeidel(f64),
+}
+
+/// The first attempt of the default method and its restarts, in order.
+fn chain(pb: &ContactProblem, settings: &NewtonSettings) -> (Start, Vec<Restart>) {
+    let own = settings.formulation;
+    let other = match own {
+        Formulation::Phi => Formulation::Psi,
+        Formulation::Psi => Formulation::Phi,
+    };
+    let scale = settings.penalty_scale;
+    let from = Restart::From;
+    let (first, mut restarts) = if pb.friction > NORMAL_START_FRICTION {
+        let then = [
+            from(Start::Normal(other)),
+            Restart::CreepIteration,
+            from(Start::Paper(own, scale)),
+        ];
+        (Start::Normal(own), then.to_vec())
+    } else {
+        let then = [
+            Restart::CreepIteration,
+            from(Start::Normal(own)),
+            from(Start::Normal(other)),
+        ];
+        (Start::Paper(own, scale), then.to_vec())
+    };
+    restarts.extend(RESTART_PENALTY_DIVISORS.map(|d| from(Start::Paper(own, scale / d))));
+    restarts.push(from(Start::Paper(other, scale)));
+    restarts.extend(FALLBACK_GS_RELAXATIONS.map(Restart::GaussSeidel));
+    (first, restarts)
+}
+
+/// Runs the attempts of one solve, sharing the NORM solve between the normal starts.
+struct Attempts<'a> {
+    pb: &'a ContactProblem,
+    settings: &'a NewtonSettings,
+    measure: &'a ConvergenceMeasure<'a>,
+    normal: Option<BlockOutcome>,
+}
+
+impl Attempts<'_> {
+    /// From the paper's start vector or the normal start: the outcome (NORM steps included the
+    /// first time the normal start is used) and the penalties [r_n, r_t] used.
+    fn attempt_from(&mut self, start: Start) -> (BlockOutcome, [f64; 2]) {
+        let (pb, settings, measure) = (self.pb, self.settings, self.measure);
+        match start {
+            Start::Normal(form) => {
+                let first = self.normal.is_none();
+                let norm = self.normal.get_or_insert_with(|| normal_start(pb, settings));
+                let own = (form, settings.penalty_scale);
+                let (out, used) = coupled_attempt(pb, own, norm.state.clone(), FirstStep::Full, settings, measure);
+                (if first { then(norm.clone(), out) } else { out }, used)
+            }
+            Start::Paper(form, scale) => coupled_attempt(
+                pb,
+                (form, scale),
+                start_vector(pb),
+                FirstStep::Searched,
+                settings,
+                measure,
+            ),
+        }
+    }
+
+    /// A restart after `last`: its outcome, penalties and name in the report, or `None` when it
+    /// does not apply (the creepage iteration with ξ prescribed, sweeps that diverged).
+    fn restart(&mut self, restart: Restart, last: &BlockOutcome) -> Option<(BlockOutcome, [f64; 2], String)> {
+        let (pb, settings, measure) = (self.pb, self.settings, self.measure);
+        let own = (settings.formulation, settings.penalty_scale);
+        let form = |f: Formulation| format!("{f:?}").to_lowercase();
+        match restart {
+            Restart::CreepIteration => {
+                let out = creep_secant::solve(pb, settings, measure, &last.state)?;
                 let (rn, rt) = automatic_penalties(pb, settings.penalty_scale);
-                penalties = [rn, rt];
-                fallbacks.push("creep iteration".to_string());
-                out = then(out, retry);
+                Some((out, [rn, rt], "creep iteration".into()))
+            }
+            Restart::GaussSeidel(omega) => {
+                let sweeps = GaussSeidelSettings {
+                    relaxation: omega,
+                    tolerance: FALLBACK_GS_TOLERANCE.max(settings.tolerance),
+                    max_sweeps: FALLBACK_GS_SWEEPS,
+                };
+                let (start, gs_report) = gauss_seidel::solve(pb, &sweeps, measure);
+                if !gs_report.residual.is_finite() {
+                    return None;
+                }
+                let (out, used) = coupled_attempt(pb, own, start, FirstStep::Searched, settings, measure);
+                let label = format!("gauss_seidel start (omega {omega}, {} sweeps)", gs_report.iterations);
+                Some((out, used, label))
+            }
+            Restart::From(start) => {
+                let label = match start {
+                    Start::Normal(f) if f == own.0 => "normal start".into(),
+                    Start::Normal(f) => form(f),
+                    Start::Paper(f, c) if f == own.0 && c == own.1 => "paper start".into(),
+                    Start::Paper(f, c) if f == own.0 => format!("penalty/{}", own.1 / c),
+                    Start::Paper(f, _) => format!("{} (paper start)", form(f)),
+                };
+                let (out, used) = self.attempt_from(start);
+                Some((out, used, label))
             }
         }
-        for divisor in RESTART_PENALTY_DIVISORS {
-            if !out.stalled {
-                break;
-            }
-            let scale = settings.penalty_scale / divisor;
-            let (retry, used) = coupled_attempt(pb, settings.formulation, scale, start_vector(pb), settings, measure);
+    }
+}
+
+/// The line-search Newton with the start and restarts of the module docs (none when
+/// `settings.max_backtracks` is 0: a run without line search is not globalized, and starts from
+/// the paper's start vector), stopping on the common measure.
+pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
+    if settings.max_backtracks == 0 {
+        return newton::solve(pb, settings, measure);
+    }
+    let (first, restarts) = chain(pb, settings);
+    let mut attempts = Attempts {
+        pb,
+        settings,
+        measure,
+        normal: None,
+    };
+    let (mut out, mut penalties) = attempts.attempt_from(first);
+    let mut fallbacks = Vec::new();
+    for restart in restarts {
+        if !out.stalled {
+            break;
+        }
+        if let Some((retry, used, label)) = attempts.restart(restart, &out) {
             penalties = used;
-            fallbacks.push(format!("penalty/{divisor}"));
+            fallbacks.push(label);
             out = then(out, retry);
-        }
-        if out.stalled {
-            let other = match settings.formulation {
-                Formulation::Phi => Formulation::Psi,
-                Formulation::Psi => Formulation::Phi,
-            };
-            let (retry, used) = coupled_attempt(pb, other, settings.penalty_scale, start_vector(pb), settings, measure);
-            penalties = used;
-            fallbacks.push(format!("{other:?}").to_lowercase());
-            out = then(out, retry);
-        }
-        for omega in FALLBACK_GS_RELAXATIONS {
-            if !out.stalled {
-                break;
-            }
-            let sweeps = GaussSeidelSettings {
-                relaxation: omega,
-                tolerance: FALLBACK_GS_TOLERANCE.max(settings.tolerance),
-                max_sweeps: FALLBACK_GS_SWEEPS,
-            };
-            let (start, gs_report) = gauss_seidel::solve(pb, &sweeps, measure);
-            if gs_report.residual.is_finite() {
-                let (retry, used) = coupled_attempt(
-                    pb,
-                    settings.formulation,
-                    settings.penalty_scale,
-                    start,
-                    settings,
-                    measure,
-                );
-                penalties = used;
-                fallbacks.push(format!(
-                    "gauss_seidel start (omega {omega}, {} sweeps)",
-                    gs_report.iterations
-                ));
-                out = then(out, retry);
-            }
         }
     }
     newton::report(settings, out, penalties, measure, fallbacks)

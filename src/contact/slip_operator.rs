@@ -9,8 +9,14 @@
 //! * [`SlipDerivative::SecondOrder`] — the derivative at x_i of the quadratic through x_i and its
 //!   two upstream neighbours, (−3w_i + 4w_up1 − w_up2)/(2 Δ) with Δ = x_up1 − x_i, O(h²): the
 //!   order of the quadratic traction elements. On the upstream end, where two upstream
-//!   neighbours do not exist, the first-order or (last node) downstream difference is used; that
-//!   node lies outside the contact on any sensible grid.
+//!   neighbours do not exist, the first-order difference is used.
+//!
+//! **The upstream end node.** It has no upstream neighbour, so its row of the contact problem is
+//! replaced: (D w)_end = w_end/h with no creepage term, which fixes the free datum of w (the
+//! material entering the grid carries no tangential displacement yet; paper Eq. 41 with e_ξ = 0)
+//! and is no slip at all. Its slip velocity, for the outputs, is the derivative of the same
+//! order taken downstream instead ([`SlipOperator::end_velocity_row`]): the end node lies
+//! outside the contact on any sensible grid, where w is smooth and either side gives ∂w/∂x.
 
 use crate::grid::ContactGrid;
 use faer::Mat;
@@ -37,6 +43,10 @@ pub struct SlipOperator {
     pub creep_weight: Vec<f64>,
     /// Index of the upstream end node (where material enters the grid).
     pub upstream_end: usize,
+    /// Stencil of ∂w/∂x at the upstream end node taken downstream, of the scheme's order
+    /// [1/length]: the end node's slip velocity s = σ(ξ + Σ c·w) for the outputs (its row in
+    /// `rows` is the datum equation, see the module docs). Empty on a one-node grid.
+    pub end_velocity_row: Vec<(usize, f64)>,
 }
 
 impl SlipOperator {
@@ -52,31 +62,35 @@ impl SlipOperator {
                 i.checked_sub(k)
             }
         };
+        // Neighbour k steps downstream of node i, if it exists.
+        let down = |i: usize, k: usize| -> Option<usize> {
+            if flow_sign < 0.0 {
+                i.checked_sub(k)
+            } else {
+                (i + k < m).then_some(i + k)
+            }
+        };
         let upstream_end = if flow_sign < 0.0 { m - 1 } else { 0 };
         let spacing = grid.node_spacing();
-        let two_point = |i: usize, j: usize| vec![(i, -1.0 / (x[j] - x[i])), (j, 1.0 / (x[j] - x[i]))];
+        let one_sided = |i: usize, n1: Option<usize>, n2: Option<usize>| match (scheme, n1, n2) {
+            (SlipDerivative::SecondOrder, Some(u1), Some(u2)) => three_point(x, i, u1, u2),
+            (_, Some(u1), _) => two_point(x, i, u1),
+            (_, None, _) => Vec::new(),
+        };
         let rows = (0..m)
-            .map(|i| match (scheme, up(i, 1), up(i, 2)) {
-                (SlipDerivative::SecondOrder, Some(u1), Some(u2)) => {
-                    // f'(x_i) of the quadratic through x_i, x_u1, x_u2 (any spacing):
-                    // with h1 = x_u1 − x_i, h2 = x_u2 − x_i; (−1.5, 2, −0.5)/h when uniform.
-                    let (h1, h2) = (x[u1] - x[i], x[u2] - x[i]);
-                    vec![
-                        (i, -(h1 + h2) / (h1 * h2)),
-                        (u1, h2 / (h1 * (h2 - h1))),
-                        (u2, -h1 / (h2 * (h2 - h1))),
-                    ]
-                }
-                (_, Some(u1), _) => two_point(i, u1),
-                (_, None, _) => vec![(i, 1.0 / spacing)],
+            .map(|i| match up(i, 1) {
+                Some(_) => one_sided(i, up(i, 1), up(i, 2)),
+                None => vec![(i, 1.0 / spacing)],
             })
             .collect();
         let creep_weight = (0..m).map(|i| if i == upstream_end { 0.0 } else { 1.0 }).collect();
+        let end_velocity_row = one_sided(upstream_end, down(upstream_end, 1), down(upstream_end, 2));
         Self {
             scheme,
             rows,
             creep_weight,
             upstream_end,
+            end_velocity_row,
         }
     }
 
@@ -96,6 +110,22 @@ impl SlipOperator {
     }
 }
 
+/// f'(x_i) of the line through x_i and x_j: (w_j − w_i)/(x_j − x_i).
+fn two_point(x: &[f64], i: usize, j: usize) -> Vec<(usize, f64)> {
+    vec![(i, -1.0 / (x[j] - x[i])), (j, 1.0 / (x[j] - x[i]))]
+}
+
+/// f'(x_i) of the quadratic through x_i, x_j, x_k (any spacing): with h1 = x_j − x_i,
+/// h2 = x_k − x_i; (−1.5, 2, −0.5)/h when uniform.
+fn three_point(x: &[f64], i: usize, j: usize, k: usize) -> Vec<(usize, f64)> {
+    let (h1, h2) = (x[j] - x[i], x[k] - x[i]);
+    vec![
+        (i, -(h1 + h2) / (h1 * h2)),
+        (j, h2 / (h1 * (h2 - h1))),
+        (k, -h1 / (h2 * (h2 - h1))),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -109,6 +139,16 @@ mod tests {
         for flow in [-1.0, 1.0] {
             let d2 = SlipOperator::new(&g, SlipDerivative::SecondOrder, flow).apply(&quad);
             let d1 = SlipOperator::new(&g, SlipDerivative::FirstOrder, flow).apply(&line);
+            // The end node's velocity row, taken downstream, is exact to the same order.
+            let end = |scheme, w: &[f64]| {
+                let op = SlipOperator::new(&g, scheme, flow);
+                let d: f64 = op.end_velocity_row.iter().map(|&(j, c)| c * w[j]).sum();
+                (d, g.nodes[op.upstream_end])
+            };
+            let (d, x_end) = end(SlipDerivative::SecondOrder, &quad);
+            assert!((d - (2.0 - 6.0 * x_end)).abs() < 1e-11, "end node: {d}");
+            let (d, _) = end(SlipDerivative::FirstOrder, &line);
+            assert!((d - 2.0).abs() < 1e-12, "end node: {d}");
             for (i, x) in g.nodes.iter().enumerate() {
                 let op = SlipOperator::new(&g, SlipDerivative::FirstOrder, flow);
                 if i == op.upstream_end {

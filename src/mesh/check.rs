@@ -5,8 +5,13 @@
 //! lies on the left of every element (outer contour counter-clockwise, holes clockwise; normals
 //! out of the material, see [`crate::mesh`]). Holes are told from outer contours by nesting:
 //! a loop inside an odd number of other loops is a hole.
+//!
+//! A mesh must describe one body: loops that do not cross each other or themselves (checked on
+//! the polygon through every node, mid nodes included), exactly one outer contour, and holes
+//! directly inside it. A bow-tie outline, a hole that crosses the outer contour or a loop outside
+//! the body is refused with the groups concerned named.
 
-use super::{BoundaryMesh, MeshError};
+use super::{BoundaryMesh, ElementDefect, MeshError};
 use crate::quadrature::gauss_legendre;
 
 /// One closed loop of the boundary.
@@ -34,6 +39,7 @@ pub fn validate_and_orient(mesh: &mut BoundaryMesh) -> Result<Vec<String>, MeshE
     check_elements(mesh)?;
     let traced = trace_loops(mesh)?;
     let loops = loop_geometry(mesh, &traced);
+    check_one_simple_body(mesh, &traced, &loops)?;
     let mut notices = Vec::new();
     for (k, (tl, lp)) in traced.iter().zip(&loops).enumerate() {
         // Outer contours must run counter-clockwise (positive area), holes clockwise.
@@ -73,7 +79,9 @@ pub fn validate_and_orient(mesh: &mut BoundaryMesh) -> Result<Vec<String>, MeshE
 pub fn boundary_loops(mesh: &BoundaryMesh) -> Result<Vec<BoundaryLoop>, MeshError> {
     check_elements(mesh)?;
     let traced = trace_loops(mesh)?;
-    Ok(loop_geometry(mesh, &traced))
+    let loops = loop_geometry(mesh, &traced);
+    check_one_simple_body(mesh, &traced, &loops)?;
+    Ok(loops)
 }
 
 /// A traced loop: elements in walking order and whether each is walked against its node order.
@@ -109,19 +117,20 @@ fn check_elements(mesh: &BoundaryMesh) -> Result<(), MeshError> {
                 count: mesh.nodes.len(),
             });
         }
-        let group = mesh.groups[el.group].name.clone();
         let [x0, y0] = mesh.nodes[el.nodes[0]];
+        let bad = |defect| MeshError::BadElement {
+            path: path(),
+            group: mesh.groups[el.group].name.clone(),
+            element: i,
+            x: x0,
+            y: y0,
+            defect,
+        };
         let [x1, y1] = mesh.nodes[el.nodes[1]];
         let chord = [x1 - x0, y1 - y0];
         let length2 = chord[0] * chord[0] + chord[1] * chord[1];
         if length2.sqrt() <= tolerance {
-            return Err(MeshError::ZeroLengthElement {
-                path: path(),
-                group,
-                element: i,
-                x: x0,
-                y: y0,
-            });
+            return Err(bad(ElementDefect::ZeroLength));
         }
         if el.nodes.len() == 3 {
             // The Jacobian along the chord is |c|²(1/2 + ξ(1 − 2s)), with s the mid node's
@@ -129,13 +138,7 @@ fn check_elements(mesh: &BoundaryMesh) -> Result<(), MeshError> {
             let [xm, ym] = mesh.nodes[el.nodes[2]];
             let s = ((xm - x0) * chord[0] + (ym - y0) * chord[1]) / length2;
             if !(0.25 < s && s < 0.75) {
-                return Err(MeshError::DistortedElement {
-                    path: path(),
-                    group,
-                    element: i,
-                    x: x0,
-                    y: y0,
-                });
+                return Err(bad(ElementDefect::Distorted));
             }
         }
     }
@@ -209,6 +212,132 @@ fn trace_loops(mesh: &BoundaryMesh) -> Result<Vec<TracedLoop>, MeshError> {
         loops.push(traced);
     }
     Ok(loops)
+}
+
+/// Names of the groups of a loop's elements, sorted, without repeats.
+fn loop_groups(mesh: &BoundaryMesh, elements: &[usize]) -> String {
+    let mut groups: Vec<&str> = elements
+        .iter()
+        .map(|&e| mesh.groups[mesh.elements[e].group].name.as_str())
+        .collect();
+    groups.sort_unstable();
+    groups.dedup();
+    groups.join(", ")
+}
+
+/// Refuses crossing loops, a second outer contour and islands: the mesh must bound one body.
+fn check_one_simple_body(mesh: &BoundaryMesh, traced: &[TracedLoop], loops: &[BoundaryLoop]) -> Result<(), MeshError> {
+    check_no_crossings(mesh, traced)?;
+    let outer = (0..loops.len())
+        .filter(|&k| loops[k].depth == 0)
+        .max_by(|&i, &j| loops[i].signed_area.abs().total_cmp(&loops[j].signed_area.abs()));
+    for (k, lp) in loops.iter().enumerate() {
+        if lp.depth == 1 || Some(k) == outer {
+            continue;
+        }
+        let [x, y] = polygon(mesh, &traced[k])[0];
+        return Err(MeshError::LoopOutsideBody {
+            path: mesh.source.clone(),
+            groups: loop_groups(mesh, &lp.elements),
+            outer: outer.map_or_else(String::new, |o| loop_groups(mesh, &loops[o].elements)),
+            x,
+            y,
+            island: lp.depth > 1,
+        });
+    }
+    Ok(())
+}
+
+/// One straight piece of a loop's polygon (end node to mid node to end node).
+struct Segment {
+    a: [f64; 2],
+    b: [f64; 2],
+    /// Loop index and position of the segment along its polygon.
+    at: (usize, usize),
+    /// Element the segment belongs to.
+    element: usize,
+}
+
+/// Refuses any two non-adjacent segments of the loops' polygons that touch or cross: a sweep in
+/// x over the segments sorted by their left end, so only those overlapping in x are compared.
+fn check_no_crossings(mesh: &BoundaryMesh, traced: &[TracedLoop]) -> Result<(), MeshError> {
+    let mut segments = Vec::new();
+    let mut lengths = Vec::with_capacity(traced.len());
+    for (k, t) in traced.iter().enumerate() {
+        let points = polygon(mesh, t);
+        let per_element = if points.len() == 2 * t.elements.len() { 2 } else { 1 };
+        for i in 0..points.len() {
+            segments.push(Segment {
+                a: points[i],
+                b: points[(i + 1) % points.len()],
+                at: (k, i),
+                element: t.elements[i / per_element],
+            });
+        }
+        lengths.push(points.len());
+    }
+    let left = |s: &Segment| s.a[0].min(s.b[0]);
+    let right = |s: &Segment| s.a[0].max(s.b[0]);
+    segments.sort_by(|s, t| left(s).total_cmp(&left(t)));
+    let adjacent = |s: &Segment, t: &Segment| {
+        let ((ks, is), (kt, it)) = (s.at, t.at);
+        let n = lengths[ks];
+        ks == kt && (is.abs_diff(it) <= 1 || is.abs_diff(it) == n - 1)
+    };
+    for (i, s) in segments.iter().enumerate() {
+        for t in segments[i + 1..].iter().take_while(|t| left(t) <= right(s)) {
+            if adjacent(s, t) || !segments_meet(s.a, s.b, t.a, t.b) {
+                continue;
+            }
+            let group = |e: usize| mesh.groups[mesh.elements[e].group].name.clone();
+            let (x, y) = crossing_point(s, t);
+            return Err(MeshError::CrossingBoundary {
+                path: mesh.source.clone(),
+                first: group(s.element),
+                second: group(t.element),
+                x,
+                y,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Where two meeting segments meet (the intersection of their lines, or a shared point when
+/// they are parallel), for the message.
+fn crossing_point(s: &Segment, t: &Segment) -> (f64, f64) {
+    let d1 = [s.b[0] - s.a[0], s.b[1] - s.a[1]];
+    let d2 = [t.b[0] - t.a[0], t.b[1] - t.a[1]];
+    let den = d1[0] * d2[1] - d1[1] * d2[0];
+    if den != 0.0 {
+        let u = ((t.a[0] - s.a[0]) * d2[1] - (t.a[1] - s.a[1]) * d2[0]) / den;
+        let u = u.clamp(0.0, 1.0);
+        (s.a[0] + u * d1[0], s.a[1] + u * d1[1])
+    } else {
+        (t.a[0], t.a[1])
+    }
+}
+
+/// Whether the closed segments pq and rs share a point (orientation tests; a touch counts).
+fn segments_meet(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
+    let orient = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+        let v = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        if v > 0.0 {
+            1
+        } else if v < 0.0 {
+            -1
+        } else {
+            0
+        }
+    };
+    let on = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+        c[0] >= a[0].min(b[0]) && c[0] <= a[0].max(b[0]) && c[1] >= a[1].min(b[1]) && c[1] <= a[1].max(b[1])
+    };
+    let (o1, o2, o3, o4) = (orient(p, q, r), orient(p, q, s), orient(r, s, p), orient(r, s, q));
+    if o1 != o2 && o3 != o4 {
+        return true;
+    }
+    (o1 == 0 && on(p, q, r)) || (o2 == 0 && on(p, q, s)) || (o3 == 0 && on(r, s, p)) || (o4 == 0 && on(r, s, q))
 }
 
 /// Area and nesting depth of every traced loop.
@@ -362,13 +491,33 @@ mod tests {
             group: 0,
         });
         let err = validate_and_orient(&mut mesh).unwrap_err();
-        assert!(matches!(err, MeshError::ZeroLengthElement { element: 4, .. }), "{err}");
+        assert!(
+            matches!(
+                err,
+                MeshError::BadElement {
+                    element: 4,
+                    defect: ElementDefect::ZeroLength,
+                    ..
+                }
+            ),
+            "{err}"
+        );
 
         let mut mesh = square([[0, 1], [1, 2], [2, 3], [3, 0]]);
         mesh.nodes.push([0.9, 0.0]);
         mesh.elements[0].nodes.push(4);
         let err = validate_and_orient(&mut mesh).unwrap_err();
-        assert!(matches!(err, MeshError::DistortedElement { element: 0, .. }), "{err}");
+        assert!(
+            matches!(
+                err,
+                MeshError::BadElement {
+                    element: 0,
+                    defect: ElementDefect::Distorted,
+                    ..
+                }
+            ),
+            "{err}"
+        );
     }
 
     #[test]

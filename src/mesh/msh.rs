@@ -5,10 +5,12 @@
 //! attached to their physical curve group through their curve entity's physical tags.
 //! Point and surface elements are ignored: the BEM needs the boundary only.
 //!
-//! **Node tags.** When a file's node tags are contiguous, `mshio` does not keep them, and the
-//! tags are taken as consecutive in file order starting at the minimum tag. Gmsh always writes
-//! contiguous tags in this order; a hand-edited file that breaks the assumption shows up as an
-//! open or branching loop in [`super::check::validate_and_orient`].
+//! **Node tags.** `mshio` keeps a block's node tags only when the file's tags are sparse, and
+//! then in a map that silently merges duplicates; with contiguous tags it assumes file order. A
+//! file whose tags are contiguous but not in file order (a relabelled mesh) would then connect
+//! the elements to the wrong nodes. So the `$Nodes` section is read here again ([`node_records`]),
+//! every node by its own tag: duplicate tags and non-finite coordinates are refused, and an
+//! element that names a tag the section does not define is refused too.
 //!
 //! The result is the raw mesh, in file order; call [`super::validate_and_orient`] (or use
 //! [`super::load`]) before using it.
@@ -21,7 +23,7 @@ use std::path::Path;
 /// Reads the MSH 4.1 file at `path` (ASCII or binary) into a raw [`BoundaryMesh`].
 pub fn read_msh(path: &Path) -> Result<BoundaryMesh, MeshError> {
     let label = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| {
+    let io_error = |source: std::io::Error| {
         if source.kind() == std::io::ErrorKind::NotFound {
             MeshError::NotFound { path: label.clone() }
         } else {
@@ -30,14 +32,29 @@ pub fn read_msh(path: &Path) -> Result<BoundaryMesh, MeshError> {
                 source,
             }
         }
-    })?;
+    };
+    // Checked before opening: reading a FIFO would block for ever.
+    if let Some(kind) = crate::limits::input_file_problem(path, crate::limits::MAX_MESH_BYTES).map_err(io_error)? {
+        return Err(MeshError::NotRegularFile { path: label, kind });
+    }
+    let bytes = std::fs::read(path).map_err(io_error)?;
     parse_msh_bytes(&bytes, &label)
 }
 
 /// Parses the bytes of an MSH 4.1 file (ASCII or binary); `source` labels the messages.
 pub fn parse_msh_bytes(bytes: &[u8], source: &str) -> Result<BoundaryMesh, MeshError> {
-    check_version(bytes, source)?;
+    let format = check_version(bytes, source)?;
     let names = physical_names(bytes);
+    // Checked before `mshio` sees them: it computes `count - 1` in unsigned arithmetic, which
+    // overflows on an empty section.
+    check_section_counts(bytes, format).map_err(|message| MeshError::Parse {
+        path: source.to_string(),
+        message,
+    })?;
+    let records = node_records(bytes, format).map_err(|message| MeshError::Parse {
+        path: source.to_string(),
+        message: format!("$Nodes section: {message}"),
+    })?;
     let msh = parse_with_mshio(bytes, source)?;
 
     // Physical tags of every curve entity.
@@ -53,27 +70,22 @@ pub fn parse_msh_bytes(bytes: &[u8], source: &str) -> Result<BoundaryMesh, MeshE
         })
         .unwrap_or_default();
 
-    // All node coordinates by tag.
-    let mut coordinates: HashMap<u64, [f64; 3]> = HashMap::new();
-    if let Some(nodes) = &msh.data.nodes {
-        let mut dense_tag = nodes.min_node_tag;
-        for block in &nodes.node_blocks {
-            match &block.node_tags {
-                Some(tags) => {
-                    for (&tag, &i) in tags {
-                        let n = &block.nodes[i];
-                        coordinates.insert(tag, [n.x, n.y, n.z]);
-                    }
-                }
-                None => {
-                    for n in &block.nodes {
-                        coordinates.insert(dense_tag, [n.x, n.y, n.z]);
-                        dense_tag += 1;
-                    }
-                }
-            }
-        }
+    // Both readers must have seen the same section.
+    let counted: usize = msh
+        .data
+        .nodes
+        .as_ref()
+        .map_or(0, |n| n.node_blocks.iter().map(|b| b.nodes.len()).sum());
+    if counted != records.len() {
+        return Err(MeshError::Parse {
+            path: source.to_string(),
+            message: format!(
+                "the $Nodes section holds {} nodes by one reading and {counted} by another; the file is corrupt",
+                records.len()
+            ),
+        });
     }
+    let coordinates = coordinates_by_tag(&records, source)?;
 
     let mut builder = MeshBuilder::default();
     if let Some(elements) = &msh.data.elements {
@@ -126,6 +138,237 @@ pub fn parse_msh_bytes(bytes: &[u8], source: &str) -> Result<BoundaryMesh, MeshE
         });
     }
     builder.finish(source)
+}
+
+/// Node coordinates by tag; a tag given twice or a coordinate that is not finite is refused.
+fn coordinates_by_tag(records: &[(u64, [f64; 3])], source: &str) -> Result<HashMap<u64, [f64; 3]>, MeshError> {
+    let mut coordinates = HashMap::with_capacity(records.len());
+    for &(tag, xyz) in records {
+        if xyz.iter().any(|v| !v.is_finite()) {
+            return Err(MeshError::NonFiniteNode {
+                path: source.to_string(),
+                node: tag,
+                xyz,
+            });
+        }
+        if let Some(first) = coordinates.insert(tag, xyz) {
+            return Err(MeshError::DuplicateNode {
+                path: source.to_string(),
+                node: tag,
+                first,
+                second: xyz,
+            });
+        }
+    }
+    Ok(coordinates)
+}
+
+/// How the numbers of a file are stored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Format {
+    /// Text.
+    Ascii,
+    /// Binary, little-endian if `true`.
+    Binary {
+        /// Byte order of the numbers.
+        little_endian: bool,
+    },
+}
+
+/// A cursor over the numbers of a section, ASCII tokens or binary values alike. Never allocates
+/// from a count read in the file: every count is checked against the bytes left.
+struct Numbers<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+    format: Format,
+}
+
+impl<'a> Numbers<'a> {
+    fn bytes_left(&self) -> usize {
+        self.bytes.len().saturating_sub(self.pos)
+    }
+
+    /// The next whitespace-separated ASCII token.
+    fn token(&mut self) -> Result<&'a str, String> {
+        let rest = &self.bytes[self.pos.min(self.bytes.len())..];
+        let start = rest
+            .iter()
+            .position(|b| !b.is_ascii_whitespace())
+            .ok_or("the section ends early")?;
+        let len = rest[start..]
+            .iter()
+            .position(|b| b.is_ascii_whitespace())
+            .unwrap_or(rest.len() - start);
+        self.pos += start + len;
+        std::str::from_utf8(&rest[start..start + len]).map_err(|_| "a number is not text".to_string())
+    }
+
+    fn raw<const N: usize>(&mut self) -> Result<[u8; N], String> {
+        let end = self.pos.checked_add(N).filter(|&e| e <= self.bytes.len());
+        let end = end.ok_or("the section ends early")?;
+        let mut out = [0; N];
+        out.copy_from_slice(&self.bytes[self.pos..end]);
+        self.pos = end;
+        Ok(out)
+    }
+
+    /// One number: a token in ASCII files, `N` bytes in the file's byte order in binary ones;
+    /// `kind` says what the token must be.
+    fn number<T: std::str::FromStr, const N: usize>(
+        &mut self,
+        what: &str,
+        kind: &str,
+        from_le: fn([u8; N]) -> T,
+        from_be: fn([u8; N]) -> T,
+    ) -> Result<T, String> {
+        match self.format {
+            Format::Ascii => {
+                let t = self.token()?;
+                t.parse().map_err(|_| format!("{what}: `{t}` is not {kind}"))
+            }
+            Format::Binary { little_endian } => {
+                let b = self.raw::<N>()?;
+                Ok(if little_endian { from_le(b) } else { from_be(b) })
+            }
+        }
+    }
+
+    /// A `size_t` (8 bytes in binary files).
+    fn size(&mut self, what: &str) -> Result<u64, String> {
+        self.number(what, "a non-negative integer", u64::from_le_bytes, u64::from_be_bytes)
+    }
+
+    /// An `int` (4 bytes in binary files).
+    fn int(&mut self, what: &str) -> Result<i32, String> {
+        self.number(what, "an integer", i32::from_le_bytes, i32::from_be_bytes)
+    }
+
+    /// A `double`.
+    fn double(&mut self, what: &str) -> Result<f64, String> {
+        self.number(what, "a number", f64::from_le_bytes, f64::from_be_bytes)
+    }
+
+    /// A count of items of at least `item_bytes` bytes each, refused if the rest of the file
+    /// cannot hold that many.
+    fn count(&mut self, what: &str, item_bytes: usize) -> Result<usize, String> {
+        let n = self.size(what)?;
+        let fits = usize::try_from(n)
+            .ok()
+            .filter(|&n| n.saturating_mul(item_bytes) <= self.bytes_left());
+        fits.ok_or_else(|| format!("{what} = {n}, more than the rest of the file can hold"))
+    }
+}
+
+/// Start of the body of section `name`: just after its `$Name` line, which opens a line.
+fn section_body(bytes: &[u8], name: &str) -> Option<usize> {
+    let key = name.as_bytes();
+    let mut from = 0;
+    while let Some(p) = bytes[from..].windows(key.len()).position(|w| w == key) {
+        let at = from + p;
+        let after = &bytes[at + key.len()..];
+        let line_start = at == 0 || matches!(bytes[at - 1], b'\n' | b'\r' | b' ' | b'\t');
+        let eol = if after.starts_with(b"\r\n") {
+            Some(2)
+        } else if after.starts_with(b"\n") {
+            Some(1)
+        } else {
+            None
+        };
+        if let (true, Some(eol)) = (line_start, eol) {
+            return Some(at + key.len() + eol);
+        }
+        from = at + 1;
+    }
+    None
+}
+
+/// Every node of the `$Nodes` section as (tag, [x, y, z]), in file order, with the tags as
+/// written (MSH 4.1: a header `numEntityBlocks numNodes minNodeTag maxNodeTag`, then per block
+/// `entityDim entityTag parametric numNodesInBlock`, its tags, then its coordinates).
+/// Parametric coordinates (one per dimension of the entity) are skipped.
+pub(crate) fn node_records(bytes: &[u8], format: Format) -> Result<Vec<(u64, [f64; 3])>, String> {
+    let Some(pos) = section_body(bytes, "$Nodes") else {
+        return Ok(Vec::new());
+    };
+    let mut r = Numbers { bytes, pos, format };
+    // Smallest size of a block header and of a node (tag and three coordinates) in either format.
+    let (block_bytes, node_bytes) = match format {
+        Format::Ascii => (8, 8),
+        Format::Binary { .. } => (20, 32),
+    };
+    let blocks = r.count("number of node blocks", block_bytes)?;
+    let total = r.count("number of nodes", 0)?;
+    if total == 0 {
+        return Err("the header announces no nodes".into());
+    }
+    let _min_tag = r.size("minimum node tag")?;
+    let _max_tag = r.size("maximum node tag")?;
+    let mut records = Vec::new();
+    for b in 0..blocks {
+        let dim = r.int("entity dimension")?;
+        let _entity = r.int("entity tag")?;
+        let parametric = r.int("parametric flag")?;
+        let n = r.count("number of nodes in block", node_bytes)?;
+        let parameters = match (parametric, dim) {
+            (0, _) => 0,
+            (1, d @ 0..=3) => d as usize,
+            _ => {
+                return Err(format!(
+                    "block {}: parametric flag {parametric} on dimension {dim}",
+                    b + 1
+                ))
+            }
+        };
+        let mut tags = Vec::with_capacity(n);
+        for _ in 0..n {
+            let tag = r.size("node tag")?;
+            if tag == 0 {
+                return Err(format!("block {}: node tag 0 (tags start at 1)", b + 1));
+            }
+            tags.push(tag);
+        }
+        for tag in tags {
+            let xyz = [r.double("x")?, r.double("y")?, r.double("z")?];
+            for _ in 0..parameters {
+                r.double("parametric coordinate")?;
+            }
+            records.push((tag, xyz));
+        }
+    }
+    if records.len() != total {
+        return Err(format!(
+            "the header announces {total} nodes but the blocks hold {}",
+            records.len()
+        ));
+    }
+    Ok(records)
+}
+
+/// Every `$Nodes` and `$Elements` header (`numEntityBlocks count minTag maxTag`) must announce
+/// at least one node or element. All of them: `mshio` parses every section it meets (and only
+/// then refuses a second one), wherever the previous section ended.
+fn check_section_counts(bytes: &[u8], format: Format) -> Result<(), String> {
+    for (name, what) in [("$Nodes", "nodes"), ("$Elements", "elements")] {
+        let key = name.as_bytes();
+        for (at, _) in bytes.windows(key.len()).enumerate().filter(|(_, w)| *w == key) {
+            let after = &bytes[at + key.len()..];
+            let eol = match after {
+                [b'\r', b'\n', ..] => 2,
+                [b'\n', ..] => 1,
+                _ => continue,
+            };
+            let mut r = Numbers {
+                bytes,
+                pos: at + key.len() + eol,
+                format,
+            };
+            // A header that cannot be read is left to the parsers, which say where.
+            if let (Ok(_), Ok(0)) = (r.size("blocks"), r.size(what)) {
+                return Err(format!("{name} section: the header announces no {what}"));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Accumulates the boundary part of the file: only nodes used by curve elements are kept.
@@ -217,8 +460,9 @@ fn curve_group(
     }
 }
 
-/// Checks the `$MeshFormat` header: version 4.1, ASCII or binary.
-fn check_version(bytes: &[u8], source: &str) -> Result<(), MeshError> {
+/// Checks the `$MeshFormat` header (version 4.1, ASCII or binary with 8-byte `size_t`) and
+/// returns how the numbers are stored.
+fn check_version(bytes: &[u8], source: &str) -> Result<Format, MeshError> {
     let not_msh = |found: String| MeshError::NotMsh4 {
         path: source.to_string(),
         found,
@@ -239,11 +483,44 @@ fn check_version(bytes: &[u8], source: &str) -> Result<(), MeshError> {
         .take(80)
         .map(|&b| b as char)
         .collect();
-    let version = line.split_whitespace().next().unwrap_or("");
+    let mut words = line.split_whitespace();
+    let version = words.next().unwrap_or("");
     if version.parse::<f64>().ok() != Some(4.1) {
         return Err(not_msh(format!("MSH version {version:?}")));
     }
-    Ok(())
+    let parse_error = |message: String| MeshError::Parse {
+        path: source.to_string(),
+        message,
+    };
+    let (file_type, data_size) = (words.next().unwrap_or(""), words.next().unwrap_or(""));
+    if data_size != "8" {
+        return Err(parse_error(format!(
+            "$MeshFormat gives a data size of {data_size:?}; rollbem reads Gmsh's default 8-byte size_t"
+        )));
+    }
+    match file_type {
+        "0" => Ok(Format::Ascii),
+        "1" => {
+            // The integer 1, written in the file's byte order, follows the header line.
+            let version_line = rest.iter().position(|&b| b == b'\n').map(|p| p + 1);
+            let line_end = version_line
+                .and_then(|v| rest[v..].iter().position(|&b| b == b'\n').map(|p| v + p))
+                .ok_or_else(|| parse_error("$MeshFormat is cut short".into()))?;
+            let one = rest
+                .get(line_end + 1..line_end + 5)
+                .ok_or_else(|| parse_error("$MeshFormat is cut short".into()))?;
+            match one {
+                [1, 0, 0, 0] => Ok(Format::Binary { little_endian: true }),
+                [0, 0, 0, 1] => Ok(Format::Binary { little_endian: false }),
+                _ => Err(parse_error(
+                    "the byte-order mark of the binary $MeshFormat is not the integer 1".into(),
+                )),
+            }
+        }
+        other => Err(parse_error(format!(
+            "$MeshFormat gives file type {other:?}; expected 0 (ASCII) or 1 (binary)"
+        ))),
+    }
 }
 
 /// Parses with `mshio`, turning its errors (and the panics it still has for unsupported binary

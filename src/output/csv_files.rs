@@ -37,19 +37,19 @@ pub fn write_csv(path: &Path, sol: &ContactSolution, pb: &ContactProblem) -> Res
             .slip_strain
             .as_ref()
             .filter(|s| s[i].is_finite())
-            .map_or(String::new(), |s| fmt(s[i]));
+            .map_or(String::new(), |s| number(s[i]));
         w.write_record([
-            fmt(sol.x[i]),
-            fmt(sol.pressure[i]),
-            fmt(sol.shear[i]),
-            fmt(sol.gap[i]),
-            fmt(sol.slip[i]),
+            number(sol.x[i]),
+            number(sol.pressure[i]),
+            number(sol.shear[i]),
+            number(sol.gap[i]),
+            number(sol.slip[i]),
             hbem,
             sol.state[i].name().to_string(),
-            fmt(disp.normal_a[i]),
-            fmt(disp.tangential_a[i]),
-            fmt(disp.normal_b[i]),
-            fmt(disp.tangential_b[i]),
+            number(disp.normal_a[i]),
+            number(disp.tangential_a[i]),
+            number(disp.normal_b[i]),
+            number(disp.tangential_b[i]),
         ])
         .map_err(io)?;
     }
@@ -88,7 +88,7 @@ pub fn write_interior_csv(path: &Path, f: &InteriorField) -> Result<(), Error> {
         let (vm, ms) = crate::interior::invariants(s);
         let u = f.displacement[k];
         let mut row: Vec<String> = [p[0], p[1], s[0], s[1], s[2], s[3], vm, ms, u[0], u[1]]
-            .map(fmt)
+            .map(number)
             .to_vec();
         row.push(f.status[k].name().to_string());
         w.write_record(&row).map_err(|e| io(&e))?;
@@ -96,7 +96,44 @@ pub fn write_interior_csv(path: &Path, f: &InteriorField) -> Result<(), Error> {
     w.flush().map_err(|e| io(&e))
 }
 
-/// Full-precision, round-trippable number formatting.
-fn fmt(v: f64) -> String {
-    format!("{v:e}")
+/// A number as the CSV files write it: the shortest digits that read back to the same f64
+/// (Rust's formatting of f64 is shortest round-trip), plainly written where that is short
+/// (`470.805575`, `0.0123`) and with an exponent otherwise (`1.25e-7`, `3e20`), as Python's
+/// `repr` does; zero is `0` (also −0).
+pub fn number(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 {
+        "0".to_string()
+    } else if (1e-4..1e16).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::number;
+
+    #[test]
+    fn numbers_are_short_and_read_back_exactly() {
+        assert_eq!(number(470.805575), "470.805575");
+        assert_eq!(number(0.0), "0");
+        assert_eq!(number(-0.0), "0");
+        assert_eq!(number(1.25e-7), "1.25e-7");
+        assert_eq!(number(-3e20), "-3e20");
+        assert_eq!(number(0.1 + 0.2), "0.30000000000000004");
+        assert_eq!(number(1e-4), "0.0001");
+        for v in [
+            std::f64::consts::PI,
+            -1.0 / 3.0,
+            6.030373e-4,
+            1.7976931348623157e308,
+            5e-324,
+            1812.4573,
+            9.999_999_999_999_998e15,
+        ] {
+            assert_eq!(number(v).parse::<f64>().unwrap(), v, "{v:e} reads back");
+        }
+    }
 }

@@ -38,9 +38,14 @@ pub struct GridSummary {
     pub slip_derivative: crate::contact::SlipDerivative,
 }
 
-/// summary.json (the fields are described in cases/README.md).
+/// summary.json (docs/outputs.md describes every key, its unit and sign).
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
+    /// The rollbem version that wrote it (Cargo.toml's `version`).
+    pub version: String,
+    /// The command line of the process that wrote it (program name, then the arguments,
+    /// shell-quoted where needed).
+    pub command: String,
     /// Case title.
     pub title: String,
     /// Whether the solver converged.
@@ -107,6 +112,9 @@ pub struct Summary {
     pub interior: Option<crate::interior::InteriorSummary>,
     /// Whether VTK files (contact.vtu, result.pvd) were requested.
     pub vtk: bool,
+    /// The unit of every number above, by key path (`.` between keys, `[]` for array items),
+    /// from the case's `units` ([`super::units::SUMMARY_KEYS`]).
+    pub units: std::collections::BTreeMap<String, String>,
     /// The case as resolved after `--set` overrides.
     pub case: serde_json::Value,
 }
@@ -148,6 +156,8 @@ pub fn summary(s: &Solved) -> Summary {
     let case = &scene.case;
     let mu = scene.friction();
     Summary {
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        command: command_line(),
         title: case.case.title.clone(),
         converged: report.converged,
         iterations: report.iterations,
@@ -204,6 +214,56 @@ pub fn summary(s: &Solved) -> Summary {
         notices: s.notices.clone(),
         interior: s.interior.as_ref().map(crate::interior::InteriorField::summary),
         vtk: case.case.output.vtk,
+        units: super::units::summary_units(&case.case.units),
         case: case.resolved.clone(),
+    }
+}
+
+/// The command line of this process: the program's file name and its arguments, each quoted
+/// for a POSIX shell when it holds anything but letters, digits and `-_./=,:+@%`.
+pub fn command_line() -> String {
+    let mut args = std::env::args_os().map(|a| a.to_string_lossy().into_owned());
+    let program = args
+        .next()
+        .map(|p| {
+            std::path::Path::new(&p)
+                .file_name()
+                .map_or(p.clone(), |n| n.to_string_lossy().into_owned())
+        })
+        .unwrap_or_else(|| "rollbem".into());
+    std::iter::once(program)
+        .chain(args.map(|a| shell_quoted(&a)))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// `arg` as a POSIX shell reads it back: unchanged when plain, else in single quotes.
+fn shell_quoted(arg: &str) -> String {
+    let plain = !arg.is_empty()
+        && arg
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./=,:+@%".contains(c));
+    if plain {
+        arg.to_string()
+    } else {
+        format!("'{}'", arg.replace('\'', r"'\''"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shell_quoted;
+
+    #[test]
+    fn arguments_are_quoted_only_when_needed() {
+        assert_eq!(shell_quoted("--set"), "--set");
+        assert_eq!(shell_quoted("contact.friction=0.2"), "contact.friction=0.2");
+        assert_eq!(shell_quoted("a b"), "'a b'");
+        assert_eq!(shell_quoted("it's"), r"'it'\''s'");
+        assert_eq!(shell_quoted(""), "''");
+        assert_eq!(
+            shell_quoted("materials.x={E: 1, nu: 0.3}"),
+            "'materials.x={E: 1, nu: 0.3}'"
+        );
     }
 }

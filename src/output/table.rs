@@ -3,20 +3,30 @@
 use super::summary::Summary;
 use std::path::Path;
 
-/// The terminal summary table of a run.
+/// The terminal summary table of a run: one row per quantity, its unit in the label (or after
+/// each value where a row holds several kinds), from the summary's `units` block.
 pub fn render_table(s: &Summary, output_dir: &Path) -> String {
-    let mut t = String::new();
-    let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<22} {v}\n"));
+    let unit = |key: &str| s.units.get(key).map_or("?", String::as_str).to_string();
+    let (len, force, stress) = (unit("overlap"), unit("normal_force"), unit("max_pressure"));
+    let mut rows: Vec<(String, String)> = Vec::new();
+    let mut line = |k: &str, v: String| rows.push((k.to_string(), v));
     let status = if s.converged { "converged" } else { "NOT CONVERGED" };
     line("title", s.title.clone());
     line("models (A / B)", format!("{} / {}", s.models.a, s.models.b));
+    let restarts = match s.solver.fallbacks.len() {
+        0 => String::new(),
+        n => format!(" after {n} restart{}", if n == 1 { "" } else { "s" }),
+    };
     line(
         "solver",
-        format!("{status} in {} iterations, residual {:.2e}", s.iterations, s.residual),
+        format!(
+            "{status} in {} iterations{restarts}, residual {:.2e}",
+            s.iterations, s.residual
+        ),
     );
-    line("normal force P", format!("{:.6}", s.normal_force));
+    line(&format!("normal force P [{force}]"), format!("{:.6}", s.normal_force));
     line(
-        "tangential force Q",
+        &format!("tangential force Q [{force}]"),
         format!(
             "{:.6}{}",
             s.tangential_force,
@@ -26,15 +36,15 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     if s.traction_axes == crate::contact::TractionAxes::Contact {
         let f = &s.forces;
         line(
-            "forces on A",
+            &format!("forces on A [{force}]"),
             format!(
                 "global (x, y) = ({:.6}, {:.6}); along the contact (normal, tangential) = ({:.6}, {:.6})",
                 f.global_x, f.global_y, f.normal, f.tangential
             ),
         );
     }
-    line("overlap delta0", format!("{:.6e}", s.overlap));
-    line("creepage xi", format!("{:.6e}", s.creep));
+    line(&format!("overlap delta0 [{len}]"), format!("{:.6e}", s.overlap));
+    line("creepage xi [-]", format!("{:.6e}", s.creep));
     // Hertz comparisons only mean something when both bodies are half-spaces.
     let hertzian = s.models.a == "half_space" && s.models.b == "half_space";
     if let Some(c) = &s.contact {
@@ -44,7 +54,7 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
             String::new()
         };
         line(
-            "contact",
+            &format!("contact [{len}]"),
             format!(
                 "[{:.5}, {:.5}]  half-width {:.5}, centre {:+.5}{hertz}",
                 c.x_min, c.x_max, c.half_width, c.centre
@@ -56,16 +66,19 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     } else {
         String::new()
     };
-    line("max pressure", format!("{:.6}{hertz}", s.max_pressure));
+    line(
+        &format!("max pressure [{stress}]"),
+        format!("{:.6}{hertz}", s.max_pressure),
+    );
     let zones = |z: &[[f64; 2]]| {
         z.iter()
             .map(|[a, b]| format!("[{a:.4}, {b:.4}]"))
             .collect::<Vec<_>>()
             .join(" ")
     };
-    line("stick zones", zones(&s.stick_zones));
+    line(&format!("stick zones [{len}]"), zones(&s.stick_zones));
     line(
-        "slip zones",
+        &format!("slip zones [{len}]"),
         format!(
             "{}  directions {:?}  regime {}",
             zones(&s.slip_zones),
@@ -79,7 +92,7 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     line(
         "grid",
         format!(
-            "{} {} elements, {} nodes, spacing {:.4e}",
+            "{} {} elements, {} nodes, spacing {:.4e} {len}",
             s.grid.elements,
             s.grid.element.name(),
             s.grid.nodes,
@@ -89,7 +102,7 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     if let Some(i) = &s.interior {
         let peak = |p: &Option<crate::interior::Peak>| {
             p.map_or("-".to_string(), |p| {
-                format!("{:.6} at ({:.4}, {:.4})", p.value, p.x, p.y)
+                format!("{:.6} {stress} at ({:.4}, {:.4}) {len}", p.value, p.x, p.y)
             })
         };
         line(
@@ -111,5 +124,8 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
         ),
     );
     line("results", output_dir.display().to_string());
-    t
+    // The label column is as wide as the widest label (units make some long), at least 22,
+    // and two spaces apart from the values.
+    let width = rows.iter().map(|(k, _)| k.chars().count()).max().unwrap_or(0).max(22);
+    rows.iter().map(|(k, v)| format!("  {k:<width$}  {v}\n")).collect()
 }

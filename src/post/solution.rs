@@ -17,7 +17,8 @@ pub struct ContactSolution {
     pub shear: Vec<f64>,
     /// Gap g ≥ 0 [length].
     pub gap: Vec<f64>,
-    /// Slip of A relative to B divided by |V| [-], finite-difference operator.
+    /// Slip velocity of A relative to B divided by |V| [-], finite-difference operator (upwind;
+    /// downstream at the upstream end node).
     pub slip: Vec<f64>,
     /// Slip from the boundary-integral derivative of the displacements [-], if available.
     pub slip_strain: Option<Vec<f64>>,
@@ -43,9 +44,11 @@ impl ContactSolution {
     /// Builds the user-facing solution from the solver state.
     pub fn from_state(pb: &ContactProblem, z: &State) -> Self {
         let m = pb.n_nodes();
-        // Recompute g and s from the tractions so outputs are exactly consistent with them.
+        // Recompute g and s from the tractions so outputs are exactly consistent with them; the
+        // slip velocity everywhere, also at the upstream end node (whose row of the problem is
+        // the datum of w, not a slip).
         let gap = pb.gap(&z.pressure, &z.shear, z.overlap);
-        let slip = pb.slip(&z.pressure, &z.shear, z.creep);
+        let slip = pb.slip_velocity(&z.pressure, &z.shear, z.creep);
         let pressure: Vec<f64> = z.pressure.iter().map(|p| p.max(0.0)).collect();
         let pmax = pressure.iter().fold(0.0_f64, |a, &b| a.max(b));
         let state: Vec<NodeState> = (0..m)

@@ -153,6 +153,9 @@ pub struct AccuracyReport {
     pub wall_s: f64,
 }
 
+/// The fewest contact elements a rung may have: fewer cannot hold a contact zone inside the grid.
+const MIN_RUNG: usize = 3;
+
 /// Runs the study on the scene of `case`; `progress` shows a bar on the terminal.
 pub fn run(case: &LoadedCase, options: &AccuracyOptions, progress: bool) -> Result<AccuracyReport, Error> {
     let start = Instant::now();
@@ -161,6 +164,12 @@ pub fn run(case: &LoadedCase, options: &AccuracyOptions, progress: bool) -> Resu
         return Err(study_error(
             "nothing to run: give at least one rung (--ladder) and one model (--models)",
         ));
+    }
+    if let Some(&rung) = options.ladder.iter().find(|&&n| n < MIN_RUNG) {
+        return Err(study_error(&format!(
+            "every rung of --ladder needs at least {MIN_RUNG} contact elements (value = {rung}); \
+             the default ladder is 11,21,41,81,161,321"
+        )));
     }
     if !(options.shaft_ratio > 0.0 && options.shaft_ratio < 0.9) {
         return Err(study_error(&format!(

@@ -159,7 +159,7 @@ fn bad_files_give_errors_that_name_the_file_and_the_culprit() {
 
     let err = load_err("zero_length.msh");
     assert!(
-        matches!(err, MeshError::ZeroLengthElement { ref group, element: 4, .. } if group == "free"),
+        matches!(err, MeshError::BadElement { ref group, element: 4, defect: rollbem::mesh::ElementDefect::ZeroLength, .. } if group == "free"),
         "{err}"
     );
 

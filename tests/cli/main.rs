@@ -10,5 +10,8 @@ mod common;
 mod commands;
 mod files;
 mod stability;
+mod stall;
 mod study;
 mod sweep;
+mod units;
+mod verbosity;

@@ -99,6 +99,21 @@ fn study_accuracy_command_writes_the_table_and_the_chart() {
     let (code, _, stderr) = rollbem(&["study", "accuracy", case.to_str().unwrap(), "--models", "fem"]);
     assert_eq!(code, 1);
     assert!(stderr.contains("unknown model `fem`"), "{stderr}");
+
+    // A rung too small to hold the contact is a usage error, not a panic in the grid.
+    let refused = dir.path().join("refused");
+    let (code, _, stderr) = rollbem(&[
+        "study",
+        "accuracy",
+        case.to_str().unwrap(),
+        "--ladder",
+        "21,0",
+        "--out",
+        refused.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("--ladder") && stderr.contains("value = 0"), "{stderr}");
+    assert!(!refused.exists(), "a refused study writes nothing");
 }
 
 /// `rollbem check` advises from the measured half-space error tables (src/advice.rs): the

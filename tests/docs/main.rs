@@ -21,6 +21,9 @@ mod common;
 #[path = "../../examples/conformal_report.rs"]
 mod conformal_report;
 #[allow(dead_code)]
+#[path = "../../examples/friction_limits.rs"]
+mod friction_limits;
+#[allow(dead_code)]
 #[path = "../../examples/hbem_report.rs"]
 mod hbem_report;
 mod markdown;
@@ -31,9 +34,11 @@ mod methods_perf;
 #[path = "../../examples/model_error_table.rs"]
 mod model_error_table;
 mod no_external_references;
+mod outputs;
 #[allow(dead_code)]
 #[path = "../../examples/perf_report.rs"]
 mod perf_report;
+mod readme;
 #[allow(dead_code)]
 #[path = "../../examples/validation_report.rs"]
 mod validation_report;
@@ -287,4 +292,17 @@ fn performance_methods_table() {
         &["solve [ms]"],
         (&noise, 1e-9),
     );
+}
+
+/// docs/performance.md, "Solver cost at the friction limits": the ladder at 41 and 81 elements
+/// (the page's second table, 161–481 elements, takes minutes and is checked by running the
+/// program).
+#[test]
+fn performance_friction_limits_table() {
+    let t = friction_limits::table("case", &[41, 81]);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("performance.md"), printed, Rows::All, &["solve [s]"], (&[], 0.0));
 }

@@ -16,6 +16,7 @@ mod friction_limits;
 mod hertz_carter;
 mod internal_contact;
 mod methods;
+mod slip_end;
 mod solver;
 mod true_geometry;
 mod tyre;

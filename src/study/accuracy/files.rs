@@ -30,7 +30,13 @@ pub fn write(dir: &Path, report: &AccuracyReport, title: &str) -> Result<(), Err
             "message",
         ])
         .map_err(|e| io(&csv_path, &e))?;
-        let num = |v: f64| if v.is_finite() { format!("{v:e}") } else { String::new() };
+        let num = |v: f64| {
+            if v.is_finite() {
+                crate::output::number(v)
+            } else {
+                String::new()
+            }
+        };
         for r in &report.rows {
             w.write_record([
                 r.model.name().to_string(),

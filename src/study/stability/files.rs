@@ -7,7 +7,7 @@ use std::path::Path;
 
 /// Full-precision number or empty (never NaN in outputs).
 fn num(v: Option<f64>) -> String {
-    v.filter(|v| v.is_finite()).map_or(String::new(), |v| format!("{v:e}"))
+    v.filter(|v| v.is_finite()).map_or(String::new(), crate::output::number)
 }
 
 /// Column names of stability.csv.

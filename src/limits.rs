@@ -1,0 +1,196 @@
+//! Limits on what a run may ask of the machine, checked before anything large is read or
+//! allocated: input files must be regular files of a bounded size, and the memory a case needs is
+//! estimated from its problem sizes and compared with the memory available.
+
+use std::path::Path;
+
+/// Largest case file read [bytes]: a case is a page of YAML.
+pub const MAX_CASE_BYTES: u64 = 16 << 20;
+
+/// Largest mesh file read [bytes]: the boundary mesh of a plane body with a million nodes takes
+/// about 100 MB as ASCII MSH.
+pub const MAX_MESH_BYTES: u64 = 1 << 30;
+
+/// Why `path` cannot be read as an input file of at most `max_bytes`, checked without opening it:
+/// a FIFO or a device would block or never end, a folder is not a file. `Ok(None)` when it is a
+/// regular file of an acceptable size; `Err` when its metadata cannot be read (it does not exist).
+pub fn input_file_problem(path: &Path, max_bytes: u64) -> std::io::Result<Option<String>> {
+    let meta = std::fs::metadata(path)?;
+    let kind = meta.file_type();
+    if kind.is_file() {
+        return Ok((meta.len() > max_bytes).then(|| {
+            format!(
+                "it holds {} bytes, more than the {} bytes an input of this kind may have",
+                meta.len(),
+                max_bytes
+            )
+        }));
+    }
+    let what = if kind.is_dir() {
+        "a folder"
+    } else {
+        special_file_kind(&kind)
+    };
+    Ok(Some(format!("it is {what}, not a regular file")))
+}
+
+#[cfg(unix)]
+fn special_file_kind(kind: &std::fs::FileType) -> &'static str {
+    use std::os::unix::fs::FileTypeExt;
+    if kind.is_fifo() {
+        "a FIFO (named pipe)"
+    } else if kind.is_socket() {
+        "a socket"
+    } else if kind.is_block_device() || kind.is_char_device() {
+        "a device"
+    } else {
+        "a special file"
+    }
+}
+
+#[cfg(not(unix))]
+fn special_file_kind(_kind: &std::fs::FileType) -> &'static str {
+    "a special file"
+}
+
+/// What a case asks of the dense linear algebra and the post-processing, from which
+/// [`MemoryEstimate::bytes`] follows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProblemSizes {
+    /// Nodes m of the contact grid (unknowns p and q at each).
+    pub contact_nodes: usize,
+    /// Boundary field nodes of each `bem` body (A, B); `None` for other models.
+    pub bem_nodes: [Option<usize>; 2],
+    /// Interior points asked by `output.interior` (0 when none).
+    pub interior_points: usize,
+    /// Whether VTK files are written (they hold every interior point a second time, as XML).
+    pub vtk: bool,
+}
+
+/// Peak memory per squared contact node [bytes]: about 31 dense m×m matrices of doubles live at
+/// once (the flexibilities of the pair and of each body, the slip operators, the half-space
+/// kernels while they are built, the Newton Jacobian and its LU factors). The peak RSS of
+/// half-space pairs at m = 300–1800 gives 230–260 bytes per m² (see [`MemoryEstimate`]).
+pub const BYTES_PER_CONTACT_NODE_SQUARED: f64 = 280.0;
+
+/// Peak memory per squared boundary unknown n = 2 × field nodes of the largest `bem` body
+/// [bytes]: the BEM matrices H and G, the rows they are gathered from, the system matrix and its
+/// LU factors of one body (bodies are built one after the other, and only their condensed
+/// flexibility is kept). The peak RSS of rollers of 490–2090 nodes gives 40–57 bytes per n²,
+/// varying by 15 % from run to run at the largest size.
+pub const BYTES_PER_BEM_UNKNOWN_SQUARED: f64 = 64.0;
+
+/// Memory per interior point with VTK output [bytes]: the fields, the CSV rows and vtkio's
+/// XML document. Measured 940–1060 bytes (grids of 300² and 600² points).
+pub const BYTES_PER_INTERIOR_POINT_VTK: f64 = 1200.0;
+
+/// Memory per interior point without VTK output [bytes]. Measured 50–100 bytes.
+pub const BYTES_PER_INTERIOR_POINT: f64 = 130.0;
+
+/// Memory of the program itself, its small tables and thread stacks [bytes].
+pub const BASE_BYTES: f64 = 16e6;
+
+/// Memory a case will need at its peak, term by term [bytes].
+///
+/// Calibrated against the peak resident set size (`/usr/bin/time -v`, "Maximum resident set
+/// size") of `rollbem run` on grids and meshes of several sizes; tests/input/memory.rs checks
+/// again that the estimate stays above the measured peak and within a factor 2 of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MemoryEstimate {
+    /// Dense contact matrices [bytes].
+    pub contact: f64,
+    /// BEM matrices of the largest `bem` body [bytes].
+    pub bem: f64,
+    /// Interior fields and their files [bytes].
+    pub interior: f64,
+}
+
+impl MemoryEstimate {
+    /// The estimate of the sizes of a case.
+    pub fn of(sizes: &ProblemSizes) -> Self {
+        let m = sizes.contact_nodes as f64;
+        let largest_bem = sizes.bem_nodes.iter().flatten().copied().max().unwrap_or(0);
+        let n = 2.0 * largest_bem as f64;
+        let per_point = if sizes.vtk {
+            BYTES_PER_INTERIOR_POINT_VTK
+        } else {
+            BYTES_PER_INTERIOR_POINT
+        };
+        Self {
+            contact: BYTES_PER_CONTACT_NODE_SQUARED * m * m,
+            bem: BYTES_PER_BEM_UNKNOWN_SQUARED * n * n,
+            interior: per_point * sizes.interior_points as f64,
+        }
+    }
+
+    /// The whole estimate [bytes].
+    pub fn bytes(&self) -> f64 {
+        BASE_BYTES + self.contact + self.bem + self.interior
+    }
+}
+
+/// Memory the run may use [bytes]: `MemAvailable` of /proc/meminfo, lowered to what the control
+/// group (a container, a batch job) still allows. `None` where neither can be read.
+pub fn available_memory() -> Option<f64> {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok();
+    let available = meminfo.as_deref().and_then(|text| {
+        text.lines()
+            .find_map(|l| l.strip_prefix("MemAvailable:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
+            .map(|kb| kb * 1024.0)
+    });
+    let read = |p: &str| {
+        std::fs::read_to_string(p)
+            .ok()
+            .and_then(|s| s.trim().parse::<f64>().ok())
+    };
+    // cgroup v2: the limit (or "max") less what is in use.
+    let cgroup = read("/sys/fs/cgroup/memory.max")
+        .zip(read("/sys/fs/cgroup/memory.current"))
+        .map(|(max, current)| (max - current).max(0.0));
+    match (available, cgroup) {
+        (Some(a), Some(c)) => Some(a.min(c)),
+        (a, c) => a.or(c),
+    }
+}
+
+/// Memory assumed available where the system does not say [bytes]: a small workstation.
+pub const FALLBACK_AVAILABLE_BYTES: f64 = 8.0 * (1u64 << 30) as f64;
+
+/// A byte count for people: "887 MB", "22.5 TB".
+pub fn human_bytes(bytes: f64) -> String {
+    let units = ["bytes", "kB", "MB", "GB", "TB", "PB", "EB"];
+    let mut v = bytes;
+    let mut u = 0;
+    while v >= 1000.0 && u + 1 < units.len() {
+        v /= 1000.0;
+        u += 1;
+    }
+    if u == 0 {
+        format!("{v:.0} {}", units[u])
+    } else if v < 10.0 {
+        format!("{v:.1} {}", units[u])
+    } else {
+        format!("{v:.0} {}", units[u])
+    }
+}
+
+/// A case that needs more memory than the machine has.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "{case}: this case needs about {} of memory ({breakdown}), more than the {} available; {advice}",
+    human_bytes(*needed),
+    human_bytes(*available)
+)]
+pub struct MemoryError {
+    /// Case file.
+    pub case: std::path::PathBuf,
+    /// The estimate [bytes].
+    pub needed: f64,
+    /// What is available [bytes].
+    pub available: f64,
+    /// The estimate term by term, with the sizes behind it.
+    pub breakdown: String,
+    /// The key (or mesh) to change, and to what.
+    pub advice: String,
+}

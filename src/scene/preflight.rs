@@ -1,0 +1,398 @@
+//! Checks of a case's bodies before the scene builds its grid and anything large: the contact
+//! groups of `bem` bodies must be arcs along x, the Hertz estimates and the grid they imply must
+//! be finite and physical, and the memory the case needs must be available. They run in
+//! `rollbem check` as in `rollbem run` (both build their scene with [`super::Scene::from_case`]),
+//! so a case that check accepts does not fail here later.
+
+use super::body_setup::BodySetup;
+use super::estimates::Estimates;
+use crate::case::validate::shown;
+use crate::case::{CaseError, LoadedCase, NormalSpec, Violation};
+use crate::error::Error;
+use crate::limits::{self, MemoryError, MemoryEstimate, ProblemSizes};
+
+/// Smallest Hertz half-width over the effective radius that a case may imply: below, the gap
+/// x²/2R of the contact is 1e-20 of the radius and the case is a unit mistake, not a contact.
+pub const MIN_HALF_WIDTH_OVER_RADIUS: f64 = 1e-10;
+
+/// Checks the contact segments, the derived quantities and the memory of a case with its
+/// bodies resolved; returns the memory estimate.
+pub fn check(case: &LoadedCase, bodies: &[BodySetup; 2]) -> Result<MemoryEstimate, Error> {
+    let mut violations = contact_segment_violations(bodies);
+    if violations.is_empty() {
+        let est = Estimates::of(&case.case, bodies);
+        violations = derived_violations(case, &est, bodies);
+    }
+    if !violations.is_empty() {
+        return Err(Error::Case(CaseError::Invalid {
+            path: case.path.clone(),
+            violations,
+        }));
+    }
+    check_memory(case, bodies)
+}
+
+/// A derived value, short: exponent form when tiny or huge, else at most six decimals.
+fn sig(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-3..1e5).contains(&v.abs()) {
+        format!("{v:.4e}")
+    } else {
+        let s = format!("{v:.6}");
+        let s = if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            &s
+        };
+        s.to_string()
+    }
+}
+
+/// Whether the contact grid is a `bem` body's own (the case's grid keys are then unused).
+fn grid_from_mesh(bodies: &[BodySetup; 2]) -> bool {
+    bodies.iter().any(|b| b.mesh().is_some())
+}
+
+/// The contact group of each `bem` body must be an arc along x, which the contact grid is made
+/// from (its elements' end points in x): no element without extent in x, no two elements over the
+/// same x. With two `bem` bodies, the second's contact group must cover the grid the first's gives
+/// (the tolerance of [`crate::body::transfer`]: 1e-9 of the segment's length).
+fn contact_segment_violations(bodies: &[BodySetup; 2]) -> Vec<Violation> {
+    let mut out = Vec::new();
+    let mut ranges = Vec::new();
+    for (k, side) in ["A", "B"].into_iter().enumerate() {
+        let BodySetup::Bem(bem) = &bodies[k] else {
+            continue;
+        };
+        let (lm, contact) = (&bem.mesh, &bem.contact);
+        let m = &lm.mesh;
+        let tol = 1e-9 * m.size();
+        let mut spans: Vec<[f64; 3]> = m
+            .elements
+            .iter()
+            .filter(|e| e.group == lm.contact_group)
+            .map(|e| {
+                let (a, b) = e.ends();
+                let (xa, xb) = (m.nodes[a][0], m.nodes[b][0]);
+                [xa.min(xb), xa.max(xb), m.nodes[a][1]]
+            })
+            .collect();
+        spans.sort_by(|p, q| p[0].total_cmp(&q[0]));
+        let key = format!("bodies.{side}.contact");
+        let path = lm.path.display();
+        if let Some(s) = spans.iter().find(|s| s[1] - s[0] <= tol) {
+            out.push(Violation {
+                key,
+                message: format!(
+                    "an element of group `{contact}` in {path} at ({}, {}) runs across x (no extent along \
+                     it): the contact group must be the arc of the outline that faces the other body, \
+                     along x",
+                    sig(s[0]),
+                    sig(s[2])
+                ),
+            });
+            continue;
+        }
+        if let Some(w) = spans.windows(2).find(|w| w[1][0] < w[0][1] - tol) {
+            out.push(Violation {
+                key,
+                message: format!(
+                    "group `{contact}` in {path} covers x = {} twice (it folds back, or wraps round the \
+                     body): the contact group must be a single arc along x, the part of the outline that \
+                     faces the other body",
+                    sig(w[1][0])
+                ),
+            });
+            continue;
+        }
+        ranges.push((side, path.to_string(), contact.clone(), lm.contact_range()));
+    }
+    if let [(sa, ma, ca, [a0, a1]), (sb, mb, cb, [b0, b1])] = ranges.as_slice() {
+        // The grid is A's contact group; B's must cover it.
+        let tol = 1e-9 * (b1 - b0);
+        if *a0 < b0 - tol || *a1 > b1 + tol {
+            out.push(Violation {
+                key: format!("bodies.{sb}.mesh"),
+                message: format!(
+                    "the contact grid is group `{ca}` of body {sa}'s mesh {ma}, on x in [{}, {}], but group \
+                     `{cb}` of {mb} covers only [{}, {}]: lengthen the contact group of {mb} (or shorten \
+                     that of {ma}) so that it covers the grid",
+                    sig(*a0),
+                    sig(*a1),
+                    sig(*b0),
+                    sig(*b1)
+                ),
+            });
+        }
+    }
+    out
+}
+
+/// The Hertz estimates and the grid must be finite and physical: a contact narrower than the
+/// radius, and not vanishingly small.
+fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &[BodySetup; 2]) -> Vec<Violation> {
+    let mut out = Vec::new();
+    let mut bad = |key: &str, message: String| {
+        out.push(Violation {
+            key: key.to_string(),
+            message,
+        })
+    };
+    let r = est.effective_radius;
+    if !(r.is_finite() && r > 0.0) {
+        bad(
+            "bodies",
+            format!(
+                "the effective radius 1/(1/R_A + 1/R_B) is {} (both profiles flat): the Hertz estimates that \
+                 size the grid are undefined; give `radius` to the bem body (or bodies) whose contact \
+                 group is straight",
+                sig(r)
+            ),
+        );
+        return out;
+    }
+    let a = est.hertz_half_width;
+    let ratio = a / r;
+    match case.case.load.normal() {
+        NormalSpec::Force(p) => {
+            if ratio.is_nan() || ratio >= 1.0 {
+                bad(
+                    "load.normal.force",
+                    format!(
+                        "P = {} gives a Hertz half-width a = {} beyond the effective radius R = {} \
+                         (a/R = {}): no cylinder contact carries this load; lower the load, or check \
+                         the units of P against those of E and the radii",
+                        shown(p),
+                        sig(a),
+                        shown(r),
+                        sig(ratio)
+                    ),
+                );
+            } else if ratio < MIN_HALF_WIDTH_OVER_RADIUS {
+                bad(
+                    "load.normal.force",
+                    format!(
+                        "P = {} gives a Hertz half-width a = {} of only {} times the effective radius \
+                         R = {}: below {MIN_HALF_WIDTH_OVER_RADIUS:e} this is a unit mistake; check the \
+                         units of P against those of E and the radii",
+                        shown(p),
+                        sig(a),
+                        sig(ratio),
+                        shown(r)
+                    ),
+                );
+            }
+        }
+        NormalSpec::Overlap(d) => {
+            if d.is_nan() || d >= r {
+                bad(
+                    "load.normal.overlap",
+                    format!(
+                        "the overlap {} is not smaller than the effective radius R = {}: the bodies would \
+                         pass through each other; lower it, or check its units against those of the radii",
+                        shown(d),
+                        shown(r)
+                    ),
+                );
+            }
+        }
+    }
+    if !grid_from_mesh(bodies) {
+        let (l, h) = (est.grid_half_length, est.grid_spacing);
+        let key = if case.case.contact.grid.half_length.is_some() {
+            "contact.grid.half_length"
+        } else {
+            "contact.grid.extent"
+        };
+        if !(l.is_finite() && l > 0.0 && h > 0.0 && h.is_finite()) {
+            bad(
+                key,
+                format!(
+                    "the grid [-L, L] with L = {} and node spacing {} is not a usable grid",
+                    sig(l),
+                    sig(h)
+                ),
+            );
+        } else if a.is_nan() || h >= a {
+            // With nodes farther apart than a, the whole contact falls between two nodes.
+            bad(
+                key,
+                format!(
+                    "the grid's node spacing {} (L = {}, {} elements) is not smaller than the Hertz \
+                     half-width a = {}: the contact would fall between two nodes; shorten the grid or \
+                     add contact.grid.elements",
+                    sig(h),
+                    sig(l),
+                    case.case.contact.grid.elements,
+                    sig(a)
+                ),
+            );
+        }
+    }
+    out
+}
+
+/// The problem sizes of a case with its bodies resolved.
+pub fn problem_sizes(case: &LoadedCase, bodies: &[BodySetup; 2]) -> ProblemSizes {
+    let c = &case.case;
+    let contact_elements = |b: &BodySetup| {
+        b.mesh().map_or(0, |lm| {
+            lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count()
+        })
+    };
+    let contact_nodes = match bodies.iter().find(|b| b.mesh().is_some()) {
+        // The mesh's discontinuous quadratic contact elements carry three nodes each.
+        Some(b) => 3 * contact_elements(b),
+        None => {
+            let kind = c.contact.grid.element;
+            let n = c.contact.grid.elements;
+            kind.node_stride().saturating_mul(n) + usize::from(kind.shares_nodes())
+        }
+    };
+    // Discontinuous contact elements add a field node each to the mesh's geometric nodes.
+    let bem_nodes = [0, 1].map(|k| {
+        bodies[k]
+            .mesh()
+            .map(|lm| lm.mesh.nodes.len() + contact_elements(&bodies[k]))
+    });
+    let interior_points = c
+        .output
+        .interior
+        .as_ref()
+        .map_or(0, |g| (g.x[2] as usize).saturating_mul(g.y[2] as usize));
+    ProblemSizes {
+        contact_nodes,
+        bem_nodes,
+        interior_points,
+        vtk: c.output.vtk,
+    }
+}
+
+/// Refuses a case whose estimated peak memory exceeds what the machine has available; returns
+/// the estimate. Also for scenes built from their own bodies (the studies').
+pub fn check_memory(case: &LoadedCase, bodies: &[BodySetup; 2]) -> Result<MemoryEstimate, Error> {
+    let sizes = problem_sizes(case, bodies);
+    let estimate = MemoryEstimate::of(&sizes);
+    let available = limits::available_memory().unwrap_or(limits::FALLBACK_AVAILABLE_BYTES);
+    if estimate.bytes() <= available {
+        return Ok(estimate);
+    }
+    Err(Error::Memory(MemoryError {
+        case: case.path.clone(),
+        needed: estimate.bytes(),
+        available,
+        breakdown: breakdown(&sizes, &estimate),
+        advice: advice(case, bodies, &sizes, &estimate, available),
+    }))
+}
+
+/// The estimate's terms with the sizes behind them.
+fn breakdown(sizes: &ProblemSizes, e: &MemoryEstimate) -> String {
+    let mut parts = vec![format!(
+        "{} for the dense matrices of {} contact nodes",
+        limits::human_bytes(e.contact),
+        sizes.contact_nodes
+    )];
+    if let Some(n) = sizes.bem_nodes.iter().flatten().max() {
+        parts.push(format!(
+            "{} for the BEM matrices of a body of {n} boundary nodes",
+            limits::human_bytes(e.bem)
+        ));
+    }
+    if sizes.interior_points > 0 {
+        parts.push(format!(
+            "{} for {} interior points",
+            limits::human_bytes(e.interior),
+            sizes.interior_points
+        ));
+    }
+    parts.join(", ")
+}
+
+/// What to change: the key (or mesh) behind the largest term, and how far.
+fn advice(
+    case: &LoadedCase,
+    bodies: &[BodySetup; 2],
+    sizes: &ProblemSizes,
+    e: &MemoryEstimate,
+    available: f64,
+) -> String {
+    let c = &case.case;
+    let room = |others: f64| (available - limits::BASE_BYTES - others).max(0.0);
+    let mesh_of = |k: usize| {
+        bodies[k]
+            .mesh()
+            .map_or_else(String::new, |lm| lm.path.display().to_string())
+    };
+    if e.interior >= e.contact.max(e.bem) {
+        let per_point = e.interior / sizes.interior_points.max(1) as f64;
+        let fit = room(e.contact + e.bem) / per_point;
+        let g = c.output.interior.as_ref();
+        let (nx, ny) = g.map_or((0.0, 0.0), |g| (g.x[2], g.y[2]));
+        let vtk = if c.output.vtk {
+            " (or set output.vtk: false, which takes a tenth of the memory per point)"
+        } else {
+            ""
+        };
+        return format!(
+            "ask fewer output.interior points: now {nx} x {ny} = {}, about {:.0} fit{vtk}",
+            sizes.interior_points,
+            fit.floor()
+        );
+    }
+    if e.bem > e.contact {
+        let k = if sizes.bem_nodes[0] >= sizes.bem_nodes[1] { 0 } else { 1 };
+        let side = ["A", "B"][k];
+        let nodes = sizes.bem_nodes[k].unwrap_or(0);
+        let fit = (room(e.contact + e.interior) / limits::BYTES_PER_BEM_UNKNOWN_SQUARED).sqrt() / 2.0;
+        return format!(
+            "coarsen the mesh of bodies.{side} ({}, {nodes} boundary nodes; about {:.0} fit)",
+            mesh_of(k),
+            fit.floor()
+        );
+    }
+    match bodies.iter().position(|b| b.mesh().is_some()) {
+        Some(k) => {
+            let group = match &bodies[k] {
+                BodySetup::Bem(bem) => bem.contact.clone(),
+                _ => "contact".into(),
+            };
+            format!(
+                "the contact grid is the contact group `{group}` of {}: mesh it with fewer elements",
+                mesh_of(k)
+            )
+        }
+        None => {
+            let stride = c.contact.grid.element.node_stride() as f64;
+            let fit = (room(e.bem + e.interior) / limits::BYTES_PER_CONTACT_NODE_SQUARED).sqrt() / stride;
+            format!(
+                "lower contact.grid.elements (now {}; about {:.0} fit)",
+                c.contact.grid.elements,
+                fit.floor()
+            )
+        }
+    }
+}
+
+/// What to change when the solved contact reaches an end of the grid: the grid keys for a
+/// uniform grid; the mesh's contact group (or the load) when the grid is a `bem` body's own.
+pub fn grid_too_short_advice(case: &LoadedCase, bodies: &[BodySetup; 2]) -> String {
+    let c = &case.case;
+    let bem = ["A", "B"].into_iter().zip(bodies).find_map(|(side, b)| match b {
+        BodySetup::Bem(bem) => Some((side, bem.mesh.path.display().to_string(), &bem.contact)),
+        _ => None,
+    });
+    match bem {
+        Some((side, mesh, contact)) => format!(
+            "The grid is the contact group `{contact}` of body {side}'s mesh {mesh}: extend that group \
+             over a longer arc in the mesh, or lower the load"
+        ),
+        None if c.contact.grid.half_length.is_some() => format!(
+            "Increase contact.grid.half_length (now {})",
+            shown(c.contact.grid.half_length.unwrap_or(0.0))
+        ),
+        None => format!(
+            "Increase contact.grid.extent (now {}), or give contact.grid.half_length",
+            shown(c.contact.grid.extent)
+        ),
+    }
+}

@@ -1,0 +1,193 @@
+//! The memory estimate that refuses oversized cases (src/limits.rs) against the measured peak
+//! resident set size of `rollbem run` (the child's `ru_maxrss`, from `wait4`): it must stay
+//! above the peak, so that a case it lets through fits, and within a factor 2 of it, so that it
+//! does not refuse cases that would fit.
+//!
+//! `cargo test --release --test input memory:: -- --ignored --nocapture` prints the larger
+//! calibration table of docs/reliability.md.
+
+use rollbem::limits::MemoryEstimate;
+use rollbem::mesh::build::{roller_on_shaft, RollerMeshSizes};
+use rollbem::mesh::BoundaryMesh;
+use rollbem::scene::preflight::problem_sizes;
+use rollbem::scene::BodySetup;
+use std::fmt::Write as _;
+use std::path::Path;
+
+const BASE: &str = r#"
+materials:
+  steel: {E: 210000.0, nu: 0.3}
+bodies:
+  A: {model: half_space, material: steel, radius: 100.0}
+  B: {model: half_space, material: steel, radius: 100.0}
+contact:
+  friction: 0.1
+load:
+  normal: {force: 1812.4573}
+  tangential: {ratio: 0.51}
+output: {dir: out}
+"#;
+
+/// Writes `mesh` as an ASCII MSH 4.1 file: one curve entity and physical group per group.
+fn write_msh(mesh: &BoundaryMesh, path: &Path) {
+    let mut t = String::from("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n");
+    writeln!(t, "{}", mesh.groups.len()).unwrap();
+    for (g, group) in mesh.groups.iter().enumerate() {
+        writeln!(t, "1 {} \"{}\"", g + 1, group.name).unwrap();
+    }
+    writeln!(t, "$EndPhysicalNames\n$Entities\n0 {} 0 0", mesh.groups.len()).unwrap();
+    for g in 0..mesh.groups.len() {
+        writeln!(t, "{} -1e9 -1e9 0 1e9 1e9 0 1 {} 0", g + 1, g + 1).unwrap();
+    }
+    let n = mesh.nodes.len();
+    writeln!(t, "$EndEntities\n$Nodes\n1 {n} 1 {n}\n1 1 0 {n}").unwrap();
+    for i in 1..=n {
+        writeln!(t, "{i}").unwrap();
+    }
+    for p in &mesh.nodes {
+        writeln!(t, "{:e} {:e} 0", p[0], p[1]).unwrap();
+    }
+    let ne = mesh.elements.len();
+    writeln!(t, "$EndNodes\n$Elements\n{} {ne} 1 {ne}", mesh.groups.len()).unwrap();
+    let mut tag = 1;
+    for g in 0..mesh.groups.len() {
+        let of_group: Vec<_> = mesh.elements.iter().filter(|e| e.group == g).collect();
+        let kind = if of_group[0].nodes.len() == 3 { 8 } else { 1 };
+        writeln!(t, "1 {} {kind} {}", g + 1, of_group.len()).unwrap();
+        for e in of_group {
+            let nodes: Vec<String> = e.nodes.iter().map(|n| (n + 1).to_string()).collect();
+            writeln!(t, "{tag} {}", nodes.join(" ")).unwrap();
+            tag += 1;
+        }
+    }
+    t.push_str("$EndElements\n");
+    std::fs::write(path, t).unwrap();
+}
+
+/// Runs `rollbem run` and returns its peak resident set size [bytes].
+// The child is reaped by `wait4`, which also returns its resource usage; clippy sees no `wait`.
+#[allow(clippy::zombie_processes)]
+fn peak_rss(args: &[&str]) -> f64 {
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_rollbem"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut status = 0;
+    // SAFETY: an all-zero rusage is a valid value of the plain C struct.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: waits for our own child by its pid; `status` and `usage` are valid for writes.
+    let pid = unsafe { libc::wait4(child.id() as libc::pid_t, &mut status, 0, &mut usage) };
+    assert_eq!(pid, child.id() as libc::pid_t, "wait4 failed");
+    assert!(
+        libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0,
+        "run failed: {args:?}"
+    );
+    // Linux reports ru_maxrss in kilobytes.
+    usage.ru_maxrss as f64 * 1024.0
+}
+
+/// One calibration point: (label, estimate, measured peak) [bytes].
+fn point(label: &str, case_text: &str, set: &[String], meshes: &[(&str, BoundaryMesh)]) -> (String, f64, f64) {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, mesh) in meshes {
+        write_msh(mesh, &dir.path().join(name));
+    }
+    let case = dir.path().join("case.yaml");
+    std::fs::write(&case, case_text).unwrap();
+    let loaded = rollbem::case::load(&case, set).unwrap();
+    let bodies = BodySetup::of_case(&loaded).unwrap();
+    let estimate = MemoryEstimate::of(&problem_sizes(&loaded, &bodies)).bytes();
+    let out = dir.path().join("out");
+    let mut args = vec!["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    for s in set {
+        args.extend(["--set", s.as_str()]);
+    }
+    (label.to_string(), estimate, peak_rss(&args))
+}
+
+fn half_space(elements: usize) -> (String, f64, f64) {
+    let m = 3 * elements;
+    point(
+        &format!("half_space pair, {elements} elements (m = {m})"),
+        BASE,
+        &[format!("contact.grid.elements={elements}")],
+        &[],
+    )
+}
+
+fn bem_roller(free: usize) -> (String, f64, f64) {
+    let sizes = RollerMeshSizes {
+        contact: 21,
+        free,
+        shaft: 24,
+    };
+    let mesh = roller_on_shaft(100.0, 10.0, 21.0 / 17.0, sizes, true);
+    let nodes = mesh.nodes.len();
+    let text = BASE.replace(
+        "A: {model: half_space, material: steel, radius: 100.0}",
+        "A: {model: bem, mesh: roller.msh, material: steel, boundaries: {shaft: fixed, free: free}}",
+    );
+    point(
+        &format!("bem roller of {nodes} nodes on a half_space"),
+        &text,
+        &[],
+        &[("roller.msh", mesh)],
+    )
+}
+
+fn interior(n: usize, vtk: bool) -> (String, f64, f64) {
+    point(
+        &format!("half_space, interior {n} x {n}, vtk {vtk}"),
+        BASE,
+        &[
+            format!("output.interior={{body: A, x: [-2, 2, {n}], y: [0.05, 3, {n}]}}"),
+            format!("output.vtk={vtk}"),
+        ],
+        &[],
+    )
+}
+
+fn report(points: &[(String, f64, f64)]) -> String {
+    let mut t = String::from("| case | estimate [MB] | measured peak [MB] | estimate / peak |\n|---|---|---|---|\n");
+    for (label, e, m) in points {
+        writeln!(t, "| {label} | {:.0} | {:.0} | {:.2} |", e / 1e6, m / 1e6, e / m).unwrap();
+    }
+    t
+}
+
+/// The estimate bounds the measured peak from above, within a factor 2, for each term.
+#[cfg(target_os = "linux")]
+#[test]
+fn the_memory_estimate_bounds_the_measured_peak() {
+    let points = [half_space(301), bem_roller(400), interior(150, true)];
+    eprintln!("{}", report(&points));
+    for (label, estimate, measured) in &points {
+        assert!(
+            measured <= estimate && *estimate <= 2.0 * measured,
+            "{label}: estimate {:.0} MB, measured peak {:.0} MB",
+            estimate / 1e6,
+            measured / 1e6
+        );
+    }
+}
+
+/// The calibration table of docs/reliability.md (larger sizes: a minute and a few GB).
+#[cfg(target_os = "linux")]
+#[test]
+#[ignore]
+fn calibration_table() {
+    let points = [
+        half_space(101),
+        half_space(201),
+        half_space(401),
+        half_space(601),
+        bem_roller(200),
+        bem_roller(500),
+        bem_roller(1000),
+        interior(300, true),
+        interior(300, false),
+    ];
+    println!("{}", report(&points));
+}
