@@ -412,3 +412,62 @@ fn free_rolling_creepage_in_the_bore_matches_the_series() {
         assert!(g81 / series < 0.2, "a = {a}: global {g81}");
     }
 }
+
+/// The contact's frame of a roller in a bore from the meshes' true geometry, against the
+/// circles: at every grid node of a ±14 mm arc (60 curved elements) the interface angle is the
+/// mean of the two surfaces' slope angles θ1 = asin(x/R1), θ2 = asin(x/R2) (one material, equal
+/// compliances), the arc scales are cos θ_b / cos ψ, and the rigid slip is the difference of
+/// the x-speeds of two circles turning about their centres, k = cos θ1 − cos θ2 (to the
+/// quadratic elements' interpolation of the circle, 1e-6 rad and 1e-8).
+#[test]
+fn the_contact_frame_in_a_bore_follows_the_two_circles() {
+    let case = bore_case(5.0, &["contact.friction=0".into(), "load.tangential.ratio=0".into()]);
+    let roller = roller_on_shaft(
+        40.0,
+        5.0,
+        14.0,
+        RollerMeshSizes {
+            contact: 60,
+            free: 48,
+            shaft: 24,
+        },
+        true,
+    );
+    let ring = ring_with_bore(
+        50.0,
+        65.0,
+        14.0,
+        RingMeshSizes {
+            contact: 60,
+            bore: 48,
+            rim: 48,
+        },
+        false,
+    );
+    let bodies = [
+        bem_body(
+            roller,
+            &[("free", BoundaryCondition::Free), ("shaft", BoundaryCondition::Fixed)],
+            40.0,
+        ),
+        bem_body(
+            ring,
+            &[("bore", BoundaryCondition::Free), ("rim", BoundaryCondition::Fixed)],
+            -50.0,
+        ),
+    ];
+    let scene = Scene::new(case, bodies);
+    let f = &scene.frame;
+    let (mut dpsi, mut dk, mut ds) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for (i, &x) in scene.grid.nodes.iter().enumerate() {
+        let (t1, t2) = ((x / 40.0).asin(), (x / 50.0).asin());
+        let psi = 0.5 * (t1 + t2);
+        dpsi = dpsi.max((f.normal_angle[i] - psi).abs());
+        dk = dk.max((f.rigid_slip[i] - (t1.cos() - t2.cos())).abs());
+        ds = ds
+            .max((f.arc_scale[0][i] - t1.cos() / psi.cos()).abs())
+            .max((f.arc_scale[1][i] - t2.cos() / psi.cos()).abs());
+    }
+    println!("frame in the bore: max |Δψ| = {dpsi:.2e} rad, |Δk| = {dk:.2e}, |Δs| = {ds:.2e}");
+    assert!(dpsi < 1e-6 && dk < 1e-8 && ds < 1e-8, "{dpsi} {dk} {ds}");
+}
