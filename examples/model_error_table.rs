@@ -5,6 +5,9 @@
 //! * Rollers: similar steel rollers R_A = R_B on rigid shafts (radius 0.1 R), μ = 0.1,
 //!   Q/μP = 0.5, at a/R = 0.002 … 0.2 (R the effective radius): half-space against true
 //!   geometry, both on the same 41-element contact grid.
+//! * Internal contact: a steel roller R1 = 40 mm on a rigid shaft (5 mm) in the bore R2 = 50 mm
+//!   of a steel ring with its rim (65 mm) fixed, μ = 0.1, Q/μP = 0.5, a/R1 = 0.005 … 0.2:
+//!   half-space (R* from the signed radii) against the true geometry on the same 41-element grid.
 //! * Layers: a rigid R = 100 mm cylinder on a layer of thickness b bonded to a rigid core
 //!   (ν = 0.3, frictionless, P for a Hertz half-width of 1 mm on the half-space), b/a = 1 … 50:
 //!   half-space against the BEM layer (a flat strip of half-width max(20b, 20a)).
@@ -109,6 +112,69 @@ pub fn rollers() -> Vec<RollerRow> {
 /// The roller table of docs/choosing-a-model.md.
 pub fn roller_table(rows: &[RollerRow]) -> Table {
     let mut t = Table::new(&["a/R", "pressure (p0)", "shear (μp0)", "creepage"]);
+    for r in rows {
+        let creep = format!("{:+.1e}", r.creep).replacen('-', "−", 1).replacen('+', "", 1);
+        t.push(vec![
+            r.a_over_r.to_string(),
+            format!("{:.1e}", r.pressure),
+            format!("{:.1e}", r.shear),
+            creep,
+        ]);
+    }
+    t
+}
+
+/// One a/R1 of the internal-contact family.
+#[derive(Debug, Clone, Copy)]
+pub struct InternalRow {
+    /// a/R1, R1 the roller's radius.
+    pub a_over_r: f64,
+    /// max |Δp| / p0.
+    pub pressure: f64,
+    /// max |Δq| / (μp0).
+    pub shear: f64,
+    /// Relative creepage difference, half-space against true geometry.
+    pub creep: f64,
+}
+
+/// A steel roller R1 = 40 mm on a rigid shaft of 5 mm in the bore R2 = 50 mm of a steel ring
+/// whose rim (65 mm) is fixed, R* = 200 mm, μ = 0.1, Q/μP = 0.5, a/R1 = 0.005 … 0.2 (a the
+/// Hertz half-width): half-space against true geometry on the same 41-element grid.
+pub fn internal() -> Vec<InternalRow> {
+    let (e, nu, r1, r2) = (210_000.0_f64, 0.3_f64, 40.0_f64, 50.0_f64);
+    let e_star = e / (2.0 * (1.0 - nu * nu));
+    let r_star = 1.0 / (1.0 / r1 - 1.0 / r2);
+    let mut rows = Vec::new();
+    for a_over_r in [0.005, 0.01, 0.02, 0.05, 0.1, 0.2] {
+        let a = a_over_r * r1;
+        let p_total = std::f64::consts::PI * a * a * e_star / (4.0 * r_star);
+        let c = load(
+            "carter_051",
+            &[
+                format!("bodies.A.radius={r1}"),
+                format!("bodies.B.radius=-{r2}"),
+                format!("load.normal.force={p_total}"),
+                "load.tangential.ratio=0.5".into(),
+                "contact.grid.elements=41".into(),
+            ],
+        );
+        let hs = solve_model(&c, SceneModel::HalfSpace, 41, 5.0 / r1).expect("half-space");
+        let tg = solve_model(&c, SceneModel::TrueGeometry, 41, 5.0 / r1).expect("true geometry");
+        assert!(hs.solution_converged && tg.solution_converged, "a/R1 = {a_over_r}");
+        let p0 = 2.0 * p_total / (std::f64::consts::PI * a);
+        rows.push(InternalRow {
+            a_over_r,
+            pressure: max_diff(&hs.solution.pressure, &tg.solution.pressure, p0),
+            shear: max_diff(&hs.solution.shear, &tg.solution.shear, 0.1 * p0),
+            creep: hs.solution.creep / tg.solution.creep - 1.0,
+        });
+    }
+    rows
+}
+
+/// The internal-contact table of docs/choosing-a-model.md.
+pub fn internal_table(rows: &[InternalRow]) -> Table {
+    let mut t = Table::new(&["a/R1", "pressure (p0)", "shear (μp0)", "creepage"]);
     for r in rows {
         let creep = format!("{:+.1e}", r.creep).replacen('-', "−", 1).replacen('+', "", 1);
         t.push(vec![
@@ -234,6 +300,18 @@ fn main() {
         .collect();
     println!(
         "`ROLLER_ERROR` of src/advice.rs:\n\n```rust\n{}\n```\n",
+        constants.join("\n")
+    );
+
+    let internal = internal();
+    println!("## Internal contact: roller R1 = 40 (shaft 5) in a ring bore R2 = 50 (rim 65 fixed), mu = 0.1, Q/muP = 0.5, 41 elements\n");
+    println!("{}", internal_table(&internal).markdown());
+    let constants: Vec<String> = internal
+        .iter()
+        .map(|r| format!("    ({:e}, {:.3e}, {:.3e}),", r.a_over_r, r.pressure, r.shear))
+        .collect();
+    println!(
+        "`INTERNAL_ERROR` of src/advice.rs:\n\n```rust\n{}\n```\n",
         constants.join("\n")
     );
 

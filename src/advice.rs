@@ -6,10 +6,12 @@
 //!
 //! * [`ROLLER_ERROR`] — rollers on rigid shafts (shaft radius 0.1 R), against the BEM true
 //!   geometry, as a function of a/R (R the effective radius);
+//! * [`INTERNAL_ERROR`] — a roller in a ring bore (internal contact, bore 1.25 × the roller's
+//!   radius R1), against the BEM true geometry, as a function of a/R1;
 //! * [`LAYER_ERROR`] — a cover layer of thickness b bonded to a rigid core, against the BEM
 //!   layer, as a function of b/a.
 //!
-//! Both come from `cargo run --release --example model_error_table` (examples/model_error_table.rs;
+//! All three come from `cargo run --release --example model_error_table` (examples/model_error_table.rs;
 //! docs/choosing-a-model.md shows the tables and the rule). Errors are the largest nodal
 //! differences in units of p0 (pressure) and μp0 (shear), p0 the Hertz peak pressure.
 
@@ -17,13 +19,26 @@
 /// shafts (similar steel, μ = 0.1, Q/μP = 0.5, 41 contact elements). Below a/R ≈ 0.01 the
 /// values are the two discretizations' difference (~5e-4), not model error.
 pub const ROLLER_ERROR: [(f64, f64, f64); 7] = [
-    (2e-3, 5.342e-4, 7.050e-4),
-    (5e-3, 5.268e-4, 8.984e-4),
-    (1e-2, 5.006e-4, 1.798e-3),
-    (2e-2, 6.755e-4, 5.396e-3),
-    (5e-2, 2.438e-3, 3.057e-2),
-    (1e-1, 8.727e-3, 7.753e-2),
-    (2e-1, 3.376e-2, 2.597e-1),
+    (2e-3, 5.340e-4, 7.050e-4),
+    (5e-3, 5.259e-4, 8.985e-4),
+    (1e-2, 4.969e-4, 1.799e-3),
+    (2e-2, 7.241e-4, 5.397e-3),
+    (5e-2, 2.743e-3, 3.057e-2),
+    (1e-1, 9.951e-3, 7.751e-2),
+    (2e-1, 3.876e-2, 2.597e-1),
+];
+
+/// (a/R1, max |Δp|/p0, max |Δq|/(μp0)) of the half-space model (R* from the signed radii)
+/// against the true geometry of a steel roller R1 = 40 mm on a rigid shaft of 5 mm in the bore
+/// R2 = 50 mm of a steel ring with its rim (65 mm) fixed (μ = 0.1, Q/μP = 0.5, 41 contact
+/// elements). R* = 5 R1 here: the contact is conformal long before a/R* is large.
+pub const INTERNAL_ERROR: [(f64, f64, f64); 6] = [
+    (5e-3, 3.806e-3, 3.806e-3),
+    (1e-2, 6.635e-3, 6.635e-3),
+    (2e-2, 1.312e-2, 1.312e-2),
+    (5e-2, 4.459e-2, 4.459e-2),
+    (1e-1, 1.028e-1, 1.028e-1),
+    (2e-1, 2.850e-1, 2.850e-1),
 ];
 
 /// (b/a, max |Δp|/p0) of the half-space model against a layer of thickness b bonded to a
@@ -74,6 +89,21 @@ pub fn roller_error(a_over_r: f64) -> HalfSpaceError {
         shear: Some(eq),
         basis: format!("rollers on shafts, a/R = {a_over_r:.3e}"),
         extrapolated: out_p && a_over_r > ROLLER_ERROR[0].0,
+    }
+}
+
+/// Half-space error for a roller of radius R1 in a ring bore (internal contact), Hertz
+/// half-width a, at a/R1.
+pub fn internal_error(a_over_r1: f64) -> HalfSpaceError {
+    let p: Vec<(f64, f64)> = INTERNAL_ERROR.iter().map(|r| (r.0, r.1)).collect();
+    let q: Vec<(f64, f64)> = INTERNAL_ERROR.iter().map(|r| (r.0, r.2)).collect();
+    let (ep, out) = interpolate(&p, a_over_r1);
+    let (eq, _) = interpolate(&q, a_over_r1);
+    HalfSpaceError {
+        pressure: ep.min(1.0),
+        shear: Some(eq),
+        basis: format!("roller in a ring bore (internal contact), a/R1 = {a_over_r1:.3e}"),
+        extrapolated: out,
     }
 }
 
@@ -140,6 +170,10 @@ mod tests {
         assert!(advise(&e, 0.001).starts_with("use bem"));
         // A thin layer: the half-space is far off.
         assert!(advise(&layer_error(1.0), 0.05).starts_with("use bem"));
+        // A roller in a bore at the same a/R1 needs the BEM much earlier.
+        assert!(advise(&internal_error(0.01), 0.01).starts_with("half_space is enough"));
+        assert!(advise(&internal_error(0.05), 0.01).starts_with("use bem"));
+        assert!(internal_error(0.05).pressure > roller_error(0.05).pressure);
         // Tiny a/R holds the discretization floor rather than extrapolating to zero.
         assert_eq!(roller_error(1e-5).pressure, ROLLER_ERROR[0].1);
     }

@@ -226,16 +226,29 @@ pub struct BoundaryField {
     pub group_names: Vec<String>,
 }
 
-/// Undeformed height of a circle of radius `radius` above its tangent at horizontal distance x:
-/// R − √(R² − x²) (the exact profile, not the parabola x²/2R). Beyond |x| = R the circle has no
-/// point and the height is taken as R (the grid is always much shorter than R).
+/// Undeformed height of a circle of signed radius `radius` above its tangent at horizontal
+/// distance x: R − √(R² − x²) (the exact profile, not the parabola x²/2R). A convex body
+/// (R > 0) bends away from the other body (height ≥ 0); a concave one (R < 0, a ring's bore)
+/// bends towards it, and its height is −(|R| − √(R² − x²)) ≤ 0. Beyond |x| = |R| the circle has
+/// no point and the height is taken as ±|R| (the grid is always much shorter than |R|).
 pub fn circle_profile(radius: f64, x: f64) -> f64 {
-    let r2 = radius * radius - x * x;
+    let r = radius.abs();
+    let r2 = r * r - x * x;
     if r2 <= 0.0 {
-        return radius;
+        return radius.signum() * r;
     }
     // x²/(R + √(R²−x²)) avoids the cancellation of R − √(R²−x²) for x ≪ R.
-    x * x / (radius + r2.sqrt())
+    radius.signum() * x * x / (r + r2.sqrt())
+}
+
+/// Slope dh/dx of [`circle_profile`] at x [-]: x/√(R² − x²) with the sign of R (infinite
+/// beyond |x| = |R|, where the circle has no point).
+pub fn circle_profile_slope(radius: f64, x: f64) -> f64 {
+    let r2 = radius * radius - x * x;
+    if r2 <= 0.0 {
+        return radius.signum() * x.signum() * f64::INFINITY;
+    }
+    radius.signum() * x / r2.sqrt()
 }
 
 /// A body model whose undeformed profile is replaced by a circle of the given radius, e.g. a
@@ -277,5 +290,25 @@ impl BodyFields for WithCircularProfile {
 
     fn interior(&self, query: &InteriorQuery) -> InteriorResult {
         self.inner.interior(query)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{circle_profile, circle_profile_slope};
+
+    #[test]
+    fn a_concave_profile_is_the_convex_one_mirrored() {
+        for x in [0.0, 1e-4, 0.3, 7.0] {
+            let (convex, concave) = (circle_profile(50.0, x), circle_profile(-50.0, x));
+            assert_eq!(convex, -concave);
+            let exact = 50.0 - (2500.0 - x * x).sqrt();
+            assert!((convex - exact).abs() <= 1e-15 * 50.0, "x = {x}");
+            assert!((circle_profile_slope(-50.0, x) + x / (2500.0 - x * x).sqrt()).abs() < 1e-15);
+        }
+        // Roller 40 in bore −50: the gap is x²/2R* with R* = 200 at small x.
+        let x = 1e-2;
+        let gap = circle_profile(40.0, x) + circle_profile(-50.0, x);
+        assert!((gap / (x * x / 400.0) - 1.0).abs() < 1e-6);
     }
 }

@@ -167,13 +167,17 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
             ),
         );
     }
-    // The half-space error of the scene: a layer's if a bem body is held fixed closer under
-    // its contact than half its radius (a cover layer on a core), else the rollers'.
+    // The half-space error of the scene: a roller in a bore's if a body is concave (the
+    // family's ring has its rim fixed 0.3 bore radii under the contact, so its error includes
+    // that wall's), a layer's if a bem body is held fixed closer under its contact than half its
+    // radius (a cover layer on a core), else the rollers'.
     let layer = bodies
         .iter()
         .filter_map(BodySetup::layer_thickness)
         .fold(f64::INFINITY, f64::min);
-    let error = if layer.is_finite() {
+    let error = if let Some(r1) = convex_radius_in_a_bore(bodies) {
+        crate::advice::internal_error(est.hertz_half_width / r1)
+    } else if layer.is_finite() {
         // Under overlap control the half-plane estimate of a means nothing for a layer; the
         // thin-layer chord a² = 2Rδ0 (compressible) or 6Rδ0 (ν = 0.5) does (the thin-layer limit of docs/tyre.md).
         let a = match c.load.normal() {
@@ -205,6 +209,17 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
         ),
     );
     Ok(t)
+}
+
+/// The convex body's radius R1 when the other body is concave (a roller in a ring's bore),
+/// else None.
+fn convex_radius_in_a_bore(bodies: &[BodySetup; 2]) -> Option<f64> {
+    let [ra, rb] = [bodies[0].radius(), bodies[1].radius()];
+    match (ra < 0.0, rb < 0.0) {
+        (true, false) => Some(rb),
+        (false, true) => Some(ra),
+        _ => None,
+    }
 }
 
 /// The estimated cost of the case as it stands and with the other model: BEM rollers on shafts

@@ -20,6 +20,7 @@
 
 mod creep_secant;
 pub mod direction;
+pub mod frame;
 pub mod gauss_seidel;
 pub mod methods;
 pub mod newton;
@@ -35,6 +36,7 @@ use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;
 use crate::linalg::mat_vec2;
 use faer::Mat;
+pub use frame::{ContactForces, ContactFrame, TractionAxes};
 pub use report::{GaussSeidelSettings, IterationRecord, Method, NewtonSettings, SolveReport, SolverSettings};
 pub use residual::{Formulation, State};
 use serde::{Deserialize, Serialize};
@@ -109,6 +111,11 @@ pub struct ContactProblem {
     pub tangential: TangentialControl,
     /// Combined boundary-integral strain operator ∂w/∂x, when both models have one.
     pub strain: Option<StrainOperator>,
+    /// The contact's directions at the nodes, in which `flex`, `bodies` and `strain` are
+    /// written ([`frame`]).
+    pub frame: ContactFrame,
+    /// Rigid slip of the surface speeds k_i times the creepage weight e_i [-] ([`frame`]).
+    pub rigid_slip: Vec<f64>,
 }
 
 /// Sum of two dense matrices of equal shape.
@@ -117,7 +124,8 @@ fn add(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
 }
 
 impl ContactProblem {
-    /// Assembles the problem from the two body models on a grid.
+    /// Assembles the problem from the two body models on a grid, in the contact `frame` at
+    /// its nodes ([`ContactFrame::global_axes`] for tractions along x and y).
     #[allow(clippy::too_many_arguments)]
     pub fn assemble(
         grid: ContactGrid,
@@ -128,9 +136,11 @@ impl ContactProblem {
         rolling: RollingDirection,
         normal: NormalControl,
         tangential: TangentialControl,
+        frame: ContactFrame,
     ) -> Self {
-        let fa = body_a.flexibility(&grid, Side::A);
-        let fb = body_b.flexibility(&grid, Side::B);
+        assert_eq!(frame.normal_angle.len(), grid.n_nodes(), "one frame direction per node");
+        let fa = frame.flexibility(&body_a.flexibility(&grid, Side::A), Side::A);
+        let fb = frame.flexibility(&body_b.flexibility(&grid, Side::B), Side::B);
         let flex = Flexibility {
             hp: add(&fa.hp, &fb.hp),
             hq: add(&fa.hq, &fb.hq),
@@ -147,10 +157,13 @@ impl ContactProblem {
                 body_a.strain_operator(&grid, Side::A),
                 body_b.strain_operator(&grid, Side::B),
             ) {
-                (Some(a), Some(b)) => Some(StrainOperator {
-                    p: add(&a.p, &b.p),
-                    q: add(&a.q, &b.q),
-                }),
+                (Some(a), Some(b)) => {
+                    let (a, b) = (frame.strain(&a, Side::A), frame.strain(&b, Side::B));
+                    Some(StrainOperator {
+                        p: add(&a.p, &b.p),
+                        q: add(&a.q, &b.q),
+                    })
+                }
                 _ => None,
             }
         };
@@ -163,6 +176,12 @@ impl ContactProblem {
         let slip_operator = SlipOperator::new(&grid, derivative, flow_sign);
         let bp = slip_operator.apply_scaled(&flex.wp, flow_sign);
         let bq = slip_operator.apply_scaled(&flex.wq, flow_sign);
+        let rigid_slip = frame
+            .rigid_slip
+            .iter()
+            .zip(&slip_operator.creep_weight)
+            .map(|(k, e)| k * e)
+            .collect();
         Self {
             grid,
             flex,
@@ -176,6 +195,8 @@ impl ContactProblem {
             normal,
             tangential,
             strain,
+            frame,
+            rigid_slip,
         }
     }
 
@@ -200,17 +221,20 @@ impl ContactProblem {
         mat_vec2(&self.flex.wp, p, &self.flex.wq, q)
     }
 
-    /// Slip s = σ(ξ + D w) at every node [-] (paper Eq. 19).
+    /// Slip s = σ(ξ + k + D w) at every node [-] (paper Eq. 19; k the rigid slip of curved
+    /// bodies' surface speeds, zero in global axes: [`frame`]).
     pub fn slip(&self, p: &[f64], q: &[f64], creep: f64) -> Vec<f64> {
         let b = mat_vec2(&self.bp, p, &self.bq, q);
         let e = &self.slip_operator.creep_weight;
         b.into_iter()
             .zip(e)
-            .map(|(v, e)| self.flow_sign * creep * e + v)
+            .zip(&self.rigid_slip)
+            .map(|((v, e), k)| self.flow_sign * (creep * e + k) + v)
             .collect()
     }
 
-    /// Slip velocity s = σ(ξ + ∂w/∂x) at every node [-], for the outputs: [`Self::slip`] at every
+    /// Slip velocity s = σ(ξ + k + ∂w/∂x) at every node [-] (k the rigid slip of [`frame`]), for
+    /// the outputs: [`Self::slip`] at every
     /// node but the upstream end, whose row in the problem is the datum equation of w (see
     /// [`SlipOperator`]); there the derivative is taken downstream
     /// ([`SlipOperator::derivative`]). Same tractions, same solution: only that node differs.
@@ -223,7 +247,8 @@ impl ContactProblem {
                 .iter()
                 .map(|&(j, c)| c * self.relative_tangential_at(j, p, q))
                 .sum();
-            s[op.upstream_end] = self.flow_sign * (creep + dw);
+            let k = self.frame.rigid_slip[op.upstream_end];
+            s[op.upstream_end] = self.flow_sign * (creep + k + dw);
         }
         s
     }
@@ -234,12 +259,13 @@ impl ContactProblem {
         (0..p.len()).map(|k| wp[(j, k)] * p[k] + wq[(j, k)] * q[k]).sum()
     }
 
-    /// Slip from the boundary-integral strain operator, s = σ(ξ + ∂w/∂x), if available.
+    /// Slip from the boundary-integral strain operator, s = σ(ξ + k + ∂w/∂x), if available.
     pub fn slip_from_strain(&self, p: &[f64], q: &[f64], creep: f64) -> Option<Vec<f64>> {
         self.strain.as_ref().map(|op| {
             mat_vec2(&op.p, p, &op.q, q)
                 .into_iter()
-                .map(|dw| self.flow_sign * (creep + dw))
+                .zip(&self.frame.rigid_slip)
+                .map(|(dw, k)| self.flow_sign * (creep + k + dw))
                 .collect()
         })
     }

@@ -9,6 +9,14 @@
 //! With ξ = ±2/3 the nodes of a discontinuous quadratic grid are equally spaced (spacing L/3),
 //! and those of a continuous one too (spacing L/2), which the slip operator uses.
 //! Nodes are numbered in increasing x.
+//!
+//! **Mapped elements.** A grid built on a BEM mesh's curved contact elements follows their
+//! geometry ([`ContactGrid::from_mapped_edges`]): element e maps ξ ∈ [−1, 1] to
+//! x(ξ) = ½ξ(ξ−1)x₀ + ½ξ(ξ+1)x₁ + (1−ξ²)x_m, the x of the mesh's quadratic element through its
+//! end nodes x₀, x₁ and its mid node x_m, so the grid's nodes are the x of the mesh's field
+//! nodes exactly (a mid node at the mid-angle of an arc is not at the mid-x of its ends).
+//! Shape functions are the same polynomials in ξ; weights become ∫ N_a(ξ) x'(ξ) dξ. A straight
+//! element (x_m the centre) is the linear map of the equal-element formulas, bit for bit.
 
 use serde::Serialize;
 
@@ -104,6 +112,9 @@ pub struct ContactGrid {
     pub nodes: Vec<f64>,
     /// Integration weights w_j = ∫ N_j dx [length]: P = Σ w_j p_j (paper Eq. 38–39).
     pub weights: Vec<f64>,
+    /// x at ξ = 0 of each element [length]: its centre for a straight element, the x of the
+    /// mesh's mid node for a mapped one (module docs).
+    pub mids: Vec<f64>,
 }
 
 impl ContactGrid {
@@ -121,7 +132,20 @@ impl ContactGrid {
     ///
     /// Panics on fewer than two edges or non-increasing ones: callers validate first.
     pub fn from_edges(kind: ElementKind, edges: Vec<f64>) -> Self {
+        let mids = edges.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
+        Self::from_mapped_edges(kind, edges, mids)
+    }
+
+    /// Builds a grid of mapped elements (module docs) from their end points, strictly
+    /// increasing, and the x of each element's mid point, `mids[e]` within the middle half of
+    /// its element (x(ξ) then increases on [−1, 1]); a mid point outside it is replaced by the
+    /// centre.
+    ///
+    /// Panics on fewer than two edges, non-increasing ones or a wrong number of mids: callers
+    /// validate first.
+    pub fn from_mapped_edges(kind: ElementKind, edges: Vec<f64>, mids: Vec<f64>) -> Self {
         assert!(edges.len() >= 2, "a contact grid needs at least one element");
+        assert_eq!(mids.len() + 1, edges.len(), "one mid point per element");
         assert!(
             edges.windows(2).all(|w| w[1] > w[0]),
             "grid edges must increase: {edges:?}"
@@ -129,22 +153,42 @@ impl ContactGrid {
         let n_elements = edges.len() - 1;
         let stride = kind.node_stride();
         let n_nodes = n_elements * stride + usize::from(kind.shares_nodes());
+        let mids: Vec<f64> = (0..n_elements)
+            .map(|e| {
+                let (length, centre) = (edges[e + 1] - edges[e], 0.5 * (edges[e] + edges[e + 1]));
+                // A bow within the round-off of a mesh file (Gmsh's mid nodes of straight lines
+                // are off by up to ~1e-11 of the element) is a straight element, bit for bit.
+                let bow = (mids[e] - centre).abs();
+                if bow > 1e-9 * length && bow < 0.25 * length {
+                    mids[e]
+                } else {
+                    centre
+                }
+            })
+            .collect();
         let mut nodes = vec![0.0; n_nodes];
         let mut weights = vec![0.0; n_nodes];
         for e in 0..n_elements {
             let length = edges[e + 1] - edges[e];
             let centre = 0.5 * (edges[e] + edges[e + 1]);
+            // The map's bow: x(ξ) = centre + ½Lξ + bow·(1 − ξ²), zero for a straight element.
+            let bow = mids[e] - centre;
             for (a, xi) in kind.node_coordinates().iter().enumerate() {
                 let j = e * stride + a;
                 // A shared end node gets the same x from both elements (exactly, at the edge).
                 nodes[j] = match (kind.shares_nodes(), a) {
                     (true, 0) => edges[e],
                     (true, 2) => edges[e + 1],
-                    _ => centre + 0.5 * length * xi,
+                    _ if bow == 0.0 => centre + 0.5 * length * xi,
+                    _ => centre + 0.5 * length * xi + bow * (1.0 - xi * xi),
                 };
-                let [c0, _, c2] = kind.shape_polynomial(a);
-                // ∫_{-1}^{1} (c0 + c1 ξ + c2 ξ²) dξ · L/2, summed over the elements of the node.
+                let [c0, c1, c2] = kind.shape_polynomial(a);
+                // ∫_{-1}^{1} (c0 + c1 ξ + c2 ξ²)(L/2 − 2 bow ξ) dξ, summed over the elements of
+                // the node (the odd moments vanish: ∫ξ² = 2/3, ∫ξ⁴ = 2/5).
                 weights[j] += (2.0 * c0 + 2.0 * c2 / 3.0) * 0.5 * length;
+                if bow != 0.0 {
+                    weights[j] -= 2.0 * bow * c1 * 2.0 / 3.0;
+                }
             }
         }
         Self {
@@ -152,7 +196,45 @@ impl ContactGrid {
             edges,
             nodes,
             weights,
+            mids,
         }
+    }
+
+    /// Whether every element is straight (the linear map of its end points).
+    pub fn is_straight(&self) -> bool {
+        self.edges
+            .windows(2)
+            .zip(&self.mids)
+            .all(|(w, m)| *m == 0.5 * (w[0] + w[1]))
+    }
+
+    /// The grid of straight elements between the same edges.
+    pub fn straightened(&self) -> ContactGrid {
+        ContactGrid::from_edges(self.kind, self.edges.clone())
+    }
+
+    /// x(ξ) of element `e` [length] (module docs).
+    pub fn element_x(&self, e: usize, xi: f64) -> f64 {
+        let (x0, x1) = (self.edges[e], self.edges[e + 1]);
+        let centre = 0.5 * (x0 + x1);
+        centre + 0.5 * (x1 - x0) * xi + (self.mids[e] - centre) * (1.0 - xi * xi)
+    }
+
+    /// ξ ∈ [−1, 1] of x in element `e`: the root of the element's map (linear when straight).
+    fn element_xi(&self, e: usize, x: f64) -> f64 {
+        let (x0, x1) = (self.edges[e], self.edges[e + 1]);
+        let (half, centre) = (0.5 * (x1 - x0), 0.5 * (x0 + x1));
+        let bow = self.mids[e] - centre;
+        // bow ξ² − half ξ + (x − centre − bow) = 0; the root in [−1, 1] in the cancellation-free
+        // form 2c/(−b ± √(b² − 4ac)) (|bow| < half/2 keeps it unique and real).
+        let c = x - centre - bow;
+        let xi = if bow == 0.0 {
+            c / half
+        } else {
+            let disc = (half * half - 4.0 * bow * c).max(0.0);
+            2.0 * c / (half + disc.sqrt())
+        };
+        xi.clamp(-1.0, 1.0)
     }
 
     /// Number of contact nodes m.
@@ -180,18 +262,17 @@ impl ContactGrid {
             .min(self.length())
     }
 
-    /// Whether all elements have the same length (to 1e-12 relative).
+    /// Whether all elements are straight and have the same length (to 1e-12 relative).
     pub fn is_uniform(&self) -> bool {
         let l = self.length() / self.n_elements() as f64;
-        self.edges.windows(2).all(|w| ((w[1] - w[0]) - l).abs() <= 1e-12 * l)
+        self.is_straight() && self.edges.windows(2).all(|w| ((w[1] - w[0]) - l).abs() <= 1e-12 * l)
     }
 
-    /// Whether two grids have the same kind and nodes (to 1e-12 of the node spacing).
+    /// Whether two grids have the same kind, edges and nodes (to 1e-12 of the node spacing).
     pub fn coincides_with(&self, other: &ContactGrid) -> bool {
         let tol = 1e-12 * self.node_spacing();
-        self.kind == other.kind
-            && self.nodes.len() == other.nodes.len()
-            && self.edges.iter().zip(&other.edges).all(|(a, b)| (a - b).abs() <= tol)
+        let close = |a: &[f64], b: &[f64]| a.len() == b.len() && a.iter().zip(b).all(|(a, b)| (a - b).abs() <= tol);
+        self.kind == other.kind && close(&self.edges, &other.edges) && close(&self.nodes, &other.nodes)
     }
 
     /// Shape-function values at x: (node, N_node(x)) for the nodes of the element holding x;
@@ -207,9 +288,13 @@ impl ContactGrid {
             .partition_point(|&edge| edge <= x)
             .saturating_sub(1)
             .min(n - 1);
-        let length = self.edges[e + 1] - self.edges[e];
-        let centre = 0.5 * (self.edges[e] + self.edges[e + 1]);
-        let xi = 2.0 * (x - centre) / length;
+        let xi = if self.mids[e] == 0.5 * (self.edges[e] + self.edges[e + 1]) {
+            let length = self.edges[e + 1] - self.edges[e];
+            let centre = 0.5 * (self.edges[e] + self.edges[e + 1]);
+            2.0 * (x - centre) / length
+        } else {
+            self.element_xi(e, x)
+        };
         let npe = self.kind.nodes_per_element();
         (0..npe)
             .map(|a| {
@@ -282,6 +367,61 @@ mod tests {
         assert_eq!(g.element_of(2), (1, 0));
         assert_eq!(g.element_of(8), (3, 2));
         assert_eq!(g.global_node(1, 2), 4);
+    }
+
+    /// A grid on the arc elements of a circle: nodes at the x of the arc's points at ξ = −2/3,
+    /// 0, 2/3 of each element's quadratic map, weights integrating ∫ f dx of the traction
+    /// interpolated in ξ exactly (checked against a fine quadrature of the same interpolant), and
+    /// interpolation cardinal at the nodes.
+    #[test]
+    fn mapped_elements_follow_the_mesh_geometry() {
+        let r = 40.0_f64;
+        let angles: Vec<f64> = (0..=6).map(|k| (-21.0 + 7.0 * k as f64).to_radians()).collect();
+        let edges: Vec<f64> = angles.iter().map(|t| r * t.sin()).collect();
+        let mids: Vec<f64> = angles.windows(2).map(|w| r * (0.5 * (w[0] + w[1])).sin()).collect();
+        let kind = ElementKind::DiscontinuousQuadratic;
+        let g = ContactGrid::from_mapped_edges(kind, edges.clone(), mids.clone());
+        assert!(!g.is_straight() && !g.is_uniform() && g.straightened().is_straight());
+        for e in 0..g.n_elements() {
+            assert!(
+                (g.element_x(e, 0.0) - mids[e]).abs() < 1e-14 && (g.element_x(e, 1.0) - edges[e + 1]).abs() < 1e-13
+            );
+            for a in 0..3 {
+                let xi = kind.node_coordinates()[a];
+                assert!((g.nodes[e * 3 + a] - g.element_x(e, xi)).abs() < 1e-13);
+            }
+        }
+        // The straight node positions differ from the mapped ones by more than round-off.
+        let straight = g.straightened();
+        let shift = g
+            .nodes
+            .iter()
+            .zip(&straight.nodes)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(shift > 1e-4, "shift {shift}");
+        let f = |x: f64| 1.0 + 0.3 * x - 0.02 * x * x;
+        let vals: Vec<f64> = g.nodes.iter().map(|&x| f(x)).collect();
+        for (j, &x) in g.nodes.iter().enumerate() {
+            assert!((g.interpolate(&vals, x) - vals[j]).abs() < 1e-12, "node {j}");
+        }
+        // Gauss in x over each element (the interpolant is smooth there, not a polynomial in x).
+        let (t, w) = crate::quadrature::gauss_legendre(24);
+        let fine: f64 = g
+            .edges
+            .windows(2)
+            .map(|e| {
+                let (c, h) = (0.5 * (e[0] + e[1]), 0.5 * (e[1] - e[0]));
+                t.iter()
+                    .zip(&w)
+                    .map(|(t, w)| w * h * g.interpolate(&vals, c + h * t))
+                    .sum::<f64>()
+            })
+            .sum();
+        assert!(
+            (g.integrate(&vals) - fine).abs() < 1e-12 * fine.abs(),
+            "{} vs {fine}",
+            g.integrate(&vals)
+        );
     }
 
     #[test]

@@ -92,7 +92,9 @@ pub fn material_for_beta(b: &Elastic, beta: f64) -> Option<Elastic> {
     Some(Elastic::from_shear(shear_a, nu_a))
 }
 
-/// Combined radius R with 1/R = 1/R_A + 1/R_B [length] (both convex).
+/// Combined radius R* with 1/R* = 1/R_A + 1/R_B [length], radii signed: positive for a convex
+/// body, negative for a concave one (internal contact, a roller in a ring's bore: 1/R* =
+/// 1/R_roller − 1/|R_bore|). Positive whenever contact is possible (R_A + R_B > 0).
 pub fn effective_radius(radius_a: f64, radius_b: f64) -> f64 {
     1.0 / (1.0 / radius_a + 1.0 / radius_b)
 }

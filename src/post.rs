@@ -89,7 +89,7 @@ pub fn process(
     let friction_check = check_friction_law(&solution, scene.friction(), DEFAULT_THRESHOLD_FRACTION);
     let output = &scene.case.case.output;
     let boundary = if report.converged && output.vtk {
-        fields::boundary_fields(models, &problem.grid, &solution)?
+        fields::boundary_fields(models, &problem.grid, &problem.frame, &solution)?
     } else {
         [None, None]
     };
@@ -104,7 +104,14 @@ pub fn process(
                 spec.x[2],
                 spec.y[2]
             );
-            Some(fields::interior_field(&scene, spec, models, &problem.grid, &solution)?)
+            Some(fields::interior_field(
+                &scene,
+                spec,
+                models,
+                &problem.grid,
+                &problem.frame,
+                &solution,
+            )?)
         }
         _ => None,
     };

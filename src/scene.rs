@@ -8,6 +8,7 @@
 //! their own [`BodySetup`]s with [`Scene::new`] instead of rewriting the case.
 
 pub mod body_setup;
+pub mod contact_frame;
 pub mod estimates;
 pub mod loaded_mesh;
 pub mod preflight;
@@ -15,7 +16,7 @@ pub mod preflight;
 use crate::analytic::Carter;
 use crate::body::{Body, Side};
 use crate::case::{LoadedCase, NormalSpec, TangentialSpec};
-use crate::contact::{ContactProblem, NewtonSettings, NormalControl, SolverSettings, TangentialControl};
+use crate::contact::{ContactFrame, ContactProblem, NewtonSettings, NormalControl, SolverSettings, TangentialControl};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 pub use body_setup::{BemSetup, BodySetup};
@@ -35,6 +36,8 @@ pub struct Scene {
     /// The contact grid: a `bem` body's own contact elements (A's first), else the case's
     /// uniform grid around the Hertz contact.
     pub grid: ContactGrid,
+    /// The contact's directions at the grid's nodes ([`contact_frame`]).
+    pub frame: ContactFrame,
     /// Hertz estimates; their grid entries describe [`Self::grid`].
     pub estimates: Estimates,
     /// What is prescribed normally.
@@ -81,10 +84,12 @@ impl Scene {
             TangentialSpec::Creep(x) => TangentialControl::Creep(x),
         };
         let solver = solver_settings(&case);
+        let frame = contact_frame::contact_frame(&bodies, &grid, c.contact.traction_axes);
         Scene {
             case,
             bodies,
             grid,
+            frame,
             estimates,
             normal,
             tangential,
@@ -159,6 +164,7 @@ impl Scene {
             c.rolling_direction,
             self.normal,
             self.tangential,
+            self.frame.clone(),
         )
     }
 

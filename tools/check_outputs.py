@@ -85,7 +85,8 @@ def check_vtu(path, cols):
 def check_boundary(path, cols, summary):
     """A bem body's boundary: quadratic edges, documented arrays, finite values, and on the
     contact group the traction's normal component equals the pressure of contact.csv (the body
-    carries the nodal contact tractions through its condensed response; 1e-3 of the peak pressure)."""
+    carries the nodal contact tractions through its condensed response; 1e-3 of the peak pressure),
+    turned into the global axes by the summary's `contact_frame` when there is one."""
     m = meshio.read(path)
     g = pv.read(path)
     if [c.type for c in m.cells] != ["line3"]:
@@ -101,8 +102,19 @@ def check_boundary(path, cols, summary):
         return
     t = np.asarray(g.point_data["traction"])
     pts = np.asarray(g.points)
-    sign = 1.0 if path.name.endswith("_A.vtu") else -1.0
+    side = 0 if path.name.endswith("_A.vtu") else 1
+    sign = 1.0 if side == 0 else -1.0
     pmax = cols["pressure"].max()
+    # With the tractions along the contact (summary `contact_frame`), the body carries the
+    # nodal (p, q) turned by the interface angle psi and scaled by its arc factor s: its y
+    # traction is s (p cos psi + q sin psi) (docs/theory.md, "Tractions along the contact").
+    frame = summary.get("contact_frame")
+    if frame:
+        psi = np.asarray(frame["normal_angle"])
+        scale = np.asarray(frame["arc_scale"][side])
+        normal = scale * (cols["pressure"] * np.cos(psi) + cols["shear"] * np.sin(psi))
+    else:
+        normal = cols["pressure"]
     span = cols["x"].max() - cols["x"].min()
     checked = 0
     for k in np.arange(2, len(pts), 3):  # element mid points
@@ -110,7 +122,7 @@ def check_boundary(path, cols, summary):
         if abs(pts[k, 1]) > 0.05 * span or not near.any():
             continue  # not on the contact segment, or not at a contact node
         checked += 1
-        p = cols["pressure"][near][0]
+        p = normal[near][0]
         if abs(sign * t[k, 1] - p) > 1e-3 * pmax:
             fail(path, f"normal traction {sign * t[k, 1]:.6g} at x = {pts[k, 0]:.6g} differs from contact.csv pressure {p:.6g}")
             break

@@ -46,14 +46,10 @@ impl BemBody {
     /// Condenses `model` to the nodes of `grid` for a body on `side`.
     ///
     /// Fails unless `grid` uses discontinuous quadratic elements, the contact group's field
-    /// nodes lie at the grid's node abscissae (to 1e-3 of the node spacing), and the contact
-    /// surface faces the other body (outward normal −y on A, +y on B, within 25°).
-    ///
-    /// The tolerance admits curved contact elements: Gmsh puts the mid node of an arc at its
-    /// mid-angle, which moves the interior field nodes off the uniform grid by about
-    /// R·θ·δ²/2 (θ the angle from the contact centre, δ the element's half angle), some 1e-5
-    /// of the node spacing for a = 1 mm on R = 100 mm. A pairing offset ε·spacing changes the
-    /// influence coefficients by a relative O(ε), far below the discretisation error.
+    /// nodes lie at the grid's node abscissae (to 1e-6 of the node spacing: the grid of a mesh
+    /// follows its curved elements, [`crate::grid::ContactGrid::from_mapped_edges`]), and the
+    /// contact surface faces the other body (outward normal −y on A, +y on B, within
+    /// [`MAX_CONTACT_ANGLE_DEG`]).
     pub fn new(model: BemModel, contact_group: &str, grid: &ContactGrid, side: Side) -> Result<Self, BemError> {
         let mismatch = |problem: String| BemError::ContactGridMismatch {
             path: model.mesh.source.clone(),
@@ -83,7 +79,7 @@ impl BemBody {
                 grid.element_length()
             )));
         }
-        let tolerance = 1e-3 * grid.node_spacing();
+        let tolerance = 1e-6 * grid.node_spacing();
         if let Some((x_mesh, x_grid)) = xs.iter().zip(&grid.nodes).find(|(a, b)| (*a - *b).abs() > tolerance) {
             return Err(mismatch(format!(
                 "mesh node at x = {x_mesh} but grid node at x = {x_grid}: the contact elements \
@@ -94,7 +90,7 @@ impl BemBody {
             Side::A => -1.0,
             Side::B => 1.0,
         };
-        let cos_limit = 25f64.to_radians().cos();
+        let cos_limit = MAX_CONTACT_ANGLE_DEG.to_radians().cos();
         if let Some(k) = model
             .discretisation
             .nodes_of_group(g)
@@ -103,23 +99,32 @@ impl BemBody {
         {
             return Err(mismatch(format!(
                 "the contact surface at x = {} does not face the other body (outward normal \
-                 {:?}, expected close to (0, {facing}) for body {side:?})",
+                 {:?}, expected within {MAX_CONTACT_ANGLE_DEG}° of (0, {facing}) for body {side:?}: \
+                 the contact grid runs along x, so a contact group must stay within that angle \
+                 of the contact's centre)",
                 field[k].position[0], field[k].normal
             )));
         }
         let condensed = condense(&model, contact_group)?;
-        let touch_y = contact_heights(&model, g)
+        let extreme = contact_heights(&model, g)
             .into_iter()
             .map(|(_, y)| y * facing)
             .fold(f64::NEG_INFINITY, f64::max)
             * facing;
-        Ok(Self {
+        let mut body = Self {
             contact_group: contact_group.to_string(),
             side,
             condensed,
-            touch_y,
+            touch_y: extreme,
             model,
-        })
+        };
+        // The touching point is the surface at x = 0 (the contact frame's origin; for a convex
+        // body drawn touching there also its extreme point, for a concave bore the only one);
+        // a contact group that does not cross x = 0 keeps its extreme point.
+        if let Some(y0) = body.surface_height(0.0) {
+            body.touch_y = y0;
+        }
+        Ok(body)
     }
 
     /// Height y(x) of the undeformed contact surface at abscissa x [length], if x lies on
@@ -152,6 +157,11 @@ impl BemBody {
         None
     }
 }
+
+/// Largest angle [°] between a contact node's outward normal and the direction facing the
+/// other body (−y on A, +y on B). The contact grid is parametrised by x, which stays one-to-one
+/// along an arc well short of 90°; 60° admits conformal contacts whose arc spans up to 120°.
+pub const MAX_CONTACT_ANGLE_DEG: f64 = 60.0;
 
 /// Sample points (x, y) of the contact group's geometry (21 per element).
 fn contact_heights(model: &BemModel, group: usize) -> Vec<(f64, f64)> {
@@ -306,8 +316,9 @@ impl BodyModel for BemBody {
     }
 
     /// Distance of the undeformed contact surface from the common tangent at x [length]
-    /// (y − y_touch on A, y_touch − y on B); beyond the contact group, the value at its
-    /// nearer end.
+    /// (y − y_touch on A, y_touch − y on B): positive where a convex surface bends away from the
+    /// other body, negative where a concave bore bends towards it; beyond the contact group,
+    /// the value at its nearer end.
     fn profile(&self, x: f64) -> f64 {
         let (lo, hi) = (
             self.condensed.x.first().copied().unwrap_or(x),
@@ -321,7 +332,7 @@ impl BodyModel for BemBody {
             .surface_height(x)
             .or_else(|| self.surface_height(x.clamp(lo, hi)))
             .unwrap_or(self.touch_y);
-        ((y - self.touch_y) * facing).max(0.0)
+        (y - self.touch_y) * facing
     }
 
     /// (assembly, condensation + HBEM surface strain) [s].

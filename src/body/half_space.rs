@@ -198,14 +198,16 @@ fn influence_matrix_direct(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
 pub struct HalfSpace {
     /// Material of the body.
     pub material: Elastic,
-    /// Radius of the cylinder's profile [length]; sets the undeformed gap and the datum.
+    /// Signed radius of the cylinder's profile [length]: positive for a convex body, negative
+    /// for a concave one (a ring's bore); sets the undeformed gap and (through |R|) the datum.
     pub radius: f64,
 }
 
 impl HalfSpace {
-    /// Datum length ℓ = 2R/e [length] of the logarithmic displacement (see the module docs).
+    /// Datum length ℓ = 2|R|/e [length] of the logarithmic displacement (see the module docs;
+    /// a concave body takes its radius's magnitude: the datum only shifts the overlap δ0).
     pub fn datum_length(&self) -> f64 {
-        2.0 * self.radius / std::f64::consts::E
+        2.0 * self.radius.abs() / std::f64::consts::E
     }
 }
 

@@ -5,10 +5,10 @@ use super::{
 };
 use crate::grid::ContactGrid;
 
-/// A rigid cylinder of the given radius [length].
+/// A rigid cylinder of the given signed radius [length] (negative: a concave bore).
 #[derive(Debug, Clone)]
 pub struct Rigid {
-    /// Profile radius [length].
+    /// Signed profile radius [length]: positive convex, negative concave.
     pub radius: f64,
 }
 

@@ -3,7 +3,7 @@
 
 pub use crate::contact::Formulation;
 pub use crate::contact::Method;
-use crate::contact::{RollingDirection, SlipDerivative};
+use crate::contact::{RollingDirection, SlipDerivative, TractionAxes};
 use crate::grid::ElementKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -190,6 +190,12 @@ pub struct ContactSpec {
     /// Steady-rolling derivative of the slip. Default = second_order.
     #[serde(default = "default_derivative")]
     pub slip_derivative: SlipDerivative,
+    /// Axes of the contact tractions with true-geometry (bem, rigid) bodies: `contact` (along
+    /// the normal and tangent of the contact interface, with the rigid surface speeds of curved
+    /// bodies in the slip) or `global` (along x and y everywhere). Half-space bodies are flat:
+    /// a scene with one uses the global axes either way. Default = contact.
+    #[serde(default)]
+    pub traction_axes: TractionAxes,
 }
 
 fn default_rolling() -> RollingDirection {

@@ -121,18 +121,24 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         })
     };
     let mut rigid = 0;
-    for (side, body) in [("A", &case.bodies.a), ("B", &case.bodies.b)] {
+    // The profile radii the case gives (None where a mesh gives it), for the pair rule below.
+    let mut given = [None, None];
+    for (k, (side, body)) in [("A", &case.bodies.a), ("B", &case.bodies.b)].into_iter().enumerate() {
         let radius = match body {
             BodySpec::HalfSpace { material, radius } => {
                 if let Some(v) = undefined_material(side, material) {
                     bad(v.key, v.message);
                 }
+                given[k] = Some(*radius);
                 *radius
             }
             BodySpec::Rigid { radius, mesh, .. } => {
                 rigid += 1;
                 match (radius, mesh) {
-                    (Some(r), None) => *r,
+                    (Some(r), None) => {
+                        given[k] = Some(*r);
+                        *r
+                    }
                     (None, Some(_)) => 1.0,
                     _ => {
                         bad(
@@ -186,14 +192,28 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                         }
                     }
                 }
+                given[k] = *radius;
                 radius.unwrap_or(1.0)
             }
         };
-        if let Some(why) = positive_quantity(radius) {
+        let nonzero = if radius == 0.0 {
+            Some("must be non-zero and finite (value = 0)".to_string())
+        } else {
+            magnitude(radius)
+        };
+        if let Some(why) = nonzero {
             bad(
                 format!("bodies.{side}.radius"),
-                format!("radius {why}; model a flat as a large radius"),
+                format!(
+                    "radius {why}: positive for a convex body, negative for a concave one (a ring's bore); \
+                     model a flat as a large radius"
+                ),
             );
+        }
+    }
+    if let [Some(ra), Some(rb)] = given {
+        if let Some(message) = radius_pair_problem(ra, rb) {
+            bad("bodies.A.radius, bodies.B.radius".into(), message);
         }
     }
     if rigid == 2 {
@@ -402,4 +422,49 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         }
     }
     out
+}
+
+/// Why two signed profile radii cannot touch in a contact of the kind the models assume, or
+/// None. Contact needs a positive relative curvature 1/R* = 1/R_A + 1/R_B > 0: two concave
+/// bodies never touch, and a convex body touches a concave one only inside a larger bore,
+/// |R_concave| > R_convex (with |R_concave| = R_convex the bodies conform everywhere and
+/// 1/R* = 0). Also used by the scene for radii fitted to meshes.
+pub fn radius_pair_problem(ra: f64, rb: f64) -> Option<String> {
+    if ra == 0.0 || rb == 0.0 || ra.is_nan() || rb.is_nan() || 1.0 / ra + 1.0 / rb > 0.0 {
+        return None;
+    }
+    Some(if ra < 0.0 && rb < 0.0 {
+        format!(
+            "both bodies are concave (R_A = {ra}, R_B = {rb}): they cannot touch; a negative radius \
+             is a ring's bore, the other body must be convex and run inside it"
+        )
+    } else {
+        let (convex, concave) = if ra > 0.0 { (ra, rb) } else { (rb, ra) };
+        format!(
+            "internal contact needs the concave body's bore larger than the convex body: \
+             |R_concave| = {} must exceed R_convex = {convex} (1/R_A + 1/R_B = {:.6e} <= 0: no \
+             contact possible)",
+            concave.abs(),
+            1.0 / ra + 1.0 / rb
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::radius_pair_problem;
+
+    #[test]
+    fn a_convex_body_touches_a_concave_one_only_inside_a_larger_bore() {
+        assert_eq!(radius_pair_problem(40.0, -50.0), None);
+        assert_eq!(radius_pair_problem(-50.0, 40.0), None);
+        assert_eq!(radius_pair_problem(40.0, 60.0), None);
+        let tight = radius_pair_problem(50.0, -50.0).unwrap();
+        assert!(tight.contains("must exceed R_convex = 50"), "{tight}");
+        assert!(radius_pair_problem(-30.0, 40.0).unwrap().contains("|R_concave| = 30"));
+        assert_eq!(radius_pair_problem(-40.0, 30.0), None);
+        assert!(radius_pair_problem(-40.0, -60.0)
+            .unwrap()
+            .contains("both bodies are concave"));
+    }
 }

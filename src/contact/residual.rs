@@ -123,7 +123,7 @@ impl<'a> System<'a> {
         let b = crate::linalg::mat_vec2(&pb.bp, &z.pressure, &pb.bq, &z.shear);
         for i in 0..m {
             let e = pb.slip_operator.creep_weight[i];
-            r.push(self.rt * (z.slip[i] - pb.flow_sign * z.creep * e - b[i]));
+            r.push(self.rt * (z.slip[i] - pb.flow_sign * (z.creep * e + pb.rigid_slip[i]) - b[i]));
         }
         r.extend(self.projection_residual(z));
         r

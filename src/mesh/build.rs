@@ -298,6 +298,66 @@ pub fn roller_on_shaft(
     b.finish()
 }
 
+/// Mesh sizes of a [`ring_with_bore`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RingMeshSizes {
+    /// Elements on the contact segment of the bore (their ends at x = −L + 2L·i/n).
+    pub contact: usize,
+    /// Elements on the rest of the bore, graded from the contact size to the far size.
+    pub bore: usize,
+    /// Elements on the outer rim.
+    pub rim: usize,
+}
+
+/// A ring whose bore of radius `bore_radius` holds a roller (internal contact), with its outer
+/// rim at `rim_radius` (groups `contact`, `bore`, `rim`): the bore touches the contact at the
+/// origin, its centre on the roller's side, so the ring is body B (material below the contact,
+/// centre at y = +R) if not `above`, else body A (centre at y = −R). The contact segment
+/// |x| ≤ `half_length` of the bore carries equal-x elements like [`roller_on_shaft`]'s, so a
+/// roller and a ring built with the same `half_length` and count have contact elements with the
+/// same end abscissae (their mid nodes differ with the radius: the ring's contact nodes are
+/// carried over to the roller's grid by the transfer). Counterpart of `meshes/bore_ring.inc`.
+pub fn ring_with_bore(
+    bore_radius: f64,
+    rim_radius: f64,
+    half_length: f64,
+    sizes: RingMeshSizes,
+    above: bool,
+) -> BoundaryMesh {
+    // The bore's centre lies across the contact from the ring's material.
+    let s = if above { -1.0 } else { 1.0 };
+    let r = bore_radius;
+    let centre = [0.0, s * r];
+    let surface = |x: f64| [x, s * (r - (r * r - x * x).sqrt())];
+    let mut b = MeshBuilder::new(true, "ring");
+    let n = sizes.contact;
+    b.move_to(surface(-half_length));
+    // Walking the bore's bottom in +x is counter-clockwise round a centre above it.
+    let turn = !above;
+    for i in 1..=n {
+        let x = -half_length + 2.0 * half_length * i as f64 / n as f64;
+        b.arc_to(centre, surface(x), 1, turn, 1.0, "contact");
+    }
+    let far_size = 2.0 * std::f64::consts::PI * r / (sizes.bore.max(2) as f64);
+    let contact_size = 2.0 * half_length / n.max(1) as f64;
+    let half = (sizes.bore / 2).max(1);
+    let grading = (far_size / contact_size)
+        .max(1.0)
+        .powf(1.0 / (half as f64 - 1.0).max(1.0));
+    let top = [0.0, s * 2.0 * r];
+    b.arc_to(centre, top, half, turn, grading, "bore");
+    b.arc_to(
+        centre,
+        surface(-half_length),
+        sizes.bore.max(2) - half,
+        turn,
+        1.0 / grading,
+        "bore",
+    );
+    b.circle(centre, rim_radius, sizes.rim, "rim");
+    b.finish()
+}
+
 /// (elements, growth factor) of a straight run of length `run` whose elements grow by at most
 /// 1.2 from `first` (the neighbouring contact element) towards `far_size`: geometric growth
 /// while it needs fewer elements than `far_size` would, equal elements otherwise.

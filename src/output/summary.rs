@@ -60,6 +60,19 @@ pub struct Summary {
     pub tangential_force: f64,
     /// Q/(μP) (null when μ = 0).
     pub load_ratio: Option<f64>,
+    /// The axes the tractions act along: `contact` (the interface's normal and tangent) or
+    /// `global` (x and y; always for half-space bodies).
+    pub traction_axes: crate::contact::TractionAxes,
+    /// The forces on A globally (x, y) and along the contact (normal, tangential)
+    /// [force/length]; with global axes the y force and the normal force are P, the x and
+    /// tangential force Q.
+    pub forces: crate::contact::ContactForces,
+    /// The contact's directions at the grid's nodes when the tractions act along the contact
+    /// (null along the global axes): `normal_angle` ψ [rad] of the interface's tangent from
+    /// +x, `arc_scale` [A, B] the interface length per body surface length, `rigid_slip` k
+    /// [-] (docs/theory.md, "Tractions along the contact"). Body b carries, per unit length of
+    /// its own surface, the global traction ±s_b(p sin(−ψ) + q cos ψ, p cos ψ + q sin ψ) (+ on A).
+    pub contact_frame: Option<crate::contact::ContactFrame>,
     /// δ0 [length] (half-space bodies: relative to the datum ℓ = 2R/e, see docs/theory.md).
     pub overlap: f64,
     /// ξ = (V_A − V_B)/V.
@@ -152,6 +165,13 @@ pub fn summary(s: &Solved) -> Summary {
         normal_force: sol.normal_force,
         tangential_force: sol.tangential_force,
         load_ratio: (mu > 0.0 && sol.normal_force > 0.0).then(|| sol.tangential_force / (mu * sol.normal_force)),
+        traction_axes: if pb.frame.is_global() {
+            crate::contact::TractionAxes::Global
+        } else {
+            crate::contact::TractionAxes::Contact
+        },
+        forces: sol.forces,
+        contact_frame: (!pb.frame.is_global()).then(|| pb.frame.clone()),
         overlap: sol.overlap,
         creep: sol.creep,
         contact: sol.contact_extent().map(|[x0, x1]| ContactExtent {

@@ -33,6 +33,16 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
             s.load_ratio.map_or(String::new(), |r| format!("  (Q/muP = {r:.4})"))
         ),
     );
+    if s.traction_axes == crate::contact::TractionAxes::Contact {
+        let f = &s.forces;
+        line(
+            &format!("forces on A [{force}]"),
+            format!(
+                "global (x, y) = ({:.6}, {:.6}); along the contact (normal, tangential) = ({:.6}, {:.6})",
+                f.global_x, f.global_y, f.normal, f.tangential
+            ),
+        );
+    }
     line(&format!("overlap delta0 [{len}]"), format!("{:.6e}", s.overlap));
     line("creepage xi [-]", format!("{:.6e}", s.creep));
     // Hertz comparisons only mean something when both bodies are half-spaces.

@@ -4,6 +4,7 @@
 use super::solution::ContactSolution;
 use crate::body::{Body, BoundaryField, ContactLoad, InteriorQuery, Side};
 use crate::case::InteriorSpec;
+use crate::contact::ContactFrame;
 use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::interior::{grid_points, InteriorField, InteriorOptions};
@@ -11,22 +12,27 @@ use crate::scene::{BodyModels, Scene};
 
 /// The whole-boundary fields of A and B under the solved tractions (None for a model without
 /// a boundary: half-space, rigid).
+///
+/// Body models take their loads in global axes: the contact's p and q are turned into each
+/// body's own (P, Q) by the contact frame first ([`ContactFrame::global_loads`]).
 pub fn boundary_fields(
     models: &BodyModels,
     grid: &ContactGrid,
+    frame: &ContactFrame,
     solution: &ContactSolution,
 ) -> Result<[Option<BoundaryField>; 2], Error> {
-    let load = ContactLoad {
-        grid,
-        pressure: &solution.pressure,
-        shear: &solution.shear,
-    };
-    let field = |m: &dyn Body| {
+    let field = |m: &dyn Body, side: Side| {
+        let (pressure, shear) = frame.global_loads(side, &solution.pressure, &solution.shear);
+        let load = ContactLoad {
+            grid,
+            pressure: &pressure,
+            shear: &shear,
+        };
         m.boundary_field(&load)
             .transpose()
             .map_err(|e| Error::BoundaryField(Box::new(e)))
     };
-    Ok([field(models[0].as_ref())?, field(models[1].as_ref())?])
+    Ok([field(models[0].as_ref(), Side::A)?, field(models[1].as_ref(), Side::B)?])
 }
 
 /// The interior fields that `output.interior` asks for, from the body's own model (Somigliana
@@ -36,17 +42,19 @@ pub fn interior_field(
     spec: &InteriorSpec,
     models: &BodyModels,
     grid: &ContactGrid,
+    frame: &ContactFrame,
     solution: &ContactSolution,
 ) -> Result<InteriorField, Error> {
     let (k, side) = if spec.body == "B" { (1, Side::B) } else { (0, Side::A) };
     let model = models[k].as_ref();
     let points = grid_points(spec.x, spec.y);
+    let (pressure, shear) = frame.global_loads(side, &solution.pressure, &solution.shear);
     let query = InteriorQuery {
         side,
         load: ContactLoad {
             grid,
-            pressure: &solution.pressure,
-            shear: &solution.shear,
+            pressure: &pressure,
+            shear: &shear,
         },
         points: &points,
         options: InteriorOptions::default(),

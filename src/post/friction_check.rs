@@ -172,6 +172,12 @@ mod tests {
             x,
             normal_force: 1.0,
             tangential_force: 0.1,
+            forces: crate::contact::ContactForces {
+                global_x: 0.1,
+                global_y: 1.0,
+                normal: 1.0,
+                tangential: 0.1,
+            },
             overlap: 0.0,
             creep: -1e-3,
             zones: Vec::new(),

@@ -3,7 +3,7 @@
 
 use super::zones::{zones, NodeState, SlipDirection, Zone};
 use crate::contact::residual::State;
-use crate::contact::ContactProblem;
+use crate::contact::{ContactForces, ContactProblem};
 use serde::Serialize;
 
 /// Converged solution at the contact nodes, user-facing signs (docs/theory.md).
@@ -24,10 +24,14 @@ pub struct ContactSolution {
     pub slip_strain: Option<Vec<f64>>,
     /// Node states.
     pub state: Vec<NodeState>,
-    /// Normal force P = ∫p dx [force/length].
+    /// Normal force P = ∫p dx [force/length]: the load the solver holds (with tractions along
+    /// the contact, the y force of the pressure alone).
     pub normal_force: f64,
-    /// Tangential force Q = ∫q dx [force/length].
+    /// Tangential force Q = ∫q dx [force/length] (with tractions along the contact, the x
+    /// force of the shear alone).
     pub tangential_force: f64,
+    /// The forces on A globally and along the contact (equal to P and Q in global axes).
+    pub forces: ContactForces,
     /// Overlap δ0 [length].
     pub overlap: f64,
     /// Creepage ξ [-].
@@ -63,6 +67,7 @@ impl ContactSolution {
         let mut solution = Self {
             x: pb.grid.nodes.clone(),
             normal_force: pb.grid.integrate(&pressure),
+            forces: pb.frame.forces(&pb.grid, &pressure, &z.shear),
             tangential_force: pb.grid.integrate(&z.shear),
             slip_strain: pb.slip_from_strain(&z.pressure, &z.shear, z.creep),
             pressure,

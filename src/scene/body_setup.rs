@@ -20,12 +20,13 @@ pub enum BodySetup {
     HalfSpace {
         /// Elastic constants.
         material: Elastic,
-        /// Profile radius [length] (infinite for a flat profile).
+        /// Signed profile radius [length] (negative: concave; infinite for a flat profile).
         radius: f64,
     },
     /// A rigid cylinder.
     Rigid {
-        /// Profile radius [length]: given, or the circle fitted to a mesh's contact group.
+        /// Signed profile radius [length]: given, or the circle fitted to a mesh's contact
+        /// group (negative: concave).
         radius: f64,
     },
     /// A body discretized by boundary elements (boxed: its mesh makes it large).
@@ -127,12 +128,23 @@ impl BodySetup {
         })
     }
 
-    /// Both bodies of a case, A first.
+    /// Both bodies of a case, A first. Radii fitted to meshes are checked as a pair like the
+    /// case's own (two concave bodies, or a bore no larger than the roller, cannot touch).
     pub fn of_case(case: &LoadedCase) -> Result<[Self; 2], Error> {
-        Ok([
+        let bodies = [
             Self::from_spec(case, &case.case.bodies.a)?,
             Self::from_spec(case, &case.case.bodies.b)?,
-        ])
+        ];
+        if let Some(message) = crate::case::validate::radius_pair_problem(bodies[0].radius(), bodies[1].radius()) {
+            return Err(Error::Case(crate::case::CaseError::Invalid {
+                path: case.path.clone(),
+                violations: vec![crate::case::Violation {
+                    key: "bodies.A, bodies.B (profile radii fitted to the meshes' contact groups)".into(),
+                    message,
+                }],
+            }));
+        }
+        Ok(bodies)
     }
 
     /// Elastic constants, None for a rigid body.
@@ -144,7 +156,8 @@ impl BodySetup {
         }
     }
 
-    /// Profile radius [length] (infinite for a flat profile).
+    /// Signed profile radius [length]: positive convex, negative concave (infinite for a flat
+    /// profile).
     pub fn radius(&self) -> f64 {
         match self {
             BodySetup::HalfSpace { radius, .. } | BodySetup::Rigid { radius } => *radius,
@@ -173,12 +186,27 @@ impl BodySetup {
     ///
     /// A `bem` body is condensed to its own contact nodes; if those differ from the grid's, its
     /// flexibility is carried over by [`Transferred`].
+    /// A half-space body on a grid of mapped (curved) elements, which its closed-form element
+    /// integrals do not cover, is built on the straight grid between the same edges and carried
+    /// over by the same transfer.
     pub fn model(&self, grid: &ContactGrid, side: Side) -> Result<Box<dyn Body>, Error> {
         match self {
-            BodySetup::HalfSpace { material, radius } => Ok(Box::new(HalfSpace {
-                material: *material,
-                radius: *radius,
-            })),
+            BodySetup::HalfSpace { material, radius } => {
+                let body = HalfSpace {
+                    material: *material,
+                    radius: *radius,
+                };
+                if grid.is_straight() {
+                    return Ok(Box::new(body));
+                }
+                let t = Transferred {
+                    inner: Box::new(body),
+                    own_grid: grid.straightened(),
+                    side,
+                };
+                t.check(grid)?;
+                Ok(Box::new(t))
+            }
             BodySetup::Rigid { radius } => Ok(Box::new(Rigid { radius: *radius })),
             BodySetup::Bem(b) => b.model(grid, side),
         }
@@ -196,7 +224,7 @@ impl BodySetup {
             .filter_map(|(g, _)| b.mesh.mesh.group_index(g).ok())
             .collect();
         let depth = b.mesh.depth_below_contact(&fixed)?;
-        (depth < 0.5 * b.radius).then_some(depth)
+        (depth < 0.5 * b.radius.abs()).then_some(depth)
     }
 }
 

@@ -15,7 +15,8 @@ pub struct Estimates {
     pub e_star: f64,
     /// Dundurs' β with A first (κ = 2β in Bentall–Johnson / paper Eq. 78).
     pub dundurs_beta: f64,
-    /// Effective radius R, 1/R = 1/R_A + 1/R_B [length].
+    /// Effective radius R*, 1/R* = 1/R_A + 1/R_B with signed radii (a concave bore negative)
+    /// [length].
     pub effective_radius: f64,
     /// Normal force P used for the estimates (given, or estimated from the overlap) [force/length].
     pub normal_force: f64,
@@ -97,7 +98,7 @@ fn load_from_overlap(overlap: f64, bodies: [(Option<Elastic>, f64); 2], radius: 
         let a = analytic::hertz_half_width(p, radius, e_star);
         bodies
             .iter()
-            .filter_map(|(m, r)| m.map(|m| m.halfplane_log_coefficient() * p * ((4.0 * r / a).ln() - 0.5)))
+            .filter_map(|(m, r)| m.map(|m| m.halfplane_log_coefficient() * p * ((4.0 * r.abs() / a).ln() - 0.5)))
             .sum::<f64>()
     };
     // Bisection in log P: the approach grows with P while a ≪ R.

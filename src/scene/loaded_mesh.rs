@@ -1,6 +1,7 @@
 //! A boundary mesh read for a body of the scene, with what the scene needs from its contact
 //! group: the x-range, the fitted profile radius and the contact grid of its own elements.
 
+use crate::bem::element::ElementGeometry;
 use crate::grid::{ContactGrid, ElementKind};
 use crate::mesh::BoundaryMesh;
 use std::path::PathBuf;
@@ -34,10 +35,22 @@ impl LoadedMesh {
             .flat_map(|e| e.nodes.iter().map(|&n| self.mesh.nodes[n]))
     }
 
-    /// Radius of the contact segment's profile [length]: the algebraic least-squares circle
-    /// (Kåsa fit: x² + y² + Dx + Ey + F = 0), exact for nodes on a circle; infinite when the
-    /// segment is straight (the fit's centre then runs away: R > 1e6 times the segment length).
+    /// Signed radius of the contact segment's profile [length]: the algebraic least-squares
+    /// circle (Kåsa fit: x² + y² + Dx + Ey + F = 0), exact for nodes on a circle; positive when
+    /// the circle's centre lies inside the body (a convex roller), negative when it lies outside
+    /// (a concave bore: the segment's outward normal points towards the centre); infinite when
+    /// the segment is straight (the fit's centre then runs away: |R| > 1e6 times the segment
+    /// length).
     pub fn contact_radius(&self) -> f64 {
+        match self.contact_circle() {
+            Some((centre, r)) => r * self.convexity(centre),
+            None => f64::INFINITY,
+        }
+    }
+
+    /// Centre and (unsigned) radius of the circle fitted to the contact nodes, None when the
+    /// segment is straight (see [`Self::contact_radius`]).
+    pub fn contact_circle(&self) -> Option<([f64; 2], f64)> {
         let pts: Vec<[f64; 2]> = self.contact_nodes().collect();
         // Normal equations of min Σ (D x + E y + F + x² + y²)², centred for conditioning.
         let n = pts.len() as f64;
@@ -55,37 +68,88 @@ impl LoadedMesh {
         }
         let [x0, x1] = self.contact_range();
         let span = (x1 - x0).max(f64::MIN_POSITIVE);
-        match a.lu().solve(&b) {
-            Some(s) => {
-                let r2 = 0.25 * (s[0] * s[0] + s[1] * s[1]) - s[2];
-                let r = r2.max(0.0).sqrt();
-                if r.is_finite() && r < 1e6 * span {
-                    r
-                } else {
-                    f64::INFINITY
-                }
-            }
-            None => f64::INFINITY,
-        }
+        let s = a.lu().solve(&b)?;
+        let r2 = 0.25 * (s[0] * s[0] + s[1] * s[1]) - s[2];
+        let r = r2.max(0.0).sqrt();
+        (r.is_finite() && r < 1e6 * span).then_some(([cx - 0.5 * s[0], cy - 0.5 * s[1]], r))
     }
 
-    /// The contact grid of the mesh's own contact elements: their end points in x, with
-    /// discontinuous quadratic interpolation (the BEM contact elements' field nodes).
-    pub fn contact_grid(&self) -> ContactGrid {
-        let mut edges: Vec<f64> = self
+    /// +1 if `centre` lies inside the body behind its contact segment (convex), −1 if on the
+    /// side its outward normal points to (concave), judged at the contact element nearest x = 0.
+    fn convexity(&self, centre: [f64; 2]) -> f64 {
+        let Some(e) = self
             .mesh
             .elements
             .iter()
-            .filter(|e| e.group == self.contact_group)
-            .flat_map(|e| {
-                let (a, b) = e.ends();
-                [self.mesh.nodes[a][0], self.mesh.nodes[b][0]]
+            .enumerate()
+            .filter(|(_, e)| e.group == self.contact_group)
+            .min_by(|(a, _), (b, _)| {
+                let x = |e: usize| ElementGeometry::from_mesh(&self.mesh, e).point(0.0)[0].abs();
+                x(*a).total_cmp(&x(*b))
+            })
+            .map(|(e, _)| e)
+        else {
+            return 1.0;
+        };
+        let g = ElementGeometry::from_mesh(&self.mesh, e);
+        let (p, n) = (g.point(0.0), g.normal(0.0));
+        if (centre[0] - p[0]) * n[0] + (centre[1] - p[1]) * n[1] > 0.0 {
+            -1.0
+        } else {
+            1.0
+        }
+    }
+
+    /// The contact grid of the mesh's own contact elements: their end points in x and their
+    /// quadratic geometry (the mid node's x), with discontinuous quadratic interpolation, so its
+    /// nodes are the x of the BEM contact elements' field nodes however curved the arc
+    /// ([`ContactGrid::from_mapped_edges`]).
+    pub fn contact_grid(&self) -> ContactGrid {
+        let tol = 1e-9 * self.mesh.size();
+        let mut pieces: Vec<[f64; 3]> = self
+            .contact_elements()
+            .map(|g| {
+                let [a, b, m] = g.nodes;
+                let (x0, x1) = if a[0] <= b[0] { (a[0], b[0]) } else { (b[0], a[0]) };
+                [x0, x1, m[0]]
             })
             .collect();
+        pieces.sort_by(|p, q| p[0].total_cmp(&q[0]));
+        let mut edges: Vec<f64> = pieces.iter().flat_map(|p| [p[0], p[1]]).collect();
         edges.sort_by(f64::total_cmp);
-        let tol = 1e-9 * self.mesh.size();
         edges.dedup_by(|a, b| (*a - *b).abs() <= tol);
-        ContactGrid::from_edges(ElementKind::DiscontinuousQuadratic, edges)
+        // Each grid element takes the mid point of the mesh element between its edges (the
+        // centre where the contact group has a gap).
+        let mids = edges
+            .windows(2)
+            .map(|w| {
+                pieces
+                    .iter()
+                    .find(|p| (p[0] - w[0]).abs() <= tol && (p[1] - w[1]).abs() <= tol)
+                    .map_or(0.5 * (w[0] + w[1]), |p| p[2])
+            })
+            .collect();
+        ContactGrid::from_mapped_edges(ElementKind::DiscontinuousQuadratic, edges, mids)
+    }
+
+    /// The geometry of the contact group's elements.
+    pub fn contact_elements(&self) -> impl Iterator<Item = ElementGeometry> + '_ {
+        self.mesh
+            .elements
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.group == self.contact_group)
+            .map(|(e, _)| ElementGeometry::from_mesh(&self.mesh, e))
+    }
+
+    /// The contact surface above x: its point's y and its slope dy/dx [length, -], from the
+    /// contact element whose x-range holds x (None beyond the contact group).
+    pub fn surface_at(&self, x: f64) -> Option<(f64, f64)> {
+        self.contact_elements().find_map(|g| {
+            let xi = element_parameter_at(&g, x)?;
+            let t = g.tangent(xi);
+            Some((g.point(xi)[1], t[1] / t[0]))
+        })
     }
 
     /// Total length of the elements of a group (polyline through end, mid, end nodes) [length].
@@ -117,4 +181,25 @@ impl LoadedMesh {
                 .fold(f64::INFINITY, f64::min),
         )
     }
+}
+
+/// The ξ ∈ [−1, 1] at which a quadratic element's x(ξ) equals x (None if x is outside its
+/// x-range): x(ξ) = x_m + ξ(x₁ − x₀)/2 + ξ²((x₀ + x₁)/2 − x_m).
+pub fn element_parameter_at(g: &ElementGeometry, x: f64) -> Option<f64> {
+    let [p0, p1, pm] = g.nodes;
+    let (c0, c1, c2) = (pm[0] - x, 0.5 * (p1[0] - p0[0]), 0.5 * (p0[0] + p1[0]) - pm[0]);
+    let roots: Vec<f64> = if c2.abs() < 1e-14 * c1.abs() {
+        vec![-c0 / c1]
+    } else {
+        let disc = c1 * c1 - 4.0 * c2 * c0;
+        if disc < 0.0 {
+            return None;
+        }
+        let s = disc.sqrt();
+        vec![(-c1 + s) / (2.0 * c2), (-c1 - s) / (2.0 * c2)]
+    };
+    roots
+        .into_iter()
+        .find(|r| r.abs() <= 1.0 + 1e-12)
+        .map(|r| r.clamp(-1.0, 1.0))
 }

@@ -396,36 +396,46 @@ fn friction_check_is_clean_on_carter() {
 }
 
 /// cases/fig4_true_geometry.yaml (paper Fig. 4 with BEM rollers on shafts): the regime and the
-/// slip directions of the half-space model (regime 2, both zones slipping in −x), its shear
-/// within 5 % of μp0 of the half-space one (measured 2.5 %, at the contact edges), and no node
-/// where the HBEM slip contradicts the friction law at the default 5 % threshold (measured:
-/// stick nodes at most 1.5 % of max |s|, and no slip node slipping along its shear). The paper
-/// reports "small incompatibilities with the law of friction" for this case; here they stay
-/// below the threshold (docs/hbem.md).
+/// slip directions of the half-space model (regime 2, both zones slipping in −x) with either
+/// traction axes; with the paper's global axes its shear within 5 % of μp0 of the half-space
+/// one (measured 2.5 %, at the contact edges), and no node where the HBEM slip contradicts the
+/// friction law at the default 5 % threshold (measured: stick nodes at most 1.5 % of max |s|,
+/// and no slip node slipping along its shear). The paper reports "small incompatibilities with
+/// the law of friction" for this case; here they stay below the threshold (docs/hbem.md).
+/// With the tractions along the contact (the default) the dissimilar rollers' interface turns by
+/// up to ψ = 5.8e-3 rad at the edges, of the order of a/R against μ = 0.1: the shear moves by
+/// up to 6.7 % of μp0 from the half-space one (printed; docs/theory.md, "Tractions along the
+/// contact", tabulates the effect per case).
 #[test]
 fn fig4_true_geometry_keeps_the_regime_and_passes_the_friction_check() {
     use rollbem::post::friction_check::{check_friction_law, DEFAULT_THRESHOLD_FRACTION};
-    let bem = crate::common::solve("fig4_true_geometry", &[]);
     let hs = crate::common::solve("dissimilar_beta0288_075", &[]);
-    assert_eq!(bem.regime.number(), 2);
-    assert_eq!(bem.solution.slip_directions(), hs.solution.slip_directions());
     // Same Hertz half-width a = 1 mm and the same 21-element grid: compare q/(μp0) node by node.
     let norm = |s: &rollbem::app::Solved| 0.1 * s.scene.estimates.hertz_peak_pressure;
-    let dq = bem
-        .solution
-        .shear
-        .iter()
-        .zip(&hs.solution.shear)
-        .fold(0.0f64, |m, (a, b)| m.max((a / norm(&bem) - b / norm(&hs)).abs()));
-    println!("fig4: max |q_true − q_half-space| = {dq:.4} μp0");
-    assert!(dq < 0.05, "{dq}");
-    let c = check_friction_law(&bem.solution, 0.1, DEFAULT_THRESHOLD_FRACTION).unwrap();
-    println!(
-        "fig4 true geometry: max |s_hbem| at stick nodes {:.2} % of max |s|, max |s_hbem − s| at slip nodes {:.2} %",
-        100.0 * c.max_hbem_slip_stick_nodes.unwrap() / c.slip_scale,
-        100.0 * c.max_difference_slip_nodes.unwrap() / c.slip_scale
-    );
-    assert!(c.violations.is_empty(), "{:?}", c.violations);
+    for axes in ["global", "contact"] {
+        let set = format!("contact.traction_axes={axes}");
+        let bem = crate::common::solve("fig4_true_geometry", &[set.as_str()]);
+        assert_eq!(bem.regime.number(), 2);
+        assert_eq!(bem.solution.slip_directions(), hs.solution.slip_directions());
+        let dq = bem
+            .solution
+            .shear
+            .iter()
+            .zip(&hs.solution.shear)
+            .fold(0.0f64, |m, (a, b)| m.max((a / norm(&bem) - b / norm(&hs)).abs()));
+        let psi = bem.scene.frame.normal_angle.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        println!("fig4, {axes} axes: max |q_true − q_half-space| = {dq:.4} μp0, interface angle up to {psi:.2e} rad");
+        if axes == "global" {
+            assert!(dq < 0.05, "{dq}");
+        }
+        let c = check_friction_law(&bem.solution, 0.1, DEFAULT_THRESHOLD_FRACTION).unwrap();
+        println!(
+            "fig4 true geometry: max |s_hbem| at stick nodes {:.2} % of max |s|, max |s_hbem − s| at slip nodes {:.2} %",
+            100.0 * c.max_hbem_slip_stick_nodes.unwrap() / c.slip_scale,
+            100.0 * c.max_difference_slip_nodes.unwrap() / c.slip_scale
+        );
+        assert!(c.violations.is_empty(), "{:?}", c.violations);
+    }
 }
 
 /// `rollbem run` on a pair of bem bodies fills the `slip_hbem` column at every node with finite

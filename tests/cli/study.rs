@@ -133,3 +133,56 @@ fn check_advises_the_model_for_the_tolerance() {
     let (code, _, err) = rollbem(&["check", carter.to_str().unwrap(), "--tolerance", "0"]);
     assert_eq!(code, 1, "{err}");
 }
+
+/// `rollbem check` on a roller in a ring bore reports the internal-contact family (its ring
+/// wall is not a cover layer): the measured half-space error, 28.5 % of p0 at a/R1 = 0.2 and
+/// 0.66 % at 0.01 (src/advice.rs INTERNAL_ERROR), so the BEM at the conformal contact and the
+/// half-space at 1 % for the small one.
+#[test]
+fn check_advises_internal_contact_from_its_own_table() {
+    let conformal = crate::common::case_path("bore_a020_tractive");
+    let (code, out, _) = rollbem(&["check", conformal.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("roller in a ring bore (internal contact), a/R1 = 2.000e-1"),
+        "{out}"
+    );
+    assert!(out.contains("use bem") && out.contains("28.50 % of p0"), "{out}");
+    assert!(!out.contains("layer thickness b"), "{out}");
+    let small = crate::common::case_path("bore_a001_tractive");
+    let (_, out, _) = rollbem(&["check", small.to_str().unwrap()]);
+    assert!(out.contains("half_space is enough for a tolerance of 1.00 %"), "{out}");
+    assert!(out.contains("0.66 % of p0"), "{out}");
+}
+
+/// `rollbem study accuracy` on a roller in a ring bore: every model converges, and the true
+/// geometry is the roller on its shaft inside a ring round the bore (rim fixed), whose
+/// creepage departs from Carter's by the curvature term of internal contact (docs/conformal.md
+/// §6: +43 % at a/R1 = 0.05, μ = 0.2) while the half-space stays within 1 % of it.
+#[test]
+fn study_accuracy_runs_on_a_roller_in_a_ring_bore() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("acc");
+    let case = crate::common::case_path("bore_a005_tractive");
+    let (code, stdout, stderr) = rollbem(&[
+        "study",
+        "accuracy",
+        case.to_str().unwrap(),
+        "--quick",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let csv = std::fs::read_to_string(out.join("accuracy.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 9, "{csv}");
+    for r in &rows {
+        assert_eq!(r[3], "true", "{csv}");
+        let creep_error: f64 = r[7].parse().unwrap();
+        match r[0] {
+            "true_geometry" => assert!(creep_error > 0.3 && creep_error < 0.6, "{csv}"),
+            "half_space" => assert!(creep_error.abs() < 0.01, "{csv}"),
+            _ => {}
+        }
+    }
+}

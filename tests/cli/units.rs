@@ -201,3 +201,25 @@ fn contact_svg_labels_its_axes_zones_and_rolling_direction() {
     );
     assert!(numbers.contains(&0.0));
 }
+
+/// A run with the tractions along the contact (a roller in a ring bore) writes `forces` and
+/// `contact_frame`, every number of them with its unit.
+#[test]
+fn the_contact_frame_of_a_bore_case_has_its_units() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bore");
+    let case = crate::common::case_path("bore_a001_tractive");
+    let (code, _, stderr) = rollbem(&["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["traction_axes"], "contact");
+    assert!(summary["contact_frame"]["normal_angle"]
+        .as_array()
+        .is_some_and(|a| !a.is_empty()));
+    let missing = numbers_without_unit(&summary);
+    assert!(
+        missing.is_empty(),
+        "numbers of summary.json without a unit: {missing:?}"
+    );
+}

@@ -18,6 +18,9 @@ mod architecture;
 #[path = "../common/mod.rs"]
 mod common;
 #[allow(dead_code)]
+#[path = "../../examples/conformal_report.rs"]
+mod conformal_report;
+#[allow(dead_code)]
 #[path = "../../examples/friction_limits.rs"]
 mod friction_limits;
 #[allow(dead_code)]
@@ -124,6 +127,30 @@ fn validation_variable_friction_table() {
     assert_same("validation.md", &validation_report::variable_friction());
 }
 
+/// docs/theory.md: what the traction axes change on every shipped case (the half-space cases
+/// not at all).
+#[test]
+fn traction_axes_table() {
+    let t = conformal_report::traction_axes_effect();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("theory.md"), printed, Rows::All, &[], (&[], 0.0));
+}
+
+/// docs/conformal.md §6: the roller-in-a-ring-bore cases, BEM and half-space.
+#[test]
+fn bore_table() {
+    let rows = conformal_report::bore_runs();
+    let t = conformal_report::bore_table(&rows);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("conformal.md"), printed, Rows::All, &[], (&[], 0.0));
+}
+
 /// docs/hbem.md: Carter with true rollers (the error table), Fig. 4's nodes (a selection of
 /// the printed rows), and the friction check of the shipped cases; the prose of hbem.md and
 /// validation.md repeats some of them.
@@ -177,7 +204,7 @@ fn common_solve(name: &str) -> rollbem::app::Solved {
     hbem_report::common::solve(name, &[] as &[&str])
 }
 
-/// docs/choosing-a-model.md's two tables, and the constants of src/advice.rs that
+/// docs/choosing-a-model.md's three tables, and the constants of src/advice.rs that
 /// `rollbem check` interpolates: the report prints them to four figures, so the constants must
 /// be the measured values within half a unit of their fourth figure.
 #[test]
@@ -194,6 +221,19 @@ fn model_error_tables_and_advice_constants() {
         assert_eq!(r.a_over_r, a_over_r);
         assert_four_figures(p, r.pressure, "ROLLER_ERROR pressure");
         assert_four_figures(q, r.shear, "ROLLER_ERROR shear");
+    }
+    let internal = model_error_table::internal();
+    let t = model_error_table::internal_table(&internal);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("choosing-a-model.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_eq!(internal.len(), rollbem::advice::INTERNAL_ERROR.len());
+    for (r, &(a_over_r, p, q)) in internal.iter().zip(&rollbem::advice::INTERNAL_ERROR) {
+        assert_eq!(r.a_over_r, a_over_r);
+        assert_four_figures(p, r.pressure, "INTERNAL_ERROR pressure");
+        assert_four_figures(q, r.shear, "INTERNAL_ERROR shear");
     }
     let layers = model_error_table::layers();
     let t = model_error_table::layer_table(&layers);

@@ -86,7 +86,7 @@ fn choosing_a_model_quotes_what_check_prints() {
             runs.last_mut().unwrap().1.push(line.to_string());
         }
     }
-    assert_eq!(runs.len(), 3);
+    assert_eq!(runs.len(), 4);
     for (args, rows) in runs {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
         let (code, stdout, stderr) = rollbem_with(Some(&root), &[], &args);

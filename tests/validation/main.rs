@@ -9,10 +9,12 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod conformal_bem;
 mod conformal_series;
 mod free_rolling_creepage;
 mod friction_limits;
 mod hertz_carter;
+mod internal_contact;
 mod methods;
 mod slip_end;
 mod solver;

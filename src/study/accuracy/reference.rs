@@ -27,8 +27,8 @@ pub(super) enum Reference {
     FinestRun {
         /// Its contact elements.
         elements: usize,
-        /// Its solution.
-        solution: ContactSolution,
+        /// Its solution (boxed: far larger than the closed forms).
+        solution: Box<ContactSolution>,
         /// Friction coefficient μ of the scene.
         friction: f64,
     },
@@ -39,7 +39,7 @@ impl Reference {
     pub(super) fn finest_run(elements: usize, o: &Outcome, case: &LoadedCase) -> Self {
         Reference::FinestRun {
             elements,
-            solution: o.solution.clone(),
+            solution: Box::new(o.solution.clone()),
             friction: case.case.contact.friction,
         }
     }

@@ -7,7 +7,7 @@ use crate::bem::BoundaryCondition;
 use crate::case::LoadedCase;
 use crate::error::Error;
 use crate::material::Elastic;
-use crate::mesh::build::{half_space_block, roller_on_shaft, RollerMeshSizes};
+use crate::mesh::build::{half_space_block, ring_with_bore, roller_on_shaft, RingMeshSizes, RollerMeshSizes};
 use crate::mesh::{validate_and_orient, BoundaryMesh};
 use crate::post::ContactSolution;
 use crate::scene::{BemSetup, BodySetup, LoadedMesh, Scene};
@@ -72,7 +72,8 @@ pub struct Outcome {
 
 /// Solves the scene of `case` (its bodies' materials and radii, its load and friction) with
 /// `model` at `n` contact elements; true-geometry rollers sit on shafts of `shaft_ratio` times
-/// their radius.
+/// their radius, a concave body (negative radius) is a ring round its bore with its rim
+/// ([`RIM_RATIO`] times the bore) fixed.
 pub fn solve_model(case: &LoadedCase, model: SceneModel, n: usize, shaft_ratio: f64) -> Result<Outcome, Error> {
     solve_model_of(case, &scene_bodies(case)?, model, n, shaft_ratio)
 }
@@ -108,6 +109,21 @@ pub(super) fn solve_model_of(
                     &[("far", BoundaryCondition::Fixed), ("free", BoundaryCondition::Free)],
                     body.radius,
                     Some(body.radius),
+                )?,
+                // A concave body is a ring round the other: its bore, its rim fixed.
+                _ if body.radius < 0.0 => bem_body(
+                    ring_with_bore(
+                        -body.radius,
+                        -RIM_RATIO * body.radius,
+                        half_length,
+                        ring_sizes(n),
+                        above,
+                    ),
+                    model,
+                    material,
+                    &[("bore", BoundaryCondition::Free), ("rim", BoundaryCondition::Fixed)],
+                    body.radius,
+                    None,
                 )?,
                 _ => bem_body(
                     roller_on_shaft(
@@ -148,6 +164,20 @@ fn roller_sizes(n: usize) -> RollerMeshSizes {
         contact: n,
         free: (n / 2).clamp(32, 160),
         shaft: 24,
+    }
+}
+
+/// Rim radius of a true-geometry ring over its bore radius (the issue scene's ring: bore 50 mm,
+/// rim 65 mm, the rim fixed).
+pub const RIM_RATIO: f64 = 1.3;
+
+/// Element counts of a true-geometry ring with n contact elements: its bore like a roller's
+/// free arc, the fixed rim 48 (smooth, far from the contact).
+fn ring_sizes(n: usize) -> RingMeshSizes {
+    RingMeshSizes {
+        contact: n,
+        bore: (n / 2).clamp(32, 160),
+        rim: 48,
     }
 }
 

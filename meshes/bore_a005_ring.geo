@@ -1,0 +1,7 @@
+// Ring with a bore R2 = 50 mm and a fixed rim R3 = 65 mm holding the roller of
+// bore_a005_roller.geo (cases/bore_a005_*.yaml): contact segment |x| <= L = 1.3a in 52 elements.
+R2 = 50;
+R3 = 65;
+L = 2.6;
+ne = 52;
+Include "bore_ring.inc";

@@ -1,0 +1,244 @@
+//! The contact's own directions: tractions along the normal and tangent of the contact
+//! interface at each node, and the rigid surface speeds of curved bodies (docs/theory.md,
+//! "Tractions along the contact").
+//!
+//! Body models give their flexibility in global axes (the pair convention of
+//! [`crate::body`]: loads (P, Q) along y and x, h = the y share of the gap, w = the x share of
+//! the relative displacement). A [`ContactFrame`] turns that into the contact's own frame at
+//! node i, with ψ_i the angle of the interface's tangent t = (cos ψ, sin ψ) from +x and its
+//! normal n = (−sin ψ, cos ψ) (from B into A):
+//!
+//! * **loads**: the nodal p and q are the pressure and shear per unit length of the interface,
+//!   acting along n and t (on A; equal and opposite on B). Body b carries them per unit length
+//!   of its own surface, whose slope angle θ_b differs from ψ: its global load is
+//!   (P, Q) = s_b (p cos ψ + q sin ψ, q cos ψ − p sin ψ), s_b = cos θ_b / cos ψ (the interface
+//!   element dx/cos ψ lies on a body element dx/cos θ_b);
+//! * **gap**: the normal shares are measured along n and expressed as the vertical gap that
+//!   h0 − δ0 is (so the solver's equations and the load equation P = Σ w_j p_j keep their form):
+//!   h' = u·n / cos ψ = h − tan ψ · w;
+//! * **slip**: w stays the x share, so the slip is ∂w/∂x as before, plus the rigid part of the
+//!   surface speeds along x. A body turning about its centre moves its surface at
+//!   V_b·(1 − h_b(x)/R_b) along x (h_b the profile, R_b the signed radius): the rigid slip
+//!   k = (1 − h_A/R_A) − (1 − h_B/R_B) at each node, s = σ(ξ + k + ∂w/∂x). At second order in a/R
+//!   this makes the slip the difference of the bodies' hoop strains (docs/conformal.md §4:
+//!   ∂u_x/∂x = ε_θθ + tan θ·ω, whose rotation term the x-speeds V_b cos θ_b cancel).
+//!
+//! With ψ = 0, s = 1 and k = 0 ([`ContactFrame::global_axes`]) every transformation is the
+//! identity: the half-space model's frame (its bodies are flat), and the `global` option.
+
+use crate::body::{Flexibility, Side, StrainOperator};
+use crate::grid::ContactGrid;
+use faer::Mat;
+use serde::{Deserialize, Serialize};
+
+/// Which axes the contact tractions act along (case key `contact.traction_axes`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TractionAxes {
+    /// Along the normal and tangent of the contact interface (the common normal of the two
+    /// surfaces, weighted by the bodies' compliances), with the rigid surface speeds of curved
+    /// bodies in the slip; the global axes when a body is a half-space (module docs).
+    #[default]
+    Contact,
+    /// Along the global x and y axes at every node, with uniform rigid speeds (the model of
+    /// the paper and of rollbem before this option; kept to measure what the choice changes).
+    Global,
+}
+
+impl TractionAxes {
+    /// Name as written in case files.
+    pub fn name(self) -> &'static str {
+        match self {
+            TractionAxes::Contact => "contact",
+            TractionAxes::Global => "global",
+        }
+    }
+}
+
+/// The contact's directions and rigid speeds at the nodes of a grid (module docs).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ContactFrame {
+    /// ψ_i: angle of the interface's tangent from +x [rad] (positive where the interface rises
+    /// with x).
+    pub normal_angle: Vec<f64>,
+    /// s_b,i = cos θ_b / cos ψ of body A and B [-]: interface length per body surface length.
+    pub arc_scale: [Vec<f64>; 2],
+    /// k_i: rigid slip of the surface speeds along x [-] (module docs).
+    pub rigid_slip: Vec<f64>,
+}
+
+/// Forces the contact tractions exert on body A, in two frames [force/length].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ContactForces {
+    /// Global x component: ∫(q − p tan ψ) dx.
+    pub global_x: f64,
+    /// Global y component (along the load): ∫(p + q tan ψ) dx.
+    pub global_y: f64,
+    /// Along the contact's normal: ∫ p ds, ds = dx / cos ψ.
+    pub normal: f64,
+    /// Along the contact's tangent: ∫ q ds.
+    pub tangential: f64,
+}
+
+impl ContactFrame {
+    /// The global axes at m nodes: ψ = 0, s = 1, k = 0.
+    pub fn global_axes(m: usize) -> Self {
+        Self {
+            normal_angle: vec![0.0; m],
+            arc_scale: [vec![1.0; m], vec![1.0; m]],
+            rigid_slip: vec![0.0; m],
+        }
+    }
+
+    /// Whether the frame is the global axes exactly (every transformation the identity).
+    pub fn is_global(&self) -> bool {
+        self.normal_angle.iter().all(|&a| a == 0.0)
+            && self.arc_scale.iter().flatten().all(|&s| s == 1.0)
+            && self.rigid_slip.iter().all(|&k| k == 0.0)
+    }
+
+    fn side(side: Side) -> usize {
+        match side {
+            Side::A => 0,
+            Side::B => 1,
+        }
+    }
+
+    /// The global-axes flexibility of one body turned into this frame (module docs).
+    pub fn flexibility(&self, f: &Flexibility, side: Side) -> Flexibility {
+        if self.is_global() {
+            return f.clone();
+        }
+        let s = &self.arc_scale[Self::side(side)];
+        let psi = &self.normal_angle;
+        let m = psi.len();
+        // Column transformation (p, q) → (P, Q) at node j, then h' = h − tan ψ_i w at row i.
+        let col = |a: &Mat<f64>, b: &Mat<f64>, i: usize, j: usize, normal: bool| {
+            let (sn, c) = psi[j].sin_cos();
+            if normal {
+                s[j] * (c * a[(i, j)] - sn * b[(i, j)])
+            } else {
+                s[j] * (sn * a[(i, j)] + c * b[(i, j)])
+            }
+        };
+        let wp = Mat::from_fn(m, m, |i, j| col(&f.wp, &f.wq, i, j, true));
+        let wq = Mat::from_fn(m, m, |i, j| col(&f.wp, &f.wq, i, j, false));
+        let hp = Mat::from_fn(m, m, |i, j| col(&f.hp, &f.hq, i, j, true) - psi[i].tan() * wp[(i, j)]);
+        let hq = Mat::from_fn(m, m, |i, j| col(&f.hp, &f.hq, i, j, false) - psi[i].tan() * wq[(i, j)]);
+        Flexibility { hp, hq, wp, wq }
+    }
+
+    /// The global-axes surface-strain operator of one body turned into this frame (columns
+    /// only: the slip stays ∂w/∂x).
+    pub fn strain(&self, op: &StrainOperator, side: Side) -> StrainOperator {
+        if self.is_global() {
+            return op.clone();
+        }
+        let s = &self.arc_scale[Self::side(side)];
+        let psi = &self.normal_angle;
+        let (m, n) = (op.p.nrows(), op.p.ncols());
+        StrainOperator {
+            p: Mat::from_fn(m, n, |i, j| {
+                let (sn, c) = psi[j].sin_cos();
+                s[j] * (c * op.p[(i, j)] - sn * op.q[(i, j)])
+            }),
+            q: Mat::from_fn(m, n, |i, j| {
+                let (sn, c) = psi[j].sin_cos();
+                s[j] * (sn * op.p[(i, j)] + c * op.q[(i, j)])
+            }),
+        }
+    }
+
+    /// The nodal loads (P, Q) that body `side` carries in global axes (pair convention: P
+    /// along y, Q along x, per unit length of its own surface) for the contact's nodal p, q.
+    pub fn global_loads(&self, side: Side, p: &[f64], q: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        if self.is_global() {
+            return (p.to_vec(), q.to_vec());
+        }
+        let s = &self.arc_scale[Self::side(side)];
+        (0..p.len())
+            .map(|j| {
+                let (sn, c) = self.normal_angle[j].sin_cos();
+                (s[j] * (p[j] * c + q[j] * sn), s[j] * (q[j] * c - p[j] * sn))
+            })
+            .unzip()
+    }
+
+    /// The forces of the nodal p, q on body A, globally and along the contact.
+    pub fn forces(&self, grid: &ContactGrid, p: &[f64], q: &[f64]) -> ContactForces {
+        let tan: Vec<f64> = self.normal_angle.iter().map(|a| a.tan()).collect();
+        let sec: Vec<f64> = self.normal_angle.iter().map(|a| 1.0 / a.cos()).collect();
+        let of = |f: &dyn Fn(usize) -> f64| grid.integrate(&(0..p.len()).map(f).collect::<Vec<_>>());
+        ContactForces {
+            global_x: of(&|j| q[j] - p[j] * tan[j]),
+            global_y: of(&|j| p[j] + q[j] * tan[j]),
+            normal: of(&|j| p[j] * sec[j]),
+            tangential: of(&|j| q[j] * sec[j]),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::ElementKind;
+
+    fn frame(m: usize) -> ContactFrame {
+        let psi: Vec<f64> = (0..m).map(|i| 0.2 * (i as f64 / (m - 1) as f64 - 0.5)).collect();
+        ContactFrame {
+            arc_scale: [
+                psi.iter().map(|a| (1.3 * a).cos() / a.cos()).collect(),
+                psi.iter().map(|a| (0.7 * a).cos() / a.cos()).collect(),
+            ],
+            rigid_slip: vec![0.0; m],
+            normal_angle: psi,
+        }
+    }
+
+    /// The transformed flexibility is what the module docs say, entry by entry: apply it to
+    /// (p, q) and compare with the displacements of the global loads, measured along n.
+    #[test]
+    fn flexibility_in_the_contact_frame_is_the_global_one_seen_along_n() {
+        let m = 5;
+        let f = Flexibility {
+            hp: Mat::from_fn(m, m, |i, j| 1.0 + (i * 7 + j) as f64 * 0.1),
+            hq: Mat::from_fn(m, m, |i, j| 0.3 - (i + 2 * j) as f64 * 0.05),
+            wp: Mat::from_fn(m, m, |i, j| -0.2 + (3 * i + j) as f64 * 0.02),
+            wq: Mat::from_fn(m, m, |i, j| 0.8 + (i as f64 - j as f64).abs() * 0.1),
+        };
+        let fr = frame(m);
+        let (p, q) = ([1.0, 2.0, 3.0, 2.5, 0.5], [0.1, -0.2, 0.3, 0.0, 0.2]);
+        for side in [Side::A, Side::B] {
+            let local = fr.flexibility(&f, side);
+            let (gp, gq) = fr.global_loads(side, &p, &q);
+            let (h, w) = (f.normal(&gp, &gq), f.tangential(&gp, &gq));
+            let (h2, w2) = (local.normal(&p, &q), local.tangential(&p, &q));
+            for i in 0..m {
+                let t = fr.normal_angle[i].tan();
+                assert!((h2[i] - (h[i] - t * w[i])).abs() < 1e-13);
+                assert!((w2[i] - w[i]).abs() < 1e-13);
+            }
+        }
+        let id = ContactFrame::global_axes(m);
+        assert!(id.is_global() && id.flexibility(&f, Side::A).hp == f.hp);
+    }
+
+    /// A uniform pressure on a symmetric arc: the forces add up as geometry says.
+    #[test]
+    fn forces_of_a_pressure_on_an_arc() {
+        let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 40, -1.0, 1.0);
+        let m = grid.n_nodes();
+        // Interface y = x²/2R, R = 2: tan ψ = x/R, ds = √(1 + x²/R²) dx.
+        let r = 2.0;
+        let fr = ContactFrame {
+            normal_angle: grid.nodes.iter().map(|x| (x / r).atan()).collect(),
+            arc_scale: [vec![1.0; m], vec![1.0; m]],
+            rigid_slip: vec![0.0; m],
+        };
+        let f = fr.forces(&grid, &vec![1.0; m], &vec![0.0; m]);
+        assert!(f.global_x.abs() < 1e-14 && (f.global_y - 2.0).abs() < 1e-14);
+        // ∫_{-1}^{1} √(1 + x²/4) dx = 2.0805...
+        let exact = 0.5 * 5f64.sqrt() + 2.0 * (0.5 + 0.5 * 5f64.sqrt()).ln();
+        assert!((f.normal - exact).abs() < 1e-6, "{} vs {exact}", f.normal);
+    }
+}
