@@ -256,7 +256,11 @@ fn plot(row: &BoreRow, path: &std::path::Path) -> Result<(), Box<dyn std::error:
         .x_label_area_size(40)
         .y_label_area_size(60)
         .build_cartesian_2d(-1.35..1.35, -0.05..1.1)?;
-    chart.configure_mesh().x_desc("x / a_Hertz").y_desc("traction").draw()?;
+    chart
+        .configure_mesh()
+        .x_desc("x / a_Hertz [-]")
+        .y_desc("p / p0 and q / (μ p0) [-]  (p0: Hertz)")
+        .draw()?;
     for (label, points, color) in curves {
         chart
             .draw_series(LineSeries::new(points, color.stroke_width(2)))?
