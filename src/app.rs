@@ -68,6 +68,15 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
 pub fn solve_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
     // Scenes of a study's own bodies are not checked by `Scene::from_case`.
     crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
+    let grid_spec = &scene.case.case.contact.grid;
+    if let Some(tolerance) = grid_spec.tolerance {
+        let a = crate::adapt::solve(&scene, tolerance, grid_spec.max_elements)?;
+        let mut timings = a.timings;
+        timings.total_s = start.elapsed().as_secs_f64();
+        let mut solved = post::process(a.scene, &a.models, a.problem, &a.state, a.report, timings)?;
+        solved.adaptation = Some(a.adaptation);
+        return Ok(solved);
+    }
     let (models, problem) = scene.assemble()?;
     let condense_s = models[0].stage_seconds().1 + models[1].stage_seconds().1;
     let mut timings = Timings {

@@ -78,6 +78,30 @@ pub enum Error {
         /// The value.
         value: f64,
     },
+    /// An error-controlled grid reached `contact.grid.max_elements` before the tolerance.
+    /// Exit code 2 (like non-convergence); nothing is written.
+    #[error(
+        "{case}: the estimated error did not reach contact.grid.tolerance = {tolerance:e} within \
+         contact.grid.max_elements = {max_elements}: at {elements} elements the estimates are \
+         pressure {pressure:.2e} p0, shear {shear:.2e} mu p0, creepage {creep:.2e} (relative); raise \
+         contact.grid.max_elements or the tolerance"
+    )]
+    ToleranceNotReached {
+        /// Case file.
+        case: PathBuf,
+        /// The requested tolerance.
+        tolerance: f64,
+        /// Elements of the last grid solved.
+        elements: usize,
+        /// The limit.
+        max_elements: usize,
+        /// Its estimated RMS pressure error [p0].
+        pressure: f64,
+        /// Its estimated RMS shear error [μp0].
+        shear: f64,
+        /// Its estimated relative creepage error.
+        creep: f64,
+    },
     /// A sweep argument or a merge input is wrong.
     #[error("sweep: {message}")]
     Sweep {
@@ -109,7 +133,7 @@ impl Error {
     /// A solution that broke down (NaN) gives 2, as non-convergence does.
     pub fn exit_code(&self) -> i32 {
         match self {
-            Error::NotFinite { .. } => EXIT_NOT_CONVERGED,
+            Error::NotFinite { .. } | Error::ToleranceNotReached { .. } => EXIT_NOT_CONVERGED,
             _ => EXIT_BAD_INPUT,
         }
     }

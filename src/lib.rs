@@ -22,6 +22,7 @@
 //! A's surface relative to B's divided by |V|. Overlap δ0 > 0 presses the bodies together.
 //! Units are whatever the case uses consistently (the shipped cases: mm, N, MPa).
 
+pub mod adapt;
 pub mod advice;
 pub mod analytic;
 pub mod app;

@@ -5,6 +5,7 @@
 //! Everything here is physics derived from the solver's state; [`crate::output`] only writes
 //! it. [`process`] runs the whole stage and returns a [`Solved`] run.
 
+pub mod adaptation;
 pub mod fields;
 pub mod finite;
 pub mod friction_check;
@@ -65,6 +66,8 @@ pub struct Solved {
     pub interior: Option<InteriorField>,
     /// Notices for the user (e.g. mesh loops turned round, interior points not evaluated).
     pub notices: Vec<String>,
+    /// How an error-controlled grid was reached (`contact.grid.tolerance`), else none.
+    pub adaptation: Option<adaptation::GridAdaptation>,
 }
 
 /// Post-processes a solver state: the user-facing solution, its regime and friction check,
@@ -129,6 +132,7 @@ pub fn process(
         boundary,
         interior,
         notices,
+        adaptation: None,
     })
 }
 

@@ -97,6 +97,18 @@ impl Scene {
         }
     }
 
+    /// The same scene on another contact grid spanning the same interval (an error-controlled
+    /// grid's refinements): the contact frame and the grid entries of the estimates follow it.
+    pub fn with_grid(&self, grid: ContactGrid) -> Scene {
+        let frame = contact_frame::contact_frame(&self.bodies, &grid, self.case.case.contact.traction_axes);
+        Scene {
+            estimates: self.estimates.clone().with_grid(&grid),
+            grid,
+            frame,
+            ..self.clone()
+        }
+    }
+
     /// Coulomb friction coefficient μ.
     pub fn friction(&self) -> f64 {
         self.case.case.contact.friction

@@ -223,6 +223,15 @@ pub struct GridSpec {
     /// element, and errors decrease steadily with refinement. Ignored with `half_length`.
     /// Default = true.
     pub align_edges: bool,
+    /// Error-controlled grid: the estimated RMS errors of p/p0 and q/(μp0) over the contact and
+    /// the creepage's relative error that the run must reach (e.g. 1e-4). The grid of
+    /// `elements` is the start; rollbem refines it where the estimated error is large (towards
+    /// the contact edges and the stick/slip points) until the estimates are below the
+    /// tolerance. Half-space and rigid bodies. Default = none (the fixed grid of `elements`).
+    pub tolerance: Option<f64>,
+    /// Largest number of contact elements an error-controlled grid may use; reaching it without
+    /// the tolerance ends the run with exit code 2 and the estimate. Default = 600.
+    pub max_elements: usize,
 }
 
 impl Default for GridSpec {
@@ -233,6 +242,8 @@ impl Default for GridSpec {
             half_length: None,
             element: ElementKind::DiscontinuousQuadratic,
             align_edges: true,
+            tolerance: None,
+            max_elements: 600,
         }
     }
 }

@@ -25,6 +25,16 @@ pub const PENALTY_RANGE: [f64; 2] = [1e-12, 1e12];
 /// estimate refuses far fewer); the bound keeps the node counts far from integer overflow.
 pub const MAX_ELEMENTS: usize = 1_000_000_000;
 
+/// Smallest `contact.grid.tolerance`: the solver's own tolerance and round-off of the nodal
+/// tractions lie some decades below.
+pub const MIN_GRID_TOLERANCE: f64 = 1e-7;
+
+/// Largest `contact.grid.tolerance` (a 50 % error is no accuracy at all).
+pub const MAX_GRID_TOLERANCE: f64 = 0.5;
+
+/// Largest `contact.grid.max_elements` (dense matrices of 3·4000 nodes take some GB).
+pub const MAX_ADAPTIVE_ELEMENTS: usize = 4000;
+
 /// Smallest number of elements of a uniform contact grid: with one or two, the elements that hold
 /// the Hertz contact are also the end elements of the grid, so no grid length contains the contact.
 pub const MIN_UNIFORM_ELEMENTS: usize = 3;
@@ -285,6 +295,39 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     if let Some(h) = c.grid.half_length {
         if let Some(why) = positive_quantity(h) {
             bad("contact.grid.half_length".into(), why);
+        }
+    }
+    if let Some(tol) = c.grid.tolerance {
+        if !(MIN_GRID_TOLERANCE..=MAX_GRID_TOLERANCE).contains(&tol) {
+            bad(
+                "contact.grid.tolerance".into(),
+                format!(
+                    "the requested error must lie in [{MIN_GRID_TOLERANCE:e}, {MAX_GRID_TOLERANCE}] \
+                     (value = {}): below, round-off of the solution is of the same size; 1e-4 is \
+                     typical",
+                    shown(tol)
+                ),
+            );
+        }
+        if bem_body {
+            bad(
+                "contact.grid.tolerance".into(),
+                "an error-controlled grid is built for half_space and rigid bodies; with a bem body \
+                 the contact grid is the mesh's contact segment: refine it in the mesh (its .geo) and \
+                 remove the key"
+                    .into(),
+            );
+        }
+        if c.grid.max_elements < 2 * c.grid.elements.max(1) || c.grid.max_elements > MAX_ADAPTIVE_ELEMENTS {
+            bad(
+                "contact.grid.max_elements".into(),
+                format!(
+                    "must be at least twice contact.grid.elements ({}) and at most \
+                     {MAX_ADAPTIVE_ELEMENTS} (value = {}): the error estimate solves the grid and its \
+                     bisection",
+                    c.grid.elements, c.grid.max_elements
+                ),
+            );
         }
     }
 

@@ -41,3 +41,20 @@ pub fn solve(pb: &ContactProblem, settings: &SolverSettings) -> (State, SolveRep
     report.wall_time_s = start.elapsed().as_secs_f64();
     (state, report)
 }
+
+/// Solves the contact problem from `warm`, a state of this problem's grid close to the solution
+/// (an error-controlled grid carries the previous grid's solution to the next): the default
+/// method starts from it, falling back to its cold start and restarts; the other methods keep
+/// their own start (their iteration counts are what `rollbem study stability` compares).
+pub fn solve_from(pb: &ContactProblem, settings: &SolverSettings, warm: Option<State>) -> (State, SolveReport) {
+    let Some(warm) = warm.filter(|_| settings.method == Method::Newton) else {
+        return solve(pb, settings);
+    };
+    let start = Instant::now();
+    let measure = ConvergenceMeasure::new(pb);
+    let (state, mut report) = restart::solve_warm(pb, &settings.newton, &measure, warm);
+    report.method = settings.method;
+    report.formulation = settings.newton.formulation;
+    report.wall_time_s = start.elapsed().as_secs_f64();
+    (state, report)
+}

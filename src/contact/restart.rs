@@ -190,6 +190,28 @@ impl Attempts<'_> {
     }
 }
 
+/// The line-search Newton from `warm` (a solution of a neighbouring problem, e.g. a coarser grid's
+/// carried to this one): when that attempt does not converge, the cold start and restarts of
+/// [`solve`] follow, the warm attempt's steps kept in the history.
+pub fn solve_warm(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+    warm: State,
+) -> (State, SolveReport) {
+    let own = (settings.formulation, settings.penalty_scale);
+    let (out, used) = coupled_attempt(pb, own, warm, FirstStep::Searched, settings, measure);
+    if out.converged {
+        return newton::report(settings, out, used, measure, Vec::new());
+    }
+    let (state, mut report) = solve(pb, settings, measure);
+    report.iterations += out.history.len();
+    report.inner_iterations += out.history.len();
+    report.history = [out.history, report.history].concat();
+    report.fallbacks.insert(0, "cold start after the warm start".into());
+    (state, report)
+}
+
 /// The line-search Newton with the start and restarts of the module docs (none when
 /// `settings.max_backtracks` is 0: a run without line search is not globalized, and starts from
 /// the paper's start vector), stopping on the common measure.

@@ -32,8 +32,16 @@ pub struct GridSummary {
     pub x_min: f64,
     /// Right end [length].
     pub x_max: f64,
-    /// Node spacing [length].
+    /// Node spacing [length]: the smallest distance between neighbouring nodes.
     pub spacing: f64,
+    /// Smallest distance between neighbouring nodes [length] (= `spacing`).
+    pub min_spacing: f64,
+    /// Largest distance between neighbouring nodes [length].
+    pub max_spacing: f64,
+    /// Refinements of an error-controlled grid after its start grid (0 for a fixed grid).
+    pub refinements: usize,
+    /// `contact.grid.tolerance` of an error-controlled grid (null for a fixed grid).
+    pub tolerance: Option<f64>,
     /// Slip derivative scheme.
     pub slip_derivative: crate::contact::SlipDerivative,
 }
@@ -54,6 +62,9 @@ pub struct Summary {
     pub iterations: usize,
     /// Final scaled residual.
     pub residual: f64,
+    /// Estimated discretisation errors of an error-controlled grid's solution (null for a fixed
+    /// grid, or when a solve did not converge).
+    pub error_estimate: Option<crate::post::adaptation::ErrorEstimate>,
     /// P [force/length].
     pub normal_force: f64,
     /// Q [force/length].
@@ -162,6 +173,7 @@ pub fn summary(s: &Solved) -> Summary {
         converged: report.converged,
         iterations: report.iterations,
         residual: report.residual,
+        error_estimate: s.adaptation.as_ref().and_then(|a| a.estimate),
         normal_force: sol.normal_force,
         tangential_force: sol.tangential_force,
         load_ratio: (mu > 0.0 && sol.normal_force > 0.0).then(|| sol.tangential_force / (mu * sol.normal_force)),
@@ -199,6 +211,10 @@ pub fn summary(s: &Solved) -> Summary {
             x_min: pb.grid.edges[0],
             x_max: pb.grid.edges[pb.grid.n_elements()],
             spacing: pb.grid.node_spacing(),
+            min_spacing: pb.grid.node_spacing(),
+            max_spacing: pb.grid.nodes.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max),
+            refinements: s.adaptation.as_ref().map_or(0, |a| a.refinements),
+            tolerance: s.adaptation.as_ref().map(|a| a.tolerance),
             slip_derivative: pb.slip_operator.scheme,
         },
         solver: SolverSummary {

@@ -1,0 +1,279 @@
+//! Error-controlled contact grids (`contact.grid.tolerance`): solve, estimate the error, refine
+//! where it is large, repeat until the estimate meets the tolerance.
+//!
+//! The tractions of a rolling contact are smooth except at a few points where they behave
+//! like a square root: the contact edges (p ∝ √(a − |x|)) and the ends of the stick zones and
+//! slip reversals (q − μp ∝ √(x − x_s)). On a uniform grid those few elements set the error,
+//! which falls only as N⁻¹ while the dense solve costs N³. Here the grid is graded towards them.
+//!
+//! One pass on a grid G ([`cells::DyadicGrid`]: dyadic pieces of the case's uniform start grid):
+//!
+//! 1. solve on G (warm start from the previous pass's solution) and on its bisection H;
+//! 2. estimate the error of H's solution from the difference of the two ([`estimate`]), with
+//!    an indicator per element of G;
+//! 3. if the estimated RMS errors of p/p0 and q/(μp0) over the contact and the relative
+//!    creepage error are all ≤ the tolerance, H's solution is the result;
+//! 4. else refine G. Each element has a local indicator (how far H's solution over it departs
+//!    from one polynomial of the element's degree): large at the square-root points, small
+//!    where the solution is smooth, and blind to the smooth error those points spread, which
+//!    refining them removes. The squared estimate is taken to fall with the indicators' sum,
+//!    so the sum must fall by (SAFETY·tolerance/estimate)², shared equally among the elements.
+//!    An element above its share is halved k times towards the contact edge or stick/slip
+//!    point it holds (k from its indicator: next to a square-root point the share falls by 4
+//!    per halving), or halved once when it holds none; sibling pieces in the open region with
+//!    a negligible share are merged back; neighbours stay within a length ratio of 2.
+//!
+//! The result is H's solution; summary.json reports the estimate (`error_estimate`) and the
+//! grid's passes. With the estimate not reached within `contact.grid.max_elements` elements
+//! the run ends with exit code 2 and the last estimate.
+
+pub mod cells;
+pub mod estimate;
+
+use crate::contact::residual::State;
+use crate::contact::{methods, ContactProblem, SolveReport, TangentialControl};
+use crate::error::Error;
+use crate::grid::ContactGrid;
+use crate::post::adaptation::{AdaptationStep, GridAdaptation};
+use crate::post::{ContactSolution, NodeState, Timings};
+use crate::scene::{BodyModels, Scene};
+use cells::{Action, DyadicGrid};
+use estimate::{Comparison, Scales};
+use std::time::Instant;
+
+/// Fraction of the tolerance that the refinement aims at, so that the next pass usually meets
+/// the tolerance rather than falls just short of it (then costing another pass).
+pub const SAFETY: f64 = 0.6;
+
+/// Deepest grading of one element in one pass (2⁻¹² of its length).
+pub const MAX_DEPTH_PER_PASS: u32 = 12;
+
+/// Most passes before the run gives up (each pass at least halves one element).
+pub const MAX_PASSES: usize = 40;
+
+/// A scene solved on an error-controlled grid, ready for post-processing.
+pub struct Adapted {
+    /// The scene on the final (bisected) grid.
+    pub scene: Scene,
+    /// Its body models.
+    pub models: BodyModels,
+    /// Its contact problem.
+    pub problem: ContactProblem,
+    /// The solution.
+    pub state: State,
+    /// The report of the final solve.
+    pub report: SolveReport,
+    /// Times of the stages, summed over the passes.
+    pub timings: Timings,
+    /// How the grid was reached.
+    pub adaptation: GridAdaptation,
+}
+
+/// One grid assembled and solved.
+struct Solve {
+    scene: Scene,
+    models: BodyModels,
+    problem: ContactProblem,
+    state: State,
+    report: SolveReport,
+}
+
+/// Builds the scene's models on `grid`, assembles and solves (from `warm`, carried from the
+/// grid it was solved on), adding the times to `timings`.
+fn solve_on(
+    scene: &Scene,
+    grid: ContactGrid,
+    warm: Option<(&ContactGrid, &State)>,
+    timings: &mut Timings,
+) -> Result<Solve, Error> {
+    let t = Instant::now();
+    let scene = scene.with_grid(grid);
+    let (models, problem) = scene.assemble()?;
+    timings.assembly_s += t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let warm = warm.map(|(from, z)| carried(&problem, from, z));
+    let (state, report) = methods::solve_from(&problem, &scene.solver, warm);
+    timings.solve_s += t.elapsed().as_secs_f64();
+    Ok(Solve {
+        scene,
+        models,
+        problem,
+        state,
+        report,
+    })
+}
+
+/// A state of `from`'s grid carried to the problem's grid: tractions interpolated by `from`'s
+/// shape functions (p clipped at 0), gap and slip those of the carried tractions.
+fn carried(pb: &ContactProblem, from: &ContactGrid, z: &State) -> State {
+    let x = &pb.grid.nodes;
+    let pressure: Vec<f64> = x.iter().map(|&x| from.interpolate(&z.pressure, x).max(0.0)).collect();
+    let shear: Vec<f64> = x.iter().map(|&x| from.interpolate(&z.shear, x)).collect();
+    State {
+        gap: pb.gap(&pressure, &shear, z.overlap),
+        slip: pb.slip(&pressure, &shear, z.creep),
+        pressure,
+        shear,
+        overlap: z.overlap,
+        creep: z.creep,
+    }
+}
+
+/// Solves the scene on a grid refined until the estimated error meets `tolerance` (module docs).
+/// A solve that does not converge ends the loop: its solution comes back with
+/// `report.converged == false`, as for a fixed grid.
+pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapted, Error> {
+    let scales = Scales {
+        peak_pressure: scene.estimates.hertz_peak_pressure,
+        friction: scene.friction(),
+        creep_prescribed: matches!(scene.tangential, TangentialControl::Creep(_)),
+    };
+    let mut timings = Timings::default();
+    let mut coarse = DyadicGrid::new(&scene.grid);
+    let mut warm: Option<(ContactGrid, State)> = None;
+    let mut steps: Vec<AdaptationStep> = Vec::new();
+    loop {
+        let g = solve_on(scene, coarse.grid(), warm.as_ref().map(|(g, z)| (g, z)), &mut timings)?;
+        if !g.report.converged {
+            return Ok(finished(g, timings, tolerance, steps));
+        }
+        let h = solve_on(
+            scene,
+            coarse.bisected().grid(),
+            Some((&g.problem.grid, &g.state)),
+            &mut timings,
+        )?;
+        if !h.report.converged {
+            return Ok(finished(h, timings, tolerance, steps));
+        }
+        let cmp = estimate::compare(&g.problem.grid, &g.state, &h.problem.grid, &h.state, scales);
+        let e = cmp.estimate;
+        steps.push(AdaptationStep {
+            elements: h.problem.grid.n_elements(),
+            nodes: h.problem.n_nodes(),
+            estimate: e,
+            iterations: g.report.iterations + h.report.iterations,
+        });
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "error control, pass {}: {} elements, estimated error: pressure {:.2e} p0, shear {:.2e} mu p0, \
+             creepage {:.2e}",
+            steps.len(),
+            h.problem.grid.n_elements(),
+            e.pressure_rms,
+            e.shear_rms,
+            e.creep_rel
+        );
+        if e.within(tolerance) {
+            return Ok(finished(h, timings, tolerance, steps));
+        }
+        let singular = singular_points(&h.problem, &h.state);
+        let next = coarse.refined(&actions(&coarse, &cmp, &singular, tolerance));
+        if 2 * next.len() > max_elements || steps.len() >= MAX_PASSES {
+            return Err(Error::ToleranceNotReached {
+                case: scene.case.path.clone(),
+                tolerance,
+                elements: h.problem.grid.n_elements(),
+                max_elements,
+                pressure: e.pressure_rms,
+                shear: e.shear_rms,
+                creep: e.creep_rel,
+            });
+        }
+        warm = Some((h.problem.grid, h.state));
+        coarse = next;
+    }
+}
+
+/// The result of the loop: the last solve with the passes so far.
+fn finished(s: Solve, mut timings: Timings, tolerance: f64, steps: Vec<AdaptationStep>) -> Adapted {
+    timings.total_s = timings.assembly_s + timings.solve_s;
+    Adapted {
+        adaptation: GridAdaptation {
+            tolerance,
+            estimate: steps.last().map(|s| s.estimate),
+            refinements: steps.len().saturating_sub(1),
+            steps,
+        },
+        scene: s.scene,
+        models: s.models,
+        problem: s.problem,
+        state: s.state,
+        report: s.report,
+        timings,
+    }
+}
+
+/// Where the tractions have square-root points [length]: between neighbouring nodes where the
+/// contact opens (an edge), where stick turns to slip, and where the slip reverses.
+fn singular_points(pb: &ContactProblem, z: &State) -> Vec<f64> {
+    let sol = ContactSolution::from_state(pb, z);
+    let x = &pb.grid.nodes;
+    (1..x.len())
+        .filter(|&i| {
+            let (a, b) = (sol.state[i - 1], sol.state[i]);
+            let reversal = a == NodeState::Slip && b == NodeState::Slip && sol.shear[i - 1] * sol.shear[i] < 0.0;
+            a != b || reversal
+        })
+        .map(|i| 0.5 * (x[i - 1] + x[i]))
+        .collect()
+}
+
+/// What to do with each element of `coarse` (module docs, step 4).
+fn actions(coarse: &DyadicGrid, cmp: &Comparison, singular: &[f64], tolerance: f64) -> Vec<Action> {
+    let indicator = &cmp.detail;
+    let active = indicator.iter().filter(|&&z| z > 0.0).count().max(1);
+    // The estimate (squared) is taken to fall with the sum of the local indicators: to bring
+    // the largest of the three estimates to SAFETY·tolerance, the sum must fall by `factor`,
+    // shared equally among the elements that carry it.
+    let largest = cmp.estimate.largest();
+    let factor = if largest > 0.0 {
+        (SAFETY * tolerance / largest).powi(2).min(1.0)
+    } else {
+        1.0
+    };
+    let target = indicator.iter().sum::<f64>() * factor / active as f64;
+    let mut action: Vec<Action> = coarse
+        .cells()
+        .iter()
+        .zip(indicator)
+        .zip(&cmp.open)
+        .map(|((&c, &z), &open)| {
+            let (x0, x1) = (coarse.end(c, false), coarse.end(c, true));
+            let inside = singular.iter().copied().find(|&x| x >= x0 && x <= x1);
+            // The nearest square-root point, when it lies within an element length: the
+            // discrete transition may sit one node off the true one, in this element.
+            let near = singular
+                .iter()
+                .copied()
+                .filter(|&x| (x0 - x).max(x - x1).max(0.0) <= x1 - x0)
+                .min_by(|a, b| (a - 0.5 * (x0 + x1)).abs().total_cmp(&(b - 0.5 * (x0 + x1)).abs()));
+            if z > target && target > 0.0 {
+                let ratio = (z / target).log2();
+                let depth =
+                    |per_halving: f64| (ratio / per_halving).ceil().clamp(1.0, f64::from(MAX_DEPTH_PER_PASS)) as u32;
+                match inside.or(near) {
+                    // Next to a square-root point the share falls by 4 per halving.
+                    Some(x) => Action::GradeTowards(x.clamp(x0, x1), depth(2.0)),
+                    // Where the solution is smooth, by 2⁷ (nodal error h³, over a length h).
+                    None => Action::Split(depth(7.0)),
+                }
+            } else if open && inside.is_none() && z <= target / 64.0 {
+                Action::Merge
+            } else {
+                Action::Keep
+            }
+        })
+        .collect();
+    // Never a pass without a refinement: the element with the largest share is halved.
+    if !action
+        .iter()
+        .any(|a| matches!(a, Action::Split(_) | Action::GradeTowards(..)))
+    {
+        let worst = (0..indicator.len())
+            .max_by(|&a, &b| indicator[a].total_cmp(&indicator[b]))
+            .unwrap_or(0);
+        action[worst] = Action::Split(1);
+    }
+    action
+}

@@ -1,0 +1,301 @@
+//! The a-posteriori error estimate of a solution on a grid from the solution on its bisection.
+//!
+//! With u_G the solution on a grid G and u_H that on H = G with every element halved, the nodal
+//! differences d_i = u_H(x_i) − u_G(x_i) at H's nodes (u_G interpolated by its own shape
+//! functions) estimate the error of u_H. The tractions have square-root behaviour at the
+//! contact edges and at the stick/slip points, so the nodal error next to such a point is
+//! ∝ √h and the length-weighted RMS error over the contact is ∝ h (first order, as measured on
+//! uniform grids): then e_G ≈ 2 e_H and d = e_G − e_H ≈ e_H. On the grids the error control
+//! builds, graded towards those points, the error falls as h² to h³ under bisection (measured:
+//! docs/validation.md), e_H ≈ d/3 to d/7. The estimate is [`ESTIMATE_FACTOR`]·d, the error of an
+//! h² convergence. The creepage, an integral of the slip over the stick zone whose end is a
+//! square-root point, converges at first order (measured): its estimate is the difference
+//! itself. The effectivity
+//! (estimate over true error) is measured against Carter's and Hertz's solutions in
+//! tests/validation and docs/validation.md.
+//!
+//! The norm is that of every accuracy figure of rollbem ([`crate::post::norms`]): the RMS over
+//! the contact of nodal errors, each node weighted by the length it stands for (half the
+//! distance to each neighbour), p in units of the Hertz peak pressure p0, q in units of μp0.
+
+use crate::contact::residual::State;
+use crate::grid::ContactGrid;
+use crate::post::adaptation::ErrorEstimate;
+use crate::post::norms::node_lengths;
+
+/// The estimate is this factor times the RMS difference of the two solutions: the error of the
+/// bisected grid's solution when the error falls as h² under bisection, 1/(2² − 1) (module
+/// docs). Where square-root points still dominate (first order) it under-estimates by up to 3;
+/// on grids graded towards them the error falls as h² to h³ and it over-estimates by up to 2.
+pub const ESTIMATE_FACTOR: f64 = 1.0 / 3.0;
+
+/// The estimate and where the error sits.
+#[derive(Debug, Clone)]
+pub struct Comparison {
+    /// The estimated errors of the bisected grid's solution.
+    pub estimate: ErrorEstimate,
+    /// Share of each coarse element in (pressure_rms² + shear_rms²): the element indicators,
+    /// summing to that total [-].
+    pub indicator: Vec<f64>,
+    /// Local indicator of each coarse element: how far the bisected grid's solution over the
+    /// element departs from one polynomial of the element's degree (least squares through its
+    /// nodes there), as a share of the squared RMS over the contact [-]. It sees the
+    /// square-root points and not the smooth error spread from them, which refining them
+    /// removes (the refinement marks by it; the estimate counts both).
+    pub detail: Vec<f64>,
+    /// Whether every node of the bisected grid in each coarse element is open (p = 0).
+    pub open: Vec<bool>,
+}
+
+/// The scales of the errors: p0 [stress] and μ [-].
+#[derive(Debug, Clone, Copy)]
+pub struct Scales {
+    /// Hertz peak pressure p0 [stress].
+    pub peak_pressure: f64,
+    /// Coulomb friction coefficient μ.
+    pub friction: f64,
+    /// Whether the creepage is prescribed (then it has no error).
+    pub creep_prescribed: bool,
+}
+
+/// Compares the solution `coarse` on `coarse_grid` with `fine` on its bisection `fine_grid`
+/// (module docs).
+pub fn compare(
+    coarse_grid: &ContactGrid,
+    coarse: &State,
+    fine_grid: &ContactGrid,
+    fine: &State,
+    scales: Scales,
+) -> Comparison {
+    assert_eq!(
+        fine_grid.n_elements(),
+        2 * coarse_grid.n_elements(),
+        "the fine grid bisects the coarse one"
+    );
+    let x = &fine_grid.nodes;
+    let w = node_lengths(x);
+    let shear_scale = scales.friction * scales.peak_pressure;
+    let scaled = |v: f64, scale: f64| if scale > 0.0 { v / scale } else { 0.0 };
+    let dp: Vec<f64> = (0..x.len())
+        .map(|i| {
+            scaled(
+                fine.pressure[i] - coarse_grid.interpolate(&coarse.pressure, x[i]),
+                scales.peak_pressure,
+            )
+        })
+        .collect();
+    let dq: Vec<f64> = (0..x.len())
+        .map(|i| {
+            scaled(
+                fine.shear[i] - coarse_grid.interpolate(&coarse.shear, x[i]),
+                shear_scale,
+            )
+        })
+        .collect();
+    // The contact: from the first to the last loaded node of the fine solution.
+    let loaded = |i: &usize| fine.pressure[*i] > 0.0;
+    let first = (0..x.len()).find(loaded);
+    let last = (0..x.len()).rev().find(loaded);
+    let in_contact = |i: usize| matches!((first, last), (Some(a), Some(b)) if (a..=b).contains(&i));
+    let contact_length: f64 = (0..x.len()).filter(|&i| in_contact(i)).map(|i| w[i]).sum();
+    let rms = |d: &[f64]| {
+        if contact_length > 0.0 {
+            let sum: f64 = (0..x.len())
+                .filter(|&i| in_contact(i))
+                .map(|i| w[i] * d[i] * d[i])
+                .sum();
+            (sum / contact_length).sqrt()
+        } else {
+            0.0
+        }
+    };
+    let n_coarse = coarse_grid.n_elements();
+    let mut indicator = vec![0.0; n_coarse];
+    let mut open = vec![true; n_coarse];
+    let kind = fine_grid.kind;
+    let share = if kind.shares_nodes() { 0.5 } else { 1.0 };
+    for e_fine in 0..fine_grid.n_elements() {
+        let e = e_fine / 2;
+        for a in 0..kind.nodes_per_element() {
+            let i = fine_grid.global_node(e_fine, a);
+            let end_node = kind.shares_nodes() && a != 1;
+            let part = if end_node { share } else { 1.0 };
+            if fine.pressure[i] > 0.0 {
+                open[e] = false;
+            }
+            if in_contact(i) && contact_length > 0.0 {
+                indicator[e] += part * w[i] * (dp[i] * dp[i] + dq[i] * dq[i]) / contact_length;
+            }
+        }
+    }
+    let fields = [
+        fine.pressure
+            .iter()
+            .map(|v| scaled(*v, scales.peak_pressure))
+            .collect::<Vec<_>>(),
+        fine.shear.iter().map(|v| scaled(*v, shear_scale)).collect::<Vec<_>>(),
+    ];
+    let detail = (0..n_coarse)
+        .map(|e| {
+            if contact_length <= 0.0 {
+                return 0.0;
+            }
+            let nodes: Vec<usize> = (0..2)
+                .flat_map(|c| (0..kind.nodes_per_element()).map(move |a| (2 * e + c, a)))
+                .map(|(ef, a)| fine_grid.global_node(ef, a))
+                .filter(|&i| in_contact(i))
+                .collect();
+            let t: Vec<f64> = nodes.iter().map(|&i| x[i]).collect();
+            let weights: Vec<f64> = nodes.iter().map(|&i| w[i]).collect();
+            fields
+                .iter()
+                .map(|v| {
+                    let values: Vec<f64> = nodes.iter().map(|&i| v[i]).collect();
+                    fit_residual(&t, &values, &weights, kind.nodes_per_element() - 1)
+                })
+                .sum::<f64>()
+                / contact_length
+        })
+        .collect();
+    let creep_rel = if scales.creep_prescribed || fine.creep == coarse.creep {
+        0.0
+    } else {
+        (fine.creep - coarse.creep).abs() / fine.creep.abs().max(f64::MIN_POSITIVE)
+    };
+    Comparison {
+        estimate: ErrorEstimate {
+            pressure_rms: ESTIMATE_FACTOR * rms(&dp),
+            shear_rms: ESTIMATE_FACTOR * rms(&dq),
+            creep_rel,
+        },
+        indicator,
+        detail,
+        open,
+    }
+}
+
+/// Σ w_k r_k² of the weighted least-squares fit of a polynomial of `degree` to (t_k, v_k):
+/// zero when the values lie on such a polynomial (and when there are no more points than
+/// coefficients).
+fn fit_residual(t: &[f64], v: &[f64], w: &[f64], degree: usize) -> f64 {
+    let n = degree + 1;
+    if t.len() <= n {
+        return 0.0;
+    }
+    // Centred and scaled abscissae keep the normal equations well conditioned.
+    let (lo, hi) = (t[0], t[t.len() - 1]);
+    let (c, h) = (0.5 * (lo + hi), 0.5 * (hi - lo).max(f64::MIN_POSITIVE));
+    let basis = |tk: f64| -> Vec<f64> { (0..n).map(|j| ((tk - c) / h).powi(j as i32)).collect() };
+    let mut a = faer::Mat::<f64>::zeros(n, n);
+    let mut b = faer::Mat::<f64>::zeros(n, 1);
+    for k in 0..t.len() {
+        let phi = basis(t[k]);
+        for i in 0..n {
+            b[(i, 0)] += w[k] * phi[i] * v[k];
+            for j in 0..n {
+                a[(i, j)] += w[k] * phi[i] * phi[j];
+            }
+        }
+    }
+    faer::linalg::solvers::Solve::solve_in_place(&a.partial_piv_lu(), b.as_mut());
+    let coef = b;
+    if (0..n).any(|j| !coef[(j, 0)].is_finite()) {
+        return 0.0;
+    }
+    t.iter()
+        .zip(v)
+        .zip(w)
+        .map(|((&tk, &vk), &wk)| {
+            let fit: f64 = basis(tk).iter().enumerate().map(|(j, p)| p * coef[(j, 0)]).sum();
+            wk * (vk - fit).powi(2)
+        })
+        .sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::ElementKind;
+
+    fn state_of(grid: &ContactGrid, p: impl Fn(f64) -> f64, q: impl Fn(f64) -> f64, creep: f64) -> State {
+        let m = grid.n_nodes();
+        State {
+            gap: vec![0.0; m],
+            slip: vec![0.0; m],
+            pressure: grid.nodes.iter().map(|&x| p(x)).collect(),
+            shear: grid.nodes.iter().map(|&x| q(x)).collect(),
+            overlap: 0.0,
+            creep,
+        }
+    }
+
+    #[test]
+    fn fields_the_coarse_elements_reproduce_give_a_zero_estimate() {
+        // A quadratic pressure is what both grids represent exactly.
+        let coarse = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 5, -1.5, 1.5);
+        let fine = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 10, -1.5, 1.5);
+        let p = |x: f64| 2.0 - x * x;
+        let c = compare(
+            &coarse,
+            &state_of(&coarse, p, |x| 0.1 * p(x), 1e-3),
+            &fine,
+            &state_of(&fine, p, |x| 0.1 * p(x), 1e-3),
+            Scales {
+                peak_pressure: 2.0,
+                friction: 0.2,
+                creep_prescribed: false,
+            },
+        );
+        assert!(c.estimate.largest() < 1e-14, "{:?}", c.estimate);
+        assert!(c.detail.iter().all(|d| *d < 1e-26), "{:?}", c.detail);
+    }
+
+    #[test]
+    fn the_local_indicator_singles_out_the_element_with_a_square_root_edge() {
+        let coarse = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 6, -1.2, 1.2);
+        let fine = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 12, -1.2, 1.2);
+        // Hertz's pressure: square-root edges at ±1, in coarse elements 0 and 5.
+        let p = |x: f64| (1.0 - x * x).max(0.0).sqrt();
+        let c = compare(
+            &coarse,
+            &state_of(&coarse, p, |_| 0.0, 0.0),
+            &fine,
+            &state_of(&fine, p, |_| 0.0, 0.0),
+            Scales {
+                peak_pressure: 1.0,
+                friction: 0.2,
+                creep_prescribed: true,
+            },
+        );
+        let edge = c.detail[0].max(c.detail[5]);
+        for e in 1..5 {
+            assert!(c.detail[e] < 0.1 * edge, "{:?}", c.detail);
+        }
+    }
+
+    #[test]
+    fn a_known_difference_gives_its_weighted_rms_and_indicators_that_add_up() {
+        let coarse = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 5, -1.5, 1.5);
+        let fine = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 10, -1.5, 1.5);
+        // The fine pressure is the coarse one plus 0.01 everywhere (every fine node loaded):
+        // the RMS difference is 0.01/p0 = 0.005.
+        let c = compare(
+            &coarse,
+            &state_of(&coarse, |_| 1.0, |_| 0.0, 1e-3),
+            &fine,
+            &state_of(&fine, |_| 1.01, |_| 0.0, 1.1e-3),
+            Scales {
+                peak_pressure: 2.0,
+                friction: 0.2,
+                creep_prescribed: false,
+            },
+        );
+        assert_eq!(c.estimate.shear_rms, 0.0);
+        assert!((c.estimate.creep_rel - 0.1 / 1.1).abs() < 1e-12);
+        let total: f64 = c.indicator.iter().sum();
+        assert!((total - 0.005f64.powi(2)).abs() < 1e-15, "{total}");
+        // The estimate is the difference times the factor of an h² convergence.
+        assert!((c.estimate.pressure_rms - ESTIMATE_FACTOR * 0.005).abs() < 1e-12);
+        assert!(c.open.iter().all(|o| !o));
+    }
+}
