@@ -48,6 +48,15 @@ pub const SAFETY: f64 = 0.6;
 /// Deepest grading of one element in one pass (2⁻¹² of its length).
 pub const MAX_DEPTH_PER_PASS: u32 = 12;
 
+/// The a-priori length rule: an element of the result that holds a square-root point is at
+/// most this times tolerance·a long (docs/theory.md, "Error-controlled grids").
+pub const A_PRIORI_LENGTH: f64 = 30.0;
+
+/// Deepest grading of one pass towards a square-root point on the a-priori length rule
+/// (its position is known only to the node spacing of the pass's solution: the next passes go
+/// deeper where it really is).
+pub const A_PRIORI_DEPTH_PER_PASS: u32 = 3;
+
 /// Most passes before the run gives up (each pass at least halves one element).
 pub const MAX_PASSES: usize = 40;
 
@@ -164,11 +173,13 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
             e.shear_rms,
             e.creep_rel
         );
-        if e.within(tolerance) {
+        let singular = singular_points(&h.problem, &h.state);
+        let half_width = scene.estimates.hertz_half_width;
+        if e.within(tolerance) && resolved(&h.problem.grid, &singular, tolerance, half_width) {
             return Ok(finished(h, timings, tolerance, steps));
         }
-        let singular = singular_points(&h.problem, &h.state);
-        let next = coarse.refined(&actions(&coarse, &cmp, &singular, tolerance));
+        let next = coarse.refined(&actions(&coarse, &cmp, &singular, tolerance, half_width));
+        log::debug!("singular points {singular:?}; next grid {} elements", next.len());
         if 2 * next.len() > max_elements || steps.len() >= MAX_PASSES {
             return Err(Error::ToleranceNotReached {
                 case: scene.case.path.clone(),
@@ -219,8 +230,18 @@ fn singular_points(pb: &ContactProblem, z: &State) -> Vec<f64> {
         .collect()
 }
 
+/// Whether every element of `grid` that holds a square-root point is at most
+/// [`A_PRIORI_LENGTH`]·tolerance·a long (the a-priori rule of [`actions`]).
+fn resolved(grid: &ContactGrid, singular: &[f64], tolerance: f64, half_width: f64) -> bool {
+    singular.iter().all(|&x| {
+        (0..grid.n_elements())
+            .filter(|&e| grid.edges[e] <= x && x <= grid.edges[e + 1])
+            .all(|e| grid.edges[e + 1] - grid.edges[e] <= A_PRIORI_LENGTH * tolerance * half_width)
+    })
+}
+
 /// What to do with each element of `coarse` (module docs, step 4).
-fn actions(coarse: &DyadicGrid, cmp: &Comparison, singular: &[f64], tolerance: f64) -> Vec<Action> {
+fn actions(coarse: &DyadicGrid, cmp: &Comparison, singular: &[f64], tolerance: f64, half_width: f64) -> Vec<Action> {
     let indicator = &cmp.detail;
     let active = indicator.iter().filter(|&&z| z > 0.0).count().max(1);
     // The estimate (squared) is taken to fall with the sum of the local indicators: to bring
@@ -248,16 +269,31 @@ fn actions(coarse: &DyadicGrid, cmp: &Comparison, singular: &[f64], tolerance: f
                 .copied()
                 .filter(|&x| (x0 - x).max(x - x1).max(0.0) <= x1 - x0)
                 .min_by(|a, b| (a - 0.5 * (x0 + x1)).abs().total_cmp(&(b - 0.5 * (x0 + x1)).abs()));
+            // An element of H holding a square-root point is at most A_PRIORI_LENGTH·tolerance·a
+            // long: a node beside the point has an error ∝ √(h/a), standing for a length h, so
+            // its share of the RMS is ∝ h/a whatever the estimate saw (a node can fall close
+            // enough to the point that both grids miss its error).
+            let a_priori = inside.map_or(0, |_| {
+                // G's element is halved once more in H.
+                let ratio = (x1 - x0) / (2.0 * A_PRIORI_LENGTH * tolerance * half_width);
+                if ratio > 1.0 {
+                    (ratio.log2().ceil() as u32).min(A_PRIORI_DEPTH_PER_PASS)
+                } else {
+                    0
+                }
+            });
             if z > target && target > 0.0 {
                 let ratio = (z / target).log2();
                 let depth =
                     |per_halving: f64| (ratio / per_halving).ceil().clamp(1.0, f64::from(MAX_DEPTH_PER_PASS)) as u32;
                 match inside.or(near) {
                     // Next to a square-root point the share falls by 4 per halving.
-                    Some(x) => Action::GradeTowards(x.clamp(x0, x1), depth(2.0)),
+                    Some(x) => Action::GradeTowards(x.clamp(x0, x1), depth(2.0).max(a_priori)),
                     // Where the solution is smooth, by 2⁷ (nodal error h³, over a length h).
                     None => Action::Split(depth(7.0)),
                 }
+            } else if let (Some(x), true) = (inside, a_priori > 0) {
+                Action::GradeTowards(x, a_priori)
             } else if open && inside.is_none() && z <= target / 64.0 {
                 Action::Merge
             } else {

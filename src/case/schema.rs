@@ -230,7 +230,7 @@ pub struct GridSpec {
     /// tolerance. Half-space and rigid bodies. Default = none (the fixed grid of `elements`).
     pub tolerance: Option<f64>,
     /// Largest number of contact elements an error-controlled grid may use; reaching it without
-    /// the tolerance ends the run with exit code 2 and the estimate. Default = 600.
+    /// the tolerance ends the run with exit code 2 and the estimate. Default = 1000.
     pub max_elements: usize,
 }
 
@@ -243,7 +243,7 @@ impl Default for GridSpec {
             element: ElementKind::DiscontinuousQuadratic,
             align_edges: true,
             tolerance: None,
-            max_elements: 600,
+            max_elements: 1000,
         }
     }
 }

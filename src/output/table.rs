@@ -89,16 +89,35 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     if let Some(check) = s.hbem_check.as_ref().and_then(|c| c.summary_line()) {
         line("HBEM slip check", check);
     }
-    line(
-        "grid",
+    let grid = if s.grid.tolerance.is_some() {
+        format!(
+            "{} {} elements, {} nodes, spacing {:.4e} to {:.4e} {len}, {} refinements",
+            s.grid.elements,
+            s.grid.element.name(),
+            s.grid.nodes,
+            s.grid.min_spacing,
+            s.grid.max_spacing,
+            s.grid.refinements
+        )
+    } else {
         format!(
             "{} {} elements, {} nodes, spacing {:.4e} {len}",
             s.grid.elements,
             s.grid.element.name(),
             s.grid.nodes,
             s.grid.spacing
-        ),
-    );
+        )
+    };
+    line("grid", grid);
+    if let (Some(e), Some(tol)) = (s.error_estimate, s.grid.tolerance) {
+        line(
+            "estimated error",
+            format!(
+                "pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e} (relative); tolerance {tol:.0e}",
+                e.pressure_rms, e.shear_rms, e.creep_rel
+            ),
+        );
+    }
     if let Some(i) = &s.interior {
         let peak = |p: &Option<crate::interior::Peak>| {
             p.map_or("-".to_string(), |p| {

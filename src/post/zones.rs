@@ -128,18 +128,31 @@ pub fn zones(x: &[f64], state: &[NodeState], slip: &[f64]) -> Vec<Zone> {
     let m = x.len();
     let dir = |i: usize| (state[i] == NodeState::Slip).then(|| SlipDirection::of(slip[i]));
     let mut out: Vec<Zone> = Vec::new();
-    let half = if m > 1 { 0.5 * (x[1] - x[0]) } else { 0.0 };
+    // A node stands for the half-spacings on either side of it (the end nodes' outer half the
+    // same as their inner one), so zones meet half-way between unequally spaced nodes too.
+    let half_left = |i: usize| match i {
+        0 if m > 1 => 0.5 * (x[1] - x[0]),
+        0 => 0.0,
+        _ => 0.5 * (x[i] - x[i - 1]),
+    };
+    let half_right = |i: usize| {
+        if i + 1 < m {
+            0.5 * (x[i + 1] - x[i])
+        } else {
+            half_left(i)
+        }
+    };
     for i in 0..m {
         let key = (state[i], dir(i));
         match out.last_mut() {
             Some(z) if (z.state, z.direction) == key => {
-                z.x1 = x[i] + half;
+                z.x1 = x[i] + half_right(i);
                 z.nodes += 1;
             }
             _ => out.push(Zone {
                 state: state[i],
-                x0: x[i] - half,
-                x1: x[i] + half,
+                x0: x[i] - half_left(i),
+                x1: x[i] + half_right(i),
                 direction: key.1,
                 nodes: 1,
             }),

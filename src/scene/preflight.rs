@@ -244,7 +244,11 @@ pub fn problem_sizes(case: &LoadedCase, bodies: &[BodySetup; 2]) -> ProblemSizes
         Some(b) => 3 * contact_elements(b),
         None => {
             let kind = c.contact.grid.element;
-            let n = c.contact.grid.elements;
+            // An error-controlled grid may grow to its limit.
+            let n = match c.contact.grid.tolerance {
+                Some(_) => c.contact.grid.max_elements,
+                None => c.contact.grid.elements,
+            };
             kind.node_stride().saturating_mul(n) + usize::from(kind.shares_nodes())
         }
     };
@@ -364,11 +368,11 @@ fn advice(
         None => {
             let stride = c.contact.grid.element.node_stride() as f64;
             let fit = (room(e.bem + e.interior) / limits::BYTES_PER_CONTACT_NODE_SQUARED).sqrt() / stride;
-            format!(
-                "lower contact.grid.elements (now {}; about {:.0} fit)",
-                c.contact.grid.elements,
-                fit.floor()
-            )
+            let (key, now) = match c.contact.grid.tolerance {
+                Some(_) => ("max_elements", c.contact.grid.max_elements),
+                None => ("elements", c.contact.grid.elements),
+            };
+            format!("lower contact.grid.{key} (now {now}; about {:.0} fit)", fit.floor())
         }
     }
 }

@@ -14,12 +14,18 @@
 // compiled together here, that file is one module per report.
 #![allow(clippy::duplicate_mod)]
 
+#[allow(dead_code)]
+#[path = "../../examples/adaptive_report.rs"]
+mod adaptive_report;
 mod architecture;
 #[path = "../common/mod.rs"]
 mod common;
 #[allow(dead_code)]
 #[path = "../../examples/conformal_report.rs"]
 mod conformal_report;
+#[allow(dead_code)]
+#[path = "../../examples/error_vs_time.rs"]
+mod error_vs_time;
 #[allow(dead_code)]
 #[path = "../../examples/friction_limits.rs"]
 mod friction_limits;
@@ -256,6 +262,41 @@ fn assert_four_figures(constant: f64, measured: f64, what: &str) {
     assert!(
         (constant - measured).abs() <= unit,
         "{what}: src/advice.rs has {constant:e}, the report measures {measured:.4e}"
+    );
+}
+
+/// docs/validation.md: error-controlled grids against Carter and Hertz, without the times.
+#[test]
+fn validation_adaptive_table() {
+    let t = adaptive_report::table();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("validation.md"), printed, Rows::All, &["time [s]"], (&[], 0.0));
+}
+
+/// docs/performance.md: uniform against error-controlled grids, without the times.
+#[test]
+fn performance_error_vs_time_table() {
+    let mut t = error_vs_time::common::Table::new(&error_vs_time::HEADER);
+    for (label, set) in error_vs_time::runs() {
+        t.push(error_vs_time::row(
+            &label,
+            &error_vs_time::common::solve("carter2d_contact", &set),
+            None,
+        ));
+    }
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(
+        &page("performance.md"),
+        printed,
+        Rows::All,
+        &["whole process [s]"],
+        (&[], 0.0),
     );
 }
 

@@ -275,3 +275,44 @@ fn a_contact_beyond_a_bem_grid_names_the_mesh() {
     );
     assert!(!stderr.contains("contact.grid.extent"), "{stderr}");
 }
+
+#[test]
+fn error_controlled_grid_keys_are_checked() {
+    assert_refused(
+        &["contact.grid.tolerance=0"],
+        "contact.grid.tolerance",
+        &["1e-4 is typical"],
+    );
+    assert_refused(&["contact.grid.tolerance=2"], "contact.grid.tolerance", &[]);
+    assert_refused(
+        &["contact.grid.tolerance=1e-3", "contact.grid.max_elements=30"],
+        "contact.grid.max_elements",
+        &["twice"],
+    );
+    // A bem body's grid is its mesh's contact segment.
+    let (code, stderr, written) = run_base(
+        "run",
+        Some((
+            "A: {model: half_space, material: steel, radius: 100.0}",
+            "A: {model: bem, material: steel, mesh: m.msh}",
+        )),
+        &["contact.grid.tolerance=1e-3"],
+    );
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("contact.grid.tolerance"), "{stderr}");
+    assert!(!written);
+}
+
+#[test]
+fn an_unreachable_tolerance_exits_2_with_the_estimate_and_writes_nothing() {
+    let (code, stderr, written) = run_base(
+        "run",
+        None,
+        &["contact.grid.tolerance=1e-6", "contact.grid.max_elements=60"],
+    );
+    assert_eq!(code, 2, "{stderr}");
+    for s in ["contact.grid.max_elements = 60", "estimates are", "mu p0"] {
+        assert!(stderr.contains(s), "does not say `{s}`: {stderr}");
+    }
+    assert!(!written, "output written");
+}

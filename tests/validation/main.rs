@@ -9,6 +9,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod adaptive;
 mod conformal_bem;
 mod conformal_series;
 mod free_rolling_creepage;
