@@ -404,16 +404,12 @@ pub fn free_rolling_creepage(
     let e_star = 1.0 / (2.0 * a.material.plane_strain_compliance());
     let r_star = 1.0 / (1.0 / a.radius + 1.0 / b.radius);
     let load = super::hertz_load(half_width, r_star, e_star);
+    let t = chebyshev_nodes(CREEP_AVERAGE_NODES);
     let p0 = super::hertz_peak_pressure(load, half_width);
-    // Gauss–Chebyshev (first kind) nodes of the creepage average (module docs).
-    let j = 64;
-    let t: Vec<f64> = (1..=j)
-        .map(|i| ((2 * i - 1) as f64 * PI / (2 * j) as f64).cos())
-        .collect();
     let average = |loading: Loading, hoop: bool| {
         let da = ra.stretch(loading, hoop, half_width, p0, &t);
         let db = rb.stretch(loading, hoop, half_width, p0, &t);
-        -da.iter().zip(&db).map(|(x, y)| x - y).sum::<f64>() / j as f64
+        -da.iter().zip(&db).map(|(x, y)| x - y).sum::<f64>() / t.len() as f64
     };
     Ok(FreeRollingCreepage {
         local_normal: average(Loading::LocalNormal, true),
@@ -444,14 +440,21 @@ pub fn free_rolling_creepage_in_a_bore(
     let r_star = 1.0 / (1.0 / roller.radius - 1.0 / ring.bore_radius);
     let load = super::hertz_load(half_width, r_star, e_star);
     let p0 = super::hertz_peak_pressure(load, half_width);
-    let j = 64;
-    let t: Vec<f64> = (1..=j)
-        .map(|i| ((2 * i - 1) as f64 * PI / (2 * j) as f64).cos())
-        .collect();
+    let t = chebyshev_nodes(CREEP_AVERAGE_NODES);
     let da = ra.stretch(Loading::LocalNormal, true, half_width, p0, &t);
     let db = rb.stretch(Loading::LocalNormal, true, half_width, p0, &t);
-    let xi = -da.iter().zip(&db).map(|(x, y)| x - y).sum::<f64>() / j as f64;
+    let xi = -da.iter().zip(&db).map(|(x, y)| x - y).sum::<f64>() / t.len() as f64;
     Ok((xi, load))
+}
+
+/// Nodes of the Gauss–Chebyshev (first kind) rule of the creepage average (module docs).
+pub const CREEP_AVERAGE_NODES: usize = 64;
+
+/// The n Gauss–Chebyshev (first kind) nodes cos((2i − 1)π/(2n)), i = 1 … n.
+fn chebyshev_nodes(n: usize) -> Vec<f64> {
+    (1..=n)
+        .map(|i| ((2 * i - 1) as f64 * PI / (2 * n) as f64).cos())
+        .collect()
 }
 
 #[cfg(test)]

@@ -29,6 +29,27 @@ pub struct ElementGeometry {
 }
 
 impl ElementGeometry {
+    /// The ξ ∈ [−1, 1] at which the element's x(ξ) equals x (None if x is outside its
+    /// x-range): x(ξ) = x_m + ξ(x₁ − x₀)/2 + ξ²((x₀ + x₁)/2 − x_m).
+    pub fn parameter_at_x(&self, x: f64) -> Option<f64> {
+        let [p0, p1, pm] = self.nodes;
+        let (c0, c1, c2) = (pm[0] - x, 0.5 * (p1[0] - p0[0]), 0.5 * (p0[0] + p1[0]) - pm[0]);
+        let roots: Vec<f64> = if c2.abs() < 1e-14 * c1.abs() {
+            vec![-c0 / c1]
+        } else {
+            let disc = c1 * c1 - 4.0 * c2 * c0;
+            if disc < 0.0 {
+                return None;
+            }
+            let s = disc.sqrt();
+            vec![(-c1 + s) / (2.0 * c2), (-c1 - s) / (2.0 * c2)]
+        };
+        roots
+            .into_iter()
+            .find(|r| r.abs() <= 1.0 + 1e-12)
+            .map(|r| r.clamp(-1.0, 1.0))
+    }
+
     /// Geometry of element `e` of `mesh`.
     pub fn from_mesh(mesh: &BoundaryMesh, e: usize) -> Self {
         let el = &mesh.elements[e];

@@ -137,21 +137,8 @@ impl BemBody {
                 continue;
             }
             let geom = &d.geometry[e];
-            // x(ξ) = xm + ξ (x1 − x0)/2 + ξ² ((x0 + x1)/2 − xm): solve for ξ ∈ [−1, 1].
-            let [p0, p1, pm] = geom.nodes;
-            let (c0, c1, c2) = (pm[0] - x, 0.5 * (p1[0] - p0[0]), 0.5 * (p0[0] + p1[0]) - pm[0]);
-            let roots: Vec<f64> = if c2.abs() < 1e-14 * c1.abs() {
-                vec![-c0 / c1]
-            } else {
-                let disc = c1 * c1 - 4.0 * c2 * c0;
-                if disc < 0.0 {
-                    continue;
-                }
-                let s = disc.sqrt();
-                vec![(-c1 + s) / (2.0 * c2), (-c1 - s) / (2.0 * c2)]
-            };
-            if let Some(&xi) = roots.iter().find(|r| r.abs() <= 1.0 + 1e-12) {
-                return Some(geom.point(xi.clamp(-1.0, 1.0))[1]);
+            if let Some(xi) = geom.parameter_at_x(x) {
+                return Some(geom.point(xi)[1]);
             }
         }
         None

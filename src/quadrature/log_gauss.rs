@@ -74,7 +74,7 @@ mod tests {
 
     #[test]
     fn log_gauss_matches_the_references_and_integrates_log_moments() {
-        // Reference sheet §9 (Stroud & Secrest for n = 2).
+        // Stroud & Secrest, Gaussian Quadrature Formulas (1966), for n = 2.
         let (t, w) = log_gauss(2);
         assert!((t[0] - 0.112008806166976).abs() < 1e-13 && (t[1] - 0.602276908118738).abs() < 1e-13);
         assert!((w[0] - 0.718539319030384).abs() < 1e-13 && (w[1] - 0.281460680969616).abs() < 1e-13);

@@ -146,7 +146,7 @@ impl LoadedMesh {
     /// contact element whose x-range holds x (None beyond the contact group).
     pub fn surface_at(&self, x: f64) -> Option<(f64, f64)> {
         self.contact_elements().find_map(|g| {
-            let xi = element_parameter_at(&g, x)?;
+            let xi = g.parameter_at_x(x)?;
             let t = g.tangent(xi);
             Some((g.point(xi)[1], t[1] / t[0]))
         })
@@ -181,25 +181,4 @@ impl LoadedMesh {
                 .fold(f64::INFINITY, f64::min),
         )
     }
-}
-
-/// The ξ ∈ [−1, 1] at which a quadratic element's x(ξ) equals x (None if x is outside its
-/// x-range): x(ξ) = x_m + ξ(x₁ − x₀)/2 + ξ²((x₀ + x₁)/2 − x_m).
-pub fn element_parameter_at(g: &ElementGeometry, x: f64) -> Option<f64> {
-    let [p0, p1, pm] = g.nodes;
-    let (c0, c1, c2) = (pm[0] - x, 0.5 * (p1[0] - p0[0]), 0.5 * (p0[0] + p1[0]) - pm[0]);
-    let roots: Vec<f64> = if c2.abs() < 1e-14 * c1.abs() {
-        vec![-c0 / c1]
-    } else {
-        let disc = c1 * c1 - 4.0 * c2 * c0;
-        if disc < 0.0 {
-            return None;
-        }
-        let s = disc.sqrt();
-        vec![(-c1 + s) / (2.0 * c2), (-c1 - s) / (2.0 * c2)]
-    };
-    roots
-        .into_iter()
-        .find(|r| r.abs() <= 1.0 + 1e-12)
-        .map(|r| r.clamp(-1.0, 1.0))
 }
