@@ -160,15 +160,26 @@ pub enum StudyCommand {
         /// Override a case value (as for `run`). Repeatable.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
-        /// The short ladder 11, 21, 41 contact elements (under a minute), as CI runs it.
+        /// The short ladder 11, 21, 41 contact elements and tolerances 1e-2, 1e-3 (under a
+        /// minute), as CI runs it.
         #[arg(long, conflicts_with = "ladder")]
         quick: bool,
         /// Contact elements of each rung, e.g. --ladder 21,41,81 (default 11,21,41,81,161,321).
         #[arg(long, value_delimiter = ',')]
         ladder: Vec<usize>,
-        /// Models to run: half_space, half_space_block, true_geometry (default all).
+        /// Models to run: half_space, half_space_block, true_geometry, half_space_adaptive
+        /// (the half-space on error-controlled grids, one run per --tolerances) (default all).
         #[arg(long, value_delimiter = ',')]
         models: Vec<String>,
+        /// Tolerances of the half_space_adaptive runs (contact.grid.tolerance), e.g.
+        /// --tolerances 1e-3,1e-4 (default 1e-2,1e-3,1e-4,1e-5; --quick: 1e-2,1e-3).
+        #[arg(long, value_delimiter = ',')]
+        tolerances: Vec<f64>,
+        /// A measured error–time curve drawn on the chart for comparison: CSV
+        /// `label,error,time_s` with `#` provenance lines, e.g. docs/data/contact_carter2d.csv
+        /// (CONTACT on cases/carter2d_contact.yaml).
+        #[arg(long, value_name = "FILE")]
+        reference_curve: Option<PathBuf>,
         /// Shaft radius over roller radius of the true-geometry rollers.
         #[arg(long, default_value_t = 0.1)]
         shaft_ratio: f64,

@@ -219,6 +219,8 @@ fn dispatch(cli: Cli) -> Result<i32> {
                 quick,
                 ladder,
                 models,
+                tolerances,
+                reference_curve,
                 shaft_ratio,
                 jobs,
             } => {
@@ -231,8 +233,15 @@ fn dispatch(cli: Cli) -> Result<i32> {
                 };
                 if quick {
                     options.ladder = AccuracyOptions::quick_ladder();
+                    options.tolerances = AccuracyOptions::quick_tolerances();
                 } else if !ladder.is_empty() {
                     options.ladder = ladder;
+                }
+                if !tolerances.is_empty() {
+                    options.tolerances = tolerances;
+                }
+                if let Some(path) = &reference_curve {
+                    options.reference_curve = Some(accuracy::read_reference_curve(path)?);
                 }
                 if !models.is_empty() {
                     options.models = models
@@ -240,7 +249,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
                         .map(|m| {
                             SceneModel::parse(m).ok_or_else(|| {
                                 anyhow::anyhow!(
-                                    "--models: unknown model `{m}`; choose from half_space, half_space_block, true_geometry"
+                                    "--models: unknown model `{m}`; choose from half_space, half_space_block, true_geometry, half_space_adaptive"
                                 )
                             })
                         })

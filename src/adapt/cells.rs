@@ -55,7 +55,7 @@ impl Cell {
         self.level > 0
             && self.root == next.root
             && self.level == next.level
-            && self.index % 2 == 0
+            && self.index.is_multiple_of(2)
             && next.index == self.index + 1
     }
 }

@@ -209,9 +209,9 @@ pub const FAR_FIELD_MAX_POINTS: usize = 12;
 /// lengths from its centre: sgn(x − s) is constant there (its integral is the shape function's
 /// integral times the sign); ln|x − s| and 1/(x − s) are analytic in an ellipse about the
 /// element whose parameter r = ρ + √(ρ² − 1), ρ the distance over the half-length, sets the
-/// Gauss error ∝ r^(−2(n−1)) for the kernel times a quadratic shape function: n = ⌈37/(2 ln r)⌉
-/// + 1 points (e^(−37) ≈ 1e-16; at least 3, at most [`FAR_FIELD_MAX_POINTS`]); one kernel value
-/// serves all shape functions. `rules[n − 1]` is
+/// Gauss error ∝ r^(−2(n−1)) for the kernel times a quadratic shape function: one point more
+/// than ⌈37/(2 ln r)⌉ (e^(−37) ≈ 1e-16; at least 3, at most [`FAR_FIELD_MAX_POINTS`]); one
+/// kernel value serves all shape functions. `rules[n − 1]` is
 /// the n-point Gauss–Legendre rule.
 pub fn element_integrals_far(
     kind: ElementKind,

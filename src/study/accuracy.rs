@@ -7,6 +7,9 @@
 //!   semi-analytic model), n contact elements;
 //! * `half_space_block` — a BEM block standing in for each half-space (paper Fig. 2), 40a wide
 //!   and deep, with the cylinders' profile: the BEM's discretization error on a half-space;
+//! * `half_space_adaptive` — the half-space model on error-controlled grids
+//!   (`contact.grid.tolerance`, [`crate::adapt`]), one run per tolerance of `--tolerances`
+//!   (its start grid the case's `contact.grid.elements`);
 //! * `true_geometry` — each elastic cylinder a BEM roller of its radius on a rigid shaft
 //!   (radius ratio `shaft_ratio`, the paper's Fig. 14 uses 0.1), as
 //!   [`crate::mesh::build::roller_on_shaft`] builds it: the model error of the half-space is
@@ -33,7 +36,7 @@ mod scenes;
 
 use crate::case::LoadedCase;
 use crate::error::Error;
-pub use files::{pareto_front, write};
+pub use files::{pareto_front, read_reference_curve, write, ReferenceCurve};
 use reference::Reference;
 pub use scenes::{solve_model, Outcome};
 use serde::Serialize;
@@ -49,14 +52,19 @@ pub enum SceneModel {
     HalfSpaceBlock,
     /// BEM rollers of the true radius on rigid shafts.
     TrueGeometry,
+    /// The half-space model on error-controlled grids (`contact.grid.tolerance`), one run per
+    /// tolerance of `--tolerances`.
+    HalfSpaceAdaptive,
 }
 
 impl SceneModel {
-    /// All models, cheapest first.
-    pub const ALL: [SceneModel; 3] = [
+    /// All models, cheapest first (the error-controlled half-space last: its curve is drawn
+    /// over the others).
+    pub const ALL: [SceneModel; 4] = [
         SceneModel::HalfSpace,
         SceneModel::HalfSpaceBlock,
         SceneModel::TrueGeometry,
+        SceneModel::HalfSpaceAdaptive,
     ];
 
     /// Name in the CSV, the chart and `--models`.
@@ -65,6 +73,7 @@ impl SceneModel {
             SceneModel::HalfSpace => "half_space",
             SceneModel::HalfSpaceBlock => "half_space_block",
             SceneModel::TrueGeometry => "true_geometry",
+            SceneModel::HalfSpaceAdaptive => "half_space_adaptive",
         }
     }
 
@@ -85,6 +94,11 @@ pub struct AccuracyOptions {
     pub shaft_ratio: f64,
     /// Runs at once (0: one per core).
     pub jobs: usize,
+    /// Tolerances of the `half_space_adaptive` runs.
+    pub tolerances: Vec<f64>,
+    /// A measured curve drawn on the chart for comparison (e.g. another solver's): its legend
+    /// and its points (time [s], error, label).
+    pub reference_curve: Option<ReferenceCurve>,
 }
 
 impl AccuracyOptions {
@@ -97,6 +111,16 @@ impl AccuracyOptions {
     pub fn quick_ladder() -> Vec<usize> {
         vec![11, 21, 41]
     }
+
+    /// The default tolerances of the error-controlled runs.
+    pub fn default_tolerances() -> Vec<f64> {
+        vec![1e-2, 1e-3, 1e-4, 1e-5]
+    }
+
+    /// The `--quick` tolerances.
+    pub fn quick_tolerances() -> Vec<f64> {
+        vec![1e-2, 1e-3]
+    }
 }
 
 impl Default for AccuracyOptions {
@@ -106,6 +130,8 @@ impl Default for AccuracyOptions {
             models: SceneModel::ALL.to_vec(),
             shaft_ratio: 0.1,
             jobs: 0,
+            tolerances: Self::default_tolerances(),
+            reference_curve: None,
         }
     }
 }
@@ -115,8 +141,10 @@ impl Default for AccuracyOptions {
 pub struct AccuracyRow {
     /// The body model.
     pub model: SceneModel,
-    /// Contact elements.
+    /// Contact elements (of the final grid of an error-controlled run).
     pub contact_elements: usize,
+    /// The tolerance of an error-controlled run (`half_space_adaptive`), else none.
+    pub tolerance: Option<f64>,
     /// Boundary elements per BEM body (the larger of the two; 0 for the half-space model).
     pub boundary_elements: usize,
     /// Whether the contact solver converged (errors are only meaningful if so).
@@ -149,6 +177,9 @@ pub struct AccuracyReport {
     pub rows: Vec<AccuracyRow>,
     /// What the errors are measured against.
     pub reference: String,
+    /// The measured curve drawn for comparison (`--reference-curve`), if any.
+    #[serde(skip)]
+    pub reference_curve: Option<ReferenceCurve>,
     /// Wall time of the whole study [s].
     pub wall_s: f64,
 }
@@ -183,19 +214,45 @@ pub fn run(case: &LoadedCase, options: &AccuracyOptions, progress: bool) -> Resu
     if closed.is_none() && !models.contains(&SceneModel::TrueGeometry) {
         models.push(SceneModel::TrueGeometry);
     }
+    if models.contains(&SceneModel::HalfSpaceAdaptive) {
+        if let Some(&t) = options.tolerances.iter().find(|&&t| !(1e-7..=0.5).contains(&t)) {
+            return Err(study_error(&format!(
+                "every tolerance of --tolerances must lie in [1e-7, 0.5] (value = {t})"
+            )));
+        }
+    }
+    // A rung is a number of contact elements, or for the error-controlled model the index of
+    // its tolerance.
     let mut tasks: Vec<(SceneModel, usize)> = models
         .iter()
-        .flat_map(|&m| options.ladder.iter().map(move |&n| (m, n)))
+        .flat_map(|&m| {
+            let rungs: Vec<usize> = if m == SceneModel::HalfSpaceAdaptive {
+                (0..options.tolerances.len()).collect()
+            } else {
+                options.ladder.clone()
+            };
+            rungs.into_iter().map(move |n| (m, n))
+        })
         .collect();
     // Longest first, for the load balance of the parallel runs.
-    tasks.sort_by_key(|&(m, n)| std::cmp::Reverse(n * if m == SceneModel::HalfSpace { 1 } else { 50 }));
+    tasks.sort_by_key(|&(m, n)| {
+        std::cmp::Reverse(match m {
+            SceneModel::HalfSpace => n,
+            SceneModel::HalfSpaceAdaptive => 100 * (n + 1),
+            _ => 50 * n,
+        })
+    });
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.jobs)
         .build()
         .map_err(|e| study_error(&format!("cannot start the worker threads: {e}")))?;
     let outcomes: Vec<(SceneModel, usize, Result<Outcome, String>)> = pool.install(|| {
         super::run_parallel(&tasks, "runs", progress, |&(model, n)| {
-            let r = scenes::solve_model_of(case, &scene, model, n, options.shaft_ratio).map_err(|e| e.to_string());
+            let r = match model {
+                SceneModel::HalfSpaceAdaptive => scenes::solve_adaptive_of(case, &scene, options.tolerances[n]),
+                _ => scenes::solve_model_of(case, &scene, model, n, options.shaft_ratio),
+            }
+            .map_err(|e| e.to_string());
             (model, n, r)
         })
     });
@@ -213,13 +270,19 @@ pub fn run(case: &LoadedCase, options: &AccuracyOptions, progress: bool) -> Resu
     let mut rows: Vec<AccuracyRow> = outcomes
         .into_iter()
         .filter(|(m, _, _)| options.models.contains(m))
-        .map(|(model, n, r)| match r {
+        .map(|(model, n, r)| {
+            let tolerance = (model == SceneModel::HalfSpaceAdaptive).then(|| options.tolerances[n]);
+            let n = if tolerance.is_some() { 0 } else { n };
+            (model, n, tolerance, r)
+        })
+        .map(|(model, n, tolerance, r)| match r {
             Ok(o) => {
                 let (norms, creep_error) = reference.measure(&o.solution);
                 let (error, error_max) = (norms.rms, norms.max);
                 AccuracyRow {
                     model,
-                    contact_elements: n,
+                    contact_elements: o.contact_elements,
+                    tolerance,
                     boundary_elements: o.boundary_elements,
                     converged: o.solution_converged,
                     iterations: o.iterations,
@@ -235,6 +298,7 @@ pub fn run(case: &LoadedCase, options: &AccuracyOptions, progress: bool) -> Resu
             Err(message) => AccuracyRow {
                 model,
                 contact_elements: n,
+                tolerance,
                 boundary_elements: 0,
                 converged: false,
                 iterations: 0,
@@ -248,10 +312,15 @@ pub fn run(case: &LoadedCase, options: &AccuracyOptions, progress: bool) -> Resu
             },
         })
         .collect();
-    rows.sort_by_key(|r| (r.model, r.contact_elements));
+    rows.sort_by(|a, b| {
+        (a.model, a.contact_elements)
+            .cmp(&(b.model, b.contact_elements))
+            .then(b.tolerance.unwrap_or(0.0).total_cmp(&a.tolerance.unwrap_or(0.0)))
+    });
     Ok(AccuracyReport {
         rows,
         reference: reference.describe(),
+        reference_curve: options.reference_curve.clone(),
         wall_s: start.elapsed().as_secs_f64(),
     })
 }
@@ -282,10 +351,11 @@ pub fn render(report: &AccuracyReport) -> String {
             e,
             c,
             r.total_s,
-            if r.message.is_empty() {
-                String::new()
-            } else {
-                format!("  ({})", r.message)
+            match (r.tolerance, r.message.is_empty()) {
+                (Some(t), true) => format!("  (tolerance {t:.0e})"),
+                (Some(t), false) => format!("  (tolerance {t:.0e}: {})", r.message),
+                (None, true) => String::new(),
+                (None, false) => format!("  ({})", r.message),
             }
         ));
     }

@@ -19,11 +19,27 @@ fn accuracy_study_of_the_carter_scene_converges_for_every_model() {
     let loaded = case::load(&crate::common::case_path("carter_051"), &[]).unwrap();
     let options = AccuracyOptions {
         ladder: AccuracyOptions::quick_ladder(),
+        tolerances: vec![1e-2, 1e-3, 1e-4],
         ..AccuracyOptions::default()
     };
     let report = accuracy::run(&loaded, &options, false).unwrap();
     assert!(report.reference.starts_with("Carter"), "{}", report.reference);
-    assert_eq!(report.rows.len(), 9);
+    assert_eq!(report.rows.len(), 12);
+    // The error-controlled runs meet their tolerance in the study's own measure (against
+    // Carter), each on a larger grid than the one before.
+    let adaptive: Vec<_> = report
+        .rows
+        .iter()
+        .filter(|r| r.model == SceneModel::HalfSpaceAdaptive)
+        .collect();
+    assert_eq!(adaptive.len(), 3);
+    for r in &adaptive {
+        let tol = r.tolerance.unwrap();
+        assert!(r.converged && r.error <= tol, "{r:?}");
+    }
+    assert!(adaptive
+        .windows(2)
+        .all(|w| w[1].contact_elements > w[0].contact_elements));
     for model in SceneModel::ALL {
         let rows: Vec<_> = report.rows.iter().filter(|r| r.model == model).collect();
         assert!(rows.iter().all(|r| r.converged), "{model:?}: {rows:?}");
@@ -36,7 +52,7 @@ fn accuracy_study_of_the_carter_scene_converges_for_every_model() {
             creep[2] < 0.5 * creep[0] && creep[2] < 6e-3,
             "{model:?}: creepage error {creep:?} does not converge"
         );
-        if model != SceneModel::HalfSpace {
+        if !matches!(model, SceneModel::HalfSpace | SceneModel::HalfSpaceAdaptive) {
             assert!(rows.iter().all(|r| r.boundary_elements > 0));
         }
     }
@@ -91,7 +107,7 @@ fn study_accuracy_command_writes_the_table_and_the_chart() {
     );
     let csv = std::fs::read_to_string(out.join("accuracy.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 6, "{csv}");
-    assert!(csv.starts_with("model,contact_elements,boundary_elements,converged"));
+    assert!(csv.starts_with("model,contact_elements,tolerance,boundary_elements,converged"));
     let svg = std::fs::read_to_string(out.join("accuracy.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("Pareto front"));
     assert!(out.join("accuracy.json").exists());
@@ -114,6 +130,69 @@ fn study_accuracy_command_writes_the_table_and_the_chart() {
     assert_eq!(code, 1, "{stderr}");
     assert!(stderr.contains("--ladder") && stderr.contains("value = 0"), "{stderr}");
     assert!(!refused.exists(), "a refused study writes nothing");
+}
+
+/// The error-controlled runs next to the uniform ladder, with CONTACT's measured curve on the
+/// chart (docs/data/contact_carter2d.csv).
+#[test]
+fn study_accuracy_draws_the_error_controlled_runs_and_a_reference_curve() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("acc");
+    let case = crate::common::case_path("carter2d_contact");
+    let data = case
+        .parent()
+        .unwrap()
+        .parent()
+        .unwrap()
+        .join("docs/data/contact_carter2d.csv");
+    let (code, stdout, stderr) = rollbem(&[
+        "study",
+        "accuracy",
+        case.to_str().unwrap(),
+        "--models",
+        "half_space,half_space_adaptive",
+        "--ladder",
+        "21,41",
+        "--tolerances",
+        "1e-3,1e-4",
+        "--reference-curve",
+        data.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains("(tolerance 1e-4)"), "{stdout}");
+    let csv = std::fs::read_to_string(out.join("accuracy.csv")).unwrap();
+    let adaptive: Vec<Vec<&str>> = csv
+        .lines()
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|r| r[0] == "half_space_adaptive")
+        .collect();
+    assert_eq!(adaptive.len(), 2, "{csv}");
+    for r in &adaptive {
+        let (tol, error): (f64, f64) = (r[2].parse().unwrap(), r[6].parse().unwrap());
+        assert!(error <= tol, "{csv}");
+    }
+    let svg = std::fs::read_to_string(out.join("accuracy.svg")).unwrap();
+    assert!(svg.contains("half_space_adaptive") && svg.contains("CONTACT"), "legend");
+
+    let bad = dir.path().join("bad.csv");
+    std::fs::write(
+        &bad,
+        "elements,error,time_s
+50,x,0.1
+",
+    )
+    .unwrap();
+    let (code, _, stderr) = rollbem(&[
+        "study",
+        "accuracy",
+        case.to_str().unwrap(),
+        "--reference-curve",
+        bad.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("line 2"), "{stderr}");
 }
 
 /// `rollbem check` advises from the measured half-space error tables (src/advice.rs): the
@@ -175,13 +254,13 @@ fn study_accuracy_runs_on_a_roller_in_a_ring_bore() {
     assert_eq!(code, 0, "{stdout}{stderr}");
     let csv = std::fs::read_to_string(out.join("accuracy.csv")).unwrap();
     let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
-    assert_eq!(rows.len(), 9, "{csv}");
+    assert_eq!(rows.len(), 11, "{csv}");
     for r in &rows {
-        assert_eq!(r[3], "true", "{csv}");
-        let creep_error: f64 = r[7].parse().unwrap();
+        assert_eq!(r[4], "true", "{csv}");
+        let creep_error: f64 = r[8].parse().unwrap();
         match r[0] {
             "true_geometry" => assert!(creep_error > 0.3 && creep_error < 0.6, "{csv}"),
-            "half_space" => assert!(creep_error.abs() < 0.01, "{csv}"),
+            "half_space" | "half_space_adaptive" => assert!(creep_error.abs() < 0.01, "{csv}"),
             _ => {}
         }
     }

@@ -71,7 +71,7 @@ fn draw(
         .x_label_formatter(&|v| format!("{v:.0e}"))
         .y_label_formatter(&|v| format!("{v:.0e}"))
         .draw()?;
-    let colours = [BLUE, RED, GREEN];
+    let colours = [BLUE, RED, GREEN, MAGENTA, BLACK];
     for (k, curve) in curves.iter().enumerate() {
         let series: Vec<(f64, f64)> = curve.points.iter().map(|p| (p.time_s, p.error)).collect();
         if series.is_empty() {

@@ -18,6 +18,7 @@ pub fn write(dir: &Path, report: &AccuracyReport, title: &str) -> Result<(), Err
         w.write_record([
             "model",
             "contact_elements",
+            "tolerance",
             "boundary_elements",
             "converged",
             "iterations",
@@ -41,6 +42,7 @@ pub fn write(dir: &Path, report: &AccuracyReport, title: &str) -> Result<(), Err
             w.write_record([
                 r.model.name().to_string(),
                 r.contact_elements.to_string(),
+                r.tolerance.map_or(String::new(), num),
                 r.boundary_elements.to_string(),
                 r.converged.to_string(),
                 r.iterations.to_string(),
@@ -83,7 +85,7 @@ pub fn pareto_front(report: &AccuracyReport) -> Vec<(f64, f64)> {
 
 /// The error–time chart: the converged runs of each model with a positive error and time.
 fn write_chart(path: &Path, report: &AccuracyReport, title: &str) -> Result<(), Error> {
-    let curves: Vec<Curve> = SceneModel::ALL
+    let mut curves: Vec<Curve> = SceneModel::ALL
         .iter()
         .map(|&model| Curve {
             name: model.name().to_string(),
@@ -99,7 +101,71 @@ fn write_chart(path: &Path, report: &AccuracyReport, title: &str) -> Result<(), 
                 .collect(),
         })
         .collect();
+    if let Some((name, points)) = &report.reference_curve {
+        curves.push(Curve {
+            name: name.clone(),
+            points: points
+                .iter()
+                .filter(|(t, e, _)| *t > 0.0 && *e > 0.0)
+                .map(|(t, e, label)| Point {
+                    time_s: *t,
+                    error: *e,
+                    label: label.clone(),
+                })
+                .collect(),
+        });
+    }
     let short = report.reference.split(':').next().unwrap_or(&report.reference);
     let caption = format!("error against {short}");
     chart::write(path, title, &caption, &curves, &pareto_front(report))
+}
+
+/// A measured curve for the chart: its legend and its points (time [s], error, label).
+pub type ReferenceCurve = (String, Vec<(f64, f64, String)>);
+
+/// Reads a measured error–time curve for the chart (`--reference-curve FILE`): a CSV file with
+/// the columns `elements,rms_shear_error,time_s` (other names allowed, that order), `#` lines
+/// for its provenance. The legend is the first `#` line's text up to its first parenthesis or
+/// comma (else the file's name). docs/data/contact_carter2d.csv is CONTACT's curve on
+/// cases/carter2d_contact.yaml.
+pub fn read_reference_curve(path: &Path) -> Result<ReferenceCurve, Error> {
+    let bad = |message: String| Error::Study {
+        message: format!("--reference-curve {}: {message}", path.display()),
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| bad(e.to_string()))?;
+    let legend = text
+        .lines()
+        .find_map(|l| l.strip_prefix('#'))
+        .map(|l| l.split(['(', ',']).next().unwrap_or(l).trim().to_string())
+        .filter(|l| !l.is_empty())
+        .unwrap_or_else(|| {
+            path.file_stem()
+                .map_or("reference".into(), |s| s.to_string_lossy().into_owned())
+        });
+    let mut points = Vec::new();
+    for (k, line) in text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.starts_with('#') && !l.trim().is_empty())
+    {
+        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        let parsed = (f.len() == 3).then(|| (f[1].parse::<f64>(), f[2].parse::<f64>()));
+        match parsed {
+            Some((Ok(e), Ok(t))) if e.is_finite() && t.is_finite() && e > 0.0 && t > 0.0 => {
+                points.push((t, e, f[0].to_string()))
+            }
+            // The header line.
+            Some((Err(_), Err(_))) if points.is_empty() => {}
+            _ => {
+                return Err(bad(format!(
+                    "line {}: expected `label,error,time_s` with a positive error and time, found `{line}`",
+                    k + 1
+                )))
+            }
+        }
+    }
+    if points.is_empty() {
+        return Err(bad("no points".into()));
+    }
+    Ok((legend, points))
 }

@@ -64,6 +64,8 @@ pub struct Outcome {
     pub iterations: usize,
     /// Boundary elements of the larger BEM body (0 for the half-space model).
     pub boundary_elements: usize,
+    /// Contact elements of the grid solved on.
+    pub contact_elements: usize,
     /// Assembly and condensation time [s].
     pub build_s: f64,
     /// Contact solve time [s].
@@ -150,6 +152,27 @@ pub(super) fn solve_model_of(
         solution_converged: solved.report.converged,
         iterations: solved.report.iterations,
         boundary_elements,
+        contact_elements: solved.problem.grid.n_elements(),
+        build_s: solved.timings.assembly_s + solved.timings.condense_s,
+        solve_s: solved.timings.solve_s,
+        solution: solved.solution,
+    })
+}
+
+/// The half-space model of the scene of `case` on an error-controlled grid of `tolerance`
+/// (its start grid the case's `contact.grid.elements`).
+pub(super) fn solve_adaptive_of(case: &LoadedCase, scene: &[SceneBody; 2], tolerance: f64) -> Result<Outcome, Error> {
+    let start = Instant::now();
+    let mut c = case.clone();
+    c.case.contact.grid.tolerance = Some(tolerance);
+    c.case.output.interior = None;
+    c.case.output.vtk = false;
+    let solved = app::solve_scene(half_space_scene(&c, scene), start)?;
+    Ok(Outcome {
+        solution_converged: solved.report.converged,
+        iterations: solved.report.iterations,
+        boundary_elements: 0,
+        contact_elements: solved.problem.grid.n_elements(),
         build_s: solved.timings.assembly_s + solved.timings.condense_s,
         solve_s: solved.timings.solve_s,
         solution: solved.solution,
