@@ -294,7 +294,7 @@ fn error_controlled_grid_keys_are_checked() {
         "run",
         Some((
             "A: {model: half_space, material: steel, radius: 100.0}",
-            "A: {model: bem, material: steel, mesh: m.msh}",
+            "A: {model: bem, material: steel, mesh: m.msh, boundaries: {shaft: fixed, free: free}}",
         )),
         &["contact.grid.tolerance=1e-3"],
     );
