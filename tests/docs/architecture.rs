@@ -165,11 +165,12 @@ fn imports_have_no_cycle_between_modules_or_sibling_files() {
 
 /// The stages in the order of their imports: each may use the ones before it, never one
 /// after (the numerical core first: the case schema names the solver's option types, the
-/// scene builds body models and the contact problem, post-processing reads the scene).
+/// scene builds body models and the contact problem, post-processing reads the scene; the
+/// error control of `contact.grid.tolerance` loops over scene, solver and post-processing).
 #[test]
 fn stages_import_only_the_stages_below_them() {
     let edges = &graphs()["src"];
-    let layers = ["body", "contact", "case", "scene", "post", "output", "app"];
+    let layers = ["body", "contact", "case", "scene", "post", "adapt", "output", "app"];
     for (i, low) in layers.iter().enumerate() {
         for high in &layers[i + 1..] {
             assert!(
