@@ -54,7 +54,8 @@ pub struct Scales {
     pub peak_pressure: f64,
     /// Coulomb friction coefficient μ.
     pub friction: f64,
-    /// Whether the creepage is prescribed (then it has no error).
+    /// Whether the creepage is prescribed (then it has no error; nor without friction, where it
+    /// is not determined by the tractions).
     pub creep_prescribed: bool,
 }
 
@@ -161,7 +162,8 @@ pub fn compare(
                 / contact_length
         })
         .collect();
-    let creep_rel = if scales.creep_prescribed || fine.creep == coarse.creep {
+    // Without friction the creepage does not act on the tractions: no error to estimate.
+    let creep_rel = if scales.creep_prescribed || scales.friction == 0.0 || fine.creep == coarse.creep {
         0.0
     } else {
         (fine.creep - coarse.creep).abs() / fine.creep.abs().max(f64::MIN_POSITIVE)

@@ -11,7 +11,7 @@ pub struct ErrorEstimate {
     pub pressure_rms: f64,
     /// RMS error of q over the contact, weighted likewise [μp0].
     pub shear_rms: f64,
-    /// Relative error of the creepage ξ [-]; 0 when ξ is prescribed.
+    /// Relative error of the creepage ξ [-]; 0 when ξ is prescribed or μ = 0.
     pub creep_rel: f64,
 }
 

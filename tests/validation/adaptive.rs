@@ -125,6 +125,34 @@ fn hertz_at_1e_4_meets_the_tolerance_with_a_faithful_estimate() {
     assert_effective("hertz pressure", e.pressure_rms, p);
 }
 
+/// A rigid cylinder on a half-space, frictionless: Hertz with the half-space's E* alone
+/// (radii of 10 m, below the circle's departure from the parabola).
+#[test]
+fn a_rigid_cylinder_on_a_half_space_at_1e_4_meets_the_tolerance() {
+    let s = solve(
+        "hertz",
+        &[
+            "bodies.A={model: rigid, radius: 10000}",
+            "bodies.B.radius=10000",
+            "contact.friction=0",
+            "output.interior=null",
+            "contact.grid.tolerance=1e-4",
+        ],
+    );
+    assert_eq!(s.scene.bodies[0].model_name(), "rigid");
+    let e = estimate(&s);
+    let est = &s.scene.estimates;
+    let sol = &s.solution;
+    let p = nodal_error(&sol.x, est.hertz_half_width, |i| {
+        (sol.pressure[i] - hertz_pressure(sol.x[i], est.hertz_half_width, est.hertz_peak_pressure)).abs()
+            / est.hertz_peak_pressure
+    })
+    .rms;
+    assert!(p <= 1e-4, "true pressure error {p:.3e}");
+    assert_effective("rigid on half-space pressure", e.pressure_rms, p);
+    assert_eq!(e.creep_rel, 0.0, "no creepage error without friction");
+}
+
 /// The pressure and shear of `from` at the nodes `x`, by `from`'s own shape functions.
 fn tractions_at(from: &Solved, x: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let g = &from.problem.grid;
