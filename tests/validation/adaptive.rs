@@ -102,6 +102,19 @@ fn carter_braking_rolling_backwards_and_near_the_limits_meet_the_tolerance() {
     check_carter(&["load.tangential.ratio=0.95"], 1e-4, 3.1);
 }
 
+/// RMS p/p0 against Hertz's pressure of the scene's estimates (length-weighted, |x| < a).
+fn hertz_pressure_error(s: &Solved) -> f64 {
+    let (a, p0) = (
+        s.scene.estimates.hertz_half_width,
+        s.scene.estimates.hertz_peak_pressure,
+    );
+    let sol = &s.solution;
+    nodal_error(&sol.x, a, |i| {
+        (sol.pressure[i] - hertz_pressure(sol.x[i], a, p0)).abs() / p0
+    })
+    .rms
+}
+
 #[test]
 fn hertz_at_1e_4_meets_the_tolerance_with_a_faithful_estimate() {
     // Radii of 10 m: the circle's profile is Hertz's parabola to (a/R)²/4 ≈ 2.5e-7 p0.
@@ -114,13 +127,7 @@ fn hertz_at_1e_4_meets_the_tolerance_with_a_faithful_estimate() {
         ],
     );
     let e = estimate(&s);
-    let est = &s.scene.estimates;
-    let sol = &s.solution;
-    let p = nodal_error(&sol.x, est.hertz_half_width, |i| {
-        (sol.pressure[i] - hertz_pressure(sol.x[i], est.hertz_half_width, est.hertz_peak_pressure)).abs()
-            / est.hertz_peak_pressure
-    })
-    .rms;
+    let p = hertz_pressure_error(&s);
     assert!(p <= 1e-4, "true pressure error {p:.3e}");
     assert_effective("hertz pressure", e.pressure_rms, p);
 }
@@ -141,13 +148,7 @@ fn a_rigid_cylinder_on_a_half_space_at_1e_4_meets_the_tolerance() {
     );
     assert_eq!(s.scene.bodies[0].model_name(), "rigid");
     let e = estimate(&s);
-    let est = &s.scene.estimates;
-    let sol = &s.solution;
-    let p = nodal_error(&sol.x, est.hertz_half_width, |i| {
-        (sol.pressure[i] - hertz_pressure(sol.x[i], est.hertz_half_width, est.hertz_peak_pressure)).abs()
-            / est.hertz_peak_pressure
-    })
-    .rms;
+    let p = hertz_pressure_error(&s);
     assert!(p <= 1e-4, "true pressure error {p:.3e}");
     assert_effective("rigid on half-space pressure", e.pressure_rms, p);
     assert_eq!(e.creep_rel, 0.0, "no creepage error without friction");
