@@ -196,7 +196,23 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
         crate::advice::roller_error(est.half_width_over_radius)
     };
     line("model advice", crate::advice::advise(&error, tolerance));
+    if let Some(tol) = c.contact.grid.tolerance {
+        line(
+            "error control",
+            format!(
+                "contact.grid.tolerance {tol:e}: the grid above is the start, refined towards the contact \
+                 edges and stick/slip points until the estimated RMS errors of p/p0 and q/(mu p0) and \
+                 the creepage's relative error are below it, at most {} elements (docs/theory.md)",
+                c.contact.grid.max_elements
+            ),
+        );
+    }
     let (this, other) = costs(&scene);
+    let this = if c.contact.grid.tolerance.is_some() {
+        format!("{this} for the start grid; the refined grids cost more (docs/performance.md)")
+    } else {
+        this
+    };
     line("cost of this run", this);
     line("cost with the other model", other);
     let memory = crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;

@@ -316,3 +316,15 @@ fn an_unreachable_tolerance_exits_2_with_the_estimate_and_writes_nothing() {
     }
     assert!(!written, "output written");
 }
+
+#[test]
+fn check_describes_the_error_controlled_grid() {
+    let case = crate::common::case_path("carter2d_contact");
+    let (code, stdout, stderr) = rollbem(&["check", case.to_str().unwrap(), "--set", "contact.grid.tolerance=1e-4"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stdout.contains("contact.grid.tolerance 1e-4") && stdout.contains("at most 1000 elements"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("for the start grid"), "{stdout}");
+}
