@@ -128,6 +128,8 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let Some(case) = args.first() else {
         print!("{}", table().markdown());
+        println!();
+        print!("{}", true_geometry_table().markdown());
         return;
     };
     let rest = &args[1..];
@@ -137,4 +139,71 @@ fn main() {
         t.push(row(case, case, tol.parse().expect("a tolerance"), &set));
     }
     print!("{}", t.markdown());
+}
+
+/// The header of the true-geometry table.
+pub const TRUE_GEOMETRY_HEADER: [&str; 7] = [
+    "grid",
+    "contact elements",
+    "p error (p0)",
+    "q error (μp0)",
+    "ξ error (rel)",
+    "estimate p, q, ξ",
+    "time [s]",
+];
+
+/// cases/carter_051_true.yaml (BEM rollers on shafts, 21 contact elements per mesh): the
+/// error-controlled runs and the shipped mesh cut uniformly (every contact element halved k
+/// times), against the run at tolerance 1e-4 (RMS over |x| < a at each run's nodes, the
+/// reference interpolated by its own shape functions). Times are the library's run.
+pub fn true_geometry_table() -> Table {
+    use rollbem::adapt::{cells::DyadicGrid, mesh_cuts::refined_setup};
+    use rollbem::scene::{BodySetup, Scene};
+    let case = "carter_051_true";
+    let fine = solve(case, &["contact.grid.tolerance=1e-4"]);
+    let est = &fine.scene.estimates;
+    let (a, p0, mu) = (est.hertz_half_width, est.hertz_peak_pressure, fine.scene.friction());
+    let mut t = Table::new(&TRUE_GEOMETRY_HEADER);
+    let mut push = |label: String, s: &Solved| {
+        let x = &s.solution.x;
+        let g = &fine.problem.grid;
+        let err = |v: &[f64], r: &[f64], scale: f64| {
+            rollbem::post::norms::nodal_error(x, a, |i| (v[i] - g.interpolate(r, x[i])).abs() / scale).rms
+        };
+        let p = err(&s.solution.pressure, &fine.solution.pressure, p0);
+        let q = err(&s.solution.shear, &fine.solution.shear, mu * p0);
+        let xi = (s.solution.creep / fine.solution.creep - 1.0).abs();
+        let e = s.adaptation.as_ref().and_then(|a| a.estimate);
+        t.push(vec![
+            label,
+            s.problem.grid.n_elements().to_string(),
+            format!("{p:.2e}"),
+            format!("{q:.2e}"),
+            format!("{xi:.2e}"),
+            e.map_or("-".into(), |e| {
+                format!("{:.1e}, {:.1e}, {:.1e}", e.pressure_rms, e.shear_rms, e.creep_rel)
+            }),
+            format!("{:.2}", s.timings.total_s),
+        ]);
+    };
+    let loaded = rollbem::app::load_case(&common::case_path(case), &[] as &[&str]).expect("the case");
+    let shipped = Scene::from_case(&loaded).expect("its scene");
+    for k in 0..4 {
+        let mut cells = DyadicGrid::new(&shipped.grid);
+        for _ in 0..k {
+            cells = cells.bisected();
+        }
+        let bodies = shipped.bodies.clone().map(|b| match b {
+            BodySetup::Bem(setup) => BodySetup::Bem(Box::new(refined_setup(&setup, &cells))),
+            other => other,
+        });
+        let s = rollbem::app::solve_scene(Scene::new(loaded.clone(), bodies), std::time::Instant::now())
+            .expect("a uniformly cut mesh");
+        push(format!("uniform, mesh cut {k}×"), &s);
+    }
+    for tol in ["3e-3", "1e-3", "3e-4"] {
+        let s = solve(case, &[format!("contact.grid.tolerance={tol}")]);
+        push(format!("tolerance {tol}"), &s);
+    }
+    t
 }

@@ -29,6 +29,7 @@
 
 pub mod cells;
 pub mod estimate;
+pub mod mesh_cuts;
 
 use crate::contact::residual::State;
 use crate::contact::{methods, ContactProblem, SolveReport, TangentialControl};
@@ -36,7 +37,7 @@ use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::post::adaptation::{AdaptationStep, GridAdaptation};
 use crate::post::{ContactSolution, NodeState, Timings};
-use crate::scene::{BodyModels, Scene};
+use crate::scene::{BodyModels, BodySetup, Scene};
 use cells::{Action, DyadicGrid};
 use estimate::{Comparison, Scales};
 use std::time::Instant;
@@ -87,16 +88,45 @@ struct Solve {
     report: SolveReport,
 }
 
-/// Builds the scene's models on `grid`, assembles and solves (from `warm`, carried from the
-/// grid it was solved on), adding the times to `timings`.
-fn solve_on(
-    scene: &Scene,
-    grid: ContactGrid,
-    warm: Option<(&ContactGrid, &State)>,
-    timings: &mut Timings,
-) -> Result<Solve, Error> {
+/// The scene on the grid of `cells`: for half-space and rigid bodies the same bodies on that
+/// grid; a `bem` body's mesh gets its contact elements cut along the cells
+/// ([`mesh_cuts::refined_setup`]), and the grid is then the refined mesh's.
+fn scene_on(scene: &Scene, cells: &DyadicGrid) -> Scene {
+    if !scene.grid_from_mesh() {
+        return scene.with_grid(cells.grid());
+    }
+    let bodies = scene.bodies.clone().map(|b| match b {
+        BodySetup::Bem(setup) => BodySetup::Bem(Box::new(mesh_cuts::refined_setup(&setup, cells))),
+        other => other,
+    });
+    Scene::new(scene.case.clone(), bodies)
+}
+
+/// Every `bem` body's contact elements are the scene's grid, node for node: the error control
+/// cuts the meshes along one grid.
+fn check_matching_meshes(scene: &Scene) -> Result<(), Error> {
+    for (name, body) in ["A", "B"].iter().zip(&scene.bodies) {
+        if let Some(mesh) = body.mesh() {
+            if !mesh.contact_grid().coincides_with(&scene.grid) {
+                return Err(Error::GridControl {
+                    case: scene.case.path.clone(),
+                    message: format!(
+                        "the contact elements of body {name}'s mesh ({}) do not coincide with the other \
+                         body's: an error-controlled grid refines matching contact meshes; mesh both \
+                         contact groups alike, or remove contact.grid.tolerance",
+                        mesh.path.display()
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Builds the scene's models, assembles and solves (from `warm`, carried from the grid it was
+/// solved on), adding the times to `timings`.
+fn solve_on(scene: Scene, warm: Option<(&ContactGrid, &State)>, timings: &mut Timings) -> Result<Solve, Error> {
     let t = Instant::now();
-    let scene = scene.with_grid(grid);
     let (models, problem) = scene.assemble()?;
     timings.assembly_s += t.elapsed().as_secs_f64();
     let t = Instant::now();
@@ -137,18 +167,22 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
         friction: scene.friction(),
         creep_prescribed: matches!(scene.tangential, TangentialControl::Creep(_)),
     };
+    check_matching_meshes(scene)?;
     let mut timings = Timings::default();
     let mut coarse = DyadicGrid::new(&scene.grid);
     let mut warm: Option<(ContactGrid, State)> = None;
     let mut steps: Vec<AdaptationStep> = Vec::new();
     loop {
-        let g = solve_on(scene, coarse.grid(), warm.as_ref().map(|(g, z)| (g, z)), &mut timings)?;
+        let g = solve_on(
+            scene_on(scene, &coarse),
+            warm.as_ref().map(|(g, z)| (g, z)),
+            &mut timings,
+        )?;
         if !g.report.converged {
             return Ok(finished(g, timings, tolerance, steps));
         }
         let h = solve_on(
-            scene,
-            coarse.bisected().grid(),
+            scene_on(scene, &coarse.bisected()),
             Some((&g.problem.grid, &g.state)),
             &mut timings,
         )?;
@@ -289,8 +323,9 @@ fn actions(coarse: &DyadicGrid, cmp: &Comparison, singular: &[f64], tolerance: f
                 match inside.or(near) {
                     // Next to a square-root point the share falls by 4 per halving.
                     Some(x) => Action::GradeTowards(x.clamp(x0, x1), depth(2.0).max(a_priori)),
-                    // Where the solution is smooth, by 2⁷ (nodal error h³, over a length h).
-                    None => Action::Split(depth(7.0)),
+                    // Where the solution is smooth, by 2⁷ (nodal error h³, over a length h): one
+                    // halving a pass is plenty, and keeps a pass from multiplying the grid.
+                    None => Action::Split(depth(7.0).min(1)),
                 }
             } else if let (Some(x), true) = (inside, a_priori > 0) {
                 Action::GradeTowards(x, a_priori)

@@ -102,6 +102,14 @@ pub enum Error {
         /// Its estimated relative creepage error.
         creep: f64,
     },
+    /// An error-controlled grid cannot be built for the scene.
+    #[error("{case}: contact.grid.tolerance: {message}")]
+    GridControl {
+        /// Case file.
+        case: PathBuf,
+        /// What is wrong and what to do.
+        message: String,
+    },
     /// A sweep argument or a merge input is wrong.
     #[error("sweep: {message}")]
     Sweep {

@@ -5,7 +5,7 @@
 //! exact (every edge is the start element's ends combined with a dyadic fraction, so neighbours
 //! agree on their common edge bit for bit), and the grid remembers which pieces may be merged.
 
-use crate::grid::{ContactGrid, ElementKind};
+use crate::grid::ContactGrid;
 
 /// Deepest bisection of a start element: pieces of 2⁻⁴⁰ of a start element are far below any
 /// useful accuracy, and the node spacings stay well above round-off of x.
@@ -63,9 +63,8 @@ impl Cell {
 /// A contact grid of dyadic pieces of a start grid (module docs).
 #[derive(Debug, Clone)]
 pub struct DyadicGrid {
-    kind: ElementKind,
-    /// Edges of the start grid [length].
-    roots: Vec<f64>,
+    /// The start grid: its elements, straight or mapped on a mesh's curved elements.
+    root: ContactGrid,
     /// The elements in increasing x.
     cells: Vec<Cell>,
 }
@@ -74,8 +73,7 @@ impl DyadicGrid {
     /// The start grid itself: every element a level-0 piece.
     pub fn new(start: &ContactGrid) -> Self {
         Self {
-            kind: start.kind,
-            roots: start.edges.clone(),
+            root: start.clone(),
             cells: (0..start.n_elements())
                 .map(|root| Cell {
                     root,
@@ -101,17 +99,47 @@ impl DyadicGrid {
         self.cells.is_empty()
     }
 
+    /// The intrinsic coordinates [ξ₀, ξ₁] ⊂ [−1, 1] a cell spans in its start element.
+    pub fn xi_range(&self, c: Cell) -> (f64, f64) {
+        let n = (1u64 << c.level) as f64;
+        (-1.0 + 2.0 * c.index as f64 / n, -1.0 + 2.0 * (c.index + 1) as f64 / n)
+    }
+
+    /// Whether start element `e` is straight (its mid point the centre of its ends).
+    fn root_straight(&self, e: usize) -> bool {
+        let (a, b) = (self.root.edges[e], self.root.edges[e + 1]);
+        self.root.mids[e] == 0.5 * (a + b)
+    }
+
     /// x of the left (`right == false`) or right end of a cell [length].
     pub fn end(&self, c: Cell, right: bool) -> f64 {
-        let (a, b) = (self.roots[c.root], self.roots[c.root + 1]);
+        let (a, b) = (self.root.edges[c.root], self.root.edges[c.root + 1]);
         let n = 1u64 << c.level;
         let k = c.index + u64::from(right);
-        // Scaling by the power of two n is exact, so every piece's ends are a + (b − a)·k/n
-        // rounded once, and two neighbours compute their common end identically.
         if k == n {
-            b
-        } else {
+            return b;
+        }
+        if k == 0 {
+            return a;
+        }
+        if self.root_straight(c.root) {
+            // Scaling by the power of two n is exact, so every piece's ends are a + (b − a)·k/n
+            // rounded once, and two neighbours compute their common end identically.
             a + (b - a) * (k as f64) / (n as f64)
+        } else {
+            // A mapped element: the x of the mesh's quadratic element at ξ = −1 + 2k/n.
+            self.root.element_x(c.root, -1.0 + 2.0 * (k as f64) / (n as f64))
+        }
+    }
+
+    /// x of a cell's mid point [length]: its centre in a straight start element, the x at
+    /// its mid ξ in a mapped one.
+    pub fn mid(&self, c: Cell) -> f64 {
+        if self.root_straight(c.root) {
+            0.5 * (self.end(c, false) + self.end(c, true))
+        } else {
+            let (x0, x1) = self.xi_range(c);
+            self.root.element_x(c.root, 0.5 * (x0 + x1))
         }
     }
 
@@ -125,7 +153,13 @@ impl DyadicGrid {
         let mut edges = Vec::with_capacity(self.cells.len() + 1);
         edges.push(self.end(self.cells[0], false));
         edges.extend(self.cells.iter().map(|&c| self.end(c, true)));
-        ContactGrid::from_edges(self.kind, edges)
+        let mids = self.cells.iter().map(|&c| self.mid(c)).collect();
+        ContactGrid::from_mapped_edges(self.root.kind, edges, mids)
+    }
+
+    /// The start grid.
+    pub fn root(&self) -> &ContactGrid {
+        &self.root
     }
 
     /// Every element halved: the grid whose solution, set against this grid's, estimates the
@@ -197,7 +231,9 @@ impl DyadicGrid {
             let n = self.cells.len();
             let too_long = |e: usize, cells: &[Cell]| {
                 let l = self.length(cells[e]);
-                let over = |j: usize| l > MAX_NEIGHBOUR_RATIO * self.length(cells[j]) * (1.0 + 1e-12);
+                // 10 % slack: pieces of a mapped (curved) start element are equal in ξ, not quite
+                // in x, and a ratio of 2.0001 must not set off a cascade of halvings.
+                let over = |j: usize| l > MAX_NEIGHBOUR_RATIO * self.length(cells[j]) * 1.1;
                 (e > 0 && over(e - 1)) || (e + 1 < n && over(e + 1))
             };
             let split: Vec<bool> = (0..n)
@@ -232,6 +268,7 @@ pub enum Action {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::grid::ElementKind;
 
     fn start() -> DyadicGrid {
         DyadicGrid::new(&ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 4, -2.0, 2.0))

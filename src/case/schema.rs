@@ -227,7 +227,8 @@ pub struct GridSpec {
     /// the creepage's relative error that the run must reach (e.g. 1e-4). The grid of
     /// `elements` is the start; rollbem refines it where the estimated error is large (towards
     /// the contact edges and the stick/slip points) until the estimates are below the
-    /// tolerance. Half-space and rigid bodies. Default = none (the fixed grid of `elements`).
+    /// tolerance; a `bem` body's contact elements (the start grid) are cut along it. Default =
+    /// none (the fixed grid of `elements`, or a bem body's mesh).
     pub tolerance: Option<f64>,
     /// Largest number of contact elements an error-controlled grid may use; reaching it without
     /// the tolerance ends the run with exit code 2 and the estimate. Default = 1000.

@@ -309,15 +309,6 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 ),
             );
         }
-        if bem_body {
-            bad(
-                "contact.grid.tolerance".into(),
-                "an error-controlled grid is built for half_space and rigid bodies; with a bem body \
-                 the contact grid is the mesh's contact segment: refine it in the mesh (its .geo) and \
-                 remove the key"
-                    .into(),
-            );
-        }
         if c.grid.max_elements < 2 * c.grid.elements.max(1) || c.grid.max_elements > MAX_ADAPTIVE_ELEMENTS {
             bad(
                 "contact.grid.max_elements".into(),

@@ -276,6 +276,17 @@ fn validation_adaptive_table() {
     assert_table(&page("validation.md"), printed, Rows::All, &["time [s]"], (&[], 0.0));
 }
 
+/// docs/validation.md: error-controlled grids of BEM rollers, without the times.
+#[test]
+fn validation_adaptive_true_geometry_table() {
+    let t = adaptive_report::true_geometry_table();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("validation.md"), printed, Rows::All, &["time [s]"], (&[], 0.0));
+}
+
 /// docs/performance.md: uniform against error-controlled grids, without the times.
 #[test]
 fn performance_error_vs_time_table() {

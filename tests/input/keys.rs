@@ -289,18 +289,27 @@ fn error_controlled_grid_keys_are_checked() {
         "contact.grid.max_elements",
         &["twice"],
     );
-    // A bem body's grid is its mesh's contact segment.
-    let (code, stderr, written) = run_base(
+    // Contact meshes that do not coincide cannot be cut along one grid.
+    let case = common::case_path("carter_051_true_nonmatching");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let (code, _, stderr) = rollbem(&[
         "run",
-        Some((
-            "A: {model: half_space, material: steel, radius: 100.0}",
-            "A: {model: bem, material: steel, mesh: m.msh, boundaries: {shaft: fixed, free: free}}",
-        )),
-        &["contact.grid.tolerance=1e-3"],
-    );
+        case.to_str().unwrap(),
+        "--set",
+        "contact.grid.tolerance=1e-3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert_eq!(code, 1, "{stderr}");
-    assert!(stderr.contains("contact.grid.tolerance"), "{stderr}");
-    assert!(!written);
+    assert!(
+        stderr.contains("contact.grid.tolerance") && stderr.contains("do not coincide"),
+        "{stderr}"
+    );
+    assert!(
+        std::fs::read_dir(&out).map_or(true, |d| d.count() == 0),
+        "nothing written"
+    );
 }
 
 #[test]

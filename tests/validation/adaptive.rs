@@ -211,6 +211,53 @@ fn a_dissimilar_pair_in_regime_4_converges_with_a_faithful_estimate() {
     );
 }
 
+/// BEM rollers on shafts (cases/carter_051_true.yaml): the meshes' contact elements are cut
+/// along the grid. Against the run at 1e-4, the run at 1e-3 meets the tolerance with a
+/// faithful estimate, and is more accurate on fewer contact elements than the shipped mesh cut
+/// uniformly three times (168 elements).
+#[test]
+fn bem_rollers_at_1e_3_meet_the_tolerance_on_fewer_elements_than_a_uniform_cut() {
+    let case = "carter_051_true";
+    let fine = solve(case, &["contact.grid.tolerance=1e-4"]);
+    let est = &fine.scene.estimates;
+    let (a, p0, mu) = (est.hertz_half_width, est.hertz_peak_pressure, fine.scene.friction());
+    let errors = |s: &Solved| {
+        let x = &s.solution.x;
+        let (p_f, q_f) = tractions_at(&fine, x);
+        let p = nodal_error(x, a, |i| (s.solution.pressure[i] - p_f[i]).abs() / p0).rms;
+        let q = nodal_error(x, a, |i| (s.solution.shear[i] - q_f[i]).abs() / (mu * p0)).rms;
+        (p, q, (s.solution.creep / fine.solution.creep - 1.0).abs())
+    };
+    let s = solve(case, &["contact.grid.tolerance=1e-3"]);
+    let e = estimate(&s);
+    let (p, q, xi) = errors(&s);
+    assert!(
+        p <= 1e-3 && q <= 1e-3 && xi <= 1e-3,
+        "true errors p {p:.3e}, q {q:.3e}, ξ {xi:.3e}"
+    );
+    assert_effective("bem pressure", e.pressure_rms, p);
+    assert_effective("bem shear", e.shear_rms, q);
+    assert_effective("bem creepage", e.creep_rel, xi);
+    // The shipped meshes cut uniformly three times.
+    use rollbem::adapt::{cells::DyadicGrid, mesh_cuts::refined_setup};
+    use rollbem::scene::{BodySetup, Scene};
+    let loaded = rollbem::app::load_case(&crate::common::case_path(case), &[] as &[&str]).unwrap();
+    let shipped = Scene::from_case(&loaded).unwrap();
+    let cells = DyadicGrid::new(&shipped.grid).bisected().bisected().bisected();
+    let bodies = shipped.bodies.clone().map(|b| match b {
+        BodySetup::Bem(setup) => BodySetup::Bem(Box::new(refined_setup(&setup, &cells))),
+        other => other,
+    });
+    let uniform = rollbem::app::solve_scene(Scene::new(loaded, bodies), std::time::Instant::now()).unwrap();
+    assert_eq!(uniform.problem.grid.n_elements(), 168);
+    let (pu, qu, xu) = errors(&uniform);
+    assert!(
+        p < pu && q < qu && xi < xu && s.problem.grid.n_elements() < 168,
+        "error-controlled {} elements: {p:.2e} {q:.2e} {xi:.2e}; uniform: {pu:.2e} {qu:.2e} {xu:.2e}",
+        s.problem.grid.n_elements()
+    );
+}
+
 #[test]
 fn the_error_controlled_grid_costs_far_fewer_nodes_than_the_uniform_grid_of_equal_accuracy() {
     // The uniform grid of 321 elements (963 nodes) has a true shear error of about 3e-4
