@@ -163,6 +163,23 @@ fn tractions_at(from: &Solved, x: &[f64]) -> (Vec<f64>, Vec<f64>) {
     )
 }
 
+/// RMS p/p0 and q/(μp0) over |x| < a of `run` against `reference` at the run's own nodes (the
+/// reference interpolated by its shape functions), and the relative creepage difference; a
+/// and p0 of the reference's Hertz estimates.
+fn errors_against(reference: &Solved, run: &Solved) -> (f64, f64, f64) {
+    let est = &reference.scene.estimates;
+    let (a, p0, mu) = (
+        est.hertz_half_width,
+        est.hertz_peak_pressure,
+        reference.scene.friction(),
+    );
+    let x = &run.solution.x;
+    let (p_r, q_r) = tractions_at(reference, x);
+    let p = nodal_error(x, a, |i| (run.solution.pressure[i] - p_r[i]).abs() / p0).rms;
+    let q = nodal_error(x, a, |i| (run.solution.shear[i] - q_r[i]).abs() / (mu * p0)).rms;
+    (p, q, (run.solution.creep / reference.solution.creep - 1.0).abs())
+}
+
 /// A dissimilar pair in regime 4 (no closed form). The reference is the error-controlled run
 /// at 1e-5, and it is checked independently first: the uniform grids (the block-Toeplitz
 /// influence matrix, no error control) converge towards it — from 161 to 641 elements the
@@ -174,16 +191,7 @@ fn tractions_at(from: &Solved, x: &[f64]) -> (Vec<f64>, Vec<f64>) {
 fn a_dissimilar_pair_in_regime_4_converges_with_a_faithful_estimate() {
     let case = "dissimilar_beta0288_004";
     let limit = solve(case, &["contact.grid.tolerance=1e-5"]);
-    let est = &limit.scene.estimates;
-    let (a, p0, mu) = (est.hertz_half_width, est.hertz_peak_pressure, limit.scene.friction());
-    // Errors of a run against the limit, at the run's own nodes.
-    let errors = |u: &Solved| {
-        let x = &u.solution.x;
-        let (p_l, q_l) = tractions_at(&limit, x);
-        let p = nodal_error(x, a, |i| (u.solution.pressure[i] - p_l[i]).abs() / p0).rms;
-        let q = nodal_error(x, a, |i| (u.solution.shear[i] - q_l[i]).abs() / (mu * p0)).rms;
-        (p, q, (u.solution.creep / limit.solution.creep - 1.0).abs())
-    };
+    let errors = |u: &Solved| errors_against(&limit, u);
     let (p161, _, xi161) = errors(&solve(case, &["contact.grid.elements=161"]));
     let (p641, _, xi641) = errors(&solve(case, &["contact.grid.elements=641"]));
     assert!(
@@ -219,15 +227,7 @@ fn a_dissimilar_pair_in_regime_4_converges_with_a_faithful_estimate() {
 fn bem_rollers_at_1e_3_meet_the_tolerance_on_fewer_elements_than_a_uniform_cut() {
     let case = "carter_051_true";
     let fine = solve(case, &["contact.grid.tolerance=1e-4"]);
-    let est = &fine.scene.estimates;
-    let (a, p0, mu) = (est.hertz_half_width, est.hertz_peak_pressure, fine.scene.friction());
-    let errors = |s: &Solved| {
-        let x = &s.solution.x;
-        let (p_f, q_f) = tractions_at(&fine, x);
-        let p = nodal_error(x, a, |i| (s.solution.pressure[i] - p_f[i]).abs() / p0).rms;
-        let q = nodal_error(x, a, |i| (s.solution.shear[i] - q_f[i]).abs() / (mu * p0)).rms;
-        (p, q, (s.solution.creep / fine.solution.creep - 1.0).abs())
-    };
+    let errors = |s: &Solved| errors_against(&fine, s);
     let s = solve(case, &["contact.grid.tolerance=1e-3"]);
     let e = estimate(&s);
     let (p, q, xi) = errors(&s);
