@@ -138,6 +138,56 @@ impl ContactProblem {
         tangential: TangentialControl,
         frame: ContactFrame,
     ) -> Self {
+        let mut pb = Self::assemble_without_strain(
+            grid, body_a, body_b, derivative, friction, rolling, normal, tangential, frame,
+        );
+        pb.strain = Self::strain_of(&pb.grid, body_a, body_b, &pb.frame);
+        pb
+    }
+
+    /// The combined boundary-integral strain operator of two body models on a grid, in the
+    /// contact frame, when both have one (none on grids of continuous elements, below).
+    pub fn strain_of(
+        grid: &ContactGrid,
+        body_a: &dyn BodyModel,
+        body_b: &dyn BodyModel,
+        frame: &ContactFrame,
+    ) -> Option<StrainOperator> {
+        // On a grid whose elements share end nodes the principal value of the strain kernel at a
+        // shared node is the sum of two element integrals that diverge separately (only their
+        // sum is finite), so the boundary-integral slip is not evaluated there.
+        if grid.kind.shares_nodes() {
+            return None;
+        }
+        match (
+            body_a.strain_operator(grid, Side::A),
+            body_b.strain_operator(grid, Side::B),
+        ) {
+            (Some(a), Some(b)) => {
+                let (a, b) = (frame.strain(&a, Side::A), frame.strain(&b, Side::B));
+                Some(StrainOperator {
+                    p: add(&a.p, &b.p),
+                    q: add(&a.q, &b.q),
+                })
+            }
+            _ => None,
+        }
+    }
+
+    /// [`Self::assemble`] without the strain operator, which only the boundary-integral slip of
+    /// the outputs uses: the intermediate grids of an error-controlled run skip it.
+    #[allow(clippy::too_many_arguments)]
+    pub fn assemble_without_strain(
+        grid: ContactGrid,
+        body_a: &dyn BodyModel,
+        body_b: &dyn BodyModel,
+        derivative: SlipDerivative,
+        friction: f64,
+        rolling: RollingDirection,
+        normal: NormalControl,
+        tangential: TangentialControl,
+        frame: ContactFrame,
+    ) -> Self {
         assert_eq!(frame.normal_angle.len(), grid.n_nodes(), "one frame direction per node");
         let fa = frame.flexibility(&body_a.flexibility(&grid, Side::A), Side::A);
         let fb = frame.flexibility(&body_b.flexibility(&grid, Side::B), Side::B);
@@ -146,26 +196,6 @@ impl ContactProblem {
             hq: add(&fa.hq, &fb.hq),
             wp: add(&fa.wp, &fb.wp),
             wq: add(&fa.wq, &fb.wq),
-        };
-        // On a grid whose elements share end nodes the principal value of the strain kernel at a
-        // shared node is the sum of two element integrals that diverge separately (only their
-        // sum is finite), so the boundary-integral slip is not evaluated there.
-        let strain = if grid.kind.shares_nodes() {
-            None
-        } else {
-            match (
-                body_a.strain_operator(&grid, Side::A),
-                body_b.strain_operator(&grid, Side::B),
-            ) {
-                (Some(a), Some(b)) => {
-                    let (a, b) = (frame.strain(&a, Side::A), frame.strain(&b, Side::B));
-                    Some(StrainOperator {
-                        p: add(&a.p, &b.p),
-                        q: add(&a.q, &b.q),
-                    })
-                }
-                _ => None,
-            }
         };
         let h0 = grid
             .nodes
@@ -194,7 +224,7 @@ impl ContactProblem {
             flow_sign,
             normal,
             tangential,
-            strain,
+            strain: None,
             frame,
             rigid_slip,
         }

@@ -161,13 +161,28 @@ impl Scene {
 
     /// Assembles the contact problem of the scene from its body models.
     pub fn contact_problem(&self, models: &BodyModels) -> ContactProblem {
+        let mut pb = self.contact_problem_without_strain(models);
+        pb.strain = ContactProblem::strain_of(&pb.grid, models[0].model(), models[1].model(), &pb.frame);
+        pb
+    }
+
+    /// Builds the body models and assembles the contact problem without its strain operator
+    /// (an error-controlled run's intermediate grids: [`ContactProblem::assemble_without_strain`]).
+    pub fn assemble_without_strain(&self) -> Result<(BodyModels, ContactProblem), Error> {
+        let models = self.body_models()?;
+        let problem = self.contact_problem_without_strain(&models);
+        Ok((models, problem))
+    }
+
+    /// [`Self::contact_problem`] without the strain operator.
+    fn contact_problem_without_strain(&self, models: &BodyModels) -> ContactProblem {
         let c = &self.case.case.contact;
         log::info!(
             target: crate::logging::PROGRESS,
             "assembling the contact problem: {} contact nodes",
             self.grid.n_nodes()
         );
-        ContactProblem::assemble(
+        ContactProblem::assemble_without_strain(
             self.grid.clone(),
             models[0].model(),
             models[1].model(),
