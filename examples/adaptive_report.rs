@@ -157,8 +157,8 @@ pub const TRUE_GEOMETRY_HEADER: [&str; 7] = [
 /// times), against the run at tolerance 1e-4 (RMS over |x| < a at each run's nodes, the
 /// reference interpolated by its own shape functions). Times are the library's run.
 pub fn true_geometry_table() -> Table {
-    use rollbem::adapt::{cells::DyadicGrid, mesh_cuts::refined_setup};
-    use rollbem::scene::{BodySetup, Scene};
+    use rollbem::adapt::{cells::DyadicGrid, scene_on};
+    use rollbem::scene::Scene;
     let case = "carter_051_true";
     let fine = solve(case, &["contact.grid.tolerance=1e-4"]);
     let est = &fine.scene.estimates;
@@ -193,11 +193,7 @@ pub fn true_geometry_table() -> Table {
         for _ in 0..k {
             cells = cells.bisected();
         }
-        let bodies = shipped.bodies.clone().map(|b| match b {
-            BodySetup::Bem(setup) => BodySetup::Bem(Box::new(refined_setup(&setup, &cells))),
-            other => other,
-        });
-        let s = rollbem::app::solve_scene(Scene::new(loaded.clone(), bodies), std::time::Instant::now())
+        let s = rollbem::app::solve_scene(scene_on(&shipped, &cells), std::time::Instant::now())
             .expect("a uniformly cut mesh");
         push(format!("uniform, mesh cut {k}×"), &s);
     }

@@ -91,7 +91,7 @@ struct Solve {
 /// The scene on the grid of `cells`: for half-space and rigid bodies the same bodies on that
 /// grid; a `bem` body's mesh gets its contact elements cut along the cells
 /// ([`mesh_cuts::refined_setup`]), and the grid is then the refined mesh's.
-fn scene_on(scene: &Scene, cells: &DyadicGrid) -> Scene {
+pub fn scene_on(scene: &Scene, cells: &DyadicGrid) -> Scene {
     if !scene.grid_from_mesh() {
         return scene.with_grid(cells.grid());
     }

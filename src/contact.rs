@@ -124,27 +124,6 @@ fn add(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
 }
 
 impl ContactProblem {
-    /// Assembles the problem from the two body models on a grid, in the contact `frame` at
-    /// its nodes ([`ContactFrame::global_axes`] for tractions along x and y).
-    #[allow(clippy::too_many_arguments)]
-    pub fn assemble(
-        grid: ContactGrid,
-        body_a: &dyn BodyModel,
-        body_b: &dyn BodyModel,
-        derivative: SlipDerivative,
-        friction: f64,
-        rolling: RollingDirection,
-        normal: NormalControl,
-        tangential: TangentialControl,
-        frame: ContactFrame,
-    ) -> Self {
-        let mut pb = Self::assemble_without_strain(
-            grid, body_a, body_b, derivative, friction, rolling, normal, tangential, frame,
-        );
-        pb.strain = Self::strain_of(&pb.grid, body_a, body_b, &pb.frame);
-        pb
-    }
-
     /// The combined boundary-integral strain operator of two body models on a grid, in the
     /// contact frame, when both have one (none on grids of continuous elements, below).
     pub fn strain_of(
@@ -174,10 +153,13 @@ impl ContactProblem {
         }
     }
 
-    /// [`Self::assemble`] without the strain operator, which only the boundary-integral slip of
-    /// the outputs uses: the intermediate grids of an error-controlled run skip it.
+    /// Assembles the problem from the two body models on a grid, in the contact `frame` at
+    /// its nodes ([`ContactFrame::global_axes`] for tractions along x and y). The strain
+    /// operator, which only the outputs' boundary-integral slip uses, is left out (`strain` is
+    /// none): [`Self::strain_of`] adds it, so that the intermediate grids of an error-controlled
+    /// run skip it.
     #[allow(clippy::too_many_arguments)]
-    pub fn assemble_without_strain(
+    pub fn assemble(
         grid: ContactGrid,
         body_a: &dyn BodyModel,
         body_b: &dyn BodyModel,

@@ -167,7 +167,7 @@ impl Scene {
     }
 
     /// Builds the body models and assembles the contact problem without its strain operator
-    /// (an error-controlled run's intermediate grids: [`ContactProblem::assemble_without_strain`]).
+    /// (an error-controlled run's intermediate grids; [`ContactProblem::strain_of`] adds it).
     pub fn assemble_without_strain(&self) -> Result<(BodyModels, ContactProblem), Error> {
         let models = self.body_models()?;
         let problem = self.contact_problem_without_strain(&models);
@@ -182,7 +182,7 @@ impl Scene {
             "assembling the contact problem: {} contact nodes",
             self.grid.n_nodes()
         );
-        ContactProblem::assemble_without_strain(
+        ContactProblem::assemble(
             self.grid.clone(),
             models[0].model(),
             models[1].model(),
