@@ -153,17 +153,26 @@ fn solve_on(scene: Scene, warm: Option<(&ContactGrid, &State)>, timings: &mut Ti
     })
 }
 
-/// A state of `from`'s grid carried to the problem's grid: tractions interpolated by `from`'s
-/// shape functions (p clipped at 0), gap and slip those of the carried tractions.
+/// A state of `from`'s grid carried to the problem's grid: tractions, gap and slip interpolated
+/// by `from`'s shape functions (p and g clipped at 0). Interpolating the gap and slip too, rather
+/// than recomputing them from the carried tractions, keeps the complementarity of the solution:
+/// a node inside the contact's stick zone starts with g = 0 and s = 0, so the first Newton step
+/// starts from the old active sets instead of from the noise of the tractions' interpolation
+/// error (largest at the very nodes the refinement adds).
 fn carried(pb: &ContactProblem, from: &ContactGrid, z: &State) -> State {
     let x = &pb.grid.nodes;
-    let pressure: Vec<f64> = x.iter().map(|&x| from.interpolate(&z.pressure, x).max(0.0)).collect();
-    let shear: Vec<f64> = x.iter().map(|&x| from.interpolate(&z.shear, x)).collect();
+    let field = |v: &[f64]| -> Vec<f64> { x.iter().map(|&x| from.interpolate(v, x)).collect() };
+    let mut pressure = field(&z.pressure);
+    let mut gap = field(&z.gap);
+    for (p, g) in pressure.iter_mut().zip(&mut gap) {
+        *p = p.max(0.0);
+        *g = g.max(0.0);
+    }
     State {
-        gap: pb.gap(&pressure, &shear, z.overlap),
-        slip: pb.slip(&pressure, &shear, z.creep),
+        gap,
+        slip: field(&z.slip),
         pressure,
-        shear,
+        shear: field(&z.shear),
         overlap: z.overlap,
         creep: z.creep,
     }

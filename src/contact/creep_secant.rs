@@ -161,8 +161,8 @@ pub(crate) fn solve(
 
 /// Whether node `k` sticks at `z` under `sys`: |q − r_t s| within its friction bound.
 fn is_stick(sys: &System, z: &State, k: usize) -> bool {
-    let bound = sys.pb.friction * sys.bound_pressure(z.pressure[k], z.gap[k]);
-    bound > 0.0 && (z.shear[k] - sys.rt * z.slip[k]).abs() <= bound
+    let bound = sys.pb.friction * sys.bound_pressure(z, k);
+    bound > 0.0 && (z.shear[k] - sys.rt[k] * z.slip[k]).abs() <= bound
 }
 
 /// The creepage change of the coupled Newton step (ξ free) from `z`: on a ramp of F, where the

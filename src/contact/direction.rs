@@ -83,8 +83,8 @@ impl System<'_> {
     }
 
     fn tangential_state(&self, z: &State, i: usize) -> Tangential {
-        let bound = self.pb.friction * self.bound_pressure(z.pressure[i], z.gap[i]);
-        let t = z.shear[i] - self.rt * z.slip[i];
+        let bound = self.pb.friction * self.bound_pressure(z, i);
+        let t = z.shear[i] - self.rt[i] * z.slip[i];
         // A zero bound with t = 0 is the paper's tie (Eq. 72–73, "modified"): take the stick
         // derivative, else the paper's start vector (p = 0) leaves Ψ's Newton matrix singular.
         if bound <= 0.0 && t != 0.0 {
@@ -106,7 +106,7 @@ impl System<'_> {
     fn ensure_contact_row(&self, z: &State, mut contact: Vec<bool>, block: Block) -> Vec<bool> {
         let needed = (self.free_overlap && block.solves_normal()) || (self.free_creep && block.solves_tangential());
         if needed && !contact.iter().any(|&c| c) {
-            let f = |k: usize| z.pressure[k] - self.rn * z.gap[k];
+            let f = |k: usize| z.pressure[k] - self.rn[k] * z.gap[k];
             let k = (0..contact.len()).max_by(|&i, &j| f(i).total_cmp(&f(j))).unwrap_or(0);
             contact[k] = true;
         }
@@ -123,9 +123,9 @@ impl System<'_> {
             return;
         }
         let excess = |i: usize| {
-            let bound = self.pb.friction * self.bound_pressure(z.pressure[i], z.gap[i]);
+            let bound = self.pb.friction * self.bound_pressure(z, i);
             if bound > 0.0 {
-                ((z.shear[i] - self.rt * z.slip[i]).abs() - bound) / bound
+                ((z.shear[i] - self.rt[i] * z.slip[i]).abs() - bound) / bound
             } else {
                 f64::INFINITY
             }
@@ -157,7 +157,7 @@ impl System<'_> {
         let mut p_col = vec![None; m];
         let mut p_const = vec![0.0; m];
         let mut contact_rows = Vec::new();
-        let normal_contact: Vec<bool> = (0..m).map(|i| self.is_contact(z.pressure[i], z.gap[i])).collect();
+        let normal_contact: Vec<bool> = (0..m).map(|i| self.is_contact(z, i)).collect();
         let mut tangential: Vec<Tangential> = (0..m).map(|i| self.tangential_state(z, i)).collect();
         let normal_contact = self.ensure_contact_row(z, normal_contact, block);
         self.ensure_stick_row(z, &normal_contact, &mut tangential, block);
@@ -232,7 +232,7 @@ impl System<'_> {
         let mut row = 0;
         for &i in &contact_rows {
             rhs[(row, 0)] = -g3[i] + g1[i];
-            let rn = self.rn;
+            let rn = self.rn[i];
             add_row(&mut J, &mut rhs, row, &|j| rn * pb.flex.hp[(i, j)], &|j| {
                 rn * pb.flex.hq[(i, j)]
             });
@@ -243,7 +243,7 @@ impl System<'_> {
         }
         for &i in &stick_rows {
             rhs[(row, 0)] = -g4[i] + g2[i];
-            let rt = self.rt;
+            let rt = self.rt[i];
             add_row(&mut J, &mut rhs, row, &|j| rt * pb.bp[(i, j)], &|j| rt * pb.bq[(i, j)]);
             if let Some(c) = col_creep {
                 J[(row, c)] = rt * pb.flow_sign * pb.slip_operator.creep_weight[i];
@@ -285,10 +285,10 @@ impl System<'_> {
         let d_creep = col_creep.map_or(0.0, |c| y[(c, 0)]);
         let dh = pb.compression(&dp, &dq);
         let db = mat_vec2(&pb.bp, &dp, &pb.bq, &dq);
-        let dg = (0..m).map(|i| -g1[i] / self.rn - d_overlap + dh[i]).collect();
+        let dg = (0..m).map(|i| -g1[i] / self.rn[i] - d_overlap + dh[i]).collect();
         let e = &pb.slip_operator.creep_weight;
         let ds = (0..m)
-            .map(|i| -g2[i] / self.rt + pb.flow_sign * d_creep * e[i] + db[i])
+            .map(|i| -g2[i] / self.rt[i] + pb.flow_sign * d_creep * e[i] + db[i])
             .collect();
         Ok((
             State {
@@ -362,7 +362,7 @@ mod tests {
     /// Branch of every node: (normal contact, tangential state).
     fn branches(sys: &System, z: &State) -> Vec<(bool, Tangential)> {
         (0..sys.m())
-            .map(|i| (sys.is_contact(z.pressure[i], z.gap[i]), sys.tangential_state(z, i)))
+            .map(|i| (sys.is_contact(z, i), sys.tangential_state(z, i)))
             .collect()
     }
 

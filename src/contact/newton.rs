@@ -198,7 +198,7 @@ pub(crate) fn coupled_attempt(
         &|g, z| measure.of_with(&sys, g, z),
         first_step,
     );
-    (out, [sys.rn, sys.rt])
+    (out, sys.reference)
 }
 
 /// An attempt from the paper's start vector (Eq. 74) with the formulation and penalty scale of

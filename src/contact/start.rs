@@ -66,10 +66,10 @@ pub(crate) fn complete_slip_step(sys: &System, z: &State) -> Option<(f64, usize)
     let (w, e) = (&pb.grid.weights, &pb.slip_operator.creep_weight);
     let sigma = pb.flow_sign;
     let target = ratio * pb.friction * pb.grid.integrate(&z.pressure) + q0;
-    let bound = |i: usize| pb.friction * sys.bound_pressure(z.pressure[i], z.gap[i]);
+    let bound = |i: usize| pb.friction * sys.bound_pressure(z, i);
     let mut load = 0.0;
     let mut flips = Vec::new();
-    for i in (0..sys.m()).filter(|&i| sys.is_contact(z.pressure[i], z.gap[i]) && bound(i) > 0.0) {
+    for i in (0..sys.m()).filter(|&i| sys.is_contact(z, i) && bound(i) > 0.0) {
         if e[i] != 0.0 {
             // Below its flip the node slips with sign −σ, so its shear is +σ μ p̂.
             load += w[i] * sigma * bound(i);
