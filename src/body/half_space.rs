@@ -237,7 +237,7 @@ impl FarField {
     /// The shape moments of the element kind.
     pub fn new(kind: ElementKind) -> Self {
         // ∫_{−1}^{1} ξ^k dξ.
-        let mu = |k: usize| if k % 2 == 0 { 2.0 / (k + 1) as f64 } else { 0.0 };
+        let mu = |k: usize| if k.is_multiple_of(2) { 2.0 / (k + 1) as f64 } else { 0.0 };
         let npe = kind.nodes_per_element();
         let moments = std::array::from_fn(|a| {
             let [c0, c1, c2] = if a < npe { kind.shape_polynomial(a) } else { [0.0; 3] };
