@@ -143,7 +143,7 @@ impl ContactProblem {
             body_b.strain_operator(grid, Side::B),
         ) {
             (Some(a), Some(b)) => {
-                let (a, b) = (frame.strain(&a, Side::A), frame.strain(&b, Side::B));
+                let (a, b) = (frame.strain(a, Side::A), frame.strain(b, Side::B));
                 Some(StrainOperator {
                     p: add(&a.p, &b.p),
                     q: add(&a.q, &b.q),
@@ -171,8 +171,8 @@ impl ContactProblem {
         frame: ContactFrame,
     ) -> Self {
         assert_eq!(frame.normal_angle.len(), grid.n_nodes(), "one frame direction per node");
-        let fa = frame.flexibility(&body_a.flexibility(&grid, Side::A), Side::A);
-        let fb = frame.flexibility(&body_b.flexibility(&grid, Side::B), Side::B);
+        let fa = frame.flexibility(body_a.flexibility(&grid, Side::A), Side::A);
+        let fb = frame.flexibility(body_b.flexibility(&grid, Side::B), Side::B);
         let flex = Flexibility {
             hp: add(&fa.hp, &fb.hp),
             hq: add(&fa.hq, &fb.hq),

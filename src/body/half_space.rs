@@ -184,29 +184,39 @@ fn influence_matrix_direct(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
     let m = grid.n_nodes();
     let far_field = FarField::new(grid.kind);
     let npe = grid.kind.nodes_per_element();
-    // Rows in parallel: each is one field point against every element.
-    let rows: Vec<Vec<f64>> = grid
-        .nodes
-        .par_iter()
-        .map(|&x| {
-            let mut row = vec![0.0; m];
+    let integrals = |e: usize, x: f64| {
+        let (s1, s2) = (grid.edges[e], grid.edges[e + 1]);
+        if (0.5 * (s1 + s2) - x).abs() > FAR_FIELD_RATIO * (s2 - s1) {
+            far_field.integrals(kernel, s1, s2, x)
+        } else {
+            element_integrals_exact(grid.kind, kernel, s1, s2, x)
+        }
+    };
+    let mut k = Mat::<f64>::zeros(m, m);
+    if grid.kind.shares_nodes() {
+        // Shared end nodes (continuous elements) collect both elements' integrals.
+        for (i, &x) in grid.nodes.iter().enumerate() {
             for e in 0..grid.n_elements() {
-                let (s1, s2) = (grid.edges[e], grid.edges[e + 1]);
-                let far = (0.5 * (s1 + s2) - x).abs() > FAR_FIELD_RATIO * (s2 - s1);
-                let values = if far {
-                    far_field.integrals(kernel, s1, s2, x)
-                } else {
-                    element_integrals_exact(grid.kind, kernel, s1, s2, x)
-                };
-                // Shared end nodes (continuous elements) collect both elements' integrals.
-                for (a, v) in values.into_iter().take(npe).enumerate() {
-                    row[grid.global_node(e, a)] += v;
+                for (a, v) in integrals(e, x).into_iter().take(npe).enumerate() {
+                    k[(i, grid.global_node(e, a))] += v;
                 }
             }
-            row
-        })
-        .collect();
-    Mat::from_fn(m, m, |i, j| rows[i][j])
+        }
+        return k;
+    }
+    // Each element owns its `npe` columns (contiguous in faer's column-major storage): the
+    // elements in parallel, each against every field point.
+    k.as_mut()
+        .par_col_chunks_mut(npe)
+        .enumerate()
+        .for_each(|(e, mut cols)| {
+            for (i, &x) in grid.nodes.iter().enumerate() {
+                for (a, v) in integrals(e, x).into_iter().take(npe).enumerate() {
+                    cols[(i, a)] = v;
+                }
+            }
+        });
+    k
 }
 
 /// Most terms of the far-field series of [`FarField`]: at the closest far element
@@ -231,7 +241,12 @@ pub struct FarField {
     npe: usize,
     /// m_{a,n} for each shape function a and n < [`FAR_FIELD_TERMS`].
     moments: [[f64; FAR_FIELD_TERMS]; 3],
+    /// m_{a,n}/n, the logarithm's coefficients (n ≥ 1; entry 0 unused).
+    log_moments: [[f64; FAR_FIELD_TERMS]; 3],
 }
+
+/// A term of the far-field series below this fraction (2⁻⁵⁴) of the leading one ends it.
+const FAR_FIELD_ROUND_OFF: f64 = 5.551115123125783e-17;
 
 impl FarField {
     /// The shape moments of the element kind.
@@ -239,52 +254,66 @@ impl FarField {
         // ∫_{−1}^{1} ξ^k dξ.
         let mu = |k: usize| if k.is_multiple_of(2) { 2.0 / (k + 1) as f64 } else { 0.0 };
         let npe = kind.nodes_per_element();
-        let moments = std::array::from_fn(|a| {
+        let moments: [[f64; FAR_FIELD_TERMS]; 3] = std::array::from_fn(|a| {
             let [c0, c1, c2] = if a < npe { kind.shape_polynomial(a) } else { [0.0; 3] };
             std::array::from_fn(|n| c0 * mu(n) + c1 * mu(n + 1) + c2 * mu(n + 2))
         });
-        Self { npe, moments }
+        let log_moments = moments.map(|m| std::array::from_fn(|n| if n == 0 { 0.0 } else { m[n] / n as f64 }));
+        Self {
+            npe,
+            moments,
+            log_moments,
+        }
     }
 
     /// ∫ N_a(s) K(x − s) ds over [s1, s2] for each shape function a (entries past the
     /// element's node count are 0), for x beyond [`FAR_FIELD_RATIO`] lengths of the centre.
+    #[allow(clippy::needless_range_loop)] // the shape functions index three arrays alike
     pub fn integrals(&self, kernel: Kernel, s1: f64, s2: f64, x: f64) -> [f64; 3] {
         let h = 0.5 * (s2 - s1);
         let d = x - 0.5 * (s1 + s2);
-        let mut out = [0.0; 3];
-        let terms = |t: f64| {
-            // |t|ⁿ < 2⁻⁵⁴: the next term is below round-off of the leading one.
-            ((-54.0 * std::f64::consts::LN_2 / t.abs().ln()).ceil() as usize + 1).clamp(2, FAR_FIELD_TERMS)
-        };
         let t = h / d;
+        let npe = self.npe;
+        let mut out = [0.0; 3];
         match kernel {
             Kernel::Sign => {
-                for (o, m) in out.iter_mut().zip(&self.moments).take(self.npe) {
-                    *o = d.signum() * h * m[0];
+                for a in 0..npe {
+                    out[a] = d.signum() * h * self.moments[a][0];
                 }
             }
             Kernel::Log => {
-                let (n, ln_d) = (terms(t), d.abs().ln());
-                for (o, m) in out.iter_mut().zip(&self.moments).take(self.npe) {
-                    let mut tn = 1.0;
-                    let mut series = 0.0;
-                    for (k, mk) in m.iter().enumerate().take(n).skip(1) {
-                        tn *= t;
-                        series += tn * mk / k as f64;
+                // ln|x − s| = ln|D| − Σ_{n≥1} tⁿξⁿ/n, summed until tⁿ is below round-off.
+                let mut series = [0.0; 3];
+                let mut tn = 1.0;
+                for n in 1..FAR_FIELD_TERMS {
+                    tn *= t;
+                    for a in 0..npe {
+                        series[a] += tn * self.log_moments[a][n];
                     }
-                    *o = h * (ln_d * m[0] - series);
+                    if tn.abs() < FAR_FIELD_ROUND_OFF {
+                        break;
+                    }
+                }
+                let ln_d = d.abs().ln();
+                for a in 0..npe {
+                    out[a] = h * (ln_d * self.moments[a][0] - series[a]);
                 }
             }
             Kernel::Cauchy => {
-                let n = terms(t);
-                for (o, m) in out.iter_mut().zip(&self.moments).take(self.npe) {
-                    let mut tn = 1.0;
-                    let mut series = 0.0;
-                    for mk in m.iter().take(n) {
-                        series += tn * mk;
-                        tn *= t;
+                // 1/(x − s) = (1/D) Σ_{n≥0} tⁿξⁿ.
+                let mut series = [0.0; 3];
+                let mut tn = 1.0;
+                for n in 0..FAR_FIELD_TERMS {
+                    for a in 0..npe {
+                        series[a] += tn * self.moments[a][n];
                     }
-                    *o = h / d * series;
+                    tn *= t;
+                    if tn.abs() < FAR_FIELD_ROUND_OFF {
+                        break;
+                    }
+                }
+                for a in 0..npe {
+                    out[a] = h / d * series[a];
                 }
             }
         }
@@ -319,17 +348,28 @@ impl BodyModel for HalfSpace {
         let a_coef = self.material.halfplane_sgn_coefficient();
         let b_coef = self.material.halfplane_log_coefficient();
         let sign = side.sign();
-        let log = influence_matrix(grid, Kernel::Log);
-        let sgn = influence_matrix(grid, Kernel::Sign);
         let ln_datum = self.datum_length().ln();
-        let m = grid.n_nodes();
-        // ∫ N_j ln(|x−s|/ℓ) ds = ∫ N_j ln|x−s| ds − w_j ln ℓ.
-        let log_datum = Mat::from_fn(m, m, |i, j| log[(i, j)] - grid.weights[j] * ln_datum);
+        // ∫ N_j ln(|x−s|/ℓ) ds = ∫ N_j ln|x−s| ds − w_j ln ℓ; the blocks are made in place, since
+        // a graded grid's m² matrices are large and each new one costs its page faults.
+        let mut hp = influence_matrix(grid, Kernel::Log);
+        for (j, &w) in grid.weights.iter().enumerate() {
+            for v in hp.col_mut(j).iter_mut() {
+                *v = -b_coef * (*v - w * ln_datum);
+            }
+        }
+        let mut hq = influence_matrix(grid, Kernel::Sign);
+        let mut wp = hq.clone();
+        for j in 0..hq.ncols() {
+            for (h, w) in hq.col_mut(j).iter_mut().zip(wp.col_mut(j).iter_mut()) {
+                *h *= sign * a_coef;
+                *w = -*h;
+            }
+        }
         Flexibility {
-            hp: Mat::from_fn(m, m, |i, j| -b_coef * log_datum[(i, j)]),
-            hq: Mat::from_fn(m, m, |i, j| sign * a_coef * sgn[(i, j)]),
-            wp: Mat::from_fn(m, m, |i, j| -sign * a_coef * sgn[(i, j)]),
-            wq: Mat::from_fn(m, m, |i, j| -b_coef * log_datum[(i, j)]),
+            wq: hp.clone(),
+            hp,
+            hq,
+            wp,
         }
     }
 
@@ -342,12 +382,18 @@ impl BodyModel for HalfSpace {
         let a_coef = self.material.halfplane_sgn_coefficient();
         let b_coef = self.material.halfplane_log_coefficient();
         let m = grid.n_nodes();
-        let cauchy = influence_matrix(grid, Kernel::Cauchy);
-        Some(StrainOperator {
-            // Nodes are interpolation points, so p(x_i) = p_i.
-            p: Mat::from_fn(m, m, |i, j| if i == j { -side.sign() * 2.0 * a_coef } else { 0.0 }),
-            q: Mat::from_fn(m, m, |i, j| -b_coef * cauchy[(i, j)]),
-        })
+        let mut q = influence_matrix(grid, Kernel::Cauchy);
+        for j in 0..m {
+            for v in q.col_mut(j).iter_mut() {
+                *v *= -b_coef;
+            }
+        }
+        // Nodes are interpolation points, so p(x_i) = p_i.
+        let mut p = Mat::zeros(m, m);
+        for i in 0..m {
+            p[(i, i)] = -side.sign() * 2.0 * a_coef;
+        }
+        Some(StrainOperator { p, q })
     }
 }
 

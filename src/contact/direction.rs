@@ -229,27 +229,50 @@ impl System<'_> {
                     }
                 }
             };
-        let mut row = 0;
-        for &i in &contact_rows {
-            rhs[(row, 0)] = -g3[i] + g1[i];
-            let rn = self.rn[i];
-            add_row(&mut J, &mut rhs, row, &|j| rn * pb.flex.hp[(i, j)], &|j| {
-                rn * pb.flex.hq[(i, j)]
-            });
-            if let Some(c) = col_overlap {
-                J[(row, c)] = -rn;
+        // The elastic rows r_i (A_p Δp + A_q Δq)_i, filled column by column: faer stores the
+        // flexibilities and J by columns, so a column j of both is read and written in order.
+        let fill_elastic = |J: &mut Mat<f64>,
+                            rhs: &mut Mat<f64>,
+                            first: usize,
+                            rows: &[usize],
+                            r: &[f64],
+                            a_p: &Mat<f64>,
+                            a_q: &Mat<f64>| {
+            for j in 0..m {
+                let (col_p, col_q) = (a_p.col(j), a_q.col(j));
+                for (k, &i) in rows.iter().enumerate() {
+                    let (ap, aq) = (r[i] * col_p[i], r[i] * col_q[i]);
+                    let cp = ap + aq * q_pcoef[j];
+                    rhs[(first + k, 0)] -= cp * p_const[j] + aq * q_const[j];
+                    if let Some(c) = p_col[j] {
+                        J[(first + k, c)] += cp;
+                    }
+                    if let Some(c) = q_col[j] {
+                        J[(first + k, c)] += aq;
+                    }
+                }
             }
-            row += 1;
+        };
+        for (k, &i) in contact_rows.iter().enumerate() {
+            rhs[(k, 0)] = -g3[i] + g1[i];
         }
-        for &i in &stick_rows {
-            rhs[(row, 0)] = -g4[i] + g2[i];
-            let rt = self.rt[i];
-            add_row(&mut J, &mut rhs, row, &|j| rt * pb.bp[(i, j)], &|j| rt * pb.bq[(i, j)]);
-            if let Some(c) = col_creep {
-                J[(row, c)] = rt * pb.flow_sign * pb.slip_operator.creep_weight[i];
+        fill_elastic(&mut J, &mut rhs, 0, &contact_rows, &self.rn, &pb.flex.hp, &pb.flex.hq);
+        if let Some(c) = col_overlap {
+            for (k, &i) in contact_rows.iter().enumerate() {
+                J[(k, c)] = -self.rn[i];
             }
-            row += 1;
         }
+        let first = contact_rows.len();
+        for (k, &i) in stick_rows.iter().enumerate() {
+            rhs[(first + k, 0)] = -g4[i] + g2[i];
+        }
+        fill_elastic(&mut J, &mut rhs, first, &stick_rows, &self.rt, &pb.bp, &pb.bq);
+        if let Some(c) = col_creep {
+            for (k, &i) in stick_rows.iter().enumerate() {
+                J[(first + k, c)] = self.rt[i] * pb.flow_sign * pb.slip_operator.creep_weight[i];
+            }
+        }
+        let mut row = first + stick_rows.len();
         let w = &pb.grid.weights;
         // G5 sits at 4m whenever δ0 is free, G6 after it: the layout of the full residual.
         let k = 4 * m + usize::from(self.free_overlap);

@@ -105,9 +105,9 @@ impl ContactFrame {
     }
 
     /// The global-axes flexibility of one body turned into this frame (module docs).
-    pub fn flexibility(&self, f: &Flexibility, side: Side) -> Flexibility {
+    pub fn flexibility(&self, f: Flexibility, side: Side) -> Flexibility {
         if self.is_global() {
-            return f.clone();
+            return f;
         }
         let s = &self.arc_scale[Self::side(side)];
         let psi = &self.normal_angle;
@@ -130,9 +130,9 @@ impl ContactFrame {
 
     /// The global-axes surface-strain operator of one body turned into this frame (columns
     /// only: the slip stays ∂w/∂x).
-    pub fn strain(&self, op: &StrainOperator, side: Side) -> StrainOperator {
+    pub fn strain(&self, op: StrainOperator, side: Side) -> StrainOperator {
         if self.is_global() {
-            return op.clone();
+            return op;
         }
         let s = &self.arc_scale[Self::side(side)];
         let psi = &self.normal_angle;
@@ -209,7 +209,7 @@ mod tests {
         let fr = frame(m);
         let (p, q) = ([1.0, 2.0, 3.0, 2.5, 0.5], [0.1, -0.2, 0.3, 0.0, 0.2]);
         for side in [Side::A, Side::B] {
-            let local = fr.flexibility(&f, side);
+            let local = fr.flexibility(f.clone(), side);
             let (gp, gq) = fr.global_loads(side, &p, &q);
             let (h, w) = (f.normal(&gp, &gq), f.tangential(&gp, &gq));
             let (h2, w2) = (local.normal(&p, &q), local.tangential(&p, &q));
@@ -220,7 +220,7 @@ mod tests {
             }
         }
         let id = ContactFrame::global_axes(m);
-        assert!(id.is_global() && id.flexibility(&f, Side::A).hp == f.hp);
+        assert!(id.is_global() && id.flexibility(f.clone(), Side::A).hp == f.hp);
     }
 
     /// A uniform pressure on a symmetric arc: the forces add up as geometry says.

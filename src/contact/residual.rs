@@ -327,6 +327,16 @@ impl<'a> ConvergenceMeasure<'a> {
         let same = sys.form == Formulation::Phi && sys.rn == self.system.rn && sys.rt == self.system.rt;
         if same {
             scaled_residual(g, z, self.traction_scale)
+        } else if sys.form == Formulation::Phi && is_graded(&sys.pb.grid) {
+            // Per-node penalties (a graded grid): the elastic rows G1, G2 differ from the
+            // measure's only by their factors r_i; the projection rows are O(m) to redo.
+            let m = sys.m();
+            let mut r: Vec<f64> = (0..m)
+                .map(|i| g[i] * (self.system.rn[i] / sys.rn[i]))
+                .chain((0..m).map(|i| g[m + i] * (self.system.rt[i] / sys.rt[i])))
+                .collect();
+            r.extend(self.system.projection_residual(z));
+            scaled_residual(&r, z, self.traction_scale)
         } else {
             self.of(z)
         }
