@@ -17,7 +17,6 @@
 
 use super::residual::{Formulation, State, System};
 use crate::linalg::mat_vec2;
-use faer::linalg::solvers::Solve;
 use faer::Mat;
 
 /// The reduced Newton system has no accurate solution (a non-finite entry after the LU solve):
@@ -231,6 +230,7 @@ impl System<'_> {
             };
         // The elastic rows r_i (A_p Δp + A_q Δq)_i, filled column by column: faer stores the
         // flexibilities and J by columns, so a column j of both is read and written in order.
+        // Known parts (Δp_j, Δq_j fixed at open or slipping nodes) move to the right side.
         let fill_elastic = |J: &mut Mat<f64>,
                             rhs: &mut Mat<f64>,
                             first: usize,
@@ -238,17 +238,29 @@ impl System<'_> {
                             r: &[f64],
                             a_p: &Mat<f64>,
                             a_q: &Mat<f64>| {
+            let end = first + rows.len();
             for j in 0..m {
-                let (col_p, col_q) = (a_p.col(j), a_q.col(j));
-                for (k, &i) in rows.iter().enumerate() {
-                    let (ap, aq) = (r[i] * col_p[i], r[i] * col_q[i]);
-                    let cp = ap + aq * q_pcoef[j];
-                    rhs[(first + k, 0)] -= cp * p_const[j] + aq * q_const[j];
-                    if let Some(c) = p_col[j] {
-                        J[(first + k, c)] += cp;
+                let (col_p, col_q) = (a_p.col_as_slice(j), a_q.col_as_slice(j));
+                let coef = q_pcoef[j];
+                let (known_p, known_q) = (p_const[j], q_const[j]);
+                if known_p != 0.0 || known_q != 0.0 {
+                    let out = &mut rhs.col_as_slice_mut(0)[first..end];
+                    for (o, &i) in out.iter_mut().zip(rows) {
+                        let (ap, aq) = (r[i] * col_p[i], r[i] * col_q[i]);
+                        *o -= (ap + aq * coef) * known_p + aq * known_q;
                     }
-                    if let Some(c) = q_col[j] {
-                        J[(first + k, c)] += aq;
+                }
+                if let Some(c) = p_col[j] {
+                    let out = &mut J.col_as_slice_mut(c)[first..end];
+                    for (o, &i) in out.iter_mut().zip(rows) {
+                        let (ap, aq) = (r[i] * col_p[i], r[i] * col_q[i]);
+                        *o += ap + aq * coef;
+                    }
+                }
+                if let Some(c) = q_col[j] {
+                    let out = &mut J.col_as_slice_mut(c)[first..end];
+                    for (o, &i) in out.iter_mut().zip(rows) {
+                        *o += r[i] * col_q[i];
                     }
                 }
             }
@@ -289,8 +301,7 @@ impl System<'_> {
         debug_assert_eq!(row, n);
 
         let y = if n > 0 {
-            let lu = J.partial_piv_lu();
-            lu.solve_in_place(rhs.as_mut());
+            crate::linalg::lu_solve_in_place(J, rhs.as_mut());
             rhs
         } else {
             rhs
