@@ -91,8 +91,9 @@ pub struct ContactProblem {
     pub grid: ContactGrid,
     /// Sum of the bodies' flexibilities (pair convention of [`crate::body`]).
     pub flex: Flexibility,
-    /// Each body's own flexibility [A, B], for its surface displacements.
-    pub bodies: [Flexibility; 2],
+    /// Body B's own flexibility, for the bodies' surface displacements (A's is `flex` less
+    /// B's: one set of m × m blocks fewer to allocate on every grid).
+    pub body_b: Flexibility,
     /// Slip operator: B_p = σ D W_p, B_q = σ D W_q (paper Eq. 20) [1/stress].
     pub bp: Mat<f64>,
     /// See `bp`.
@@ -111,7 +112,7 @@ pub struct ContactProblem {
     pub tangential: TangentialControl,
     /// Combined boundary-integral strain operator ∂w/∂x, when both models have one.
     pub strain: Option<StrainOperator>,
-    /// The contact's directions at the nodes, in which `flex`, `bodies` and `strain` are
+    /// The contact's directions at the nodes, in which `flex`, `body_b` and `strain` are
     /// written ([`frame`]).
     pub frame: ContactFrame,
     /// Rigid slip of the surface speeds k_i times the creepage weight e_i [-] ([`frame`]).
@@ -171,14 +172,13 @@ impl ContactProblem {
         frame: ContactFrame,
     ) -> Self {
         assert_eq!(frame.normal_angle.len(), grid.n_nodes(), "one frame direction per node");
-        let fa = frame.flexibility(body_a.flexibility(&grid, Side::A), Side::A);
+        // The pair's flexibility is summed where A's lies.
+        let mut flex = frame.flexibility(body_a.flexibility(&grid, Side::A), Side::A);
         let fb = frame.flexibility(body_b.flexibility(&grid, Side::B), Side::B);
-        let flex = Flexibility {
-            hp: add(&fa.hp, &fb.hp),
-            hq: add(&fa.hq, &fb.hq),
-            wp: add(&fa.wp, &fb.wp),
-            wq: add(&fa.wq, &fb.wq),
-        };
+        flex.hp += &fb.hp;
+        flex.hq += &fb.hq;
+        flex.wp += &fb.wp;
+        flex.wq += &fb.wq;
         let h0 = grid
             .nodes
             .iter()
@@ -197,7 +197,7 @@ impl ContactProblem {
         Self {
             grid,
             flex,
-            bodies: [fa, fb],
+            body_b: fb,
             bp,
             bq,
             slip_operator,
@@ -300,13 +300,16 @@ impl ContactProblem {
     /// Each body's surface displacements under the tractions (half-space bodies: relative to
     /// their logarithmic datum).
     pub fn surface_displacements(&self, p: &[f64], q: &[f64]) -> SurfaceDisplacements {
-        let [a, b] = &self.bodies;
+        let (f, b) = (&self.flex, &self.body_b);
+        let normal_b = mat_vec2(&b.hp, p, &b.hq, q);
+        let tangential_b = mat_vec2(&b.wp, p, &b.wq, q);
+        let less = |total: Vec<f64>, of_b: &[f64]| total.iter().zip(of_b).map(|(t, v)| t - v).collect();
         SurfaceDisplacements {
-            normal_a: mat_vec2(&a.hp, p, &a.hq, q),
-            tangential_a: mat_vec2(&a.wp, p, &a.wq, q),
-            normal_b: mat_vec2(&b.hp, p, &b.hq, q),
+            normal_a: less(mat_vec2(&f.hp, p, &f.hq, q), &normal_b),
+            tangential_a: less(mat_vec2(&f.wp, p, &f.wq, q), &tangential_b),
+            normal_b,
             // w_B = −u_xB in the pair convention.
-            tangential_b: mat_vec2(&b.wp, p, &b.wq, q).into_iter().map(|v| -v).collect(),
+            tangential_b: tangential_b.into_iter().map(|v| -v).collect(),
         }
     }
 }
