@@ -347,3 +347,46 @@ impl<'a> ConvergenceMeasure<'a> {
         &self.system
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn solved(case: &str, set: &[String]) -> ContactProblem {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("cases")
+            .join(case);
+        let loaded = crate::case::load(&path, set).expect("shipped case loads");
+        crate::app::solve(&loaded).expect("shipped case solves").problem
+    }
+
+    /// Uniform grids keep the paper's single pair; a graded grid (an error-controlled run's)
+    /// gets r_i·diag_i = c at every node, over diagonals that span orders of magnitude.
+    #[test]
+    fn graded_grids_get_jacobi_penalties_and_uniform_grids_the_mean_pair() {
+        let uniform = solved("carter2d_contact.yaml", &[]);
+        let (rn, rt) = nodal_penalties(&uniform, 2.0);
+        let (mean_n, mean_t) = automatic_penalties(&uniform, 2.0);
+        assert!(rn.iter().all(|&r| r == mean_n) && rt.iter().all(|&r| r == mean_t));
+
+        let graded = solved("carter2d_contact.yaml", &["contact.grid.tolerance=1e-4".into()]);
+        assert!(is_graded(&graded.grid), "the error-controlled grid is graded");
+        let (rn, rt) = nodal_penalties(&graded, 2.0);
+        for i in 0..graded.n_nodes() {
+            let (h, b) = (graded.flex.hp[(i, i)], graded.bq[(i, i)]);
+            assert!(
+                (rn[i] * h.abs() - 2.0).abs() < 1e-12,
+                "node {i}: r_n·H_ii = {}",
+                rn[i] * h
+            );
+            assert!(
+                (rt[i] * b.abs() - 2.0).abs() < 1e-12,
+                "node {i}: r_t·B_ii = {}",
+                rt[i] * b
+            );
+        }
+        let spread =
+            |r: &[f64]| r.iter().cloned().fold(0.0, f64::max) / r.iter().cloned().fold(f64::INFINITY, f64::min);
+        assert!(spread(&rn) > 10.0, "normal penalties spread only {}", spread(&rn));
+    }
+}

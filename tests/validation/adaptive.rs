@@ -87,6 +87,29 @@ fn carter2d_at_1e_5_meets_the_tolerance_with_a_faithful_estimate() {
     check_carter(&[], 1e-5, 3.0);
 }
 
+/// The warm starts carry the previous grid's gap and slip with its tractions, so that the
+/// graded grids start from the old active sets: after the first pass (a cold start on the
+/// uniform start grid) each pass's two solves take a few Newton steps together, not the
+/// dozens a start from the carried tractions alone took on the same grids (up to 18 for one
+/// solve, docs/performance.md).
+#[test]
+fn warm_started_passes_take_few_newton_steps() {
+    for tolerance in ["1e-4", "1e-5"] {
+        let set = format!("contact.grid.tolerance={tolerance}");
+        let s = solve("carter2d_contact", &[set.as_str()]);
+        let steps = &s.adaptation.as_ref().expect("an error-controlled run").steps;
+        assert!(steps.len() >= 2, "{tolerance}: at least one refinement");
+        for (k, step) in steps.iter().enumerate().skip(1) {
+            assert!(
+                step.iterations <= 4,
+                "{tolerance}: pass {} took {} Newton steps on its two grids",
+                k + 1,
+                step.iterations
+            );
+        }
+    }
+}
+
 #[test]
 fn carter_braking_rolling_backwards_and_near_the_limits_meet_the_tolerance() {
     for set in [
