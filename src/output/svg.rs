@@ -184,6 +184,28 @@ fn shade(
     Ok(())
 }
 
+/// A panel's grid, axis titles and tick labels: x in `length` over [x0, x1], y ticks at `step`.
+fn draw_axes(
+    chart: &mut Panel<'_, '_>,
+    y_desc: &str,
+    step: f64,
+    length: &str,
+    (x0, x1): (f64, f64),
+) -> Result<(), Box<dyn std::error::Error>> {
+    chart
+        .configure_mesh()
+        .x_desc(format!("x [{length}]"))
+        .y_desc(y_desc)
+        .y_label_formatter(&|v| tick_label(*v, step))
+        .x_label_formatter(&|v| tick_label(*v, nice_ticks(x0, x1, 10).0))
+        .light_line_style(WHITE.mix(0.0))
+        .bold_line_style(BLACK.mix(0.08))
+        .axis_desc_style((FONT, 15))
+        .label_style((FONT, 13))
+        .draw()?;
+    Ok(())
+}
+
 fn draw(path: &Path, plot: &ContactPlot) -> Result<(), Box<dyn std::error::Error>> {
     let sol = plot.solution;
     let (length, stress) = (pretty(plot.length_unit), pretty(plot.stress_unit));
@@ -222,17 +244,7 @@ fn draw(path: &Path, plot: &ContactPlot) -> Result<(), Box<dyn std::error::Error
         .build_cartesian_2d(x0..x1, left)?
         .set_secondary_coord(x0..x1, right);
     shade(&mut chart, &zones, (l0, l1))?;
-    chart
-        .configure_mesh()
-        .x_desc(format!("x [{length}]"))
-        .y_desc(format!("pressure p [{stress}]"))
-        .y_label_formatter(&|v| tick_label(*v, step))
-        .x_label_formatter(&|v| tick_label(*v, nice_ticks(x0, x1, 10).0))
-        .light_line_style(WHITE.mix(0.0))
-        .bold_line_style(BLACK.mix(0.08))
-        .axis_desc_style((FONT, 15))
-        .label_style((FONT, 13))
-        .draw()?;
+    draw_axes(&mut chart, &format!("pressure p [{stress}]"), step, &length, (x0, x1))?;
     chart
         .configure_secondary_axes()
         .y_desc(if mu > 0.0 {
@@ -462,17 +474,13 @@ fn slip_panel(
         .build_cartesian_2d(x0..x1, axis)?;
     shade(&mut chart, zones, (s0, s1))?;
     let length = pretty(plot.length_unit);
-    chart
-        .configure_mesh()
-        .x_desc(format!("x [{length}]"))
-        .y_desc("slip s = velocity of A rel. to B / |V| [-]")
-        .y_label_formatter(&|v| tick_label(*v, step))
-        .x_label_formatter(&|v| tick_label(*v, nice_ticks(x0, x1, 10).0))
-        .light_line_style(WHITE.mix(0.0))
-        .bold_line_style(BLACK.mix(0.08))
-        .axis_desc_style((FONT, 15))
-        .label_style((FONT, 13))
-        .draw()?;
+    draw_axes(
+        &mut chart,
+        "slip s = velocity of A rel. to B / |V| [-]",
+        step,
+        &length,
+        (x0, x1),
+    )?;
     chart.draw_series(LineSeries::new([(x0, 0.0), (x1, 0.0)], BLACK.stroke_width(1)))?;
     chart.draw_series(LineSeries::new(pick(&sol.slip), SLIP_LINE.stroke_width(2)))?;
     if let Some(s) = hbem {
