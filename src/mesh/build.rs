@@ -240,6 +240,42 @@ pub fn annulus(
     b.finish()
 }
 
+/// A circle through the contact segment |x| ≤ `half_length` at the origin: `contact` elements
+/// with equal-x ends (group `contact`), then the rest of the circle back to the start, the long
+/// way round, in two halves of `rest` elements graded from the contact elements' size towards
+/// the far size (each half by the factor that takes the one to the other).
+struct ContactCircle {
+    centre: [f64; 2],
+    radius: f64,
+    half_length: f64,
+    contact: usize,
+    rest: usize,
+    counter_clockwise: bool,
+}
+
+impl ContactCircle {
+    /// Draws the circle into `b`; `surface(x)` is its point above or below x on the contact
+    /// side, and the rest of it goes to `group`.
+    fn draw(&self, b: &mut MeshBuilder, surface: &dyn Fn(f64) -> [f64; 2], group: &str) {
+        let (centre, turn, n, l) = (self.centre, self.counter_clockwise, self.contact, self.half_length);
+        b.move_to(surface(-l));
+        for i in 1..=n {
+            let x = -l + 2.0 * l * i as f64 / n as f64;
+            b.arc_to(centre, surface(x), 1, turn, 1.0, "contact");
+        }
+        let far_size = 2.0 * std::f64::consts::PI * self.radius / (self.rest.max(2) as f64);
+        let contact_size = 2.0 * l / n.max(1) as f64;
+        let half = (self.rest / 2).max(1);
+        let grading = (far_size / contact_size)
+            .max(1.0)
+            .powf(1.0 / (half as f64 - 1.0).max(1.0));
+        // The point opposite the contact.
+        let top = [centre[0], 2.0 * centre[1]];
+        b.arc_to(centre, top, half, turn, grading, group);
+        b.arc_to(centre, surface(-l), self.rest.max(2) - half, turn, 1.0 / grading, group);
+    }
+}
+
 /// Mesh sizes of a [`roller_on_shaft`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RollerMeshSizes {
@@ -268,32 +304,17 @@ pub fn roller_on_shaft(
     let centre = [0.0, s * radius];
     let surface = |x: f64| [x, s * (radius - (radius * radius - x * x).sqrt())];
     let mut b = MeshBuilder::new(true, "roller");
-    let n = sizes.contact;
-    b.move_to(surface(-half_length));
     // Walking the contact in +x is counter-clockwise round A's centre (the contact is A's
     // bottom) and clockwise round B's; the loop goes on the same way round.
-    let turn = above;
-    for i in 1..=n {
-        let x = -half_length + 2.0 * half_length * i as f64 / n as f64;
-        b.arc_to(centre, surface(x), 1, turn, 1.0, "contact");
-    }
-    // The free arc, from +L back to −L the long way round, in two graded halves.
-    let far_size = 2.0 * std::f64::consts::PI * radius / (sizes.free.max(2) as f64);
-    let contact_size = 2.0 * half_length / n.max(1) as f64;
-    let half = (sizes.free / 2).max(1);
-    let grading = (far_size / contact_size)
-        .max(1.0)
-        .powf(1.0 / (half as f64 - 1.0).max(1.0));
-    let top = [0.0, s * 2.0 * radius];
-    b.arc_to(centre, top, half, turn, grading, "free");
-    b.arc_to(
+    let arc = ContactCircle {
         centre,
-        surface(-half_length),
-        sizes.free.max(2) - half,
-        turn,
-        1.0 / grading,
-        "free",
-    );
+        radius,
+        half_length,
+        contact: sizes.contact,
+        rest: sizes.free,
+        counter_clockwise: above,
+    };
+    arc.draw(&mut b, &surface, "free");
     b.circle(centre, shaft_radius, sizes.shaft, "shaft");
     b.finish()
 }
@@ -330,30 +351,16 @@ pub fn ring_with_bore(
     let centre = [0.0, s * r];
     let surface = |x: f64| [x, s * (r - (r * r - x * x).sqrt())];
     let mut b = MeshBuilder::new(true, "ring");
-    let n = sizes.contact;
-    b.move_to(surface(-half_length));
     // Walking the bore's bottom in +x is counter-clockwise round a centre above it.
-    let turn = !above;
-    for i in 1..=n {
-        let x = -half_length + 2.0 * half_length * i as f64 / n as f64;
-        b.arc_to(centre, surface(x), 1, turn, 1.0, "contact");
-    }
-    let far_size = 2.0 * std::f64::consts::PI * r / (sizes.bore.max(2) as f64);
-    let contact_size = 2.0 * half_length / n.max(1) as f64;
-    let half = (sizes.bore / 2).max(1);
-    let grading = (far_size / contact_size)
-        .max(1.0)
-        .powf(1.0 / (half as f64 - 1.0).max(1.0));
-    let top = [0.0, s * 2.0 * r];
-    b.arc_to(centre, top, half, turn, grading, "bore");
-    b.arc_to(
+    let arc = ContactCircle {
         centre,
-        surface(-half_length),
-        sizes.bore.max(2) - half,
-        turn,
-        1.0 / grading,
-        "bore",
-    );
+        radius: r,
+        half_length,
+        contact: sizes.contact,
+        rest: sizes.bore,
+        counter_clockwise: !above,
+    };
+    arc.draw(&mut b, &surface, "bore");
     b.circle(centre, rim_radius, sizes.rim, "rim");
     b.finish()
 }
