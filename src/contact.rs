@@ -313,3 +313,39 @@ impl ContactProblem {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::Side;
+
+    /// Each body's surface displacements are its own flexibility applied to the tractions (A's
+    /// is kept as the pair's less B's): for a dissimilar pair, against each model's flexibility
+    /// assembled on its own, and A's and B's normal displacements add up to the compression.
+    #[test]
+    fn each_bodys_surface_displacements_are_its_own_flexibility_applied() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/dissimilar_al_steel_075.yaml");
+        let loaded = crate::case::load(&path, &[]).expect("shipped case loads");
+        let scene = crate::scene::Scene::from_case(&loaded).expect("scene");
+        let (models, pb) = scene.assemble().expect("assembles");
+        let x = &pb.grid.nodes;
+        let p: Vec<f64> = x.iter().map(|&x| 100.0 * (1.0 - x * x).max(0.0).sqrt()).collect();
+        let q: Vec<f64> = x.iter().zip(&p).map(|(x, p)| 0.2 * p * x).collect();
+        let d = pb.surface_displacements(&p, &q);
+        let own = |side: Side, k: usize| models[k].model().flexibility(&pb.grid, side);
+        let (fa, fb) = (own(Side::A, 0), own(Side::B, 1));
+        let close = |got: &[f64], want: &[f64], what: &str| {
+            let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (g, w) in got.iter().zip(want) {
+                assert!((g - w).abs() <= 1e-12 * scale, "{what}: {g} vs {w}");
+            }
+        };
+        close(&d.normal_a, &mat_vec2(&fa.hp, &p, &fa.hq, &q), "u_n_A");
+        close(&d.tangential_a, &mat_vec2(&fa.wp, &p, &fa.wq, &q), "u_t_A");
+        close(&d.normal_b, &mat_vec2(&fb.hp, &p, &fb.hq, &q), "u_n_B");
+        let minus_wb: Vec<f64> = mat_vec2(&fb.wp, &p, &fb.wq, &q).iter().map(|v| -v).collect();
+        close(&d.tangential_b, &minus_wb, "u_t_B");
+        let sum: Vec<f64> = d.normal_a.iter().zip(&d.normal_b).map(|(a, b)| a + b).collect();
+        close(&sum, &pb.compression(&p, &q), "u_n_A + u_n_B");
+    }
+}
