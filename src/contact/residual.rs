@@ -244,12 +244,18 @@ pub fn automatic_penalties(pb: &ContactProblem, scale: f64) -> (f64, f64) {
 /// drawn rollers keep the paper's single pair.
 pub const GRADED_GRID_RATIO: f64 = 1.5;
 
+/// Widest departure of a per-node penalty from the mean one ([`nodal_penalties`]): a guard
+/// against a diagonal near zero. The error-controlled grids of carter2d (1e-5), of the regime-4
+/// pair and of the BEM rollers span 0.0011–457 times the mean, inside it.
+pub const JACOBI_PENALTY_RANGE: f64 = 1e4;
+
 /// The penalties at each node for a scale c. On a grid of nearly equal elements, the automatic
 /// pair of [`automatic_penalties`] at every node (the paper's choice). On a graded grid
 /// (elements differing by more than [`GRADED_GRID_RATIO`]) the diagonals of H_p and B_q span
 /// orders of magnitude, and one mean value leaves r·H_ii ≪ 1 at the smallest elements, where
 /// the line search then crawls: there r_n,i = c / |H_p,ii| and r_t,i = c / |B_q,ii| (a Jacobi
-/// scaling of the projections), the mean pair where a diagonal is not positive and finite.
+/// scaling of the projections), kept within [`JACOBI_PENALTY_RANGE`] of the mean pair, and the
+/// mean pair where a diagonal is zero or not finite.
 pub fn nodal_penalties(pb: &ContactProblem, scale: f64) -> (Vec<f64>, Vec<f64>) {
     let m = pb.n_nodes();
     let (rn, rt) = automatic_penalties(pb, scale);
@@ -259,7 +265,7 @@ pub fn nodal_penalties(pb: &ContactProblem, scale: f64) -> (Vec<f64>, Vec<f64>) 
     let jacobi = |d: f64, mean: f64| {
         let r = scale / d.abs();
         if r.is_finite() && d != 0.0 {
-            r
+            r.clamp(mean / JACOBI_PENALTY_RANGE, mean * JACOBI_PENALTY_RANGE)
         } else {
             mean
         }
