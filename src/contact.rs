@@ -119,11 +119,6 @@ pub struct ContactProblem {
     pub rigid_slip: Vec<f64>,
 }
 
-/// Sum of two dense matrices of equal shape.
-fn add(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
-    a + b
-}
-
 impl ContactProblem {
     /// The combined boundary-integral strain operator of two body models on a grid, in the
     /// contact frame, when both have one (none on grids of continuous elements, below).
@@ -144,11 +139,11 @@ impl ContactProblem {
             body_b.strain_operator(grid, Side::B),
         ) {
             (Some(a), Some(b)) => {
-                let (a, b) = (frame.strain(a, Side::A), frame.strain(b, Side::B));
-                Some(StrainOperator {
-                    p: add(&a.p, &b.p),
-                    q: add(&a.q, &b.q),
-                })
+                // Summed where A's lies, as the flexibilities are.
+                let (mut sum, b) = (frame.strain(a, Side::A), frame.strain(b, Side::B));
+                sum.p += &b.p;
+                sum.q += &b.q;
+                Some(sum)
             }
             _ => None,
         }
@@ -300,13 +295,12 @@ impl ContactProblem {
     /// Each body's surface displacements under the tractions (half-space bodies: relative to
     /// their logarithmic datum).
     pub fn surface_displacements(&self, p: &[f64], q: &[f64]) -> SurfaceDisplacements {
-        let (f, b) = (&self.flex, &self.body_b);
-        let normal_b = mat_vec2(&b.hp, p, &b.hq, q);
-        let tangential_b = mat_vec2(&b.wp, p, &b.wq, q);
+        let normal_b = self.body_b.normal(p, q);
+        let tangential_b = self.body_b.tangential(p, q);
         let less = |total: Vec<f64>, of_b: &[f64]| total.iter().zip(of_b).map(|(t, v)| t - v).collect();
         SurfaceDisplacements {
-            normal_a: less(mat_vec2(&f.hp, p, &f.hq, q), &normal_b),
-            tangential_a: less(mat_vec2(&f.wp, p, &f.wq, q), &tangential_b),
+            normal_a: less(self.compression(p, q), &normal_b),
+            tangential_a: less(self.relative_tangential(p, q), &tangential_b),
             normal_b,
             // w_B = −u_xB in the pair convention.
             tangential_b: tangential_b.into_iter().map(|v| -v).collect(),
@@ -340,10 +334,10 @@ mod tests {
                 assert!((g - w).abs() <= 1e-12 * scale, "{what}: {g} vs {w}");
             }
         };
-        close(&d.normal_a, &mat_vec2(&fa.hp, &p, &fa.hq, &q), "u_n_A");
-        close(&d.tangential_a, &mat_vec2(&fa.wp, &p, &fa.wq, &q), "u_t_A");
-        close(&d.normal_b, &mat_vec2(&fb.hp, &p, &fb.hq, &q), "u_n_B");
-        let minus_wb: Vec<f64> = mat_vec2(&fb.wp, &p, &fb.wq, &q).iter().map(|v| -v).collect();
+        close(&d.normal_a, &fa.normal(&p, &q), "u_n_A");
+        close(&d.tangential_a, &fa.tangential(&p, &q), "u_t_A");
+        close(&d.normal_b, &fb.normal(&p, &q), "u_n_B");
+        let minus_wb: Vec<f64> = fb.tangential(&p, &q).iter().map(|v| -v).collect();
         close(&d.tangential_b, &minus_wb, "u_t_B");
         let sum: Vec<f64> = d.normal_a.iter().zip(&d.normal_b).map(|(a, b)| a + b).collect();
         close(&sum, &pb.compression(&p, &q), "u_n_A + u_n_B");
