@@ -310,7 +310,6 @@ impl ContactProblem {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use crate::body::Side;
 
     /// Each body's surface displacements are its own flexibility applied to the tractions (A's
