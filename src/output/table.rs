@@ -57,7 +57,12 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
             &format!("contact [{len}]"),
             format!(
                 "[{:.5}, {:.5}]  half-width {:.5}, centre {:+.5}{hertz}",
-                c.x_min, c.x_max, c.half_width, c.centre
+                c.x_min,
+                c.x_max,
+                c.half_width,
+                // A centre that rounds to zero is printed +0.00000, whatever the sign of its
+                // round-off.
+                if (c.centre * 1e5).round() == 0.0 { 0.0 } else { c.centre }
             ),
         );
     }
