@@ -67,11 +67,11 @@ pub struct ProblemSizes {
     pub vtk: bool,
 }
 
-/// Peak memory per squared contact node [bytes]: about 31 dense m×m matrices of doubles live at
-/// once (the flexibilities of the pair and of each body, the slip operators, the half-space
-/// kernels while they are built, the Newton Jacobian and its LU factors). The peak RSS of
-/// half-space pairs at m = 300–1800 gives 230–260 bytes per m² (see [`MemoryEstimate`]).
-pub const BYTES_PER_CONTACT_NODE_SQUARED: f64 = 280.0;
+/// Peak memory per squared contact node [bytes]: about 18 dense m×m matrices of doubles live at
+/// once (the flexibility of the pair and of body B, the slip operators, the half-space kernels
+/// while they are built, the Newton matrix factored in place, the strain operators). The peak
+/// RSS of half-space pairs at m = 300–1800 gives 110–150 bytes per m² (see [`MemoryEstimate`]).
+pub const BYTES_PER_CONTACT_NODE_SQUARED: f64 = 180.0;
 
 /// Peak memory per squared boundary unknown n = 2 × field nodes of the largest `bem` body
 /// [bytes]: the BEM matrices H and G, the rows they are gathered from, the system matrix and its

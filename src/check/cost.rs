@@ -11,11 +11,10 @@
 //! The constants reproduce docs/performance.md's measured carter2d and speed–accuracy tables
 //! within a factor 1.5.
 //!
-//! **Memory**: about 31 dense m × m matrices of doubles live at the peak (flexibilities of the
-//! pair and of each body, slip operators, the Newton matrix and its LU), ≈ 240 bytes per m²
-//! measured as peak RSS at m = 963 and 1923 (`/usr/bin/time -f %M`), taken as 280; a `bem` body
-//! holds its H and G matrices, the system matrix and its LU, 64 bytes per (2N)²; interior points
-//! 130 bytes each (1200 with VTK, vtkio's XML document); 16 MB for the program.
+//! **Memory** is the estimate that refuses oversized cases before a run,
+//! [`crate::limits::MemoryEstimate`], so that `check` and `run` never disagree.
+
+use crate::limits::{MemoryEstimate, ProblemSizes};
 
 /// Seconds per squared contact node of the contact-problem assembly (block-Toeplitz fill).
 pub const SECONDS_PER_CONTACT_NODE_SQUARED: f64 = 1.0e-7;
@@ -29,15 +28,6 @@ pub const NEWTON_STEPS: f64 = 10.0;
 /// quadrature of the H and G kernels): 1.3e-6–1.9e-6 from the speed–accuracy table's rollers,
 /// 3.3e-6 from the HBEM benchmark's condensation (a loaded machine, the strain included).
 pub const SECONDS_PER_NODE_ELEMENT: f64 = 2.0e-6;
-/// Peak bytes per squared contact node.
-pub const BYTES_PER_CONTACT_NODE_SQUARED: f64 = 280.0;
-/// Peak bytes per squared BEM unknown (2 × field nodes of the largest bem body).
-pub const BYTES_PER_BEM_UNKNOWN_SQUARED: f64 = 64.0;
-/// Bytes per interior point without / with VTK output.
-pub const BYTES_PER_INTERIOR_POINT: (f64, f64) = (130.0, 1200.0);
-/// Bytes of the program itself.
-pub const BASE_BYTES: f64 = 16e6;
-
 /// The sizes a run's cost depends on.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sizes {
@@ -67,7 +57,6 @@ impl Cost {
         let reduced = 1.3 * m;
         let step = SECONDS_PER_LU_UNKNOWN_CUBED * reduced.powi(3) + SECONDS_PER_STEP_NODE_SQUARED * m * m;
         let mut seconds = SECONDS_PER_CONTACT_NODE_SQUARED * m * m + NEWTON_STEPS * step;
-        let mut largest_bem: f64 = 0.0;
         for &(nodes, elements) in &sizes.bem_bodies {
             let n = 2.0 * nodes as f64;
             // The LU's rate per flop ((2/3)n³ flops) applied to the 1 + 2m solves of 2n² flops
@@ -76,18 +65,17 @@ impl Cost {
             seconds += SECONDS_PER_NODE_ELEMENT * (nodes * elements) as f64
                 + SECONDS_PER_LU_UNKNOWN_CUBED * n.powi(3)
                 + per_flop * 2.0 * (1.0 + 2.0 * m) * n * n;
-            largest_bem = largest_bem.max(n);
         }
-        let per_point = if sizes.vtk {
-            BYTES_PER_INTERIOR_POINT.1
-        } else {
-            BYTES_PER_INTERIOR_POINT.0
-        };
-        let bytes = BASE_BYTES
-            + BYTES_PER_CONTACT_NODE_SQUARED * m * m
-            + BYTES_PER_BEM_UNKNOWN_SQUARED * largest_bem * largest_bem
-            + per_point * sizes.interior_points as f64;
-        Self { seconds, bytes }
+        let memory = MemoryEstimate::of(&ProblemSizes {
+            contact_nodes: sizes.contact_nodes,
+            bem_nodes: [sizes.bem_bodies.iter().map(|&(nodes, _)| nodes).max(), None],
+            interior_points: sizes.interior_points,
+            vtk: sizes.vtk,
+        });
+        Self {
+            seconds,
+            bytes: memory.bytes(),
+        }
     }
 
     /// "0.3 s, 45 MB": rounded to two figures, as an estimate should be.
@@ -177,17 +165,19 @@ mod tests {
         }
     }
 
-    /// Peak RSS measured with /usr/bin/time: 216 MB at 321 elements, 888 MB at 641; the
-    /// estimate stays above and within 30 %.
+    /// `check` prints the memory estimate that `run` refuses cases by (tests/input/memory.rs
+    /// measures that one against the peak RSS): the largest `bem` body's field nodes count, and
+    /// 16 MB + 180·m² + 64·(2N)² for 321 contact elements and rollers of 1100 and 900 nodes.
     #[test]
-    fn memory_bounds_the_measured_peak() {
-        for (elements, measured) in [(321, 216e6), (641, 888e6)] {
-            let b = Cost::of(&half_space(elements)).bytes;
-            assert!(
-                b >= measured && b < 1.3 * measured,
-                "{elements}: {b} bytes against {measured}"
-            );
-        }
+    fn memory_is_the_runs_estimate() {
+        let mut sizes = half_space(321);
+        sizes.vtk = false;
+        sizes.interior_points = 0;
+        sizes.bem_bodies = vec![(1100, 500), (900, 400)];
+        let m = 3.0 * 321.0;
+        let expected = 16e6 + 180.0 * m * m + 64.0 * 2200.0 * 2200.0;
+        let b = Cost::of(&sizes).bytes;
+        assert!((b - expected).abs() < 1.0, "{b} bytes against {expected}");
     }
 
     #[test]
