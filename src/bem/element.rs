@@ -18,7 +18,7 @@
 //! Collocation at a moved node is at a smooth point of the boundary, where the free term is ½δij.
 
 use crate::grid::DQE_NODE;
-use crate::mesh::BoundaryMesh;
+use crate::mesh::{BoundaryElement, BoundaryMesh};
 use crate::quadrature::gauss_legendre;
 
 /// Geometry of one element: x(ξ) on ξ ∈ [−1, 1], see the module docs.
@@ -52,11 +52,15 @@ impl ElementGeometry {
 
     /// Geometry of element `e` of `mesh`.
     pub fn from_mesh(mesh: &BoundaryMesh, e: usize) -> Self {
-        let el = &mesh.elements[e];
-        let a = mesh.nodes[el.nodes[0]];
-        let b = mesh.nodes[el.nodes[1]];
+        Self::of_element(&mesh.elements[e], &mesh.nodes)
+    }
+
+    /// Geometry of element `el` whose node indices point into `nodes` [length].
+    pub fn of_element(el: &BoundaryElement, nodes: &[[f64; 2]]) -> Self {
+        let a = nodes[el.nodes[0]];
+        let b = nodes[el.nodes[1]];
         let m = if el.nodes.len() == 3 {
-            mesh.nodes[el.nodes[2]]
+            nodes[el.nodes[2]]
         } else {
             [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]
         };
