@@ -31,7 +31,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::element::{ElementGeometry, FieldInterpolation};
-use super::kernel::Kelvin;
+use super::kernel::{Kelvin, KernelFrame};
 use crate::quadrature::Quadrature;
 #[cfg(doc)]
 use crate::quadrature::QuadratureOptions;
@@ -161,8 +161,9 @@ fn accumulate(
     let x = geometry.point(xi);
     let (jac, normal) = geometry.jacobian_and_normal(xi);
     let n = field.shape(xi);
-    let mut u = kernel.displacement(source, x);
-    let t = kernel.traction(source, x, normal);
+    let frame = KernelFrame::new(source, x);
+    let mut u = kernel.displacement_in(&frame);
+    let t = kernel.traction_in(&frame, normal);
     let skip = if let Some((local, log_shift)) = singular {
         u[0][0] += log_shift;
         u[1][1] += log_shift;

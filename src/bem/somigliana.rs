@@ -277,10 +277,7 @@ fn boundary_point(
     nodal_t: &[[f64; 2]; 3],
     xi: f64,
 ) -> TabulatedPoint {
-    // sqrt rather than the hypot of `ElementGeometry::jacobian_and_normal`: this runs for every
-    // near-field point of an interior grid (as `KernelFrame::interior`).
-    let tangent = geometry.tangent(xi);
-    let jac = (tangent[0] * tangent[0] + tangent[1] * tangent[1]).sqrt();
+    let (jac, normal) = geometry.jacobian_and_normal(xi);
     let n = interpolation.shape(xi);
     let mut u = [0.0; 2];
     let mut t = [0.0; 2];
@@ -292,7 +289,7 @@ fn boundary_point(
     }
     TabulatedPoint {
         x: geometry.point(xi),
-        normal: [tangent[1] / jac, -tangent[0] / jac],
+        normal,
         weight: jac,
         u,
         t,
