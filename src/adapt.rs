@@ -31,8 +31,9 @@ pub mod cells;
 pub mod estimate;
 pub mod mesh_cuts;
 
+use crate::analytic::{hertz_half_width, hertz_peak_pressure};
 use crate::contact::residual::State;
-use crate::contact::{methods, ContactProblem, SolveReport, TangentialControl};
+use crate::contact::{methods, ContactProblem, NormalControl, SolveReport, TangentialControl};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::post::adaptation::{AdaptationStep, GridAdaptation};
@@ -182,16 +183,12 @@ fn carried(pb: &ContactProblem, from: &ContactGrid, z: &State) -> State {
 /// A solve that does not converge ends the loop: its solution comes back with
 /// `report.converged == false`, as for a fixed grid.
 pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapted, Error> {
-    let scales = Scales {
-        peak_pressure: scene.estimates.hertz_peak_pressure,
-        friction: scene.friction(),
-        creep_prescribed: matches!(scene.tangential, TangentialControl::Creep(_)),
-    };
     check_matching_meshes(scene)?;
     let mut timings = Timings::default();
     let mut coarse = DyadicGrid::new(&scene.grid);
     let mut warm: Option<(ContactGrid, State)> = None;
     let mut steps: Vec<AdaptationStep> = Vec::new();
+    let mut hertz: Option<HertzScales> = None;
     loop {
         let g = solve_on(
             scene_on(scene, &coarse),
@@ -201,6 +198,12 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
         if !g.report.converged {
             return Ok(finished(g, timings, tolerance, steps));
         }
+        let hertz = *hertz.get_or_insert_with(|| HertzScales::of_run(scene, &g));
+        let scales = Scales {
+            peak_pressure: hertz.peak_pressure,
+            friction: scene.friction(),
+            creep_prescribed: matches!(scene.tangential, TangentialControl::Creep(_)),
+        };
         let h = solve_on(
             scene_on(scene, &coarse.bisected()),
             Some((&g.problem.grid, &g.state)),
@@ -228,7 +231,7 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
             e.creep_rel
         );
         let singular = singular_points(&h.problem, &h.state);
-        let half_width = scene.estimates.hertz_half_width;
+        let half_width = hertz.half_width;
         if e.within(tolerance) && resolved(&h.problem.grid, &singular, tolerance, half_width) {
             return Ok(finished(h, timings, tolerance, steps));
         }
@@ -247,6 +250,38 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
         }
         warm = Some((h.problem.grid, h.state));
         coarse = next;
+    }
+}
+
+/// The Hertz contact that sets the units of the error estimate (p0) and the a-priori element
+/// lengths at the square-root points (a).
+#[derive(Debug, Clone, Copy)]
+struct HertzScales {
+    /// Hertz peak pressure p0 [stress].
+    peak_pressure: f64,
+    /// Hertz half-width a [length].
+    half_width: f64,
+}
+
+impl HertzScales {
+    /// The case's estimates under force control. Under overlap control, Hertz's contact for the
+    /// normal force of the first grid's solution: the force the case's estimates derive from the
+    /// overlap (half-plane datums, only to size the grid) can be far off, by orders of magnitude
+    /// for a layer or a ring, and would give the estimate meaningless units.
+    fn of_run(scene: &Scene, first: &Solve) -> Self {
+        let est = &scene.estimates;
+        if matches!(scene.normal, NormalControl::Force(_)) {
+            return Self {
+                peak_pressure: est.hertz_peak_pressure,
+                half_width: est.hertz_half_width,
+            };
+        }
+        let force = ContactSolution::from_state(&first.problem, &first.state).normal_force;
+        let a = hertz_half_width(force, est.effective_radius, est.e_star);
+        Self {
+            peak_pressure: hertz_peak_pressure(force, a),
+            half_width: a,
+        }
     }
 }
 
