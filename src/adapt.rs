@@ -203,6 +203,8 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
             peak_pressure: hertz.peak_pressure,
             friction: scene.friction(),
             creep_prescribed: matches!(scene.tangential, TangentialControl::Creep(_)),
+            creep_floor: estimate::CREEP_FLOOR * scene.friction() * hertz.half_width
+                / scene.estimates.effective_radius.abs(),
         };
         let h = solve_on(
             scene_on(scene, &coarse.bisected()),

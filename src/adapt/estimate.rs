@@ -38,6 +38,13 @@ pub const SHEAR_ESTIMATE_FACTOR: f64 = 1.0 / 3.0;
 /// centred a little on the safe side (0.66 and 0.69 for the BEM rollers and the regime-4 pair).
 pub const PRESSURE_ESTIMATE_FACTOR: f64 = 1.0 / 4.0;
 
+/// The relative creepage error is taken of max(|ξ|, this × μa/R*), μa/R* being Carter's
+/// creepage at complete slip [-]. A creepage that nearly vanishes — free rolling of similar
+/// bodies (round-off), braking in a conformal bore (a small difference of two larger parts) —
+/// has no meaningful relative error; below 5 % of μa/R* (|Q| below about 0.1 μP in Carter's
+/// theory, ξ ≈ (μa/R*)·Q/(2μP)) the tolerance then bounds its error as a fraction of that.
+pub const CREEP_FLOOR: f64 = 0.05;
+
 /// The estimate and where the error sits.
 #[derive(Debug, Clone)]
 pub struct Comparison {
@@ -63,6 +70,9 @@ pub struct Scales {
     /// Whether the creepage is prescribed (then it has no error; nor without friction, where it
     /// is not determined by the tractions).
     pub creep_prescribed: bool,
+    /// The smallest creepage the relative creepage error is taken of [-]: [`CREEP_FLOOR`] times
+    /// Carter's complete-slip creepage μa/R*.
+    pub creep_floor: f64,
 }
 
 /// Compares the solution `coarse` on `coarse_grid` with `fine` on its bisection `fine_grid`
@@ -163,7 +173,7 @@ pub fn compare(
     let creep_rel = if scales.creep_prescribed || scales.friction == 0.0 || fine.creep == coarse.creep {
         0.0
     } else {
-        (fine.creep - coarse.creep).abs() / fine.creep.abs().max(f64::MIN_POSITIVE)
+        (fine.creep - coarse.creep).abs() / fine.creep.abs().max(scales.creep_floor).max(f64::MIN_POSITIVE)
     };
     Comparison {
         estimate: ErrorEstimate {
@@ -246,6 +256,7 @@ mod tests {
                 peak_pressure: 2.0,
                 friction: 0.2,
                 creep_prescribed: false,
+                creep_floor: 0.0,
             },
         );
         assert!(c.estimate.largest() < 1e-14, "{:?}", c.estimate);
@@ -267,6 +278,7 @@ mod tests {
                 peak_pressure: 1.0,
                 friction: 0.2,
                 creep_prescribed: true,
+                creep_floor: 0.0,
             },
         );
         let edge = c.detail[0].max(c.detail[5]);
@@ -290,6 +302,7 @@ mod tests {
                 peak_pressure: 2.0,
                 friction: 0.2,
                 creep_prescribed: false,
+                creep_floor: 0.0,
             },
         );
         assert_eq!(c.estimate.shear_rms, 0.0);
@@ -297,5 +310,34 @@ mod tests {
         // The estimate is the difference times the pressure's factor.
         assert!((c.estimate.pressure_rms - PRESSURE_ESTIMATE_FACTOR * 0.005).abs() < 1e-12);
         assert!(c.open.iter().all(|o| !o));
+    }
+
+    /// A creepage below the floor (free rolling of similar bodies leaves round-off) has its
+    /// difference measured against the floor, not against itself; above it, relatively.
+    #[test]
+    fn a_vanishing_creepage_is_measured_against_the_floor() {
+        let coarse = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 5, -1.5, 1.5);
+        let fine = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 10, -1.5, 1.5);
+        let scales = Scales {
+            peak_pressure: 2.0,
+            friction: 0.2,
+            creep_prescribed: false,
+            creep_floor: 1e-4,
+        };
+        let creep_error = |xi_coarse: f64, xi_fine: f64| {
+            compare(
+                &coarse,
+                &state_of(&coarse, |_| 1.0, |_| 0.0, xi_coarse),
+                &fine,
+                &state_of(&fine, |_| 1.0, |_| 0.0, xi_fine),
+                scales,
+            )
+            .estimate
+            .creep_rel
+        };
+        // Round-off creepages: their relative difference would be 2; against the floor, 3e-13.
+        assert!((creep_error(1e-17, -2e-17) - 3e-13).abs() < 1e-25);
+        // Above the floor the error stays relative.
+        assert!((creep_error(1.1e-3, 1e-3) - 0.1).abs() < 1e-12);
     }
 }

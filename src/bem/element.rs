@@ -31,6 +31,10 @@ pub struct ElementGeometry {
 impl ElementGeometry {
     /// The ξ ∈ [−1, 1] at which the element's x(ξ) equals x (None if x is outside its
     /// x-range): x(ξ) = x_m + ξ(x₁ − x₀)/2 + ξ²((x₀ + x₁)/2 − x_m).
+    ///
+    /// The roots are taken in the stable pair q = −(c₁ + sgn(c₁)√disc)/2, ξ = q/c₂ and c₀/q:
+    /// the text-book (−c₁ ± √disc)/(2c₂) cancels for the nearly straight elements of a contact
+    /// arc (c₂/c₁ ≈ h/4R), and lost 1e-11 mm in x on a roller of R 100 cut to 1e-5 mm elements.
     pub fn parameter_at_x(&self, x: f64) -> Option<f64> {
         let [p0, p1, pm] = self.nodes;
         let (c0, c1, c2) = (pm[0] - x, 0.5 * (p1[0] - p0[0]), 0.5 * (p0[0] + p1[0]) - pm[0]);
@@ -41,8 +45,12 @@ impl ElementGeometry {
             if disc < 0.0 {
                 return None;
             }
-            let s = disc.sqrt();
-            vec![(-c1 + s) / (2.0 * c2), (-c1 - s) / (2.0 * c2)]
+            let q = -0.5 * (c1 + disc.sqrt().copysign(c1));
+            if q == 0.0 {
+                vec![0.0]
+            } else {
+                vec![c0 / q, q / c2]
+            }
         };
         roots
             .into_iter()
@@ -254,5 +262,43 @@ mod tests {
         };
         assert!((straight.length() - 5.0).abs() < 1e-14);
         assert!((straight.jacobian(0.7) - 2.5).abs() < 1e-14);
+    }
+
+    /// The abscissa is found again to round-off on nearly straight arcs (a roller of R 100 cut
+    /// to elements of 1e-5 mm, where the text-book root formula lost five digits), on a
+    /// strongly curved one (a 90° arc), and on a straight element.
+    #[test]
+    fn parameter_at_x_inverts_x_of_xi_to_round_off() {
+        // Nodes at angles round the roller's centre, the mid node at the mid angle (as Gmsh
+        // and the cuts place them): x(ξ) is then slightly curved, c₂/c₁ ≈ 1e-11 at 1e-5 mm.
+        let roller = |x: f64| {
+            let t = (x / 100.0).asin();
+            [100.0 * t.sin(), 100.0 - 100.0 * t.cos()]
+        };
+        let arc = |x0: f64, x1: f64| {
+            let mid = 100.0 * (0.5 * ((x0 / 100.0).asin() + (x1 / 100.0).asin())).sin();
+            [roller(x0), roller(x1), roller(mid)]
+        };
+        let quarter = |t: f64| [2.0 * t.cos(), 2.0 * t.sin()];
+        let elements = [
+            arc(0.049, 0.049_01),
+            arc(-0.049_01, -0.049),
+            arc(-1.2, -1.1),
+            [quarter(0.0), quarter(1.2), quarter(0.6)],
+            [[0.0, 0.0], [3.0, 4.0], [1.5, 2.0]],
+        ];
+        for nodes in elements {
+            let g = ElementGeometry { nodes };
+            for xi in [-1.0, -0.7, -0.2, 0.0, 1.0 / 3.0, 0.9, 1.0] {
+                let x = g.point(xi)[0];
+                let found = g.parameter_at_x(x).expect("x lies on the element");
+                let back = g.point(found)[0];
+                let scale = nodes[0][0].abs().max(nodes[1][0].abs());
+                assert!(
+                    (back - x).abs() <= 4.0 * f64::EPSILON * scale,
+                    "{nodes:?} at ξ {xi}: x {x} found at ξ {found}, giving {back}"
+                );
+            }
+        }
     }
 }

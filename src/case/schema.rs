@@ -224,7 +224,8 @@ pub struct GridSpec {
     /// Default = true.
     pub align_edges: bool,
     /// Error-controlled grid: the estimated RMS errors of p/p0 and q/(μp0) over the contact and
-    /// the creepage's relative error that the run must reach (e.g. 1e-4). The grid of
+    /// the creepage's relative error (relative to at least 5 % of Carter's complete-slip
+    /// creepage μa/R*) that the run must reach (e.g. 1e-4). The grid of
     /// `elements` is the start; rollbem refines it where the estimated error is large (towards
     /// the contact edges and the stick/slip points) until the estimates are below the
     /// tolerance; a `bem` body's contact elements (the start grid) are cut along it. Default =
