@@ -46,7 +46,9 @@ impl Estimates {
         let radius = material::effective_radius(ba.radius(), bb.radius());
         let normal_force = match case.load.normal() {
             NormalSpec::Force(p) => p,
-            NormalSpec::Overlap(d) => load_from_overlap(d, [(ma, ba.radius()), (mb, bb.radius())], radius, e_star),
+            NormalSpec::Overlap(d) => {
+                load_from_overlap(d, [(ma, datum_distance(ba)), (mb, datum_distance(bb))], radius, e_star)
+            }
         };
         let a = analytic::hertz_half_width(normal_force, radius, e_star);
         let ratio = match case.load.tangential() {
@@ -87,6 +89,16 @@ impl Estimates {
             ..self
         }
     }
+}
+
+/// The radius R_b of a body in the datum term ln(4R_b/a) of [`load_from_overlap`] [length]: its
+/// profile radius, or the extent of its mesh (the diagonal of its bounding box) where that is
+/// smaller. A flat `bem` body (a layer, a block: radius ∞) has its datum at its own fixed
+/// boundary, not infinitely far; with R_b = ∞ the estimate of P fell to zero (3e-10 N/mm for
+/// the layer of cases/tyre_b05_compressible.yaml, whose solved force is 0.05 N/mm).
+fn datum_distance(body: &BodySetup) -> f64 {
+    let r = body.radius().abs();
+    body.mesh().map_or(r, |m| r.min(m.mesh.size()))
 }
 
 /// Normal force that gives the overlap δ0 between two half-planes measured from their datums:

@@ -272,19 +272,15 @@ fn bem_rollers_at_1e_3_meet_the_tolerance_on_fewer_elements_than_a_uniform_cut()
 
 /// Under overlap control the estimate is in units of Hertz's p0 for the solved normal force: a
 /// rigid cylinder on a thin bonded layer (cases/tyre_b05_compressible.yaml, b/a = 0.5), whose
-/// overlap the case's half-plane estimate turns into a force of 3e-10 N/mm (p0 = 1.6e-6 N/mm²,
-/// 24 000 times below the largest pressure). In those units no grid met 1e-3 within 1000
-/// elements; in the solved force's it is met, and the true errors against the run at 3e-4
-/// (in the same units) are below it.
+/// overlap the case's half-plane estimate turns into a tenth of the solved force (it once gave
+/// 3e-10 N/mm, and then no grid met 1e-3 within 1000 elements). In the solved force's units the
+/// tolerance is met, and the true errors against the run at 3e-4 (in the same units) are
+/// below it.
 #[test]
 fn an_overlap_controlled_layer_meets_the_tolerance_in_the_units_of_its_solved_force() {
     let case = "tyre_b05_compressible";
     let fine = solve(case, &["contact.grid.tolerance=3e-4"]);
     let s = solve(case, &["contact.grid.tolerance=1e-3"]);
-    assert!(
-        s.scene.estimates.hertz_peak_pressure < 1e-3 * s.solution.pressure.iter().cloned().fold(0.0, f64::max),
-        "the case's own estimate of p0 is far off (the scene this test is about)"
-    );
     let e = estimate(&s);
     assert!(e.within(1e-3), "estimate {e:?}");
     let est = &fine.scene.estimates;

@@ -88,6 +88,20 @@ fn thin_layer_limits_are_approached_as_the_layer_thins() {
     }
 }
 
+/// The normal force the scene's estimates derive from the overlap (to size grids, and what
+/// `rollbem check` prints) has the layer's datum at the layer's own extent, not infinitely far
+/// (its profile radius is ∞): on the compressible layer of b/a = 0.5 it is a tenth of the solved
+/// force (the half-plane formula does not know the layer's core), where an infinite datum gave
+/// 5e-9 of it. (On the thin incompressible layer, b/a = 0.1, it is 1e-3 of it: the volume
+/// constraint stiffens the layer far beyond any half-plane. The error control takes its units
+/// from the solved force for that reason, src/adapt.rs.)
+#[test]
+fn the_force_estimated_from_the_overlap_of_a_layer_is_of_the_solved_order() {
+    let s = solve("tyre_b05_compressible", &[]);
+    let ratio = s.scene.estimates.normal_force / s.solution.normal_force;
+    assert!((0.05..=2.0).contains(&ratio), "estimated P / solved P = {ratio:.3e}");
+}
+
 /// Paper Fig. 12 (b/a = 0.1, ν = 0.5, μ = 0.1): converges for Q/μP = −0.74, 0.05, 0.41 with
 /// the contact inside the contact segment and its centre moving against Q (the shift the paper
 /// removes before plotting; measured +0.117, −0.000, −0.070 mm for a ≈ 1.0 mm).
