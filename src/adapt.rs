@@ -269,16 +269,21 @@ impl HertzScales {
     /// The case's estimates under force control. Under overlap control, Hertz's contact for the
     /// normal force of the first grid's solution: the force the case's estimates derive from the
     /// overlap (half-plane datums, only to size the grid) can be far off, by orders of magnitude
-    /// for a layer or a ring, and would give the estimate meaningless units.
+    /// for a thin layer, and would give the estimate meaningless units. (An overlap that leaves
+    /// the bodies apart, P = 0, keeps the case's estimates.)
     fn of_run(scene: &Scene, first: &Solve) -> Self {
         let est = &scene.estimates;
+        let of_estimates = Self {
+            peak_pressure: est.hertz_peak_pressure,
+            half_width: est.hertz_half_width,
+        };
         if matches!(scene.normal, NormalControl::Force(_)) {
-            return Self {
-                peak_pressure: est.hertz_peak_pressure,
-                half_width: est.hertz_half_width,
-            };
+            return of_estimates;
         }
         let force = ContactSolution::from_state(&first.problem, &first.state).normal_force;
+        if !(force > 0.0 && force.is_finite()) {
+            return of_estimates;
+        }
         let a = hertz_half_width(force, est.effective_radius, est.e_star);
         Self {
             peak_pressure: hertz_peak_pressure(force, a),
