@@ -121,6 +121,12 @@ fn parse_yaml(text: &str) -> Result<serde_norway::Value, String> {
     serde_norway::from_str(text).map_err(|e| e.to_string())
 }
 
+/// The path of a shipped case, `cases/<name>` of the repository (for the library's tests).
+#[cfg(test)]
+pub(crate) fn shipped(name: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("cases").join(name)
+}
+
 /// Loads, overrides and validates a case file.
 pub fn load(path: &Path, overrides: &[String]) -> Result<LoadedCase, CaseError> {
     // Checked before opening: reading a FIFO would block for ever.

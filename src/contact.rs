@@ -317,7 +317,7 @@ mod tests {
     /// assembled on its own, and A's and B's normal displacements add up to the compression.
     #[test]
     fn each_bodys_surface_displacements_are_its_own_flexibility_applied() {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/dissimilar_al_steel_075.yaml");
+        let path = crate::case::shipped("dissimilar_al_steel_075.yaml");
         let loaded = crate::case::load(&path, &[]).expect("shipped case loads");
         let scene = crate::scene::Scene::from_case(&loaded).expect("scene");
         let (models, pb) = scene.assemble().expect("assembles");

@@ -356,11 +356,9 @@ mod tests {
     /// The assembled problem of a shipped case and its solution by full Newton steps along
     /// [`System::newton_direction`] (Φ, automatic penalties) to the default tolerance.
     fn solved(case: &str, set: &[String]) -> (ContactProblem, State) {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("cases")
-            .join(case);
-        let loaded = crate::case::load(&path, set).expect("shipped case loads");
-        let pb = crate::app::solve(&loaded).expect("shipped case solves").problem;
+        let pb = crate::app::solve_case(&crate::case::shipped(case), set)
+            .expect("shipped case solves")
+            .problem;
         let sys = System::new(&pb, Formulation::Phi, 1.0);
         let measure = ConvergenceMeasure::new(&pb);
         let mut z = start_vector(&pb);

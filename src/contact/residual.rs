@@ -359,11 +359,9 @@ mod tests {
     use super::*;
 
     fn solved(case: &str, set: &[String]) -> ContactProblem {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("cases")
-            .join(case);
-        let loaded = crate::case::load(&path, set).expect("shipped case loads");
-        crate::app::solve(&loaded).expect("shipped case solves").problem
+        crate::app::solve_case(&crate::case::shipped(case), set)
+            .expect("shipped case solves")
+            .problem
     }
 
     /// Uniform grids keep the paper's single pair; a graded grid (an error-controlled run's)

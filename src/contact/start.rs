@@ -99,7 +99,7 @@ mod tests {
     /// The assembled free-rolling problem (aluminium on steel, Q = 0) at `elements`, and its
     /// Hertz estimates.
     fn free_rolling(elements: usize) -> (ContactProblem, crate::scene::Estimates) {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/free_rolling_al_steel.yaml");
+        let path = crate::case::shipped("free_rolling_al_steel.yaml");
         let set = [
             "contact.friction=1e-4".to_string(),
             format!("contact.grid.elements={elements}"),
