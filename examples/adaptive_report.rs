@@ -157,7 +157,7 @@ pub const TRUE_GEOMETRY_HEADER: [&str; 7] = [
 /// times), against the run at tolerance 1e-4 (RMS over |x| < a at each run's nodes, the
 /// reference interpolated by its own shape functions). Times are the library's run.
 pub fn true_geometry_table() -> Table {
-    use rollbem::adapt::{cells::DyadicGrid, scene_on};
+    use rollbem::adapt::cells::DyadicGrid;
     use rollbem::scene::Scene;
     let case = "carter_051_true";
     let fine = solve(case, &["contact.grid.tolerance=1e-4"]);
@@ -193,7 +193,7 @@ pub fn true_geometry_table() -> Table {
         for _ in 0..k {
             cells = cells.bisected();
         }
-        let s = rollbem::app::solve_scene(scene_on(&shipped, &cells), std::time::Instant::now())
+        let s = rollbem::app::solve_scene(shipped.on_grid(cells.grid()), std::time::Instant::now())
             .expect("a uniformly cut mesh");
         push(format!("uniform, mesh cut {k}×"), &s);
     }

@@ -22,13 +22,15 @@ pub mod common;
 
 use common::Table;
 use rollbem::app;
+use rollbem::bem::BoundaryCondition;
 use rollbem::case::LoadedCase;
 use rollbem::mesh::build::layer_strip;
 use rollbem::mesh::validate_and_orient;
 use rollbem::post::ContactSolution;
-use rollbem::scene::{BodySetup, LoadedMesh, Scene};
+use rollbem::scene::{BemSetup, LoadedMesh, Scene};
 use rollbem::study::accuracy::{solve_model, SceneModel};
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::time::Instant;
 
 fn load<S: AsRef<str>>(name: &str, set: &[S]) -> LoadedCase {
@@ -210,15 +212,31 @@ fn layer_solution(b: Option<f64>, p_total: f64, a: f64) -> ContactSolution {
         let notices = validate_and_orient(&mut mesh).expect("layer mesh");
         let contact_group = mesh.group_index("contact").expect("contact group");
         let mut bodies = scene.bodies.clone();
-        let BodySetup::Bem(layer) = &mut bodies[1] else {
-            panic!("body B of the tyre case is a bem layer")
-        };
-        layer.mesh = LoadedMesh {
-            path: PathBuf::from("<procedural layer>"),
-            mesh,
-            notices,
-            contact_group,
-        };
+        let layer = &scene.bodies[1];
+        let material = layer
+            .hertz_material()
+            .expect("body B of the tyre case is an elastic layer");
+        // The case's boundaries, the other groups in name order and the contact group last.
+        let conditions = [
+            ("bonded", BoundaryCondition::Fixed),
+            ("ends", BoundaryCondition::Fixed),
+            ("free", BoundaryCondition::Free),
+            ("contact", BoundaryCondition::Contact),
+        ];
+        bodies[1] = Arc::new(BemSetup {
+            mesh: LoadedMesh {
+                path: PathBuf::from("<procedural layer>"),
+                mesh,
+                notices,
+                contact_group,
+            },
+            material,
+            contact: "contact".into(),
+            conditions: conditions.iter().map(|(g, c)| (g.to_string(), c.clone())).collect(),
+            radius: layer.radius(),
+            profile_radius: None,
+            start_mesh: None,
+        });
         scene = Scene::new(c, bodies);
     }
     let s = app::solve_scene(scene, Instant::now()).expect("layer solve");

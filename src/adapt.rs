@@ -29,7 +29,6 @@
 
 pub mod cells;
 pub mod estimate;
-pub mod mesh_cuts;
 
 use crate::analytic::{hertz_half_width, hertz_peak_pressure};
 use crate::contact::residual::State;
@@ -38,7 +37,7 @@ use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::post::adaptation::{AdaptationStep, GridAdaptation};
 use crate::post::{ContactSolution, NodeState, Timings};
-use crate::scene::{BodyModels, BodySetup, Scene};
+use crate::scene::{BodyModels, Scene};
 use cells::{Action, DyadicGrid};
 use estimate::{Comparison, Scales};
 use std::time::Instant;
@@ -89,25 +88,12 @@ struct Solve {
     report: SolveReport,
 }
 
-/// The scene on the grid of `cells`: for half-space and rigid bodies the same bodies on that
-/// grid; a `bem` body's mesh gets its contact elements cut along the cells
-/// ([`mesh_cuts::refined_setup`]), and the grid is then the refined mesh's.
-pub fn scene_on(scene: &Scene, cells: &DyadicGrid) -> Scene {
-    if !scene.grid_from_mesh() {
-        return scene.with_grid(cells.grid());
-    }
-    let bodies = scene.bodies.clone().map(|b| match b {
-        BodySetup::Bem(setup) => BodySetup::Bem(Box::new(mesh_cuts::refined_setup(&setup, cells))),
-        other => other,
-    });
-    Scene::new(scene.case.clone(), bodies)
-}
-
 /// Every `bem` body's contact elements end where the scene's grid's do: the error control cuts
 /// the meshes along one grid.
 fn check_matching_meshes(scene: &Scene) -> Result<(), Error> {
     for (name, body) in ["A", "B"].iter().zip(&scene.bodies) {
-        if let Some(mesh) = body.mesh() {
+        if let Some(own) = body.contact_mesh() {
+            let mesh = own.mesh;
             // The element ends must coincide; mid nodes may differ (two curvatures): the cuts
             // put both meshes' new mid nodes at the grid's x.
             let own = mesh.contact_grid();
@@ -191,7 +177,7 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
     let mut hertz: Option<HertzScales> = None;
     loop {
         let g = solve_on(
-            scene_on(scene, &coarse),
+            scene.on_grid(coarse.grid()),
             warm.as_ref().map(|(g, z)| (g, z)),
             &mut timings,
         )?;
@@ -207,7 +193,7 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
                 / scene.estimates.effective_radius.abs(),
         };
         let h = solve_on(
-            scene_on(scene, &coarse.bisected()),
+            scene.on_grid(coarse.bisected().grid()),
             Some((&g.problem.grid, &g.state)),
             &mut timings,
         )?;

@@ -30,6 +30,7 @@ pub mod bem;
 pub mod flamant;
 pub mod half_space;
 pub mod rigid;
+pub mod setup;
 pub mod transfer;
 
 use crate::grid::ContactGrid;
@@ -37,6 +38,7 @@ use crate::interior::{InteriorOptions, InteriorSample};
 use crate::linalg::mat_vec2;
 use faer::Mat;
 use serde::Serialize;
+pub use setup::{BodySetup, BuildContext, BuildError, ContactMesh, Rolling, SurfaceAt};
 
 /// Which body of the pair: A is the upper body (y > 0), B the lower one.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

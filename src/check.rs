@@ -3,9 +3,9 @@
 
 pub mod cost;
 
-use crate::case::{self, BodySpec, NormalSpec};
+use crate::case::{self, NormalSpec};
 use crate::error::Error;
-use crate::scene::{BodySetup, Scene};
+use crate::scene::{BodySetups, Scene};
 use std::path::Path;
 
 /// The text printed by `rollbem check`: the case as understood, with Hertz estimates.
@@ -19,37 +19,13 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
     let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
     line("title", c.title.clone());
     for (side, spec) in [("A", &c.bodies.a), ("B", &c.bodies.b)] {
-        let text = match spec {
-            BodySpec::HalfSpace { material, radius } => {
-                let m = case.material(material);
-                format!(
-                    "half_space, R = {radius}, material `{material}` (E = {:.6}, G = {:.6}, nu = {})",
-                    m.young,
-                    m.shear(),
-                    m.poisson
-                )
-            }
-            BodySpec::Rigid { radius: Some(r), .. } => format!("rigid, R = {r}"),
-            BodySpec::Rigid { mesh, contact, .. } => format!(
-                "rigid, R = {:.6} (circle fitted to group `{contact}` of {})",
-                bodies[if side == "A" { 0 } else { 1 }].radius(),
-                mesh.as_deref().unwrap_or("")
-            ),
-            BodySpec::Bem { mesh, material, .. } => {
-                let m = case.material(material);
-                format!(
-                    "bem, mesh {mesh}, material `{material}` (E = {:.6}, G = {:.6}, nu = {})",
-                    m.young,
-                    m.shear(),
-                    m.poisson
-                )
-            }
-        };
+        let text = crate::scene::registry::describe(&case, spec, bodies[if side == "A" { 0 } else { 1 }].as_ref());
         line(&format!("body {side}"), text);
     }
     let mut ranges = Vec::new();
     for (side, body) in ["A", "B"].iter().zip(bodies) {
-        let Some(lm) = body.mesh() else { continue };
+        let Some(own) = body.contact_mesh() else { continue };
+        let lm = own.mesh;
         for (g, group) in lm.mesh.groups.iter().enumerate() {
             line(
                 &format!("  {side}: group `{}`", group.name),
@@ -77,8 +53,8 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
         );
     }
     for (side, body) in ["A", "B"].iter().zip(bodies) {
-        let Some(lm) = body.mesh() else { continue };
-        let own = lm.contact_grid();
+        let Some(own) = body.contact_mesh() else { continue };
+        let own = own.mesh.contact_grid();
         if own.coincides_with(grid) {
             line(
                 &format!("  {side}: contact nodes"),
@@ -173,7 +149,7 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
     // radius (a cover layer on a core), else the rollers'.
     let layer = bodies
         .iter()
-        .filter_map(BodySetup::layer_thickness)
+        .filter_map(|b| b.layer_thickness())
         .fold(f64::INFINITY, f64::min);
     let error = if let Some(r1) = convex_radius_in_a_bore(bodies) {
         crate::advice::internal_error(est.hertz_half_width / r1)
@@ -182,7 +158,9 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
         // thin-layer chord a² = 2Rδ0 (compressible) or 6Rδ0 (ν = 0.5) does (the thin-layer limit of docs/tyre.md).
         let a = match c.load.normal() {
             NormalSpec::Overlap(d) => {
-                let incompressible = bodies.iter().any(|b| b.material().is_some_and(|m| m.poisson > 0.45));
+                let incompressible = bodies
+                    .iter()
+                    .any(|b| b.hertz_material().is_some_and(|m| m.poisson > 0.45));
                 ((if incompressible { 6.0 } else { 2.0 }) * est.effective_radius * d).sqrt()
             }
             NormalSpec::Force(_) => est.hertz_half_width,
@@ -229,7 +207,7 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
 
 /// The convex body's radius R1 when the other body is concave (a roller in a ring's bore),
 /// else None.
-fn convex_radius_in_a_bore(bodies: &[BodySetup; 2]) -> Option<f64> {
+fn convex_radius_in_a_bore(bodies: &BodySetups) -> Option<f64> {
     let [ra, rb] = [bodies[0].radius(), bodies[1].radius()];
     match (ra < 0.0, rb < 0.0) {
         (true, false) => Some(rb),
@@ -247,8 +225,8 @@ fn costs(scene: &Scene) -> (String, String) {
         bem_bodies: scene
             .bodies
             .iter()
-            .filter_map(BodySetup::mesh)
-            .map(|m| (m.mesh.nodes.len(), m.mesh.elements.len()))
+            .filter_map(|b| b.contact_mesh())
+            .map(|own| (own.mesh.mesh.nodes.len(), own.mesh.mesh.elements.len()))
             .collect(),
         interior_points: output.interior.as_ref().map_or(0, |i| (i.x[2] * i.y[2]) as usize),
         vtk: output.vtk,

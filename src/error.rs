@@ -136,6 +136,18 @@ pub enum Error {
     },
 }
 
+/// A body model that could not be built keeps its own kind of error (a BEM failure, a contact
+/// segment that does not cover the grid), so that its exit code and message stay those of
+/// that failure.
+impl From<crate::body::BuildError> for Error {
+    fn from(e: crate::body::BuildError) -> Self {
+        match e {
+            crate::body::BuildError::Bem(e) => Error::Bem(e),
+            crate::body::BuildError::Transfer(e) => Error::Transfer(e),
+        }
+    }
+}
+
 impl Error {
     /// Exit code (docs/reliability.md): 1 for bad input (nothing written). Output failures also give 1.
     /// A solution that broke down (NaN) gives 2, as non-convergence does.

@@ -19,9 +19,14 @@
 
 pub mod build;
 pub mod check;
+pub mod cuts;
+pub mod geometry;
+pub mod loaded;
 pub mod msh;
 
 pub use check::{boundary_loops, validate_and_orient, BoundaryLoop};
+pub use geometry::ElementGeometry;
+pub use loaded::LoadedMesh;
 pub use msh::{parse_msh_bytes, read_msh};
 
 use std::path::Path;

@@ -1,5 +1,5 @@
 //! The scene: a validated case resolved into what the solver stages need — both bodies as one
-//! [`BodySetup`] each, the contact grid, the load controls, the solver settings and the Hertz
+//! [`BodySetup`] each (built by the [`registry`]), the contact grid, the load controls, the solver settings and the Hertz
 //! estimates of the grid actually used.
 //!
 //! The scene is the only stage that reads body specs and meshes from a case; everything
@@ -7,21 +7,24 @@
 //! that solve a variant of a case (another body model, a procedural mesh) build a scene from
 //! their own [`BodySetup`]s with [`Scene::new`] instead of rewriting the case.
 
-pub mod body_setup;
 pub mod contact_frame;
 pub mod estimates;
-pub mod loaded_mesh;
 pub mod preflight;
+pub mod registry;
 
 use crate::analytic::Carter;
-use crate::body::{Body, Side};
+pub use crate::body::bem::setup::BemSetup;
+pub use crate::body::half_space::setup::HalfSpaceSetup;
+pub use crate::body::rigid::RigidSetup;
+pub use crate::body::BodySetup;
+use crate::body::{Body, BuildContext, Rolling, Side};
 use crate::case::{LoadedCase, NormalSpec, TangentialSpec};
 use crate::contact::{ContactFrame, ContactProblem, NewtonSettings, NormalControl, SolverSettings, TangentialControl};
 use crate::error::Error;
 use crate::grid::ContactGrid;
-pub use body_setup::{BemSetup, BodySetup};
+pub use crate::mesh::LoadedMesh;
 pub use estimates::{aligned_half_length, Estimates};
-pub use loaded_mesh::LoadedMesh;
+pub use registry::BodySetups;
 
 /// The built body models of A and B.
 pub type BodyModels = [Box<dyn Body>; 2];
@@ -32,7 +35,7 @@ pub struct Scene {
     /// The case it was built from (title, contact and output settings, the resolved values).
     pub case: LoadedCase,
     /// Bodies A and B.
-    pub bodies: [BodySetup; 2],
+    pub bodies: BodySetups,
     /// The contact grid: a `bem` body's own contact elements (A's first), else the case's
     /// uniform grid around the Hertz contact.
     pub grid: ContactGrid,
@@ -51,7 +54,7 @@ pub struct Scene {
 impl Scene {
     /// The scene of a case: loads the meshes of its `bem` bodies.
     pub fn from_case(case: &LoadedCase) -> Result<Self, Error> {
-        let bodies = BodySetup::of_case(case)?;
+        let bodies = registry::setups_of_case(case)?;
         // Before the grid is built: the checks keep it finite and the matrices within memory.
         preflight::check(case, &bodies)?;
         Ok(Self::new(case.clone(), bodies))
@@ -59,12 +62,12 @@ impl Scene {
 
     /// The scene of a case's contact, load and solver settings with the given bodies (which
     /// may differ from the case's body specs, e.g. a study's procedural meshes).
-    pub fn new(case: LoadedCase, bodies: [BodySetup; 2]) -> Self {
+    pub fn new(case: LoadedCase, bodies: BodySetups) -> Self {
         let c = &case.case;
         let estimates = Estimates::of(c, &bodies);
-        let (grid, estimates) = match bodies.iter().find_map(BodySetup::mesh) {
-            Some(mesh) => {
-                let grid = mesh.contact_grid();
+        let (grid, estimates) = match bodies.iter().find_map(|b| b.contact_mesh()) {
+            Some(own) => {
+                let grid = own.mesh.contact_grid();
                 let estimates = estimates.with_grid(&grid);
                 (grid, estimates)
             }
@@ -119,37 +122,47 @@ impl Scene {
         -self.case.case.contact.rolling_direction.flow_sign()
     }
 
-    /// Whether a `bem` body's mesh sets the contact grid.
+    /// Whether a body's own mesh sets the contact grid.
     pub fn grid_from_mesh(&self) -> bool {
-        self.bodies.iter().any(|b| b.mesh().is_some())
+        self.bodies.iter().any(|b| b.contact_mesh().is_some())
     }
 
-    /// The notices of the loaded meshes (loops turned round), A's first.
+    /// The scene on a refined contact grid spanning the same interval (an error-controlled
+    /// grid's passes): each body follows the grid ([`BodySetup::follow_grid`]: a BEM body cuts
+    /// its mesh along it); when a body's mesh sets the grid, the grid is then that mesh's,
+    /// which is `grid` node for node.
+    pub fn on_grid(&self, grid: ContactGrid) -> Scene {
+        if !self.grid_from_mesh() {
+            return self.with_grid(grid);
+        }
+        let bodies = self.bodies.clone().map(|b| b.follow_grid(&grid).unwrap_or(b));
+        Scene::new(self.case.clone(), bodies)
+    }
+
+    /// How the contact moves over the bodies.
+    pub fn rolling(&self) -> Rolling {
+        Rolling {
+            direction: -self.case.case.contact.rolling_direction.flow_sign(),
+            speed: None,
+        }
+    }
+
+    /// The notices of the bodies' inputs (mesh loops turned round), A's first.
     pub fn notices(&self) -> Vec<String> {
-        self.bodies
-            .iter()
-            .filter_map(BodySetup::mesh)
-            .flat_map(|m| m.notices.clone())
-            .collect()
+        self.bodies.iter().flat_map(|b| b.notices().to_vec()).collect()
     }
 
     /// Builds both body models on the contact grid.
     pub fn body_models(&self) -> Result<BodyModels, Error> {
-        let build = |body: &BodySetup, side: Side, name: &str| {
-            if let Some(mesh) = body.mesh() {
-                log::info!(
-                    target: crate::logging::PROGRESS,
-                    "body {name}: BEM of {} boundary elements ({} nodes), condensing to the contact nodes",
-                    mesh.mesh.elements.len(),
-                    mesh.mesh.nodes.len()
-                );
-            }
-            body.model(&self.grid, side)
+        let build = |k: usize, side: Side| -> Result<Box<dyn Body>, Error> {
+            let ctx = BuildContext {
+                grid: &self.grid,
+                side,
+                rolling: self.rolling(),
+            };
+            Ok(self.bodies[k].build(&ctx)?)
         };
-        Ok([
-            build(&self.bodies[0], Side::A, "A")?,
-            build(&self.bodies[1], Side::B, "B")?,
-        ])
+        Ok([build(0, Side::A)?, build(1, Side::B)?])
     }
 
     /// Builds the body models and assembles the contact problem.

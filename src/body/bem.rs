@@ -16,6 +16,8 @@
 //! The HBEM surface strain of [`crate::bem::condense`](mod@crate::bem::condense) enters the pair
 //! convention the same way: p ↦ S_xy, q ↦ S_xx on either side.
 
+pub mod setup;
+
 use super::{
     BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery, InteriorResult, Side,
     StrainOperator,

@@ -24,6 +24,8 @@
 //! loses digits to cancellation (relative error ≈ ε·(d/L)³), so a 12-point Gauss rule is used
 //! there, which is exact to round-off for those smooth integrands.
 
+pub mod setup;
+
 use super::flamant::halfplane_interior;
 use super::{circle_profile, BodyFields, BodyModel, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator};
 use crate::grid::{ContactGrid, ElementKind};

@@ -1,9 +1,12 @@
 //! The rigid body model: zero flexibility, circular profile.
 
+use super::setup::{BodySetup, BuildContext, BuildError, SurfaceAt};
+use super::Body;
 use super::{
     circle_profile, BodyFields, BodyModel, FieldError, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator,
 };
 use crate::grid::ContactGrid;
+use crate::material::Elastic;
 
 /// A rigid cylinder of the given signed radius [length] (negative: a concave bore).
 #[derive(Debug, Clone)]
@@ -40,5 +43,35 @@ impl BodyFields for Rigid {
         Err(FieldError::NoInteriorField {
             model: self.model_name(),
         })
+    }
+}
+
+/// A `rigid` body of a scene: a cylinder of the given signed radius [length] (given, or the
+/// circle fitted to a mesh's contact group), which does not deform.
+#[derive(Debug, Clone)]
+pub struct RigidSetup {
+    /// Signed profile radius [length]: positive convex, negative concave.
+    pub radius: f64,
+}
+
+impl BodySetup for RigidSetup {
+    fn model_name(&self) -> &'static str {
+        "rigid"
+    }
+
+    fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    fn hertz_material(&self) -> Option<Elastic> {
+        None
+    }
+
+    fn surface_at(&self, x: f64, side: Side) -> Option<SurfaceAt> {
+        Some(SurfaceAt::of_circle(self.radius, x, side))
+    }
+
+    fn build(&self, _ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
+        Ok(Box::new(Rigid { radius: self.radius }))
     }
 }

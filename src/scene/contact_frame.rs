@@ -14,70 +14,15 @@
 //! For two equal rollers of one material ψ = 0 by symmetry. A half-space body is flat in its
 //! model, so a scene with one keeps the global axes.
 
-use super::body_setup::BodySetup;
-use crate::body::{circle_profile, circle_profile_slope, Side};
+use super::registry::BodySetups;
+use crate::body::Side;
+pub use crate::body::SurfaceAt;
 use crate::contact::{ContactFrame, TractionAxes};
 use crate::grid::ContactGrid;
 
-/// A body's surface at x: slope angle θ [rad], profile h [length] and the signed radius it
-/// turns about [length] (infinite for a flat, translating body).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SurfaceAt {
-    /// Angle of the surface's tangent from +x [rad].
-    pub slope_angle: f64,
-    /// Distance from the common tangent, ≥ 0 convex, ≤ 0 concave [length].
-    pub profile: f64,
-    /// Signed radius of rotation [length].
-    pub radius: f64,
-}
-
-impl SurfaceAt {
-    /// The x-speed of the surface's material relative to its speed at the contact's centre
-    /// for a body turning about its centre: 1 − h/R [-].
-    pub fn speed_ratio(&self) -> f64 {
-        if self.radius.is_finite() {
-            1.0 - self.profile / self.radius
-        } else {
-            1.0
-        }
-    }
-}
-
-impl BodySetup {
-    /// The body's surface at x on `side`, None for a half-space (flat in its model).
-    pub fn surface_at(&self, x: f64, side: Side) -> Option<SurfaceAt> {
-        // y rises into A above the contact and falls into B below it.
-        let up = side.sign();
-        match self {
-            BodySetup::HalfSpace { .. } => None,
-            BodySetup::Rigid { radius } => Some(SurfaceAt {
-                slope_angle: (up * circle_profile_slope(*radius, x)).atan(),
-                profile: circle_profile(*radius, x),
-                radius: *radius,
-            }),
-            BodySetup::Bem(b) => {
-                let mesh = &b.mesh;
-                let [x0, x1] = mesh.contact_range();
-                let (y, slope) = mesh.surface_at(x.clamp(x0, x1))?;
-                let touch = mesh.surface_at(0.0).map_or(y, |(y0, _)| y0);
-                Some(SurfaceAt {
-                    slope_angle: slope.atan(),
-                    profile: (y - touch) * up,
-                    radius: mesh.contact_radius(),
-                })
-            }
-        }
-    }
-
-    /// Plane-strain compliance (1 − ν²)/E [1/stress], zero for a rigid body.
-    pub fn compliance(&self) -> f64 {
-        self.material().map_or(0.0, |m| m.plane_strain_compliance())
-    }
-}
-
 /// The contact frame at the nodes of `grid` for the two bodies (module docs); the global axes
 /// when `axes` asks for them or a body has no geometry (a half-space).
-pub fn contact_frame(bodies: &[BodySetup; 2], grid: &ContactGrid, axes: TractionAxes) -> ContactFrame {
+pub fn contact_frame(bodies: &BodySetups, grid: &ContactGrid, axes: TractionAxes) -> ContactFrame {
     let m = grid.n_nodes();
     if axes == TractionAxes::Global {
         return ContactFrame::global_axes(m);

@@ -1,7 +1,7 @@
 //! Hertz-type estimates of a scene: contact modulus, Dundurs' β, the Hertz contact and the
 //! half-length of the uniform contact grid that is built around it.
 
-use super::body_setup::BodySetup;
+use super::registry::BodySetups;
 use crate::analytic;
 use crate::case::{Case, NormalSpec, TangentialSpec};
 use crate::grid::ContactGrid;
@@ -38,17 +38,20 @@ pub struct Estimates {
 
 impl Estimates {
     /// The estimates of the case's load on two bodies, with the uniform grid the case asks for.
-    pub fn of(case: &Case, bodies: &[BodySetup; 2]) -> Self {
+    pub fn of(case: &Case, bodies: &BodySetups) -> Self {
         let [ba, bb] = bodies;
-        let (ma, mb) = (ba.material(), bb.material());
+        let (ma, mb) = (ba.hertz_material(), bb.hertz_material());
         let e_star = material::contact_modulus(ma.as_ref(), mb.as_ref());
         let dundurs_beta = material::dundurs_beta(ma.as_ref(), mb.as_ref());
         let radius = material::effective_radius(ba.radius(), bb.radius());
         let normal_force = match case.load.normal() {
             NormalSpec::Force(p) => p,
-            NormalSpec::Overlap(d) => {
-                load_from_overlap(d, [(ma, datum_distance(ba)), (mb, datum_distance(bb))], radius, e_star)
-            }
+            NormalSpec::Overlap(d) => load_from_overlap(
+                d,
+                [(ma, ba.datum_distance()), (mb, bb.datum_distance())],
+                radius,
+                e_star,
+            ),
         };
         let a = analytic::hertz_half_width(normal_force, radius, e_star);
         let ratio = match case.load.tangential() {
@@ -91,19 +94,10 @@ impl Estimates {
     }
 }
 
-/// The radius R_b of a body in the datum term ln(4R_b/a) of [`load_from_overlap`] [length]: its
-/// profile radius, or the extent of its mesh (the diagonal of its bounding box) where that is
-/// smaller. A flat `bem` body (a layer, a block: radius ∞) has its datum at its own fixed
-/// boundary, not infinitely far; with R_b = ∞ the estimate of P fell to zero (3e-10 N/mm for
-/// the layer of cases/tyre_b05_compressible.yaml, whose solved force is 0.05 N/mm).
-fn datum_distance(body: &BodySetup) -> f64 {
-    let r = body.radius().abs();
-    body.mesh().map_or(r, |m| r.min(m.mesh.size()))
-}
-
 /// Normal force that gives the overlap δ0 between two half-planes measured from their datums:
 /// δ0 = Σ_b (2(1−ν_b²)/(πE_b))·P·(ln(4R_b/a) − ½), a the Hertz half-width of P (Johnson,
-/// Contact Mechanics, 1985, Eq. 5.36; the datum of the half-space model, docs/theory.md).
+/// Contact Mechanics, 1985, Eq. 5.36; the datum of the half-space model, docs/theory.md), R_b
+/// each body's [`crate::body::BodySetup::datum_distance`].
 /// Used only to size the grid.
 fn load_from_overlap(overlap: f64, bodies: [(Option<Elastic>, f64); 2], radius: f64, e_star: f64) -> f64 {
     let approach = |p: f64| {

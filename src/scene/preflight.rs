@@ -4,8 +4,8 @@
 //! `rollbem check` as in `rollbem run` (both build their scene with [`super::Scene::from_case`]),
 //! so a case that check accepts does not fail here later.
 
-use super::body_setup::BodySetup;
 use super::estimates::Estimates;
+use super::registry::BodySetups;
 use crate::case::validate::shown;
 use crate::case::{CaseError, LoadedCase, NormalSpec, Violation};
 use crate::error::Error;
@@ -17,7 +17,7 @@ pub const MIN_HALF_WIDTH_OVER_RADIUS: f64 = 1e-10;
 
 /// Checks the contact segments, the derived quantities and the memory of a case with its
 /// bodies resolved; returns the memory estimate.
-pub fn check(case: &LoadedCase, bodies: &[BodySetup; 2]) -> Result<MemoryEstimate, Error> {
+pub fn check(case: &LoadedCase, bodies: &BodySetups) -> Result<MemoryEstimate, Error> {
     let mut violations = contact_segment_violations(bodies);
     if violations.is_empty() {
         let est = Estimates::of(&case.case, bodies);
@@ -48,22 +48,22 @@ fn sig(v: f64) -> String {
 }
 
 /// Whether the contact grid is a `bem` body's own (the case's grid keys are then unused).
-fn grid_from_mesh(bodies: &[BodySetup; 2]) -> bool {
-    bodies.iter().any(|b| b.mesh().is_some())
+fn grid_from_mesh(bodies: &BodySetups) -> bool {
+    bodies.iter().any(|b| b.contact_mesh().is_some())
 }
 
 /// The contact group of each `bem` body must be an arc along x, which the contact grid is made
 /// from (its elements' end points in x): no element without extent in x, no two elements over the
 /// same x. With two `bem` bodies, the second's contact group must cover the grid the first's gives
 /// (the tolerance of [`crate::body::transfer`]: 1e-9 of the segment's length).
-fn contact_segment_violations(bodies: &[BodySetup; 2]) -> Vec<Violation> {
+fn contact_segment_violations(bodies: &BodySetups) -> Vec<Violation> {
     let mut out = Vec::new();
     let mut ranges = Vec::new();
     for (k, side) in ["A", "B"].into_iter().enumerate() {
-        let BodySetup::Bem(bem) = &bodies[k] else {
+        let Some(own) = bodies[k].contact_mesh() else {
             continue;
         };
-        let (lm, contact) = (&bem.mesh, &bem.contact);
+        let (lm, contact) = (own.mesh, own.group);
         let m = &lm.mesh;
         let tol = 1e-9 * m.size();
         let mut spans: Vec<[f64; 3]> = m
@@ -104,7 +104,7 @@ fn contact_segment_violations(bodies: &[BodySetup; 2]) -> Vec<Violation> {
             });
             continue;
         }
-        ranges.push((side, path.to_string(), contact.clone(), lm.contact_range()));
+        ranges.push((side, path.to_string(), contact.to_string(), lm.contact_range()));
     }
     if let [(sa, ma, ca, [a0, a1]), (sb, mb, cb, [b0, b1])] = ranges.as_slice() {
         // The grid is A's contact group; B's must cover it.
@@ -129,7 +129,7 @@ fn contact_segment_violations(bodies: &[BodySetup; 2]) -> Vec<Violation> {
 
 /// The Hertz estimates and the grid must be finite and physical: a contact narrower than the
 /// radius, and not vanishingly small.
-fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &[BodySetup; 2]) -> Vec<Violation> {
+fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &BodySetups) -> Vec<Violation> {
     let mut out = Vec::new();
     let mut bad = |key: &str, message: String| {
         out.push(Violation {
@@ -232,16 +232,14 @@ fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &[BodySetup; 2
 }
 
 /// The problem sizes of a case with its bodies resolved.
-pub fn problem_sizes(case: &LoadedCase, bodies: &[BodySetup; 2]) -> ProblemSizes {
+pub fn problem_sizes(case: &LoadedCase, bodies: &BodySetups) -> ProblemSizes {
     let c = &case.case;
-    let contact_elements = |b: &BodySetup| {
-        b.mesh().map_or(0, |lm| {
-            lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count()
-        })
-    };
-    let contact_nodes = match bodies.iter().find(|b| b.mesh().is_some()) {
+    let contact_nodes = match bodies.iter().find_map(|b| b.contact_mesh()) {
         // The mesh's discontinuous quadratic contact elements carry three nodes each.
-        Some(b) => 3 * contact_elements(b),
+        Some(own) => {
+            let lm = own.mesh;
+            3 * lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count()
+        }
         None => {
             let kind = c.contact.grid.element;
             // An error-controlled grid may grow to its limit.
@@ -252,12 +250,7 @@ pub fn problem_sizes(case: &LoadedCase, bodies: &[BodySetup; 2]) -> ProblemSizes
             kind.node_stride().saturating_mul(n) + usize::from(kind.shares_nodes())
         }
     };
-    // Discontinuous contact elements add a field node each to the mesh's geometric nodes.
-    let bem_nodes = [0, 1].map(|k| {
-        bodies[k]
-            .mesh()
-            .map(|lm| lm.mesh.nodes.len() + contact_elements(&bodies[k]))
-    });
+    let bem_nodes = [0, 1].map(|k| bodies[k].discretisation_nodes());
     let interior_points = c
         .output
         .interior
@@ -273,7 +266,7 @@ pub fn problem_sizes(case: &LoadedCase, bodies: &[BodySetup; 2]) -> ProblemSizes
 
 /// Refuses a case whose estimated peak memory exceeds what the machine has available; returns
 /// the estimate. Also for scenes built from their own bodies (the studies').
-pub fn check_memory(case: &LoadedCase, bodies: &[BodySetup; 2]) -> Result<MemoryEstimate, Error> {
+pub fn check_memory(case: &LoadedCase, bodies: &BodySetups) -> Result<MemoryEstimate, Error> {
     let sizes = problem_sizes(case, bodies);
     let estimate = MemoryEstimate::of(&sizes);
     let available = limits::available_memory().unwrap_or(limits::FALLBACK_AVAILABLE_BYTES);
@@ -313,19 +306,13 @@ fn breakdown(sizes: &ProblemSizes, e: &MemoryEstimate) -> String {
 }
 
 /// What to change: the key (or mesh) behind the largest term, and how far.
-fn advice(
-    case: &LoadedCase,
-    bodies: &[BodySetup; 2],
-    sizes: &ProblemSizes,
-    e: &MemoryEstimate,
-    available: f64,
-) -> String {
+fn advice(case: &LoadedCase, bodies: &BodySetups, sizes: &ProblemSizes, e: &MemoryEstimate, available: f64) -> String {
     let c = &case.case;
     let room = |others: f64| (available - limits::BASE_BYTES - others).max(0.0);
     let mesh_of = |k: usize| {
         bodies[k]
-            .mesh()
-            .map_or_else(String::new, |lm| lm.path.display().to_string())
+            .contact_mesh()
+            .map_or_else(String::new, |own| own.mesh.path.display().to_string())
     };
     if e.interior >= e.contact.max(e.bem) {
         let per_point = e.interior / sizes.interior_points.max(1) as f64;
@@ -354,12 +341,9 @@ fn advice(
             fit.floor()
         );
     }
-    match bodies.iter().position(|b| b.mesh().is_some()) {
+    match bodies.iter().position(|b| b.contact_mesh().is_some()) {
         Some(k) => {
-            let group = match &bodies[k] {
-                BodySetup::Bem(bem) => bem.contact.clone(),
-                _ => "contact".into(),
-            };
+            let group = bodies[k].contact_mesh().map_or("contact", |own| own.group);
             format!(
                 "the contact grid is the contact group `{group}` of {}: mesh it with fewer elements",
                 mesh_of(k)
@@ -379,11 +363,11 @@ fn advice(
 
 /// What to change when the solved contact reaches an end of the grid: the grid keys for a
 /// uniform grid; the mesh's contact group (or the load) when the grid is a `bem` body's own.
-pub fn grid_too_short_advice(case: &LoadedCase, bodies: &[BodySetup; 2]) -> String {
+pub fn grid_too_short_advice(case: &LoadedCase, bodies: &BodySetups) -> String {
     let c = &case.case;
-    let bem = ["A", "B"].into_iter().zip(bodies).find_map(|(side, b)| match b {
-        BodySetup::Bem(bem) => Some((side, bem.mesh.path.display().to_string(), &bem.contact)),
-        _ => None,
+    let bem = ["A", "B"].into_iter().zip(bodies).find_map(|(side, b)| {
+        b.contact_mesh()
+            .map(|own| (side, own.mesh.path.display().to_string(), own.group))
     });
     match bem {
         Some((side, mesh, contact)) => format!(

@@ -245,9 +245,8 @@ const MCEWEN: [(f64, f64, f64, f64, f64, f64, f64); 2] = [
 fn shipped_block(side: Side) -> (Box<dyn Body>, ContactGrid) {
     let case = rollbem::case::load(&crate::common::case_path("carter_051_block"), &[]).unwrap();
     let scene = rollbem::scene::Scene::from_case(&case).unwrap();
-    let k = if side == Side::A { 0 } else { 1 };
-    let model = scene.bodies[k].model(&scene.grid, side).unwrap();
-    (model, scene.grid)
+    let [a, b] = scene.body_models().unwrap();
+    (if side == Side::A { a } else { b }, scene.grid)
 }
 
 /// A block of half-width `w` and depth `h` [mm] standing in for a half-plane on `side`, its

@@ -10,7 +10,7 @@ use rollbem::limits::MemoryEstimate;
 use rollbem::mesh::build::{roller_on_shaft, RollerMeshSizes};
 use rollbem::mesh::BoundaryMesh;
 use rollbem::scene::preflight::problem_sizes;
-use rollbem::scene::BodySetup;
+use rollbem::scene::registry::setups_of_case;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -97,7 +97,7 @@ fn point(label: &str, case_text: &str, set: &[String], meshes: &[(&str, Boundary
     let case = dir.path().join("case.yaml");
     std::fs::write(&case, case_text).unwrap();
     let loaded = rollbem::case::load(&case, set).unwrap();
-    let bodies = BodySetup::of_case(&loaded).unwrap();
+    let bodies = setups_of_case(&loaded).unwrap();
     let estimate = MemoryEstimate::of(&problem_sizes(&loaded, &bodies)).bytes();
     let out = dir.path().join("out");
     let mut args = vec!["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()];

@@ -256,11 +256,11 @@ fn bem_rollers_at_1e_3_meet_the_tolerance_on_fewer_elements_than_a_uniform_cut()
     assert_effective("bem shear", e.shear_rms, q);
     assert_effective("bem creepage", e.creep_rel, xi);
     // The shipped meshes cut uniformly three times.
-    use rollbem::adapt::{cells::DyadicGrid, scene_on};
+    use rollbem::adapt::cells::DyadicGrid;
     let loaded = rollbem::app::load_case(&crate::common::case_path(case), &[] as &[&str]).unwrap();
     let shipped = rollbem::scene::Scene::from_case(&loaded).unwrap();
     let cells = DyadicGrid::new(&shipped.grid).bisected().bisected().bisected();
-    let uniform = rollbem::app::solve_scene(scene_on(&shipped, &cells), std::time::Instant::now()).unwrap();
+    let uniform = rollbem::app::solve_scene(shipped.on_grid(cells.grid()), std::time::Instant::now()).unwrap();
     assert_eq!(uniform.problem.grid.n_elements(), 168);
     let (pu, qu, xu) = errors(&uniform);
     assert!(

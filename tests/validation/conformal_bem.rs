@@ -22,6 +22,7 @@ use rollbem::scene::{BemSetup, BodySetup, LoadedMesh, Scene};
 use rollbem::study::accuracy::{solve_model, SceneModel};
 use std::f64::consts::PI;
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::time::Instant;
 
 fn steel() -> Elastic {
@@ -298,13 +299,13 @@ fn free_rolling_creepage_of_unequal_rollers_converges_to_the_series() {
 }
 
 /// A procedural mesh as a `bem` body with its `contact` group.
-fn bem_body(mut mesh: BoundaryMesh, groups: &[(&str, BoundaryCondition)], radius: f64) -> BodySetup {
+fn bem_body(mut mesh: BoundaryMesh, groups: &[(&str, BoundaryCondition)], radius: f64) -> Arc<dyn BodySetup> {
     let notices = validate_and_orient(&mut mesh).unwrap();
     let contact_group = mesh.group_index("contact").unwrap();
     let mut conditions: Vec<(String, BoundaryCondition)> =
         groups.iter().map(|(g, c)| (g.to_string(), c.clone())).collect();
     conditions.push(("contact".to_string(), BoundaryCondition::Contact));
-    BodySetup::Bem(Box::new(BemSetup {
+    Arc::new(BemSetup {
         mesh: LoadedMesh {
             path: PathBuf::from("<procedural>"),
             mesh,
@@ -316,7 +317,8 @@ fn bem_body(mut mesh: BoundaryMesh, groups: &[(&str, BoundaryCondition)], radius
         conditions,
         radius,
         profile_radius: None,
-    }))
+        start_mesh: None,
+    })
 }
 
 /// The large arc that stopped the run before the grid followed the mesh: a contact group of

@@ -10,8 +10,9 @@ use crate::material::Elastic;
 use crate::mesh::build::{half_space_block, ring_with_bore, roller_on_shaft, RingMeshSizes, RollerMeshSizes};
 use crate::mesh::{validate_and_orient, BoundaryMesh};
 use crate::post::ContactSolution;
-use crate::scene::{BemSetup, BodySetup, LoadedMesh, Scene};
+use crate::scene::{registry, BemSetup, BodySetup, HalfSpaceSetup, LoadedMesh, RigidSetup, Scene};
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// The elastic description of one body of the scene.
@@ -25,7 +26,7 @@ pub(super) struct SceneBody {
 
 /// The two bodies of the scene: materials and profile radii of the case's bodies.
 pub(super) fn scene_bodies(case: &LoadedCase) -> Result<[SceneBody; 2], Error> {
-    let body = |setup: &BodySetup| -> Result<SceneBody, Error> {
+    let body = |setup: &Arc<dyn BodySetup>| -> Result<SceneBody, Error> {
         if !setup.radius().is_finite() {
             return Err(study_error(
                 "a body of the case has a flat profile (infinite radius): the study compares models of \
@@ -33,22 +34,24 @@ pub(super) fn scene_bodies(case: &LoadedCase) -> Result<[SceneBody; 2], Error> {
             ));
         }
         Ok(SceneBody {
-            material: setup.material(),
+            material: setup.hertz_material(),
             radius: setup.radius(),
         })
     };
-    let [a, b] = BodySetup::of_case(case)?;
+    let [a, b] = registry::setups_of_case(case)?;
     Ok([body(&a)?, body(&b)?])
 }
 
 /// The scene's bodies as half-spaces (rigid bodies stay rigid), on the case's uniform grid.
 pub(super) fn half_space_scene(case: &LoadedCase, scene: &[SceneBody; 2]) -> Scene {
-    let bodies = scene.clone().map(|b| match b.material {
-        Some(material) => BodySetup::HalfSpace {
-            material,
-            radius: b.radius,
-        },
-        None => BodySetup::Rigid { radius: b.radius },
+    let bodies = scene.clone().map(|b| -> Arc<dyn BodySetup> {
+        match b.material {
+            Some(material) => Arc::new(HalfSpaceSetup {
+                material,
+                radius: b.radius,
+            }),
+            None => Arc::new(RigidSetup { radius: b.radius }),
+        }
     });
     Scene::new(case.clone(), bodies)
 }
@@ -143,7 +146,7 @@ pub(super) fn solve_model_of(
                 )?,
             };
             boundary_elements = boundary_elements.max(bem.mesh.mesh.elements.len());
-            bodies[k] = BodySetup::Bem(Box::new(bem));
+            bodies[k] = Arc::new(bem);
         }
         run = Scene::new(c, bodies);
     }
@@ -231,5 +234,6 @@ fn bem_body(
         conditions,
         radius,
         profile_radius,
+        start_mesh: None,
     })
 }

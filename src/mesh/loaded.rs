@@ -1,9 +1,9 @@
 //! A boundary mesh read for a body of the scene, with what the scene needs from its contact
 //! group: the x-range, the fitted profile radius and the contact grid of its own elements.
 
-use crate::bem::element::ElementGeometry;
+use super::geometry::ElementGeometry;
+use super::BoundaryMesh;
 use crate::grid::{ContactGrid, ElementKind};
-use crate::mesh::BoundaryMesh;
 use std::path::PathBuf;
 
 /// A boundary mesh loaded for a `bem` body.

@@ -1,49 +1,44 @@
-//! A `bem` body's mesh refined with its contact grid: each contact element cut where the cells
-//! of the error-controlled grid end, the new nodes on the element's own quadratic geometry.
+//! A body's boundary mesh cut along a contact grid: each contact element cut where the grid's
+//! elements end, the new nodes on the element's own quadratic geometry.
 //!
-//! A contact element spans one start element of the grid. Its pieces are new quadratic
-//! elements whose end and mid nodes lie on the original element's curve at the x of the
-//! cells' ends and mid points, so that the contact grid the refined mesh gives is the cells'
-//! grid node for node, for the body the grid was built from and for a matching body across
-//! the contact alike (the x of a point fixes it on either curve). Neighbouring pieces differ in
-//! length by at most 2 ([`super::cells`]).
+//! A contact element of the start mesh spans one or more elements of the grid (the grid is the
+//! start mesh's contact grid refined). Its pieces are new quadratic elements whose end nodes lie
+//! on the original element's curve at the x of the grid's element ends, and whose mid nodes lie
+//! on it at the mid parameter between them, so that the contact grid the cut mesh gives is the
+//! grid node for node, for the body the grid was built from and for a matching body across the
+//! contact alike (the x of a point fixes it on either curve).
+//!
+//! **Snapping.** A start-mesh node at an element end that is meant to coincide with a grid edge
+//! but lies off it by round-off (Gmsh writes x = −4e-11 for a node of the other body's mesh at
+//! x = 0) is moved along its curve onto the grid's x. Both elements that share it move with it,
+//! so the mesh stays connected, and the cut mesh's contact nodes are the grid's exactly; without
+//! this the round-off of the user's mesh file would, on a deeply graded grid, exceed any
+//! tolerance relative to the grid's smallest spacing.
 //!
 //! The rest of the mesh is unchanged but for the two elements that meet the contact group at
 //! its ends: where the grid's end element was cut much shorter than its neighbour outside the
-//! group, that neighbour is halved towards the common node ([`graded_transition`]), so the
-//! element lengths also change by at most 2 from the contact segment into the rest of the mesh
-//! (or by no more than the start mesh had them change there).
+//! group, that neighbour is halved towards the common node ([`graded_transitions`]), so the
+//! element lengths also change by at most `max_ratio` from the contact segment into the rest of
+//! the mesh (or by no more than the start mesh had them change there).
 
-use super::cells::{DyadicGrid, MAX_NEIGHBOUR_RATIO};
-use crate::bem::element::ElementGeometry;
-use crate::mesh::{BoundaryElement, BoundaryMesh};
-use crate::scene::{BemSetup, LoadedMesh};
+use super::geometry::ElementGeometry;
+use super::{BoundaryElement, BoundaryMesh, LoadedMesh};
+use crate::grid::ContactGrid;
 use std::collections::HashMap;
 
-/// The setup with its contact elements cut along the cells of `cells` (module docs).
-pub fn refined_setup(setup: &BemSetup, cells: &DyadicGrid) -> BemSetup {
-    BemSetup {
-        mesh: LoadedMesh {
-            mesh: refined_mesh(&setup.mesh, cells),
-            ..setup.mesh.clone()
-        },
-        ..setup.clone()
-    }
-}
+/// Relative distance (of an element's length in x) within which a start-mesh node and a grid
+/// edge are the same point: far above a mesh file's round-off (1e-11 of an element), far below
+/// any element a grid makes of it (2⁻¹² per pass at most).
+pub const SNAP_TOLERANCE: f64 = 1e-6;
 
-/// The mesh with its contact elements cut along the cells of `cells` and their neighbours
-/// graded into the rest (module docs). A contact element that spans no start element of the
-/// grid is kept as it is.
-pub fn refined_mesh(loaded: &LoadedMesh, cells: &DyadicGrid) -> BoundaryMesh {
+/// The mesh with its contact elements cut along the elements of `grid` and their neighbours
+/// graded into the rest (module docs), neighbouring lengths within `max_ratio` there. `grid`
+/// must run along the contact group of `loaded` (its refinement, or the other body's matching
+/// contact grid); a contact element that holds fewer than two of the grid's elements is kept
+/// as it is, its end nodes snapped onto the grid's edges.
+pub fn cut_along_grid(loaded: &LoadedMesh, grid: &ContactGrid, max_ratio: f64) -> BoundaryMesh {
     let mesh = &loaded.mesh;
     let group = loaded.contact_group;
-    let root = cells.root();
-    let tol = 1e-9 * mesh.size();
-    // The cells of each start element: (x at the left end, at the right end, at the mid point).
-    let mut pieces: Vec<Vec<[f64; 3]>> = vec![Vec::new(); root.n_elements()];
-    for &c in cells.cells() {
-        pieces[c.root].push([cells.end(c, false), cells.end(c, true), cells.mid(c)]);
-    }
     let mut nodes = mesh.nodes.clone();
     let mut elements = Vec::with_capacity(mesh.elements.len());
     for (e, el) in mesh.elements.iter().enumerate() {
@@ -54,31 +49,56 @@ pub fn refined_mesh(loaded: &LoadedMesh, cells: &DyadicGrid) -> BoundaryMesh {
         let geom = ElementGeometry::from_mesh(mesh, e);
         let (xa, xb) = (geom.nodes[0][0], geom.nodes[1][0]);
         let (lo, hi) = (xa.min(xb), xa.max(xb));
-        let spanned = (0..root.n_elements())
-            .find(|&r| (root.edges[r] - lo).abs() <= tol && (root.edges[r + 1] - hi).abs() <= tol);
-        let Some(r) = spanned.filter(|&r| pieces[r].len() > 1) else {
-            elements.push(el.clone());
-            continue;
-        };
+        let tol = SNAP_TOLERANCE * (hi - lo);
         let increasing = xa <= xb;
         let (at_lo, at_hi) = if increasing {
             (el.nodes[0], el.nodes[1])
         } else {
             (el.nodes[1], el.nodes[0])
         };
-        // The cut nodes in increasing x: the element's own end nodes at the ends.
-        let p = &pieces[r];
-        let mut cuts = vec![at_lo];
-        for piece in &p[..p.len() - 1] {
-            cuts.push(point_at_x(&geom, piece[1], &mut nodes));
+        // The grid's edges inside the element, its own ends snapped onto the nearest.
+        let first = grid.edges.partition_point(|&x| x < lo - tol);
+        let last = grid.edges.partition_point(|&x| x <= hi + tol);
+        let inside = &grid.edges[first..last];
+        if inside.len() < 2 || (inside[0] - lo).abs() > tol || (inside[inside.len() - 1] - hi).abs() > tol {
+            // Not along the grid (a body's contact group longer than the grid): kept.
+            elements.push(el.clone());
+            continue;
         }
-        cuts.push(at_hi);
-        let mut children: Vec<BoundaryElement> = p
-            .iter()
-            .enumerate()
-            .map(|(k, piece)| BoundaryElement {
-                nodes: vec![cuts[k], cuts[k + 1], point_at_x(&geom, piece[2], &mut nodes)],
-                group,
+        let (xi_lo, xi_hi) = if increasing { (-1.0, 1.0) } else { (1.0, -1.0) };
+        snap(&mut nodes, at_lo, &geom, inside[0], lo);
+        snap(&mut nodes, at_hi, &geom, inside[inside.len() - 1], hi);
+        if inside.len() == 2 {
+            elements.push(el.clone());
+            continue;
+        }
+        // The cut nodes in increasing x, with their parameters and abscissae: the element's own
+        // end nodes at the ends.
+        let mut cuts = vec![(at_lo, xi_lo, inside[0])];
+        for &x in &inside[1..inside.len() - 1] {
+            let xi = parameter_at(&geom, x);
+            nodes.push(geom.point(xi));
+            cuts.push((nodes.len() - 1, xi, x));
+        }
+        cuts.push((at_hi, xi_hi, inside[inside.len() - 1]));
+        // The mid node halfway in the parameter on a curved element; halfway in x on one that is
+        // straight to the round-off of a mesh file, as the grid takes it
+        // ([`ContactGrid::from_mapped_edges`]).
+        let bow = (geom.nodes[2][0] - 0.5 * (xa + xb)).abs();
+        let curved = bow > 1e-9 * (hi - lo) && bow < 0.25 * (hi - lo);
+        let mut children: Vec<BoundaryElement> = cuts
+            .windows(2)
+            .map(|w| {
+                let mid = if curved {
+                    0.5 * (w[0].1 + w[1].1)
+                } else {
+                    parameter_at(&geom, 0.5 * (w[0].2 + w[1].2))
+                };
+                nodes.push(geom.point(mid));
+                BoundaryElement {
+                    nodes: vec![w[0].0, w[1].0, nodes.len() - 1],
+                    group,
+                }
             })
             .collect();
         // Keep the element's walking direction (the orientation of its loop).
@@ -90,19 +110,36 @@ pub fn refined_mesh(loaded: &LoadedMesh, cells: &DyadicGrid) -> BoundaryMesh {
         }
         elements.extend(children);
     }
-    let elements = graded_transitions(mesh, &mut nodes, elements, group);
+    let elements = graded_transitions(mesh, &mut nodes, elements, group, max_ratio);
     BoundaryMesh::new(nodes, elements, mesh.groups.clone(), mesh.source.clone())
+}
+
+/// Moves node `v` (an end of `geom`, at abscissa `x_now`) along the curve
+/// onto abscissa `x` when the two differ (module docs, snapping).
+fn snap(nodes: &mut [[f64; 2]], v: usize, geom: &ElementGeometry, x: f64, x_now: f64) {
+    if x != x_now {
+        nodes[v] = geom.point(parameter_at(geom, x));
+    }
+}
+
+/// The parameter ξ of `geom` at abscissa x, x within (or at round-off outside) its x-range; the
+/// linear guess only guards round-off at its ends.
+fn parameter_at(geom: &ElementGeometry, x: f64) -> f64 {
+    let (xa, xb) = (geom.nodes[0][0], geom.nodes[1][0]);
+    geom.parameter_at_x(x)
+        .unwrap_or_else(|| (2.0 * (x - xa) / (xb - xa) - 1.0).clamp(-1.0, 1.0))
 }
 
 /// `elements` (the cut mesh's, on `nodes`) with every element outside contact group `group`
 /// that shares an end node with it graded towards that node ([`graded_transition`]). `original`
 /// is the mesh before the cuts: the contact element there at the common node sets the length
-/// ratio the start mesh already had, which is kept where it exceeds [`MAX_NEIGHBOUR_RATIO`].
+/// ratio the start mesh already had, which is kept where it exceeds `max_ratio`.
 fn graded_transitions(
     original: &BoundaryMesh,
     nodes: &mut Vec<[f64; 2]>,
     elements: Vec<BoundaryElement>,
     group: usize,
+    max_ratio: f64,
 ) -> Vec<BoundaryElement> {
     let cut_ends = contact_end_lengths(&elements, nodes, group);
     let uncut_ends = contact_end_lengths(&original.elements, &original.nodes, group);
@@ -122,7 +159,7 @@ fn graded_transitions(
         let uncut = uncut_ends.get(&shared).copied().unwrap_or(cut);
         let own = ElementGeometry::of_element(el, nodes).length();
         // 10 % slack, as in the grid's balance: equal pieces in ξ are nearly equal in length.
-        let allowed = (MAX_NEIGHBOUR_RATIO * 1.1).max(own / uncut);
+        let allowed = (max_ratio * 1.1).max(own / uncut);
         let halvings = (own / (cut * allowed)).log2().ceil().max(0.0) as u32;
         out.extend(graded_transition(el, shared == el.nodes[0], halvings, nodes));
     }
@@ -145,7 +182,7 @@ fn contact_end_lengths(elements: &[BoundaryElement], nodes: &[[f64; 2]], group: 
 
 /// `el` halved `halvings` times towards its start (`towards_start`) or its end, each time the
 /// half at that end: `halvings + 1` pieces on the element's own curve, in its walking direction,
-/// each at most [`MAX_NEIGHBOUR_RATIO`] times its neighbour (in ξ, exactly).
+/// each at most twice as long as its neighbour (in ξ, exactly).
 fn graded_transition(
     el: &BoundaryElement,
     towards_start: bool,
@@ -188,21 +225,10 @@ fn graded_transition(
         .collect()
 }
 
-/// A new node on the element's curve at abscissa x; its index.
-fn point_at_x(geom: &ElementGeometry, x: f64, nodes: &mut Vec<[f64; 2]>) -> usize {
-    let (xa, xb) = (geom.nodes[0][0], geom.nodes[1][0]);
-    // x lies inside the element's x-range; the linear guess only guards round-off at its ends.
-    let xi = geom
-        .parameter_at_x(x)
-        .unwrap_or_else(|| (2.0 * (x - xa) / (xb - xa) - 1.0).clamp(-1.0, 1.0));
-    nodes.push(geom.point(xi));
-    nodes.len() - 1
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::adapt::cells::Action;
+    use crate::adapt::cells::{Action, DyadicGrid, MAX_NEIGHBOUR_RATIO};
     use crate::mesh::{boundary_loops, validate_and_orient};
 
     /// The shipped roller of radius 100 on a shaft of radius 10 (meshes/roller_r100_shaft10_A.msh):
@@ -253,7 +279,7 @@ mod tests {
         let cells = start.refined(&action);
         let before = &loaded.mesh;
         let start_ratio = neighbour_ratios(before)[0].0;
-        let after = refined_mesh(&loaded, &cells);
+        let after = cut_along_grid(&loaded, &cells.grid(), MAX_NEIGHBOUR_RATIO);
 
         let mut checked = after.clone();
         validate_and_orient(&mut checked).expect("the refined mesh is a valid boundary");
@@ -302,7 +328,7 @@ mod tests {
         let n = start.len();
         let mut action = vec![Action::Keep; n];
         action[n / 2] = Action::Split(3);
-        let after = refined_mesh(&loaded, &start.refined(&action));
+        let after = cut_along_grid(&loaded, &start.refined(&action).grid(), MAX_NEIGHBOUR_RATIO);
         let outside = |m: &BoundaryMesh| -> Vec<Vec<[f64; 2]>> {
             m.elements
                 .iter()

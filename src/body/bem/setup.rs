@@ -1,0 +1,166 @@
+//! The BEM model's setup: a body given by its boundary mesh, material and boundary conditions,
+//! condensed to the contact grid; on a refined grid its mesh is cut along the grid
+//! ([`crate::mesh::cuts`]).
+
+use super::BemBody;
+use crate::bem::{BemModel, BemOptions, BoundaryCondition};
+use crate::body::setup::{BodySetup, BuildContext, BuildError, ContactMesh, SurfaceAt};
+use crate::body::transfer::Transferred;
+use crate::body::{Body, Side, WithCircularProfile};
+use crate::grid::ContactGrid;
+use crate::material::Elastic;
+use crate::mesh::cuts::cut_along_grid;
+use crate::mesh::LoadedMesh;
+use std::sync::Arc;
+
+/// Largest length ratio of neighbouring elements where a cut contact segment meets the rest of
+/// the mesh: the ratio an error-controlled grid keeps between its own elements.
+pub const MAX_TRANSITION_RATIO: f64 = 2.0;
+
+/// A `bem` body of a scene: its mesh, material and boundary conditions.
+#[derive(Debug, Clone)]
+pub struct BemSetup {
+    /// The checked and oriented mesh (cut along the grid on a refined grid).
+    pub mesh: LoadedMesh,
+    /// Elastic constants.
+    pub material: Elastic,
+    /// Name of the contact group.
+    pub contact: String,
+    /// Boundary condition of every group: the other groups in name order, the contact group
+    /// last (the order numbers the unknowns).
+    pub conditions: Vec<(String, BoundaryCondition)>,
+    /// Profile radius [length]: `profile_radius` if given, else the circle fitted to the
+    /// contact group (used for the Hertz estimates).
+    pub radius: f64,
+    /// A radius that replaces the mesh's own contact profile in the gap (a BEM block standing
+    /// in for a cylinder, paper Fig. 2), if the case gives one.
+    pub profile_radius: Option<f64>,
+    /// The start mesh a refined grid's cuts are made in (None: `mesh` is the start mesh).
+    pub start_mesh: Option<Arc<LoadedMesh>>,
+}
+
+impl BemSetup {
+    /// The model of the body's mesh, condensed to its own contact nodes.
+    fn own_body(&self, side: Side) -> Result<BemBody, BuildError> {
+        let model = BemModel::new(
+            self.mesh.mesh.clone(),
+            self.material,
+            self.conditions.clone(),
+            BemOptions::default(),
+        )?;
+        Ok(BemBody::new(model, &self.contact, &self.mesh.contact_grid(), side)?)
+    }
+}
+
+impl BodySetup for BemSetup {
+    fn model_name(&self) -> &'static str {
+        "bem"
+    }
+
+    fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    fn hertz_material(&self) -> Option<Elastic> {
+        Some(self.material)
+    }
+
+    fn contact_mesh(&self) -> Option<ContactMesh<'_>> {
+        Some(ContactMesh {
+            mesh: &self.mesh,
+            group: &self.contact,
+        })
+    }
+
+    /// The mesh's contact surface (clamped to the contact group's x-range), its profile from
+    /// its touching point at x = 0, turning about the contact group's fitted circle.
+    fn surface_at(&self, x: f64, side: Side) -> Option<SurfaceAt> {
+        let mesh = &self.mesh;
+        let [x0, x1] = mesh.contact_range();
+        let (y, slope) = mesh.surface_at(x.clamp(x0, x1))?;
+        let touch = mesh.surface_at(0.0).map_or(y, |(y0, _)| y0);
+        Some(SurfaceAt {
+            slope_angle: slope.atan(),
+            profile: (y - touch) * side.sign(),
+            radius: mesh.contact_radius(),
+        })
+    }
+
+    /// The profile radius, or the extent of the mesh (its bounding box's diagonal) where that
+    /// is smaller: a flat body (a layer, a block: radius ∞) has its datum at its own fixed
+    /// boundary, not infinitely far.
+    fn datum_distance(&self) -> f64 {
+        self.radius.abs().min(self.mesh.mesh.size())
+    }
+
+    /// The distance from the contact node nearest x = 0 to the nearest node of a `fixed` group
+    /// [length], when that lies closer than half the body's radius (a cover layer on a rigid
+    /// core).
+    fn layer_thickness(&self) -> Option<f64> {
+        let fixed: Vec<usize> = self
+            .conditions
+            .iter()
+            .filter(|(_, c)| matches!(c, BoundaryCondition::Fixed))
+            .filter_map(|(g, _)| self.mesh.mesh.group_index(g).ok())
+            .collect();
+        let depth = self.mesh.depth_below_contact(&fixed)?;
+        (depth < 0.5 * self.radius.abs()).then_some(depth)
+    }
+
+    /// The mesh's geometric nodes plus one field node per discontinuous contact element.
+    fn discretisation_nodes(&self) -> Option<usize> {
+        let lm = &self.mesh;
+        let contact_elements = lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count();
+        Some(lm.mesh.nodes.len() + contact_elements)
+    }
+
+    fn notices(&self) -> &[String] {
+        &self.mesh.notices
+    }
+
+    /// Condensed to its own contact nodes; if those differ from the grid's, its flexibility is
+    /// carried over by [`Transferred`]. With `profile_radius`, the gap sees that circle.
+    fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "body {:?}: BEM of {} boundary elements ({} nodes), condensing to the contact nodes",
+            ctx.side,
+            self.mesh.mesh.elements.len(),
+            self.mesh.mesh.nodes.len()
+        );
+        let body = self.own_body(ctx.side)?;
+        let own = self.mesh.contact_grid();
+        let on_grid: Box<dyn Body> = if own.coincides_with(ctx.grid) {
+            Box::new(body)
+        } else {
+            let t = Transferred {
+                inner: Box::new(body),
+                own_grid: own,
+                side: ctx.side,
+            };
+            t.check(ctx.grid)?;
+            Box::new(t)
+        };
+        Ok(match self.profile_radius {
+            Some(r) => Box::new(WithCircularProfile {
+                inner: on_grid,
+                radius: r,
+            }),
+            None => on_grid,
+        })
+    }
+
+    /// The start mesh with its contact elements cut along `grid` ([`cut_along_grid`]).
+    fn follow_grid(&self, grid: &ContactGrid) -> Option<Arc<dyn BodySetup>> {
+        let start = self.start_mesh.clone().unwrap_or_else(|| Arc::new(self.mesh.clone()));
+        let mesh = LoadedMesh {
+            mesh: cut_along_grid(&start, grid, MAX_TRANSITION_RATIO),
+            ..(*start).clone()
+        };
+        Some(Arc::new(BemSetup {
+            mesh,
+            start_mesh: Some(start),
+            ..self.clone()
+        }))
+    }
+}

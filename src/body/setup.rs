@@ -1,0 +1,165 @@
+//! A body of a scene before it meets a contact grid: the one extension point per body model.
+//!
+//! The scene holds each body as an `Arc<dyn BodySetup>`. Everything the stages after the case
+//! ask of a body goes through this trait, so a new body model is one type that implements it
+//! (in its own module under `src/body/`) plus one arm in the registry that turns its case keys
+//! into it (`src/scene/registry.rs`); nothing in `contact/`, `adapt/`, `post/` or `output/`
+//! changes (docs/architecture.md, "A new body model").
+//!
+//! What a setup owns:
+//! * what the scene's estimates need: its profile radius, the elastic constants that stand for
+//!   it in the Hertz estimates, the datum of its normal approach, its surface geometry for the
+//!   contact frame;
+//! * its cost: the size of its own discretisation, for the memory estimate;
+//! * building its [`Body`] on a contact grid ([`BodySetup::build`]), given the side and the
+//!   rolling kinematics ([`BuildContext`]);
+//! * following a refined grid ([`BodySetup::follow_grid`]): a BEM body cuts its own mesh along
+//!   the grid, a closed-form model has nothing to change.
+
+use super::{circle_profile, circle_profile_slope, Body, Side};
+use crate::grid::ContactGrid;
+use crate::material::Elastic;
+use crate::mesh::LoadedMesh;
+use std::sync::Arc;
+
+/// How the contact moves over the bodies: what a rate-dependent model (viscoelastic) needs
+/// beyond the grid. Elastic models ignore it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rolling {
+    /// +1 when the contact moves in +x over the bodies (material enters at x = +a), −1 when
+    /// it moves in −x.
+    pub direction: f64,
+    /// Rolling speed V [length/time], when the case gives one.
+    pub speed: Option<f64>,
+}
+
+/// What a body model is built with besides its own keys.
+#[derive(Debug, Clone, Copy)]
+pub struct BuildContext<'a> {
+    /// The contact grid the flexibility is wanted at.
+    pub grid: &'a ContactGrid,
+    /// Which body of the pair.
+    pub side: Side,
+    /// The rolling kinematics.
+    pub rolling: Rolling,
+}
+
+/// A body's contact group on its own mesh: a body that has one sets the contact grid (its
+/// contact elements are the grid's).
+#[derive(Debug, Clone, Copy)]
+pub struct ContactMesh<'a> {
+    /// The checked and oriented mesh.
+    pub mesh: &'a LoadedMesh,
+    /// Name of the contact group.
+    pub group: &'a str,
+}
+
+/// A body's surface at x: slope angle θ [rad], profile h [length] and the signed radius it
+/// turns about [length] (infinite for a flat, translating body).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceAt {
+    /// Angle of the surface's tangent from +x [rad].
+    pub slope_angle: f64,
+    /// Distance from the common tangent, ≥ 0 convex, ≤ 0 concave [length].
+    pub profile: f64,
+    /// Signed radius of rotation [length].
+    pub radius: f64,
+}
+
+impl SurfaceAt {
+    /// The surface of a circle of signed radius `radius` at x, seen from `side`.
+    pub fn of_circle(radius: f64, x: f64, side: Side) -> Self {
+        // y rises into A above the contact and falls into B below it.
+        Self {
+            slope_angle: (side.sign() * circle_profile_slope(radius, x)).atan(),
+            profile: circle_profile(radius, x),
+            radius,
+        }
+    }
+
+    /// The x-speed of the surface's material relative to its speed at the contact's centre
+    /// for a body turning about its centre: 1 − h/R [-].
+    pub fn speed_ratio(&self) -> f64 {
+        if self.radius.is_finite() {
+            1.0 - self.profile / self.radius
+        } else {
+            1.0
+        }
+    }
+}
+
+/// Why a body model could not be built on a grid.
+#[derive(Debug, thiserror::Error)]
+pub enum BuildError {
+    /// The BEM model of the body failed (a singular system, a mesh it cannot use).
+    #[error(transparent)]
+    Bem(#[from] crate::bem::BemError),
+    /// The body's own contact nodes do not cover the grid.
+    #[error(transparent)]
+    Transfer(#[from] super::transfer::TransferError),
+}
+
+/// One body of a scene, ready to build its model on a contact grid (module docs).
+pub trait BodySetup: std::fmt::Debug + Send + Sync {
+    /// The model's name in outputs (`half_space`, `rigid`, `bem`, …).
+    fn model_name(&self) -> &'static str;
+
+    /// Signed profile radius [length]: positive convex, negative concave, infinite for a flat
+    /// profile (the Hertz estimates' radius).
+    fn radius(&self) -> f64;
+
+    /// The elastic constants that stand for the body in the Hertz estimates (grid size, the
+    /// error's units), in the Dundurs coupling of the estimates and in the contact frame's
+    /// share of the gap; None for a body that does not deform. A model with more than one
+    /// modulus says here which one sizes the contact.
+    fn hertz_material(&self) -> Option<Elastic>;
+
+    /// Plane-strain compliance (1 − ν²)/E of [`Self::hertz_material`] [1/stress], zero for a
+    /// rigid body.
+    fn compliance(&self) -> f64 {
+        self.hertz_material().map_or(0.0, |m| m.plane_strain_compliance())
+    }
+
+    /// The body's contact group on its own mesh, if it has one (it then sets the grid).
+    fn contact_mesh(&self) -> Option<ContactMesh<'_>> {
+        None
+    }
+
+    /// The body's surface at x on `side` for the contact frame, None when the model is flat
+    /// (a half-space: the frame then keeps the global axes).
+    fn surface_at(&self, x: f64, side: Side) -> Option<SurfaceAt>;
+
+    /// Distance R_b [length] of the datum of the body's normal approach, in the half-plane
+    /// estimate of the force an overlap gives (ln(4R_b/a)): its profile radius by default.
+    fn datum_distance(&self) -> f64 {
+        self.radius().abs()
+    }
+
+    /// Depth [length] of a thin layer of the body under its contact (a cover on a rigid core),
+    /// for the model advice; None when the body is not a thin layer.
+    fn layer_thickness(&self) -> Option<f64> {
+        None
+    }
+
+    /// Nodes of the body's own discretisation (a BEM body's boundary nodes, the contact's
+    /// field nodes included), for the memory estimate; None for a closed-form model.
+    fn discretisation_nodes(&self) -> Option<usize> {
+        None
+    }
+
+    /// Notices of the body's inputs (a mesh loop turned round), for the console.
+    fn notices(&self) -> &[String] {
+        &[]
+    }
+
+    /// Builds the body model on `ctx.grid`, seen from `ctx.side`.
+    fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError>;
+
+    /// The body on a refined contact grid spanning the same interval (an error-controlled
+    /// grid's passes): a new setup when the body's own discretisation follows the grid (a BEM
+    /// body's mesh cut along it), None when the body is unchanged (closed-form models: they
+    /// build on any grid).
+    fn follow_grid(&self, _grid: &ContactGrid) -> Option<Arc<dyn BodySetup>> {
+        None
+    }
+}
