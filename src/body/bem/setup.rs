@@ -164,3 +164,75 @@ impl BodySetup for BemSetup {
         }))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::adapt::cells::{Action, DyadicGrid};
+    use crate::material::Elastic;
+
+    /// The roller R 150 on a shaft of 15 of cases/fig14_true_geometry.yaml (body A), whose
+    /// Gmsh file puts the mid node of the contact element at the centre 4.2e-11 mm off x = 0.
+    fn fig14_roller() -> BemSetup {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r150_shaft15_A.msh");
+        let (mesh, notices) = crate::mesh::load(&path).unwrap();
+        let contact_group = mesh.group_index("contact").unwrap();
+        let mesh = LoadedMesh {
+            path,
+            mesh,
+            notices,
+            contact_group,
+        };
+        BemSetup {
+            radius: mesh.contact_radius(),
+            mesh,
+            material: Elastic::new(210_000.0, 0.3),
+            contact: "contact".into(),
+            conditions: vec![
+                ("free".into(), BoundaryCondition::Free),
+                ("shaft".into(), BoundaryCondition::Fixed),
+                ("contact".into(), BoundaryCondition::Contact),
+            ],
+            profile_radius: None,
+            start_mesh: None,
+        }
+    }
+
+    /// A grid graded 12 times towards both ends of the contact (elements of 1/4096 of the
+    /// start's there) is followed by the mesh, and the body builds on it: its contact nodes are
+    /// the grid's to within 1e-6 of each element. Compared with the grid's smallest spacing
+    /// instead, the Gmsh round-off of the uncut centre element's mid node (4.2e-11 mm, 1e-9 of
+    /// that element) refused the mesh rollbem had cut itself.
+    #[test]
+    fn a_deeply_graded_grid_is_followed_and_built() {
+        let setup = fig14_roller();
+        let start = DyadicGrid::new(&setup.mesh.contact_grid());
+        let n = start.len();
+        let (lo, hi) = (start.root().edges[0], start.root().edges[n]);
+        let mut action = vec![Action::Keep; n];
+        action[0] = Action::GradeTowards(lo, 12);
+        action[n - 1] = Action::GradeTowards(hi, 12);
+        let grid = start.refined(&action).grid();
+        assert!(
+            grid.node_spacing() * 1e-6 < 4.2e-11,
+            "the grid is fine enough to show the old refusal"
+        );
+        let followed = setup.follow_grid(&grid).expect("a BEM body follows the grid");
+        let own = followed.contact_mesh().unwrap().mesh.contact_grid();
+        assert_eq!(own.edges.len(), grid.edges.len(), "one mesh element per grid element");
+        for (e, (a, b)) in own.edges.iter().zip(&grid.edges).enumerate() {
+            // The x of a point placed on the curve at the grid's x: round-off of the root.
+            let h = grid.edges[e.max(1)] - grid.edges[e.max(1) - 1];
+            assert!((a - b).abs() <= 1e-9 * h, "edge {e}: mesh {a}, grid {b}");
+        }
+        let ctx = BuildContext {
+            grid: &grid,
+            side: Side::A,
+            rolling: crate::body::Rolling {
+                direction: 1.0,
+                speed: None,
+            },
+        };
+        followed.build(&ctx).expect("the body builds on the grid it followed");
+    }
+}
