@@ -26,6 +26,9 @@
 //! The result is H's solution; summary.json reports the estimate (`error_estimate`) and the
 //! grid's passes. With the estimate not reached within `contact.grid.max_elements` elements
 //! the run ends with exit code 2 and the last estimate.
+//!
+//! A fixed grid (no `contact.grid.tolerance`) is the same loop stopped after its first solve:
+//! [`solve`] is the one driver of every run.
 
 pub mod cells;
 pub mod estimate;
@@ -75,8 +78,8 @@ pub struct Adapted {
     pub report: SolveReport,
     /// Times of the stages, summed over the passes.
     pub timings: Timings,
-    /// How the grid was reached.
-    pub adaptation: GridAdaptation,
+    /// How the grid was reached (None for a fixed grid).
+    pub adaptation: Option<GridAdaptation>,
 }
 
 /// One grid assembled and solved.
@@ -126,7 +129,15 @@ fn solve_on(scene: Scene, warm: Option<(&ContactGrid, &State)>, timings: &mut Ti
     let t = Instant::now();
     // The strain operator serves only the outputs: the final grid's is added by `finished`.
     let (models, problem) = scene.assemble_without_strain()?;
-    timings.assembly_s += t.elapsed().as_secs_f64();
+    let condense_s = models[0].stage_seconds().1 + models[1].stage_seconds().1;
+    timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
+    timings.condense_s += condense_s;
+    log::info!(
+        target: crate::logging::PROGRESS,
+        "solving: {}, {} contact nodes",
+        scene.solver.method.name(),
+        problem.n_nodes()
+    );
     let t = Instant::now();
     let warm = warm.map(|(from, z)| carried(&problem, from, z));
     let (state, report) = methods::solve_from(&problem, &scene.solver, warm);
@@ -165,10 +176,16 @@ fn carried(pb: &ContactProblem, from: &ContactGrid, z: &State) -> State {
     }
 }
 
-/// Solves the scene on a grid refined until the estimated error meets `tolerance` (module docs).
-/// A solve that does not converge ends the loop: its solution comes back with
-/// `report.converged == false`, as for a fixed grid.
-pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapted, Error> {
+/// Solves the scene: on its grid when the grid is fixed, else on a grid refined until the
+/// estimated error meets the scene's tolerance (module docs). A solve that does not converge
+/// ends the loop: its solution comes back with `report.converged == false`.
+pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
+    let Some(control) = scene.grid_control else {
+        let mut timings = Timings::default();
+        let only = solve_on(scene.clone(), None, &mut timings)?;
+        return Ok(finished(only, timings, None));
+    };
+    let (tolerance, max_elements) = (control.tolerance, control.max_elements);
     check_matching_meshes(scene)?;
     let mut timings = Timings::default();
     let mut coarse = DyadicGrid::new(&scene.grid);
@@ -182,7 +199,7 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
             &mut timings,
         )?;
         if !g.report.converged {
-            return Ok(finished(g, timings, tolerance, steps));
+            return Ok(finished(g, timings, Some((tolerance, steps))));
         }
         let hertz = *hertz.get_or_insert_with(|| HertzScales::of_run(scene, &g));
         let scales = Scales {
@@ -198,7 +215,7 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
             &mut timings,
         )?;
         if !h.report.converged {
-            return Ok(finished(h, timings, tolerance, steps));
+            return Ok(finished(h, timings, Some((tolerance, steps))));
         }
         let cmp = estimate::compare(&g.problem.grid, &g.state, &h.problem.grid, &h.state, scales);
         let e = cmp.estimate;
@@ -221,7 +238,7 @@ pub fn solve(scene: &Scene, tolerance: f64, max_elements: usize) -> Result<Adapt
         let singular = singular_points(&h.problem, &h.state);
         let half_width = hertz.half_width;
         if e.within(tolerance) && resolved(&h.problem.grid, &singular, tolerance, half_width) {
-            return Ok(finished(h, timings, tolerance, steps));
+            return Ok(finished(h, timings, Some((tolerance, steps))));
         }
         let next = coarse.refined(&actions(&coarse, &cmp, &singular, tolerance, half_width));
         log::debug!("singular points {singular:?}; next grid {} elements", next.len());
@@ -278,8 +295,9 @@ impl HertzScales {
     }
 }
 
-/// The result of the loop: the last solve with the passes so far.
-fn finished(mut s: Solve, mut timings: Timings, tolerance: f64, steps: Vec<AdaptationStep>) -> Adapted {
+/// The result of the loop: the last solve with the tolerance and the passes so far (None for a
+/// fixed grid).
+fn finished(mut s: Solve, mut timings: Timings, passes: Option<(f64, Vec<AdaptationStep>)>) -> Adapted {
     let t = Instant::now();
     s.problem.strain = ContactProblem::strain_of(
         &s.problem.grid,
@@ -288,14 +306,14 @@ fn finished(mut s: Solve, mut timings: Timings, tolerance: f64, steps: Vec<Adapt
         &s.problem.frame,
     );
     timings.assembly_s += t.elapsed().as_secs_f64();
-    timings.total_s = timings.assembly_s + timings.solve_s;
+    timings.total_s = timings.assembly_s + timings.condense_s + timings.solve_s;
     Adapted {
-        adaptation: GridAdaptation {
+        adaptation: passes.map(|(tolerance, steps)| GridAdaptation {
             tolerance,
             estimate: steps.last().map(|s| s.estimate),
             refinements: steps.len().saturating_sub(1),
             steps,
-        },
+        }),
         scene: s.scene,
         models: s.models,
         problem: s.problem,

@@ -2,12 +2,11 @@
 //! outputs, one stage after the other (docs/architecture.md maps them to files).
 
 use crate::case::{self, LoadedCase};
-use crate::contact::methods;
 use crate::contact::{ContactProblem, SolveReport};
 use crate::error::Error;
 use crate::output::{self, Summary};
 pub use crate::post::Solved;
-use crate::post::{self, ContactSolution, Timings};
+use crate::post::{self, ContactSolution};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -68,33 +67,15 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
 pub fn solve_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
     // Scenes of a study's own bodies are not checked by `Scene::from_case`.
     crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
-    let grid_spec = &scene.case.case.contact.grid;
-    if let Some(tolerance) = grid_spec.tolerance {
-        let a = crate::adapt::solve(&scene, tolerance, grid_spec.max_elements)?;
-        let mut timings = a.timings;
-        timings.total_s = start.elapsed().as_secs_f64();
-        let mut solved = post::process(a.scene, &a.models, a.problem, &a.state, a.report, timings)?;
-        solved.adaptation = Some(a.adaptation);
-        return Ok(solved);
-    }
-    let (models, problem) = scene.assemble()?;
-    let condense_s = models[0].stage_seconds().1 + models[1].stage_seconds().1;
-    let mut timings = Timings {
-        assembly_s: start.elapsed().as_secs_f64() - condense_s,
-        condense_s,
-        ..Timings::default()
-    };
-    let t_solve = Instant::now();
-    log::info!(
-        target: crate::logging::PROGRESS,
-        "solving: {}, {} contact nodes",
-        scene.solver.method.name(),
-        problem.n_nodes()
-    );
-    let (state, report) = methods::solve(&problem, &scene.solver);
-    timings.solve_s = t_solve.elapsed().as_secs_f64();
+    // Reading the case and the meshes counts as assembly.
+    let before = start.elapsed().as_secs_f64();
+    let a = crate::adapt::solve(&scene)?;
+    let mut timings = a.timings;
+    timings.assembly_s += before;
     timings.total_s = start.elapsed().as_secs_f64();
-    post::process(scene, &models, problem, &state, report, timings)
+    let mut solved = post::process(a.scene, &a.models, a.problem, &a.state, a.report, timings)?;
+    solved.adaptation = a.adaptation;
+    Ok(solved)
 }
 
 /// Everything a run produced.
@@ -108,6 +89,8 @@ pub struct RunReport {
     pub problem: ContactProblem,
     /// Solver report.
     pub report: SolveReport,
+    /// The iteration budget the solver had (`solver.max_iterations`).
+    pub max_iterations: usize,
     /// Where the outputs were written.
     pub output_dir: PathBuf,
 }
@@ -142,6 +125,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         solution: s.solution,
         problem: s.problem,
         report: s.report,
+        max_iterations: s.scene.solver.newton.max_iterations,
         output_dir,
     })
 }

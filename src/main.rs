@@ -130,13 +130,9 @@ fn warn_restarts(s: &rollbem::output::Summary) {
 /// What to tell the user when a run ends without converging: whether the iteration budget ran
 /// out (then more `solver.max_iterations` may help) or the residual stopped improving (then it
 /// will not), and where the history is.
-fn not_converged_message(summary: &rollbem::output::Summary, output_dir: &std::path::Path) -> String {
-    let budget = summary
-        .case
-        .pointer("/solver/max_iterations")
-        .and_then(serde_json::Value::as_u64)
-        .unwrap_or(u64::MAX);
-    let cause = if summary.iterations as u64 >= budget {
+fn not_converged_message(report: &rollbem::app::RunReport) -> String {
+    let (summary, output_dir) = (&report.summary, &report.output_dir);
+    let cause = if summary.iterations >= report.max_iterations {
         "the iteration budget ran out: give more solver.max_iterations (gauss_seidel counts sweeps and \
          needs thousands), or try"
     } else {
@@ -169,7 +165,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             if report.summary.converged {
                 Ok(0)
             } else {
-                eprintln!("error: {}", not_converged_message(&report.summary, &report.output_dir));
+                eprintln!("error: {}", not_converged_message(&report));
                 Ok(EXIT_NOT_CONVERGED)
             }
         }

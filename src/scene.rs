@@ -49,6 +49,20 @@ pub struct Scene {
     pub tangential: TangentialControl,
     /// Solution method and its settings.
     pub solver: SolverSettings,
+    /// Coulomb friction coefficient μ [-].
+    pub friction: f64,
+    /// The error control of `contact.grid.tolerance`; None for a fixed grid.
+    pub grid_control: Option<GridControl>,
+}
+
+/// What an error-controlled grid must reach, and its limit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridControl {
+    /// Tolerance on the estimated RMS errors of p/p0 and q/(μp0) and the creepage's relative
+    /// error [-].
+    pub tolerance: f64,
+    /// Most elements of the bisected grid before the run stops (exit code 2).
+    pub max_elements: usize,
 }
 
 impl Scene {
@@ -88,6 +102,11 @@ impl Scene {
         };
         let solver = solver_settings(&case);
         let frame = contact_frame::contact_frame(&bodies, &grid, c.contact.traction_axes);
+        let friction = c.contact.friction;
+        let grid_control = c.contact.grid.tolerance.map(|tolerance| GridControl {
+            tolerance,
+            max_elements: c.contact.grid.max_elements,
+        });
         Scene {
             case,
             bodies,
@@ -97,6 +116,8 @@ impl Scene {
             normal,
             tangential,
             solver,
+            friction,
+            grid_control,
         }
     }
 
@@ -114,7 +135,7 @@ impl Scene {
 
     /// Coulomb friction coefficient μ.
     pub fn friction(&self) -> f64 {
-        self.case.case.contact.friction
+        self.friction
     }
 
     /// +1 when the leading edge is at x = +a (rolling in +x), −1 otherwise.
@@ -200,7 +221,7 @@ impl Scene {
             models[0].model(),
             models[1].model(),
             c.slip_derivative,
-            c.friction,
+            self.friction,
             c.rolling_direction,
             self.normal,
             self.tangential,
