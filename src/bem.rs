@@ -48,6 +48,7 @@ pub mod assemble;
 pub mod condense;
 pub mod discretise;
 pub mod element;
+pub mod fundamental;
 pub mod hypersingular;
 pub mod integrate;
 pub mod kernel;

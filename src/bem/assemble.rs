@@ -12,6 +12,7 @@
 //! columns of A have comparable magnitudes.
 
 use super::discretise::{Discretisation, FieldNode};
+use super::fundamental::FundamentalSolution;
 use super::integrate::{element_integrals, SourcePosition};
 use super::kernel::Kelvin;
 use super::{BemError, BoundaryCondition, Component};
@@ -218,14 +219,21 @@ impl BemModel {
         &self.kernel
     }
 
-    /// Assembles H and G, in parallel over the collocation points.
+    /// Assembles H and G with the model's Kelvin kernels, in parallel over the collocation
+    /// points.
     pub fn assemble(&self) -> Assembly {
+        self.assemble_with(&self.kernel)
+    }
+
+    /// Assembles H and G of the model's discretisation with the fundamental solution
+    /// `kernel`, in parallel over the collocation points.
+    pub fn assemble_with<K: FundamentalSolution>(&self, kernel: &K) -> Assembly {
         let n = self.discretisation.n_nodes();
         let m = 2 * n;
         let quadrature = Quadrature::new(self.options.quadrature());
         let rows: Vec<Vec<f64>> = (0..n)
             .into_par_iter()
-            .map(|i| self.collocation_rows(i, &quadrature))
+            .map(|i| self.collocation_rows(kernel, i, &quadrature))
             .collect();
         let h = Mat::from_fn(m, m, |r, c| rows[r / 2][(r % 2) * m + c]);
         let g = Mat::from_fn(m, m, |r, c| rows[r / 2][(2 + r % 2) * m + c]);
@@ -233,7 +241,7 @@ impl BemModel {
     }
 
     /// Rows 2i, 2i+1 of H then of G (4 × 2N values, row after row) for collocation at node i.
-    fn collocation_rows(&self, i: usize, quadrature: &Quadrature) -> Vec<f64> {
+    fn collocation_rows<K: FundamentalSolution>(&self, kernel: &K, i: usize, quadrature: &Quadrature) -> Vec<f64> {
         let d = &self.discretisation;
         let m = 2 * d.n_nodes();
         let mut rows = vec![0.0; 4 * m];
@@ -248,7 +256,7 @@ impl BemModel {
             };
             let ints = element_integrals(
                 quadrature,
-                &self.kernel,
+                kernel,
                 &d.geometry[e],
                 &d.interpolation[e],
                 source,

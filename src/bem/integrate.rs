@@ -31,7 +31,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::element::{ElementGeometry, FieldInterpolation};
-use super::kernel::{Kelvin, KernelFrame};
+use super::fundamental::FundamentalSolution;
+use super::kernel::KernelFrame;
 use crate::quadrature::Quadrature;
 #[cfg(doc)]
 use crate::quadrature::QuadratureOptions;
@@ -62,9 +63,9 @@ pub enum SourcePosition {
 }
 
 /// Integrals of U* and T* over an element for a source at `source` (see the module docs).
-pub fn element_integrals(
+pub fn element_integrals<K: FundamentalSolution>(
     quadrature: &Quadrature,
-    kernel: &Kelvin,
+    kernel: &K,
     geometry: &ElementGeometry,
     field: &FieldInterpolation,
     source: [f64; 2],
@@ -81,9 +82,9 @@ pub fn element_integrals(
 }
 
 /// Adaptive Gauss over sub-intervals whose nearest kernel singularity is far enough.
-fn off_element(
+fn off_element<K: FundamentalSolution>(
     quadrature: &Quadrature,
-    kernel: &Kelvin,
+    kernel: &K,
     geometry: &ElementGeometry,
     field: &FieldInterpolation,
     source: [f64; 2],
@@ -96,9 +97,9 @@ fn off_element(
 
 /// Split at the source; log-weighted rule for ln(1/t), Gauss–Legendre for the rest.
 #[allow(clippy::too_many_arguments)]
-fn on_element(
+fn on_element<K: FundamentalSolution>(
     quadrature: &Quadrature,
-    kernel: &Kelvin,
+    kernel: &K,
     geometry: &ElementGeometry,
     field: &FieldInterpolation,
     source: [f64; 2],
@@ -148,8 +149,8 @@ fn on_element(
 /// the diagonal of U* (the subtracted logarithm) and skips T* for the shape function `local`.
 #[allow(clippy::too_many_arguments)]
 #[inline]
-fn accumulate(
-    kernel: &Kelvin,
+fn accumulate<K: FundamentalSolution>(
+    kernel: &K,
     geometry: &ElementGeometry,
     field: &FieldInterpolation,
     source: [f64; 2],
@@ -188,6 +189,7 @@ fn accumulate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bem::kernel::Kelvin;
     use crate::material::Elastic;
     use crate::quadrature::{gauss_legendre, QuadratureOptions};
 
