@@ -10,6 +10,7 @@
 mod common;
 
 mod adaptive;
+mod body_contract;
 mod conformal_bem;
 mod conformal_series;
 mod free_rolling_creepage;
