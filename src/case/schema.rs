@@ -139,6 +139,16 @@ pub enum BodySpec {
     },
 }
 
+impl BodySpec {
+    /// The name of the body's material under `materials`, None for a body that has none (rigid).
+    pub fn material_name(&self) -> Option<&str> {
+        match self {
+            BodySpec::HalfSpace { material, .. } | BodySpec::Bem { material, .. } => Some(material),
+            BodySpec::Rigid { .. } => None,
+        }
+    }
+}
+
 fn default_contact_group() -> String {
     "contact".into()
 }

@@ -28,7 +28,7 @@ mod files;
 
 use super::run_parallel;
 use crate::app;
-use crate::case::{self, BodySpec};
+use crate::case;
 use crate::contact::Formulation;
 use crate::contact::Method;
 use crate::error::Error;
@@ -375,9 +375,9 @@ struct Job {
 fn beta_overrides(case_path: &Path, base_set: &[String], beta: f64) -> Result<Vec<String>, Error> {
     let loaded = case::load(case_path, base_set)?;
     let c = &loaded.case;
-    let material_b = match &c.bodies.b {
-        BodySpec::HalfSpace { material, .. } | BodySpec::Bem { material, .. } => loaded.material(material),
-        BodySpec::Rigid { .. } => {
+    let material_b = match c.bodies.b.material_name() {
+        Some(material) => loaded.material(material),
+        None => {
             return Err(Error::Study {
                 message: format!(
                     "{}: the stability study sets Dundurs beta through body A's material against body B's; \
@@ -387,7 +387,7 @@ fn beta_overrides(case_path: &Path, base_set: &[String], beta: f64) -> Result<Ve
             })
         }
     };
-    if matches!(c.bodies.a, BodySpec::Rigid { .. }) {
+    if c.bodies.a.material_name().is_none() {
         return Err(Error::Study {
             message: format!(
                 "{}: the stability study sets Dundurs beta through body A's material; body A is rigid. \

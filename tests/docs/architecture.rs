@@ -196,3 +196,29 @@ fn source_files_stay_small() {
         long.join("\n  ")
     );
 }
+
+/// One extension point per body model: the kinds of body are matched only in `src/body/`, in
+/// the case schema that names them (`src/case/`) and in the registry that turns a spec into a
+/// model's setup (`src/scene/registry.rs`); the error control reaches bodies only through the
+/// scene (it imports neither `bem` nor `mesh`).
+#[test]
+fn body_kinds_are_matched_only_in_their_modules_and_the_registry() {
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut offenders = Vec::new();
+    for file in sources(&src) {
+        let rel = file.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+        let text = code(&std::fs::read_to_string(&file).unwrap());
+        let allowed = rel.starts_with("body") || rel.starts_with("case") || rel == "scene/registry.rs";
+        if !allowed && text.contains("BodySpec::") {
+            offenders.push(format!("{rel}: matches on BodySpec"));
+        }
+        if rel.starts_with("adapt") {
+            for t in paths_after(&text, "crate::") {
+                if t[0] == "bem" || t[0] == "mesh" {
+                    offenders.push(format!("{rel}: imports crate::{}", t[0]));
+                }
+            }
+        }
+    }
+    assert!(offenders.is_empty(), "{}", offenders.join("\n"));
+}
