@@ -203,7 +203,7 @@ class Result:
         self.error_estimate = s["error_estimate"]
         self.timings = s["timings"]
         self.case = s["case"]
-        self.output_dir = raw["output_dir"]
+        self.output_dir = None if raw["output_dir"] is None else os.fspath(raw["output_dir"])
         columns = raw["columns"]
         arrays: Dict[str, Optional[np.ndarray]] = {}
         for name in CONTACT_COLUMNS:
