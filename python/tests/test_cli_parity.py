@@ -125,3 +125,15 @@ def test_check_prints_what_the_cli_prints():
     assert got["estimates"]["hertz_half_width"] > 0 and got["estimates"]["hertz_peak_pressure"] > 0
     tight = cli("check", "cases/carter_051.yaml", "--tolerance", "0.001", "--set", "contact.friction=0.2").stdout
     assert rollbem.check("cases/carter_051.yaml", set={"contact.friction": 0.2}, tolerance=0.001)["report"] == tight
+
+
+def test_check_of_a_dict_case_and_to_pandas():
+    result = rollbem.run("cases/carter_051.yaml")
+    by_dict = rollbem.check(result.case)
+    assert by_dict["report"].startswith(f"rollbem check {rollbem.DICT_CASE_NAME}: valid\n")
+    assert by_dict["estimates"] == result.summary["estimates"]
+    pd = pytest.importorskip("pandas")
+    frame = result.to_pandas()
+    assert isinstance(frame, pd.DataFrame)
+    assert list(frame.columns) == [c for c in rollbem.CONTACT_COLUMNS if result.arrays[c] is not None]
+    assert np.array_equal(frame["pressure"].to_numpy(), result.pressure)
