@@ -3,7 +3,7 @@
 
 pub mod cost;
 
-use crate::case::{self, NormalSpec};
+use crate::case::{self, LoadedCase, NormalSpec};
 use crate::error::Error;
 use crate::scene::{BodySetups, Scene};
 use std::path::Path;
@@ -11,15 +11,22 @@ use std::path::Path;
 /// The text printed by `rollbem check`: the case as understood, with Hertz estimates.
 /// `tolerance` is the accuracy the user needs (a fraction of p0 and μp0), for the model advice.
 pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> Result<String, Error> {
-    let case = case::load(case_path, overrides)?;
-    let scene = Scene::from_case(&case)?;
+    report(&case::load(case_path, overrides)?, tolerance)
+}
+
+/// The text of `rollbem check` for a case already loaded (from a file or from text in memory,
+/// as the Python module's `rollbem.check` loads a case given as a dict); its first line names
+/// `case.path`.
+pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
+    let case_path = case.path.as_path();
+    let scene = Scene::from_case(case)?;
     let (bodies, est, grid) = (&scene.bodies, &scene.estimates, &scene.grid);
     let c = &case.case;
     let mut t = format!("rollbem check {}: valid\n", case_path.display());
     let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
     line("title", c.title.clone());
     for (side, spec) in [("A", &c.bodies.a), ("B", &c.bodies.b)] {
-        let text = crate::scene::registry::describe(&case, spec, bodies[if side == "A" { 0 } else { 1 }].as_ref());
+        let text = crate::scene::registry::describe(case, spec, bodies[if side == "A" { 0 } else { 1 }].as_ref());
         line(&format!("body {side}"), text);
     }
     let mut ranges = Vec::new();

@@ -1,0 +1,365 @@
+"""rollbem from Python: 2D steady rolling contact of elastic cylinders.
+
+The same solver as the ``rollbem`` program, called in-process::
+
+    import rollbem
+    r = rollbem.run("cases/carter_051.yaml")
+    r.creepage, r.normal_force          # numbers of summary.json
+    r.x, r.pressure, r.shear            # contact.csv's columns as numpy arrays
+
+Units are the case's own (``units: {length: mm, force: N}`` by default): lengths in the length
+unit, forces per length of the cylinders in force/length, stresses in force/length^2, creepage
+and slip dimensionless. Signs are those of docs/outputs.md: pressure p >= 0 compressive, shear q
+the traction of B on A along +x, creepage xi = (V_A - V_B)/V.
+
+Functions: :func:`run`, :func:`check`, :func:`sweep` (and :func:`sweep_frame`). Errors:
+:class:`InputError`, :class:`NotConverged`, :class:`InternalError` (subclasses of
+:class:`RollbemError`), one per exit code of the program. The solver runs without the GIL, so
+Python threads run cases in parallel. The library's log messages go to :mod:`logging`, logger
+``"rollbem"`` (per-iteration progress at INFO on ``"rollbem.progress"``).
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import numbers
+import os
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _rollbem
+from ._errors import InputError, InternalError, NotConverged, RollbemError
+
+__version__: str = _rollbem.__version__
+
+__all__ = [
+    "run",
+    "check",
+    "sweep",
+    "sweep_frame",
+    "Result",
+    "RollbemError",
+    "InputError",
+    "NotConverged",
+    "InternalError",
+    "CONTACT_COLUMNS",
+]
+
+#: contact.csv's columns, in order: the arrays of a :class:`Result` have these names.
+CONTACT_COLUMNS = (
+    "x",
+    "pressure",
+    "shear",
+    "gap",
+    "slip",
+    "slip_hbem",
+    "state",
+    "u_n_A",
+    "u_t_A",
+    "u_n_B",
+    "u_t_B",
+)
+
+#: The name a case given as a dict goes by in messages. Its folder is the current directory, so
+#: relative paths inside a dict case (meshes) are read from the current working directory.
+DICT_CASE_NAME = "<case dict>"
+
+Case = Union[str, "os.PathLike[str]", Mapping[str, Any]]
+
+
+def _case_source(case: Case) -> "tuple[str, Optional[str]]":
+    """(path, text): a case file's path, or the dict as JSON text (a YAML document) and its name."""
+    if isinstance(case, Mapping):
+        try:
+            text = json.dumps(case, allow_nan=False, default=_plain)
+        except (TypeError, ValueError) as e:
+            raise InputError(f"{DICT_CASE_NAME}: cannot be written as a case: {e}") from None
+        return DICT_CASE_NAME, text
+    if isinstance(case, (str, os.PathLike)):
+        return os.fspath(case), None
+    raise TypeError(f"case must be a path (str or os.PathLike) or a dict, not {type(case).__name__}")
+
+
+def _plain(value: Any) -> Any:
+    """numpy scalars and arrays as plain Python numbers and lists (for JSON)."""
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    raise TypeError(f"{value!r} ({type(value).__name__}) is not a case value")
+
+
+def _value_text(key: str, value: Any) -> str:
+    """A value as ``--set`` takes it (read as YAML): true/false, null, the shortest round-trip
+    digits of a number, a string as it is, a list or mapping as JSON (a YAML flow collection)."""
+    if isinstance(value, np.generic):
+        value = value.item()
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        v = float(value)
+        if not math.isfinite(v):
+            raise InputError(f"--set {key}={v}: must be a finite number")
+        return repr(v)
+    if isinstance(value, str):
+        return value
+    if isinstance(value, (Mapping, list, tuple, np.ndarray)):
+        try:
+            return json.dumps(value, allow_nan=False, default=_plain)
+        except (TypeError, ValueError) as e:
+            raise InputError(f"--set {key}: {e}") from None
+    raise InputError(f"--set {key}: {value!r} ({type(value).__name__}) is not a case value")
+
+
+def _overrides(set: Optional[Mapping[str, Any]]) -> List[str]:
+    if set is None:
+        return []
+    if not isinstance(set, Mapping):
+        raise TypeError("set must be a dict {'key.path': value}")
+    return [f"{key}={_value_text(key, value)}" for key, value in set.items()]
+
+
+class Result:
+    """The result of one run: summary.json's numbers and contact.csv's columns.
+
+    Numbers (units of the case; docs/outputs.md has every key):
+
+    * ``normal_force`` P [force/length], ``tangential_force`` Q [force/length] (of B on A along +x)
+    * ``overlap`` delta0 [length], ``creepage`` xi = (V_A - V_B)/V [-]
+    * ``load_ratio`` Q/(mu P) [-] (None when mu = 0), ``max_pressure`` [stress]
+    * ``converged`` (bool), ``iterations``, ``residual`` (final scaled residual [-])
+    * ``contact``: dict ``x_min``, ``x_max``, ``half_width``, ``centre`` [length] (None when
+      nothing is in contact)
+    * ``stick_zones``, ``slip_zones``: lists of [x0, x1] [length]
+    * ``regime``: the slip regime 1-4 of Gonzalez & Abascal (2000) section 5.2, 0 for none
+    * ``error_estimate``: the estimated errors of an error-controlled grid (dict, else None)
+    * ``timings``: dict of stage times [s]
+    * ``case``: the case as resolved after the overrides (dict)
+    * ``summary``: the whole summary.json content (dict)
+    * ``output_dir``: the folder written (str), or None when nothing was written
+
+    Arrays (numpy, one entry per contact node in increasing x, named like contact.csv's
+    columns): ``x`` [length], ``pressure`` p >= 0 [stress], ``shear`` q [stress], ``gap``
+    [length], ``slip`` s/|V| [-], ``slip_hbem`` [-] (None when the models give no
+    boundary-integral slip), ``state`` (str: open, stick, slip), ``u_n_A``, ``u_t_A``,
+    ``u_n_B``, ``u_t_B`` [length] (surface displacements; u_n positive into the body). All of
+    them are also in the dict ``arrays``.
+    """
+
+    normal_force: float
+    tangential_force: float
+    overlap: float
+    creepage: float
+    load_ratio: Optional[float]
+    max_pressure: float
+    converged: bool
+    iterations: int
+    residual: float
+    contact: Optional[Dict[str, float]]
+    stick_zones: List[List[float]]
+    slip_zones: List[List[float]]
+    regime: int
+    error_estimate: Optional[Dict[str, float]]
+    timings: Dict[str, float]
+    case: Dict[str, Any]
+    summary: Dict[str, Any]
+    output_dir: Optional[str]
+    arrays: Dict[str, Optional[np.ndarray]]
+    x: np.ndarray
+    pressure: np.ndarray
+    shear: np.ndarray
+    gap: np.ndarray
+    slip: np.ndarray
+    slip_hbem: Optional[np.ndarray]
+    state: np.ndarray
+    u_n_A: np.ndarray
+    u_t_A: np.ndarray
+    u_n_B: np.ndarray
+    u_t_B: np.ndarray
+
+    def __init__(self, raw: Mapping[str, Any]) -> None:
+        s = json.loads(raw["summary"])
+        self.summary = s
+        self.normal_force = s["normal_force"]
+        self.tangential_force = s["tangential_force"]
+        self.overlap = s["overlap"]
+        self.creepage = s["creep"]
+        self.load_ratio = s["load_ratio"]
+        self.max_pressure = s["max_pressure"]
+        self.converged = s["converged"]
+        self.iterations = s["iterations"]
+        self.residual = s["residual"]
+        self.contact = s["contact"]
+        self.stick_zones = s["stick_zones"]
+        self.slip_zones = s["slip_zones"]
+        self.regime = s["slip_regime"]
+        self.error_estimate = s["error_estimate"]
+        self.timings = s["timings"]
+        self.case = s["case"]
+        self.output_dir = None if raw["output_dir"] is None else os.fspath(raw["output_dir"])
+        columns = raw["columns"]
+        arrays: Dict[str, Optional[np.ndarray]] = {}
+        for name in CONTACT_COLUMNS:
+            if name == "state":
+                arrays[name] = np.array(raw["state"], dtype=str)
+            else:
+                arrays[name] = columns.get(name)
+        self.arrays = arrays
+        for name, values in arrays.items():
+            setattr(self, name, values)
+
+    def to_pandas(self) -> "Any":
+        """contact.csv as a pandas DataFrame (columns in contact.csv's order; ``slip_hbem`` is
+        left out when the models give none). Needs pandas (``pip install pandas``)."""
+        try:
+            import pandas as pd
+        except ImportError as e:  # pragma: no cover - depends on the environment
+            raise ImportError("Result.to_pandas needs pandas: pip install pandas") from e
+        return pd.DataFrame({k: v for k, v in self.arrays.items() if v is not None})
+
+    def __repr__(self) -> str:
+        return (
+            f"<rollbem.Result {self.summary.get('title', '')!r}: P={self.normal_force:g} "
+            f"Q={self.tangential_force:g} xi={self.creepage:g} converged={self.converged}>"
+        )
+
+
+def run(
+    case: Case,
+    set: Optional[Mapping[str, Any]] = None,
+    out: Optional[Union[str, "os.PathLike[str]"]] = None,
+) -> Result:
+    """Solves a case, like ``rollbem run``.
+
+    Args:
+        case: a case file (str or os.PathLike), or a dict with the case file's schema
+            (cases/README.md). Relative paths inside a dict case (meshes) are relative to the
+            current working directory; inside a file, to the file's folder.
+        set: overrides ``{"key.path": value}``, as ``--set key.path=value`` (a number, bool,
+            str, None, list or dict; e.g. ``{"contact.friction": 0.2}``).
+        out: a folder to write the CLI's files into (summary.json, contact.csv, contact.svg,
+            ...), replacing an earlier rollbem result there; None writes nothing.
+
+    Returns:
+        the :class:`Result`.
+
+    Raises:
+        InputError: bad input (the CLI's message; nothing written).
+        NotConverged: the solver did not converge (``error.result`` is the partial result; with
+            ``out`` only summary.json is written, as by the CLI), the numerics broke down, or an
+            error-controlled grid missed its tolerance (``error.estimate``).
+        InternalError: a bug.
+    """
+    path, text = _case_source(case)
+    raw = _rollbem.run(path, text, _overrides(set), None if out is None else os.fspath(out))
+    result = Result(raw)
+    if raw["not_converged"] is not None:
+        estimate = {"residual": result.residual, "iterations": result.iterations}
+        raise NotConverged(raw["not_converged"], result=result, estimate=estimate)
+    return result
+
+
+def check(case: Case, set: Optional[Mapping[str, Any]] = None, tolerance: float = 0.01) -> Dict[str, Any]:
+    """The case as understood, without solving, like ``rollbem check``.
+
+    Args:
+        case, set: as for :func:`run`.
+        tolerance: the accuracy you need, a fraction of p0 and mu p0 (0.01 is 1 %), for the model
+            advice.
+
+    Returns:
+        a dict: ``report`` (the text the CLI prints), ``items`` (its rows as {label: text}),
+        ``advice`` (the model advice row), ``estimates`` (summary.json's ``estimates``:
+        ``hertz_half_width`` a [length], ``hertz_peak_pressure`` p0 [stress], ``e_star`` E*
+        [stress], ``effective_radius`` R* [length], ``normal_force`` [force/length],
+        ``carter_stick_width`` [length] or None, ...) and ``case`` (the resolved case).
+
+    Raises:
+        InputError, InternalError: as for :func:`run`.
+    """
+    path, text = _case_source(case)
+    raw = _rollbem.check(path, text, _overrides(set), float(tolerance))
+    report = raw["report"]
+    items: Dict[str, str] = {}
+    for line in report.splitlines()[1:]:
+        # Each row is "  <label padded to 26> <text>" (a longer label shifts its text: skipped).
+        if line.startswith("  ") and len(line) > 29 and line[28] == " ":
+            items[line[2:28].strip()] = line[29:].strip()
+    return {
+        "report": report,
+        "items": items,
+        "advice": items.get("model advice"),
+        "estimates": json.loads(raw["estimates"]),
+        "case": json.loads(raw["case"]),
+    }
+
+
+def sweep(
+    case: Case,
+    vary: Mapping[str, Sequence[Any]],
+    set: Optional[Mapping[str, Any]] = None,
+    jobs: Optional[int] = None,
+) -> List[Dict[str, Any]]:
+    """Runs the Cartesian product of ``vary`` over a case, like ``rollbem sweep`` (nothing is
+    written), in parallel on ``jobs`` threads (all cores when None), without the GIL.
+
+    Args:
+        case, set: as for :func:`run` (``set`` applies to every run).
+        vary: ``{"key.path": [v1, v2, ...], ...}``; the first key varies slowest, as with
+            ``--vary``.
+        jobs: threads (>= 1), or None for every core.
+
+    Returns:
+        one dict per run in run order, with sweep.csv's columns but ``folder``: ``run``,
+        ``status`` (``ok``, ``not_converged`` or ``failed``), each varied key with its value as
+        given, ``message`` (why a run failed, else ""), then ``converged``, ``iterations``,
+        ``residual``, ``normal_force``, ``tangential_force``, ``load_ratio``, ``overlap``,
+        ``creep``, ``contact_x_min``, ``contact_x_max``, ``half_width``, ``max_pressure``,
+        ``slip_regime``, ``stick_zones``, ``slip_zones`` (counts), ``assembly_s``,
+        ``condense_s``, ``solve_s``, ``total_s`` (None for a failed run). Units as in
+        :class:`Result`. :func:`sweep_frame` makes a pandas DataFrame of them.
+
+    Raises:
+        InputError: the case cannot be read, or ``vary`` is empty (a bad value is a failed row).
+        InternalError: a bug outside the runs (a run's own panic is a failed row).
+    """
+    if not isinstance(vary, Mapping) or not vary:
+        raise InputError("sweep: nothing to sweep: give vary={'key.path': [v1, v2, ...]}")
+    keys = list(vary)
+    values = []
+    for key in keys:
+        vs = vary[key]
+        if isinstance(vs, (str, bytes)) or not isinstance(vs, (Sequence, np.ndarray)):
+            raise InputError(f"sweep: vary[{key!r}] must be a list of values")
+        values.append(list(vs))
+    texts = [(key, [_value_text(key, v) for v in vs]) for key, vs in zip(keys, values)]
+    if jobs is not None and (not isinstance(jobs, numbers.Integral) or jobs < 1):
+        raise InputError(f"sweep: jobs must be a positive whole number or None (value = {jobs!r})")
+    path, text = _case_source(case)
+    rows = _rollbem.sweep(path, text, _overrides(set), texts, None if jobs is None else int(jobs))
+    combos = list(itertools.product(*values))
+    out = []
+    for raw in rows:
+        r = json.loads(raw)
+        row: Dict[str, Any] = {"run": r.pop("run"), "status": r.pop("status")}
+        row.update(zip(keys, combos[row["run"]]))
+        row["message"] = r.pop("message")
+        row.update((name, r[name]) for name in _rollbem.RESULT_COLUMNS)
+        out.append(row)
+    return out
+
+
+def sweep_frame(rows: List[Dict[str, Any]]) -> "Any":
+    """The rows of :func:`sweep` as a pandas DataFrame (needs pandas)."""
+    try:
+        import pandas as pd
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError("sweep_frame needs pandas: pip install pandas") from e
+    return pd.DataFrame(rows)
