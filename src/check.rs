@@ -5,7 +5,7 @@ pub mod cost;
 
 use crate::case::{self, LoadedCase, NormalSpec};
 use crate::error::Error;
-use crate::scene::{BodySetups, Scene};
+use crate::scene::Scene;
 use std::path::Path;
 
 /// The text printed by `rollbem check`: the case as understood, with Hertz estimates.
@@ -158,8 +158,8 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
         .iter()
         .filter_map(|b| b.layer_thickness())
         .fold(f64::INFINITY, f64::min);
-    let error = if let Some(r1) = convex_radius_in_a_bore(bodies) {
-        crate::advice::internal_error(est.hertz_half_width / r1)
+    let error = if crate::scene::validity::convex_radius_in_a_bore(bodies).is_some() {
+        crate::scene::validity::half_space_error(bodies, est)
     } else if layer.is_finite() {
         // Under overlap control the half-plane estimate of a means nothing for a layer; the
         // thin-layer chord a² = 2Rδ0 (compressible) or 6Rδ0 (ν = 0.5) does (the thin-layer limit of docs/tyre.md).
@@ -178,9 +178,12 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
         );
         crate::advice::layer_error(layer / a)
     } else {
-        crate::advice::roller_error(est.half_width_over_radius)
+        crate::scene::validity::half_space_error(bodies, est)
     };
     line("model advice", crate::advice::advise(&error, tolerance));
+    for w in crate::scene::validity::warnings(bodies, est) {
+        line("warning", w);
+    }
     if let Some(tol) = c.contact.grid.tolerance {
         line(
             "error control",
@@ -210,17 +213,6 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
         ),
     );
     Ok(t)
-}
-
-/// The convex body's radius R1 when the other body is concave (a roller in a ring's bore),
-/// else None.
-fn convex_radius_in_a_bore(bodies: &BodySetups) -> Option<f64> {
-    let [ra, rb] = [bodies[0].radius(), bodies[1].radius()];
-    match (ra < 0.0, rb < 0.0) {
-        (true, false) => Some(rb),
-        (false, true) => Some(ra),
-        _ => None,
-    }
 }
 
 /// The estimated cost of the case as it stands and with the other model: BEM rollers on shafts

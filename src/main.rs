@@ -159,6 +159,10 @@ fn dispatch(cli: Cli) -> Result<i32> {
                     eprintln!("notice: {notice}");
                 }
             }
+            // Warnings are printed even with --quiet: they qualify the result.
+            for warning in &report.summary.warnings {
+                eprintln!("warning: {warning}");
+            }
             warn_restarts(&report.summary);
             println!("rollbem run {}", case.display());
             print!("{}", rollbem::output::render_table(&report.summary, &report.output_dir));

@@ -66,6 +66,8 @@ pub struct Solved {
     pub interior: Option<InteriorField>,
     /// Notices for the user (e.g. mesh loops turned round, interior points not evaluated).
     pub notices: Vec<String>,
+    /// Where the inputs leave the models' validity ([`crate::scene::validity`]).
+    pub warnings: Vec<String>,
     /// How an error-controlled grid was reached (`contact.grid.tolerance`), else none.
     pub adaptation: Option<adaptation::GridAdaptation>,
 }
@@ -121,6 +123,7 @@ pub fn process(
     timings.interior_s = t_interior.elapsed().as_secs_f64();
     finite::check_fields(&scene.case.path, interior.as_ref(), &boundary)?;
     notices.extend(interior.as_ref().and_then(fields::unevaluated_points_notice));
+    let warnings = crate::scene::validity::warnings(&scene.bodies, &scene.estimates);
     Ok(Solved {
         scene,
         problem,
@@ -132,6 +135,7 @@ pub fn process(
         boundary,
         interior,
         notices,
+        warnings,
         adaptation: None,
     })
 }

@@ -11,6 +11,7 @@ pub mod contact_frame;
 pub mod estimates;
 pub mod preflight;
 pub mod registry;
+pub mod validity;
 
 use crate::analytic::Carter;
 pub use crate::body::bem::setup::BemSetup;

@@ -120,6 +120,12 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         self.hertz_material().map_or(0.0, |m| m.plane_strain_compliance())
     }
 
+    /// Whether the model replaces the body by an elastic half-plane (its error against the true
+    /// geometry then grows with a/R, and the validity warnings estimate it).
+    fn idealises_as_half_plane(&self) -> bool {
+        false
+    }
+
     /// The body's contact group on its own mesh, if it has one (it then sets the grid).
     fn contact_mesh(&self) -> Option<ContactMesh<'_>> {
         None

@@ -118,6 +118,9 @@ pub struct Summary {
     pub hbem_check: Option<FrictionCheck>,
     /// Notices for the user (requested features not available, adjustments made).
     pub notices: Vec<String>,
+    /// Where the inputs leave what the models are valid for (small strain, the half-space's
+    /// a ≪ R, first-order meshes; [`crate::scene::validity`]); empty when none.
+    pub warnings: Vec<String>,
     /// The interior grid of `output.interior` (null when not asked): body, model, point
     /// counts by status, and the maxima of the principal shear and von Mises stress.
     pub interior: Option<crate::interior::InteriorSummary>,
@@ -228,6 +231,7 @@ pub fn summary(s: &Solved) -> Summary {
         },
         hbem_check: s.friction_check.clone(),
         notices: s.notices.clone(),
+        warnings: s.warnings.clone(),
         interior: s.interior.as_ref().map(crate::interior::InteriorField::summary),
         vtk: case.case.output.vtk,
         units: super::units::summary_units(&case.case.units),

@@ -228,6 +228,41 @@ fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &BodySetups) -
             );
         }
     }
+    // A contact as wide as the smaller body (a load too large, or a roller in a bore with almost
+    // no clearance) has no Hertz-type solution: the grid runs along x, and the contact's arc
+    // must stay within the angle a contact group may span.
+    let r_min = bodies.iter().map(|b| b.radius().abs()).fold(f64::INFINITY, f64::min);
+    let arc_limit = r_min * crate::body::bem::MAX_CONTACT_ANGLE_DEG.to_radians().sin();
+    let internal = bodies[0].radius() * bodies[1].radius() < 0.0;
+    let clearance = (bodies[0].radius().abs() - bodies[1].radius().abs()).abs();
+    if out.is_empty() && a.is_finite() && a >= arc_limit {
+        let key = match case.case.load.normal() {
+            NormalSpec::Force(_) => "load.normal.force",
+            NormalSpec::Overlap(_) => "load.normal.overlap",
+        };
+        let conformal = if internal {
+            format!(
+                " (a roller in a bore of clearance |R_bore| - |R_roller| = {})",
+                sig(clearance)
+            )
+        } else {
+            String::new()
+        };
+        out.push(Violation {
+            key: key.to_string(),
+            message: format!(
+                "the Hertz half-width a = {} reaches the smaller body's radius |R| = {} (a/|R| = {}; a \
+                 contact of steady rolling along x spans at most {}°, a ≤ {}): no contact of this size \
+                 exists between these cylinders{conformal}; lower the load{}",
+                sig(a),
+                shown(r_min),
+                sig(a / r_min),
+                2.0 * crate::body::bem::MAX_CONTACT_ANGLE_DEG,
+                sig(arc_limit),
+                if internal { ", or enlarge the clearance" } else { "" }
+            ),
+        });
+    }
     out
 }
 

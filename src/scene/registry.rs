@@ -97,6 +97,22 @@ pub fn setups_of_case(case: &LoadedCase) -> Result<BodySetups, Error> {
         setup_of(case, &case.case.bodies.a)?,
         setup_of(case, &case.case.bodies.b)?,
     ];
+    for (side, spec, setup) in [
+        ("A", &case.case.bodies.a, &bodies[0]),
+        ("B", &case.case.bodies.b, &bodies[1]),
+    ] {
+        if let (BodySpec::Bem { radius: Some(r), .. }, Some(own)) = (spec, setup.contact_mesh()) {
+            if let Some(message) = radius_contradicts_mesh(*r, own.mesh) {
+                return Err(Error::Case(crate::case::CaseError::Invalid {
+                    path: case.path.clone(),
+                    violations: vec![crate::case::Violation {
+                        key: format!("bodies.{side}.radius"),
+                        message,
+                    }],
+                }));
+            }
+        }
+    }
     if let Some(message) = crate::case::validate::radius_pair_problem(bodies[0].radius(), bodies[1].radius()) {
         return Err(Error::Case(crate::case::CaseError::Invalid {
             path: case.path.clone(),
@@ -107,6 +123,24 @@ pub fn setups_of_case(case: &LoadedCase) -> Result<BodySetups, Error> {
         }));
     }
     Ok(bodies)
+}
+
+/// Why a profile radius given to a `bem` body contradicts its mesh: the contact group is
+/// clearly curved (its fitted circle within 100 times the given radius) the other way (a ring's
+/// concave bore given a positive radius would be solved as an external contact).
+fn radius_contradicts_mesh(radius: f64, mesh: &LoadedMesh) -> Option<String> {
+    let fitted = mesh.contact_radius();
+    let curved = fitted.is_finite() && fitted.abs() < 100.0 * radius.abs();
+    (curved && fitted.signum() != radius.signum()).then(|| {
+        format!(
+            "radius {radius} contradicts the mesh {}: its contact group is {} (the circle through it has \
+             radius {fitted:.6}); give radius {} (negative: concave, a ring's bore), or leave radius out \
+             to use the mesh's own profile",
+            mesh.path.display(),
+            if fitted < 0.0 { "concave" } else { "convex" },
+            if radius < 0.0 { "> 0" } else { "< 0" }
+        )
+    })
 }
 
 /// How `rollbem check` describes a body: its model and the keys that define it, with the

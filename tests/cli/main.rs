@@ -14,4 +14,5 @@ mod stall;
 mod study;
 mod sweep;
 mod units;
+mod validity;
 mod verbosity;

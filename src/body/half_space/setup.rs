@@ -29,6 +29,10 @@ impl BodySetup for HalfSpaceSetup {
         Some(self.material)
     }
 
+    fn idealises_as_half_plane(&self) -> bool {
+        true
+    }
+
     /// Flat in its model: the contact frame keeps the global axes.
     fn surface_at(&self, _x: f64, _side: Side) -> Option<SurfaceAt> {
         None

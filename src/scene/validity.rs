@@ -1,0 +1,178 @@
+//! Where a scene's inputs leave what its models are valid for: the warnings that `rollbem run`
+//! prints and records in summary.json (`warnings`), and that `rollbem check` prints too. They
+//! do not stop a run; they say which result to distrust and why.
+//!
+//! * **Small strain.** Every model is linear elasticity: the Hertz peak pressure over a
+//!   deformable body's Young's modulus, the order of the contact strains, above
+//!   [`MAX_PRESSURE_OVER_MODULUS`] leaves it (a rubber cover at p0/E = 0.3, a unit mistake in E).
+//! * **The half-space idealisation.** A body modelled as a half-plane carries the error the
+//!   measured tables of `crate::advice` give for the scene's a/R (rollers on shafts, or a
+//!   roller in a bore); above [`MAX_HALF_SPACE_ERROR`] of p0 or μp0 the true geometry is needed.
+//! * **First-order BEM meshes.** Gmsh `line2` elements follow a circle by chords; on the shipped
+//!   rollers they move the creepage and p_max by about 0.7 % against `line3` meshes.
+
+use super::registry::BodySetups;
+use super::Estimates;
+use crate::advice::{self, HalfSpaceError};
+
+/// Largest p0/E of a deformable body taken as small strain [-].
+pub const MAX_PRESSURE_OVER_MODULUS: f64 = 0.05;
+
+/// Largest estimated half-space error (fraction of p0 in pressure, of μp0 in shear) that passes
+/// without a warning [-]: the default accuracy of `rollbem check`'s model advice.
+pub const MAX_HALF_SPACE_ERROR: f64 = 0.01;
+
+/// The convex body's radius R1 when the other body is concave (a roller in a ring's bore),
+/// else None.
+pub fn convex_radius_in_a_bore(bodies: &BodySetups) -> Option<f64> {
+    let [ra, rb] = [bodies[0].radius(), bodies[1].radius()];
+    match (ra < 0.0, rb < 0.0) {
+        (true, false) => Some(rb),
+        (false, true) => Some(ra),
+        _ => None,
+    }
+}
+
+/// The half-space model's estimated error on the scene's rollers (or roller in a bore), from
+/// the measured tables of `crate::advice`.
+pub fn half_space_error(bodies: &BodySetups, est: &Estimates) -> HalfSpaceError {
+    match convex_radius_in_a_bore(bodies) {
+        Some(r1) => advice::internal_error(est.hertz_half_width / r1),
+        None => advice::roller_error(est.half_width_over_radius),
+    }
+}
+
+/// The validity warnings of a scene (module docs), A's body first.
+pub fn warnings(bodies: &BodySetups, est: &Estimates) -> Vec<String> {
+    let mut out = Vec::new();
+    let p0 = est.hertz_peak_pressure;
+    for (side, body) in ["A", "B"].iter().zip(bodies) {
+        if let Some(m) = body.hertz_material() {
+            let ratio = p0 / m.young;
+            if ratio > MAX_PRESSURE_OVER_MODULUS {
+                out.push(format!(
+                    "body {side}: the Hertz peak pressure p0 = {p0:.4e} is {ratio:.3} of its Young's modulus \
+                     E = {:.4e}: strains of this size leave linear elasticity (small strain, every model \
+                     here); take the results as indicative, or check the units of E and the load",
+                    m.young
+                ));
+            }
+        }
+        if let Some(own) = body.contact_mesh() {
+            let first_order = own.mesh.mesh.elements.iter().filter(|e| e.nodes.len() == 2).count();
+            if first_order > 0 {
+                out.push(format!(
+                    "body {side}: {first_order} of the {} elements of {} are first-order (2-node): they \
+                     follow a curved boundary by chords (on the shipped rollers the creepage and p_max \
+                     move by about 0.7 % against quadratic elements); mesh with `Mesh.ElementOrder = 2`",
+                    own.mesh.mesh.elements.len(),
+                    own.mesh.path.display()
+                ));
+            }
+        }
+    }
+    if let Some(side) = ["A", "B"]
+        .iter()
+        .zip(bodies)
+        .find_map(|(side, b)| b.idealises_as_half_plane().then_some(side))
+    {
+        let e = half_space_error(bodies, est);
+        let worst = e.shear.map_or(e.pressure, |q| q.max(e.pressure));
+        if worst > MAX_HALF_SPACE_ERROR {
+            out.push(format!(
+                "body {side} is a half-space, which assumes a contact much smaller than the radii: here \
+                 ({}) its estimated error against the true geometry is {:.1} % of p0 in pressure{}; \
+                 model the bodies with `model: bem` (docs/choosing-a-model.md)",
+                e.basis,
+                100.0 * e.pressure,
+                e.shear
+                    .map_or(String::new(), |q| format!(", {:.1} % of μp0 in shear", 100.0 * q))
+            ));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bem::BoundaryCondition;
+    use crate::body::half_space::setup::HalfSpaceSetup;
+    use crate::body::rigid::RigidSetup;
+    use crate::material::Elastic;
+    use crate::mesh::LoadedMesh;
+    use crate::scene::BemSetup;
+    use std::sync::Arc;
+
+    fn estimates(p0: f64, a_over_r: f64) -> Estimates {
+        Estimates {
+            e_star: 1.0,
+            dundurs_beta: 0.0,
+            effective_radius: 50.0,
+            normal_force: 1.0,
+            hertz_half_width: 50.0 * a_over_r,
+            hertz_peak_pressure: p0,
+            half_width_over_radius: a_over_r,
+            carter_stick_width: None,
+            grid_half_length: 1.0,
+            grid_spacing: 0.1,
+        }
+    }
+
+    fn half_spaces() -> BodySetups {
+        let steel = Elastic::new(210_000.0, 0.3);
+        [
+            Arc::new(HalfSpaceSetup {
+                material: steel,
+                radius: 100.0,
+            }),
+            Arc::new(HalfSpaceSetup {
+                material: steel,
+                radius: 100.0,
+            }),
+        ]
+    }
+
+    /// Carter's steel rollers (p0 = 1154 N/mm², a/R = 0.02) pass; the same with E = 210 N/mm²
+    /// (p0/E = 0.17, a/R = 0.63) is warned twice for small strain and once for the half-space.
+    #[test]
+    fn small_strain_and_the_half_space_are_warned_beyond_their_validity() {
+        assert!(warnings(&half_spaces(), &estimates(1154.0, 0.02)).is_empty());
+        let soft = [0, 1].map(|_| -> Arc<dyn crate::body::BodySetup> {
+            Arc::new(HalfSpaceSetup {
+                material: Elastic::new(210.0, 0.3),
+                radius: 100.0,
+            })
+        });
+        let w = warnings(&soft, &estimates(36.5, 0.63));
+        assert_eq!(w.len(), 3, "{w:?}");
+        assert!(w[0].contains("body A") && w[0].contains("small strain"));
+        assert!(w[2].contains("half-space") && w[2].contains("a/R = 6.300e-1"));
+    }
+
+    /// A BEM body meshed with 2-node elements is warned; a rigid partner is not.
+    #[test]
+    fn first_order_bem_meshes_are_warned() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/msh/square_linear.msh");
+        let (mesh, notices) = crate::mesh::load(&path).unwrap();
+        let contact_group = mesh.group_index("bottom").unwrap();
+        let linear: Arc<dyn crate::body::BodySetup> = Arc::new(BemSetup {
+            mesh: LoadedMesh {
+                path,
+                mesh,
+                notices,
+                contact_group,
+            },
+            material: Elastic::new(210_000.0, 0.3),
+            contact: "bottom".into(),
+            conditions: vec![("bottom".into(), BoundaryCondition::Contact)],
+            radius: f64::INFINITY,
+            profile_radius: None,
+            start_mesh: None,
+        });
+        let bodies: BodySetups = [Arc::new(RigidSetup { radius: 100.0 }), linear];
+        let w = warnings(&bodies, &estimates(100.0, 0.01));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].starts_with("body B:") && w[0].contains("first-order"), "{}", w[0]);
+    }
+}

@@ -1,0 +1,93 @@
+//! Inputs outside what the models are valid for: a contact wider than the bodies and a radius
+//! that contradicts its mesh are refused before solving (exit 1, nothing written, `check` the
+//! same); a run that leaves small strain or the half-space's a ≪ R is solved with warnings on
+//! the console and in summary.json.
+
+use crate::common::{case_path, rollbem};
+
+/// A roller of radius 40 in a bore of 50 (half-spaces), loaded to a Hertz half-width of 60.
+const ROLLER_IN_BORE: &str = r#"
+title: roller 40 in a bore 50, overloaded
+units: {length: mm, force: N}
+materials:
+  steel: {E: 210000.0, nu: 0.3}
+bodies:
+  A: {model: half_space, material: steel, radius: 40.0}
+  B: {model: half_space, material: steel, radius: -50.0}
+contact:
+  friction: 0.1
+load:
+  normal: {force: 1.63e6}
+  tangential: {ratio: 0.5}
+"#;
+
+#[test]
+fn a_contact_wider_than_the_roller_is_refused_before_solving() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("bore.yaml");
+    std::fs::write(&case, ROLLER_IN_BORE).unwrap();
+    let out = dir.path().join("out");
+    let (code, _, err) = rollbem(&["check", case.to_str().unwrap()]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("load.normal.force") && err.contains("reaches the smaller body's radius"),
+        "{err}"
+    );
+    let (code, _, err) = rollbem(&["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 1, "{err}");
+    assert!(!out.exists(), "nothing written");
+    // A clearance of 1e-4 mm under a light load: the same refusal, naming the clearance.
+    let (code, _, err) = rollbem(&[
+        "check",
+        case.to_str().unwrap(),
+        "--set",
+        "bodies.B.radius=-40.0001",
+        "--set",
+        "load.normal.force=100",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("clearance"), "{err}");
+}
+
+#[test]
+fn a_radius_contradicting_the_mesh_is_refused() {
+    let case = case_path("bore_a005_tractive");
+    let (code, _, err) = rollbem(&["check", case.to_str().unwrap(), "--set", "bodies.B.radius=50"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("bodies.B.radius") && err.contains("concave"), "{err}");
+    let (code, _, err) = rollbem(&["check", case.to_str().unwrap(), "--set", "bodies.B.radius=-50"]);
+    assert_eq!(code, 0, "the radius of the bore's own sign is accepted: {err}");
+}
+
+#[test]
+fn runs_beyond_the_models_validity_are_warned() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_path("carter_051");
+    let soft = dir.path().join("soft");
+    let (code, _, err) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        "--set",
+        "materials.steel.E=210",
+        "--out",
+        soft.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("warning: body A: the Hertz peak pressure"), "{err}");
+    assert!(err.contains("warning: body A is a half-space"), "{err}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(soft.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(
+        summary["warnings"].as_array().unwrap().len(),
+        3,
+        "{}",
+        summary["warnings"]
+    );
+    let plain = dir.path().join("plain");
+    let (code, _, err) = rollbem(&["run", case.to_str().unwrap(), "--out", plain.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(!err.contains("warning"), "{err}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(plain.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["warnings"].as_array().unwrap().len(), 0);
+}
