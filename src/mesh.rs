@@ -20,8 +20,6 @@
 pub mod build;
 pub mod check;
 pub mod msh;
-#[cfg(test)]
-mod msh_old;
 
 pub use check::{boundary_loops, validate_and_orient, BoundaryLoop};
 pub use msh::{parse_msh_bytes, read_msh};

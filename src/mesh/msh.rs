@@ -231,7 +231,11 @@ fn check_version(bytes: &[u8], source: &str) -> Result<(Format, usize), MeshErro
         .iter()
         .position(|&b| b == b'\n')
         .map_or(bytes.len(), |p| line_start + p);
-    let line: String = bytes[line_start..line_end].iter().take(80).map(|&b| b as char).collect();
+    let line: String = bytes[line_start..line_end]
+        .iter()
+        .take(80)
+        .map(|&b| b as char)
+        .collect();
     let mut words = line.split_whitespace();
     let version = words.next().unwrap_or("");
     if version.parse::<f64>().ok() != Some(4.1) {

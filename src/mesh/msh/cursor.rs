@@ -177,10 +177,7 @@ impl<'a> Cursor<'a> {
         let end = format!("$End{name}");
         match self.token() {
             Ok(t) if t == end.as_bytes() => Ok(()),
-            Ok(t) => Err(format!(
-                "expected {end} after the section's data, found `{}`",
-                shown(t)
-            )),
+            Ok(t) => Err(format!("expected {end} after the section's data, found `{}`", shown(t))),
             Err(_) => Err(format!("the file ends before {end}")),
         }
     }

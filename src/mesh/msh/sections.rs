@@ -54,7 +54,10 @@ pub(crate) fn read_sections(bytes: &[u8], pos: usize, format: Format) -> Result<
     while !r.at_end() {
         let start = r.pos;
         let marker = r.token()?;
-        let Some(name) = marker.strip_prefix(b"$").filter(|n| !n.is_empty() && !n.starts_with(b"End")) else {
+        let Some(name) = marker
+            .strip_prefix(b"$")
+            .filter(|n| !n.is_empty() && !n.starts_with(b"End"))
+        else {
             return Err(format!(
                 "expected a section (a `$Name` line) at byte {start}, found `{}`",
                 shown(marker)
@@ -126,7 +129,11 @@ fn curve_entities(r: &mut Cursor) -> Result<HashMap<i32, Vec<i32>>, String> {
     ];
     let mut groups = HashMap::new();
     for (dim, (&n, what)) in counts.iter().zip(["point", "curve", "surface", "volume"]).enumerate() {
-        let n = r.fits(&format!("number of {what}s"), n, if dim == 0 { point_bytes } else { entity_bytes })?;
+        let n = r.fits(
+            &format!("number of {what}s"),
+            n,
+            if dim == 0 { point_bytes } else { entity_bytes },
+        )?;
         for k in 1..=n {
             let at = |e: String| format!("{what} {k} of {n}: {e}");
             let tag = r.int("tag").map_err(at)?;
@@ -200,7 +207,11 @@ fn nodes(r: &mut Cursor) -> Result<Vec<(u64, [f64; 3])>, String> {
         }
         for (tag, xyz) in &mut records[first..] {
             let at = |e: String| format!("node block {b} of {blocks}: node {tag}: {e}");
-            *xyz = [r.double("x").map_err(at)?, r.double("y").map_err(at)?, r.double("z").map_err(at)?];
+            *xyz = [
+                r.double("x").map_err(at)?,
+                r.double("y").map_err(at)?,
+                r.double("z").map_err(at)?,
+            ];
             for _ in 0..parameters {
                 r.double("parametric coordinate").map_err(at)?;
             }
@@ -244,13 +255,17 @@ fn curve_blocks(r: &mut Cursor) -> Result<Vec<CurveBlock>, String> {
                 element_name(element_type)
             ))
         })?;
-        let n = r.count("number of elements in block", (nodes_per_element + 1) * f.wide_bytes()).map_err(at)?;
+        let n = r
+            .count("number of elements in block", (nodes_per_element + 1) * f.wide_bytes())
+            .map_err(at)?;
         r.end_line("the block header").map_err(at)?;
         counted += n;
         let keep = dim == 1;
         let mut elements = Vec::with_capacity(if keep { n * (nodes_per_element + 1) } else { 0 });
         for k in 1..=n {
-            let tag = r.size("element tag").map_err(|e| at(format!("element {k} of {n}: {e}")))?;
+            let tag = r
+                .size("element tag")
+                .map_err(|e| at(format!("element {k} of {n}: {e}")))?;
             let at = |e: String| at(format!("element {tag}: {e}"));
             if keep {
                 elements.push(tag);
@@ -261,8 +276,11 @@ fn curve_blocks(r: &mut Cursor) -> Result<Vec<CurveBlock>, String> {
                     elements.push(node);
                 }
             }
-            r.end_line(&format!("a {} element of {nodes_per_element} nodes", element_name(element_type)))
-                .map_err(at)?;
+            r.end_line(&format!(
+                "a {} element of {nodes_per_element} nodes",
+                element_name(element_type)
+            ))
+            .map_err(at)?;
         }
         if keep {
             out.push(CurveBlock {
@@ -283,18 +301,18 @@ fn curve_blocks(r: &mut Cursor) -> Result<Vec<CurveBlock>, String> {
 
 /// Gmsh's names of its element types by number (GmshDefines.h; `MSH_LIN_2` is `Lin2`), from 1.
 const ELEMENT_NAMES: [&str; 140] = [
-    "Lin2", "Tri3", "Qua4", "Tet4", "Hex8", "Pri6", "Pyr5", "Lin3", "Tri6", "Qua9", "Tet10", "Hex27", "Pri18",
-    "Pyr14", "Pnt", "Qua8", "Hex20", "Pri15", "Pyr13", "Tri9", "Tri10", "Tri12", "Tri15", "Tri15i", "Tri21",
-    "Lin4", "Lin5", "Lin6", "Tet20", "Tet35", "Tet56", "Tet22", "Tet28", "Polyg", "Polyh", "Qua16", "Qua25",
-    "Qua36", "Qua12", "Qua16i", "Qua20", "Tri28", "Tri36", "Tri45", "Tri55", "Tri66", "Qua49", "Qua64", "Qua81",
-    "Qua100", "Qua121", "Tri18", "Tri21i", "Tri24", "Tri27", "Tri30", "Qua24", "Qua28", "Qua32", "Qua36i",
-    "Qua40", "Lin7", "Lin8", "Lin9", "Lin10", "Lin11", "LinB", "TriB", "PolygB", "LinC", "Tet84", "Tet120",
-    "Tet165", "Tet220", "Tet286", "", "", "", "Tet34", "Tet40", "Tet46", "Tet52", "Tet58", "Lin1", "Tri1",
-    "Qua1", "Tet1", "Hex1", "Pri1", "Pri40", "Pri75", "Hex64", "Hex125", "Hex216", "Hex343", "Hex512", "Hex729",
-    "Hex1000", "Hex32", "Hex44", "Hex56", "Hex68", "Hex80", "Hex92", "Hex104", "Pri126", "Pri196", "Pri288",
-    "Pri405", "Pri550", "Pri24", "Pri33", "Pri42", "Pri51", "Pri60", "Pri69", "Pri78", "Pyr30", "Pyr55", "Pyr91",
-    "Pyr140", "Pyr204", "Pyr285", "Pyr385", "Pyr21", "Pyr29", "Pyr37", "Pyr45", "Pyr53", "Pyr61", "Pyr69",
-    "Pyr1", "PntSub", "LinSub", "TriSub", "TetSub", "Tet16", "TriMini", "TetMini", "Trih4",
+    "Lin2", "Tri3", "Qua4", "Tet4", "Hex8", "Pri6", "Pyr5", "Lin3", "Tri6", "Qua9", "Tet10", "Hex27", "Pri18", "Pyr14",
+    "Pnt", "Qua8", "Hex20", "Pri15", "Pyr13", "Tri9", "Tri10", "Tri12", "Tri15", "Tri15i", "Tri21", "Lin4", "Lin5",
+    "Lin6", "Tet20", "Tet35", "Tet56", "Tet22", "Tet28", "Polyg", "Polyh", "Qua16", "Qua25", "Qua36", "Qua12",
+    "Qua16i", "Qua20", "Tri28", "Tri36", "Tri45", "Tri55", "Tri66", "Qua49", "Qua64", "Qua81", "Qua100", "Qua121",
+    "Tri18", "Tri21i", "Tri24", "Tri27", "Tri30", "Qua24", "Qua28", "Qua32", "Qua36i", "Qua40", "Lin7", "Lin8", "Lin9",
+    "Lin10", "Lin11", "LinB", "TriB", "PolygB", "LinC", "Tet84", "Tet120", "Tet165", "Tet220", "Tet286", "", "", "",
+    "Tet34", "Tet40", "Tet46", "Tet52", "Tet58", "Lin1", "Tri1", "Qua1", "Tet1", "Hex1", "Pri1", "Pri40", "Pri75",
+    "Hex64", "Hex125", "Hex216", "Hex343", "Hex512", "Hex729", "Hex1000", "Hex32", "Hex44", "Hex56", "Hex68", "Hex80",
+    "Hex92", "Hex104", "Pri126", "Pri196", "Pri288", "Pri405", "Pri550", "Pri24", "Pri33", "Pri42", "Pri51", "Pri60",
+    "Pri69", "Pri78", "Pyr30", "Pyr55", "Pyr91", "Pyr140", "Pyr204", "Pyr285", "Pyr385", "Pyr21", "Pyr29", "Pyr37",
+    "Pyr45", "Pyr53", "Pyr61", "Pyr69", "Pyr1", "PntSub", "LinSub", "TriSub", "TetSub", "Tet16", "TriMini", "TetMini",
+    "Trih4",
 ];
 
 /// Gmsh's name of element type `t` (`Lin4`), or `type t` for a number it does not define.
@@ -316,7 +334,11 @@ fn element_nodes(t: i32) -> Option<usize> {
         "Pnt" => Some(1),
         "TriMini" => Some(4),
         "TetMini" => Some(5),
-        _ => name.trim_end_matches('i').trim_start_matches(char::is_alphabetic).parse().ok(),
+        _ => name
+            .trim_end_matches('i')
+            .trim_start_matches(char::is_alphabetic)
+            .parse()
+            .ok(),
     }
 }
 
@@ -379,20 +401,56 @@ mod tests {
     #[test]
     fn malformed_sections_are_named_with_what_is_wrong() {
         for (text, expected) in [
-            ("$Elements\n1 1 1 1\n1 1 1 1\n1 1 2\n", "$Elements section: the file ends before $EndElements"),
+            (
+                "$Elements\n1 1 1 1\n1 1 1 1\n1 1 2\n",
+                "$Elements section: the file ends before $EndElements",
+            ),
             ("$Elements\n1 1 1 1\n1 1 1 1\n1 1 2\n$EndNodes\n", "found `$EndNodes`"),
-            ("$Elements\n1 1 1 1\n1 1 1 1\n1 1 2 3\n$EndElements\n", "followed by `3`"),
-            ("$Elements\n1 2 1 2\n1 1 1 1\n1 1 2\n$EndElements\n", "announces 2 elements but"),
-            ("$Elements\n1 1 1 1\n1 1 67 1\n1 1 2\n$EndElements\n", "LinB) has no fixed number"),
-            ("$Elements\n1 1 1 1\n1 1 1 99999\n1 1 2\n$EndElements\n", "more than the rest"),
-            ("$Nodes\n1 1 1 1\n1 1 0 1\n1\n0 0\n$EndNodes\n", "node 1: z: `$EndNodes` is not a number"),
+            (
+                "$Elements\n1 1 1 1\n1 1 1 1\n1 1 2 3\n$EndElements\n",
+                "followed by `3`",
+            ),
+            (
+                "$Elements\n1 2 1 2\n1 1 1 1\n1 1 2\n$EndElements\n",
+                "announces 2 elements but",
+            ),
+            (
+                "$Elements\n1 1 1 1\n1 1 67 1\n1 1 2\n$EndElements\n",
+                "LinB) has no fixed number",
+            ),
+            (
+                "$Elements\n1 1 1 1\n1 1 1 99999\n1 1 2\n$EndElements\n",
+                "more than the rest",
+            ),
+            (
+                "$Nodes\n1 1 1 1\n1 1 0 1\n1\n0 0\n$EndNodes\n",
+                "node 1: z: `$EndNodes` is not a number",
+            ),
             ("$Nodes\n1 1 1 1\n1 1 2 1\n1\n0 0 0\n$EndNodes\n", "parametric flag 2"),
-            ("$Nodes\n1 2 1 2\n1 1 0 1\n1\n0 0 0\n$EndNodes\n", "announces 2 nodes but"),
-            ("$PhysicalNames\n1\n1 2 contact\n$EndPhysicalNames\n", "not a name in double quotes"),
-            ("$PhysicalNames\n2\n1 2 \"a\"\n$EndPhysicalNames\n", "$PhysicalNames section"),
-            ("$Entities\n0 2 0 0\n1 0 0 0 1 0 0 1 3 0\n1 0 0 0 1 0 0 0 0\n$EndEntities\n", "curve 1 is listed twice, with physical tags [3] and []"),
-            ("$Nodes\n1 1 1 1\n0 1 0 1\n1\n0 0 0\n$EndNodes\n$Nodes\n1 1 1 1\n0 1 0 1\n1\n0 0 0\n$EndNodes\n", "a second $Nodes"),
-            ("$Comments\nno end\n", "$Comments section: the file ends before $EndComments"),
+            (
+                "$Nodes\n1 2 1 2\n1 1 0 1\n1\n0 0 0\n$EndNodes\n",
+                "announces 2 nodes but",
+            ),
+            (
+                "$PhysicalNames\n1\n1 2 contact\n$EndPhysicalNames\n",
+                "not a name in double quotes",
+            ),
+            (
+                "$PhysicalNames\n2\n1 2 \"a\"\n$EndPhysicalNames\n",
+                "$PhysicalNames section",
+            ),
+            (
+                "$Entities\n0 2 0 0\n1 0 0 0 1 0 0 1 3 0\n1 0 0 0 1 0 0 0 0\n$EndEntities\n",
+                "curve 1 is listed twice, with physical tags [3] and []",
+            ),
+            (
+                "$Nodes\n1 1 1 1\n0 1 0 1\n1\n0 0 0\n$EndNodes\n$Nodes\n1 1 1 1\n0 1 0 1\n1\n0 0 0\n$EndNodes\n",
+                "a second $Nodes",
+            ),
+            (
+                "$Comments\nno end\n",
+                "$Comments section: the file ends before $EndComments",
+            ),
             ("junk\n", "expected a section"),
             ("$EndNodes\n", "expected a section"),
         ] {
