@@ -1,6 +1,6 @@
 //! Reader for Gmsh MSH 4.1 files, ASCII and binary (Gmsh reference manual, "MSH file format
 //! version 4.1"), written for rollbem: it reads `$MeshFormat`, `$PhysicalNames`, `$Entities`,
-//! `$Nodes` and `$Elements` in file order and skips any other section ([`sections`]).
+//! `$Nodes` and `$Elements` in file order and skips any other section (`msh/sections.rs`).
 //! Elements are attached to their physical curve group through their curve entity's physical
 //! tags. Point and surface elements are read past: the BEM needs the boundary only.
 //!
@@ -11,7 +11,7 @@
 //!
 //! **Bad input.** Every malformed file is a [`MeshError::Parse`] naming the section and what
 //! is wrong; every count read from the file is checked against the bytes left before anything
-//! is allocated from it ([`cursor`]).
+//! is allocated from it (`msh/cursor.rs`).
 //!
 //! The result is the raw mesh, in file order; call [`super::validate_and_orient`] (or use
 //! [`super::load`]) before using it.

@@ -80,7 +80,7 @@ impl<'a> Cursor<'a> {
 
     /// The next token as text (lossy), for numbers and messages.
     fn text_token(&mut self) -> Result<String, String> {
-        self.token().map(|t| shown(t))
+        self.token().map(shown)
     }
 
     /// The rest of the current line (without its line break) as text, and moves past it.
