@@ -282,3 +282,12 @@ fn forged_counts_are_refused_before_anything_is_allocated() {
         "{err}"
     );
 }
+
+/// Windows line ends (`\r\n`) read as `\n` ones.
+#[test]
+fn crlf_line_ends_read_the_same() {
+    let text = std::fs::read_to_string(data("plate.msh")).unwrap();
+    let crlf = text.replace('\n', "\r\n");
+    let read = |t: &str| mesh::parse_msh_bytes(t.as_bytes(), "plate.msh").unwrap();
+    assert_same_mesh(&read(&text), &read(&crlf), "CRLF");
+}
