@@ -95,7 +95,8 @@ pub(crate) fn read_sections(bytes: &[u8], pos: usize, format: Format) -> Result<
 fn physical_names(r: &mut Cursor) -> Result<HashMap<i32, String>, String> {
     let n = r.text_int("number of names")?;
     // At least `1 1 ""` and a line break per entry.
-    let n = r.fits("number of names", u64::try_from(n).unwrap_or(u64::MAX), 7)?;
+    let n = u64::try_from(n).map_err(|_| format!("number of names: {n} is negative"))?;
+    let n = r.fits("number of names", n, 7)?;
     let mut names = HashMap::with_capacity(n);
     for k in 1..=n {
         let dim = r.text_int(&format!("name {k}: dimension"))?;
@@ -438,6 +439,10 @@ mod tests {
             (
                 "$PhysicalNames\n2\n1 2 \"a\"\n$EndPhysicalNames\n",
                 "$PhysicalNames section",
+            ),
+            (
+                "$PhysicalNames\n-1\n$EndPhysicalNames\n",
+                "number of names: -1 is negative",
             ),
             (
                 "$Entities\n0 2 0 0\n1 0 0 0 1 0 0 1 3 0\n1 0 0 0 1 0 0 0 0\n$EndEntities\n",
