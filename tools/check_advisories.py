@@ -38,7 +38,7 @@ DEFAULT_ALLOW = os.path.join(HERE, "advisories_allowed.txt")
 FAILING = {None, "unsound"}
 
 
-# --- semver (the `semver` crate's rules, which Cargo and cargo-audit use) ------------------------
+# --- semver requirements (the `semver` crate's comparators, as cargo-audit reads them) -----------
 
 def parse_version(text):
     """(major, minor, patch, pre) of `1.2.3-alpha.1+build`; pre is a tuple of identifiers."""
@@ -123,15 +123,11 @@ def _matches_comparator(c, v):
 
 
 def matches(requirement, version):
-    """Whether `version` (text) satisfies `requirement` (text). A pre-release matches only a
-    requirement with a comparator of the same major.minor.patch that has a pre-release too."""
+    """Whether `version` (text) satisfies `requirement` (text), by semver precedence alone. Unlike
+    Cargo's resolver, a pre-release is not kept out of a range that names no pre-release:
+    cargo-audit decides so too (`0.7.0-rc2` is patched by `>= 0.6.0`)."""
     v = parse_version(version)
-    comparators = parse_requirement(requirement)
-    if not all(_matches_comparator(c, v) for c in comparators):
-        return False
-    if v[3]:
-        return any(c[4] and (c[1], c[2], c[3]) == (v[0], v[1], v[2]) for c in comparators)
-    return True
+    return all(_matches_comparator(c, v) for c in parse_requirement(requirement))
 
 
 # --- the database ---------------------------------------------------------------------------------
@@ -260,7 +256,7 @@ def self_test(db):
         ("> 1.4.0", "1.4.1", True), (">1", "1.9.0", False), (">1", "2.0.0", True),
         ("<= 0.2.1", "0.2.1", True), ("<= 0.2", "0.2.7", True), ("<= 0.2", "0.3.0", False),
         (">= 0.7.0-alpha.2", "0.7.0-alpha.3", True), (">= 0.7.0-alpha.2", "0.7.0-alpha.1", False),
-        (">= 0.7.0-alpha.2", "0.7.0", True), (">= 0.6.0", "0.7.0-rc2", False), ("< 0.7.0", "0.7.0-rc2", False),
+        (">= 0.7.0-alpha.2", "0.7.0", True), (">= 0.6.0", "0.7.0-rc2", True), ("< 0.7.0", "0.7.0-rc2", True),
         (">= 1.0.0, < 1.1.0-rc.1", "1.1.0-rc.0", True), ("~1.2.3", "1.2.9", True), ("~1.2.3", "1.3.0", False),
         (">= 1.0.0-rc.2", "1.0.0-rc.10", True), (">= 2", "2.0.1", True), ("*", "9.9.9", True),
     ]
