@@ -1,22 +1,27 @@
-//! Reader for Gmsh MSH 4.1 files (ASCII and binary), built on the `mshio` crate.
+//! Reader for Gmsh MSH 4.1 files, ASCII and binary (Gmsh reference manual, "MSH file format
+//! version 4.1"), written for rollbem: it reads `$MeshFormat`, `$PhysicalNames`, `$Entities`,
+//! `$Nodes` and `$Elements` in file order and skips any other section (`msh/sections.rs`).
+//! Elements are attached to their physical curve group through their curve entity's physical
+//! tags. Point and surface elements are read past: the BEM needs the boundary only.
 //!
-//! `mshio` parses `$Entities`, `$Nodes` and `$Elements` but skips `$PhysicalNames`, so that
-//! section is read here from the raw bytes (it is ASCII text in binary files too). Elements are
-//! attached to their physical curve group through their curve entity's physical tags.
-//! Point and surface elements are ignored: the BEM needs the boundary only.
+//! **Node tags.** Every node is kept with its own tag, and elements find their nodes by tag,
+//! so a file whose tags are not in file order (a relabelled mesh) reads as the same mesh;
+//! duplicate tags and non-finite coordinates are refused, and an element that names a tag the
+//! `$Nodes` section does not define is refused too.
 //!
-//! **Node tags.** `mshio` keeps a block's node tags only when the file's tags are sparse, and
-//! then in a map that silently merges duplicates; with contiguous tags it assumes file order. A
-//! file whose tags are contiguous but not in file order (a relabelled mesh) would then connect
-//! the elements to the wrong nodes. So the `$Nodes` section is read here again ([`node_records`]),
-//! every node by its own tag: duplicate tags and non-finite coordinates are refused, and an
-//! element that names a tag the section does not define is refused too.
+//! **Bad input.** Every malformed file is a [`MeshError::Parse`] naming the section and what
+//! is wrong; every count read from the file is checked against the bytes left before anything
+//! is allocated from it (`msh/cursor.rs`).
 //!
 //! The result is the raw mesh, in file order; call [`super::validate_and_orient`] (or use
 //! [`super::load`]) before using it.
 
+mod cursor;
+mod sections;
+
 use super::{BoundaryElement, BoundaryMesh, MeshError, PhysicalGroup};
-use mshio::ElementType;
+use cursor::{Cursor, Format};
+use sections::element_name;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -43,93 +48,42 @@ pub fn read_msh(path: &Path) -> Result<BoundaryMesh, MeshError> {
 
 /// Parses the bytes of an MSH 4.1 file (ASCII or binary); `source` labels the messages.
 pub fn parse_msh_bytes(bytes: &[u8], source: &str) -> Result<BoundaryMesh, MeshError> {
-    let format = check_version(bytes, source)?;
-    let names = physical_names(bytes);
-    // Checked before `mshio` sees them: it computes `count - 1` in unsigned arithmetic, which
-    // overflows on an empty section.
-    check_section_counts(bytes, format).map_err(|message| MeshError::Parse {
+    let (format, body) = check_version(bytes, source)?;
+    let file = sections::read_sections(bytes, body, format).map_err(|message| MeshError::Parse {
         path: source.to_string(),
         message,
     })?;
-    let records = node_records(bytes, format).map_err(|message| MeshError::Parse {
-        path: source.to_string(),
-        message: format!("$Nodes section: {message}"),
-    })?;
-    let msh = parse_with_mshio(bytes, source)?;
-
-    // Physical tags of every curve entity.
-    let curve_groups: HashMap<i32, Vec<i32>> = msh
-        .data
-        .entities
-        .as_ref()
-        .map(|ent| {
-            ent.curves
-                .iter()
-                .map(|c| (c.tag, c.physical_tags.iter().map(|t| t.abs()).collect()))
-                .collect()
-        })
-        .unwrap_or_default();
-
-    // Both readers must have seen the same section.
-    let counted: usize = msh
-        .data
-        .nodes
-        .as_ref()
-        .map_or(0, |n| n.node_blocks.iter().map(|b| b.nodes.len()).sum());
-    if counted != records.len() {
-        return Err(MeshError::Parse {
-            path: source.to_string(),
-            message: format!(
-                "the $Nodes section holds {} nodes by one reading and {counted} by another; the file is corrupt",
-                records.len()
-            ),
-        });
-    }
-    let coordinates = coordinates_by_tag(&records, source)?;
+    let coordinates = coordinates_by_tag(&file.nodes, source)?;
 
     let mut builder = MeshBuilder::default();
-    if let Some(elements) = &msh.data.elements {
-        for block in &elements.element_blocks {
-            // Only curve elements make the boundary of a plane body.
-            if block.entity_dim != 1 {
-                continue;
+    for block in &file.curve_blocks {
+        // Only curve elements make the boundary of a plane body.
+        let expected = match block.element_type {
+            1 => 2,
+            8 => 3,
+            other => {
+                return Err(MeshError::UnknownElementType {
+                    path: source.to_string(),
+                    element: block.elements().next().map_or(0, |(tag, _)| tag),
+                    curve: block.curve,
+                    kind: element_name(other),
+                })
             }
-            let expected = match block.element_type {
-                ElementType::Lin2 => 2,
-                ElementType::Lin3 => 3,
-                other => {
-                    return Err(MeshError::UnknownElementType {
-                        path: source.to_string(),
-                        element: block.elements.first().map_or(0, |e| e.element_tag),
-                        curve: block.entity_tag,
-                        kind: format!("{other:?}"),
-                    })
-                }
-            };
-            let group_tag = curve_group(&curve_groups, &names, block.entity_tag, source)?;
-            let group = builder.group(group_tag, &names, source)?;
-            for element in &block.elements {
-                if element.nodes.len() != expected {
-                    return Err(MeshError::Parse {
-                        path: source.to_string(),
-                        message: format!(
-                            "element {} has {} nodes, expected {expected}",
-                            element.element_tag,
-                            element.nodes.len()
-                        ),
-                    });
-                }
-                let mut nodes = Vec::with_capacity(expected);
-                for &tag in &element.nodes {
-                    let xyz = coordinates.get(&tag).ok_or_else(|| MeshError::UnknownNode {
-                        path: source.to_string(),
-                        element: element.element_tag,
-                        node: tag,
-                    })?;
-                    nodes.push(builder.node(tag, *xyz));
-                }
-                builder.elements.push(BoundaryElement { nodes, group });
+        };
+        let group_tag = curve_group(&file.curve_groups, &file.names, block.curve, source)?;
+        let group = builder.group(group_tag, &file.names, source)?;
+        for (element, tags) in block.elements() {
+            debug_assert_eq!(tags.len(), expected);
+            let mut nodes = Vec::with_capacity(expected);
+            for &tag in tags {
+                let xyz = coordinates.get(&tag).ok_or_else(|| MeshError::UnknownNode {
+                    path: source.to_string(),
+                    element,
+                    node: tag,
+                })?;
+                nodes.push(builder.node(tag, *xyz));
             }
+            builder.elements.push(BoundaryElement { nodes, group });
         }
     }
     if builder.elements.is_empty() {
@@ -161,214 +115,6 @@ fn coordinates_by_tag(records: &[(u64, [f64; 3])], source: &str) -> Result<HashM
         }
     }
     Ok(coordinates)
-}
-
-/// How the numbers of a file are stored.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Format {
-    /// Text.
-    Ascii,
-    /// Binary, little-endian if `true`.
-    Binary {
-        /// Byte order of the numbers.
-        little_endian: bool,
-    },
-}
-
-/// A cursor over the numbers of a section, ASCII tokens or binary values alike. Never allocates
-/// from a count read in the file: every count is checked against the bytes left.
-struct Numbers<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-    format: Format,
-}
-
-impl<'a> Numbers<'a> {
-    fn bytes_left(&self) -> usize {
-        self.bytes.len().saturating_sub(self.pos)
-    }
-
-    /// The next whitespace-separated ASCII token.
-    fn token(&mut self) -> Result<&'a str, String> {
-        let rest = &self.bytes[self.pos.min(self.bytes.len())..];
-        let start = rest
-            .iter()
-            .position(|b| !b.is_ascii_whitespace())
-            .ok_or("the section ends early")?;
-        let len = rest[start..]
-            .iter()
-            .position(|b| b.is_ascii_whitespace())
-            .unwrap_or(rest.len() - start);
-        self.pos += start + len;
-        std::str::from_utf8(&rest[start..start + len]).map_err(|_| "a number is not text".to_string())
-    }
-
-    fn raw<const N: usize>(&mut self) -> Result<[u8; N], String> {
-        let end = self.pos.checked_add(N).filter(|&e| e <= self.bytes.len());
-        let end = end.ok_or("the section ends early")?;
-        let mut out = [0; N];
-        out.copy_from_slice(&self.bytes[self.pos..end]);
-        self.pos = end;
-        Ok(out)
-    }
-
-    /// One number: a token in ASCII files, `N` bytes in the file's byte order in binary ones;
-    /// `kind` says what the token must be.
-    fn number<T: std::str::FromStr, const N: usize>(
-        &mut self,
-        what: &str,
-        kind: &str,
-        from_le: fn([u8; N]) -> T,
-        from_be: fn([u8; N]) -> T,
-    ) -> Result<T, String> {
-        match self.format {
-            Format::Ascii => {
-                let t = self.token()?;
-                t.parse().map_err(|_| format!("{what}: `{t}` is not {kind}"))
-            }
-            Format::Binary { little_endian } => {
-                let b = self.raw::<N>()?;
-                Ok(if little_endian { from_le(b) } else { from_be(b) })
-            }
-        }
-    }
-
-    /// A `size_t` (8 bytes in binary files).
-    fn size(&mut self, what: &str) -> Result<u64, String> {
-        self.number(what, "a non-negative integer", u64::from_le_bytes, u64::from_be_bytes)
-    }
-
-    /// An `int` (4 bytes in binary files).
-    fn int(&mut self, what: &str) -> Result<i32, String> {
-        self.number(what, "an integer", i32::from_le_bytes, i32::from_be_bytes)
-    }
-
-    /// A `double`.
-    fn double(&mut self, what: &str) -> Result<f64, String> {
-        self.number(what, "a number", f64::from_le_bytes, f64::from_be_bytes)
-    }
-
-    /// A count of items of at least `item_bytes` bytes each, refused if the rest of the file
-    /// cannot hold that many.
-    fn count(&mut self, what: &str, item_bytes: usize) -> Result<usize, String> {
-        let n = self.size(what)?;
-        let fits = usize::try_from(n)
-            .ok()
-            .filter(|&n| n.saturating_mul(item_bytes) <= self.bytes_left());
-        fits.ok_or_else(|| format!("{what} = {n}, more than the rest of the file can hold"))
-    }
-}
-
-/// Start of the body of section `name`: just after its `$Name` line, which opens a line.
-fn section_body(bytes: &[u8], name: &str) -> Option<usize> {
-    let key = name.as_bytes();
-    let mut from = 0;
-    while let Some(p) = bytes[from..].windows(key.len()).position(|w| w == key) {
-        let at = from + p;
-        let after = &bytes[at + key.len()..];
-        let line_start = at == 0 || matches!(bytes[at - 1], b'\n' | b'\r' | b' ' | b'\t');
-        let eol = if after.starts_with(b"\r\n") {
-            Some(2)
-        } else if after.starts_with(b"\n") {
-            Some(1)
-        } else {
-            None
-        };
-        if let (true, Some(eol)) = (line_start, eol) {
-            return Some(at + key.len() + eol);
-        }
-        from = at + 1;
-    }
-    None
-}
-
-/// Every node of the `$Nodes` section as (tag, [x, y, z]), in file order, with the tags as
-/// written (MSH 4.1: a header `numEntityBlocks numNodes minNodeTag maxNodeTag`, then per block
-/// `entityDim entityTag parametric numNodesInBlock`, its tags, then its coordinates).
-/// Parametric coordinates (one per dimension of the entity) are skipped.
-pub(crate) fn node_records(bytes: &[u8], format: Format) -> Result<Vec<(u64, [f64; 3])>, String> {
-    let Some(pos) = section_body(bytes, "$Nodes") else {
-        return Ok(Vec::new());
-    };
-    let mut r = Numbers { bytes, pos, format };
-    // Smallest size of a block header and of a node (tag and three coordinates) in either format.
-    let (block_bytes, node_bytes) = match format {
-        Format::Ascii => (8, 8),
-        Format::Binary { .. } => (20, 32),
-    };
-    let blocks = r.count("number of node blocks", block_bytes)?;
-    let total = r.count("number of nodes", 0)?;
-    if total == 0 {
-        return Err("the header announces no nodes".into());
-    }
-    let _min_tag = r.size("minimum node tag")?;
-    let _max_tag = r.size("maximum node tag")?;
-    let mut records = Vec::new();
-    for b in 0..blocks {
-        let dim = r.int("entity dimension")?;
-        let _entity = r.int("entity tag")?;
-        let parametric = r.int("parametric flag")?;
-        let n = r.count("number of nodes in block", node_bytes)?;
-        let parameters = match (parametric, dim) {
-            (0, _) => 0,
-            (1, d @ 0..=3) => d as usize,
-            _ => {
-                return Err(format!(
-                    "block {}: parametric flag {parametric} on dimension {dim}",
-                    b + 1
-                ))
-            }
-        };
-        let mut tags = Vec::with_capacity(n);
-        for _ in 0..n {
-            let tag = r.size("node tag")?;
-            if tag == 0 {
-                return Err(format!("block {}: node tag 0 (tags start at 1)", b + 1));
-            }
-            tags.push(tag);
-        }
-        for tag in tags {
-            let xyz = [r.double("x")?, r.double("y")?, r.double("z")?];
-            for _ in 0..parameters {
-                r.double("parametric coordinate")?;
-            }
-            records.push((tag, xyz));
-        }
-    }
-    if records.len() != total {
-        return Err(format!(
-            "the header announces {total} nodes but the blocks hold {}",
-            records.len()
-        ));
-    }
-    Ok(records)
-}
-
-/// Every `$Nodes` and `$Elements` header (`numEntityBlocks count minTag maxTag`) must announce
-/// at least one node or element. All of them: `mshio` parses every section it meets (and only
-/// then refuses a second one), wherever the previous section ended.
-fn check_section_counts(bytes: &[u8], format: Format) -> Result<(), String> {
-    for (name, what) in [("$Nodes", "nodes"), ("$Elements", "elements")] {
-        let key = name.as_bytes();
-        for (at, _) in bytes.windows(key.len()).enumerate().filter(|(_, w)| *w == key) {
-            let after = &bytes[at + key.len()..];
-            let eol = match after {
-                [b'\r', b'\n', ..] => 2,
-                [b'\n', ..] => 1,
-                _ => continue,
-            };
-            let mut r = Numbers {
-                bytes,
-                pos: at + key.len() + eol,
-                format,
-            };
-            // A header that cannot be read is left to the parsers, which say where.
-            if let (Ok(_), Ok(0)) = (r.size("blocks"), r.size(what)) {
-                return Err(format!("{name} section: the header announces no {what}"));
-            }
-        }
-    }
-    Ok(())
 }
 
 /// Accumulates the boundary part of the file: only nodes used by curve elements are kept.
@@ -460,9 +206,9 @@ fn curve_group(
     }
 }
 
-/// Checks the `$MeshFormat` header (version 4.1, ASCII or binary with 8-byte `size_t`) and
-/// returns how the numbers are stored.
-fn check_version(bytes: &[u8], source: &str) -> Result<Format, MeshError> {
+/// Checks the `$MeshFormat` section (version 4.1, ASCII or binary with 8-byte `size_t`) and
+/// returns how the numbers are stored and where the next section starts.
+fn check_version(bytes: &[u8], source: &str) -> Result<(Format, usize), MeshError> {
     let not_msh = |found: String| MeshError::NotMsh4 {
         path: source.to_string(),
         found,
@@ -471,15 +217,22 @@ fn check_version(bytes: &[u8], source: &str) -> Result<Format, MeshError> {
         .iter()
         .position(|b| !b.is_ascii_whitespace())
         .unwrap_or(bytes.len());
-    let rest = &bytes[start..];
     let header = b"$MeshFormat";
-    if !rest.starts_with(header) {
+    let after = bytes.get(start + header.len());
+    if !bytes[start..].starts_with(header) || !after.is_some_and(u8::is_ascii_whitespace) {
         return Err(not_msh("no $MeshFormat header".to_string()));
     }
-    let line: String = rest[header.len()..]
+    // The version line: `version file-type data-size`.
+    let line_start = bytes[start + header.len()..]
         .iter()
-        .skip_while(|b| b.is_ascii_whitespace())
-        .take_while(|&&b| b != b'\n' && b != b'\r')
+        .position(|b| !b.is_ascii_whitespace())
+        .map_or(bytes.len(), |p| start + header.len() + p);
+    let line_end = bytes[line_start..]
+        .iter()
+        .position(|&b| b == b'\n')
+        .map_or(bytes.len(), |p| line_start + p);
+    let line: String = bytes[line_start..line_end]
+        .iter()
         .take(80)
         .map(|&b| b as char)
         .collect();
@@ -498,99 +251,34 @@ fn check_version(bytes: &[u8], source: &str) -> Result<Format, MeshError> {
             "$MeshFormat gives a data size of {data_size:?}; rollbem reads Gmsh's default 8-byte size_t"
         )));
     }
-    match file_type {
-        "0" => Ok(Format::Ascii),
+    let (format, data_end) = match file_type {
+        "0" => (Format::Ascii, line_end),
         "1" => {
-            // The integer 1, written in the file's byte order, follows the header line.
-            let version_line = rest.iter().position(|&b| b == b'\n').map(|p| p + 1);
-            let line_end = version_line
-                .and_then(|v| rest[v..].iter().position(|&b| b == b'\n').map(|p| v + p))
-                .ok_or_else(|| parse_error("$MeshFormat is cut short".into()))?;
-            let one = rest
+            // The integer 1, written in the file's byte order, follows the version line.
+            let one = bytes
                 .get(line_end + 1..line_end + 5)
                 .ok_or_else(|| parse_error("$MeshFormat is cut short".into()))?;
-            match one {
-                [1, 0, 0, 0] => Ok(Format::Binary { little_endian: true }),
-                [0, 0, 0, 1] => Ok(Format::Binary { little_endian: false }),
-                _ => Err(parse_error(
-                    "the byte-order mark of the binary $MeshFormat is not the integer 1".into(),
-                )),
-            }
+            let little_endian = match one {
+                [1, 0, 0, 0] => true,
+                [0, 0, 0, 1] => false,
+                _ => {
+                    return Err(parse_error(
+                        "the byte-order mark of the binary $MeshFormat is not the integer 1".into(),
+                    ))
+                }
+            };
+            (Format::Binary { little_endian }, line_end + 5)
         }
-        other => Err(parse_error(format!(
-            "$MeshFormat gives file type {other:?}; expected 0 (ASCII) or 1 (binary)"
-        ))),
-    }
-}
-
-/// Parses with `mshio`, turning its errors (and the panics it still has for unsupported binary
-/// type sizes) into [`MeshError::Parse`] without its hex dump.
-fn parse_with_mshio(bytes: &[u8], source: &str) -> Result<mshio::MshFile<u64, i32, f64>, MeshError> {
-    let parse_error = |message: String| MeshError::Parse {
-        path: source.to_string(),
-        message,
-    };
-    let result = std::panic::catch_unwind(|| {
-        mshio::parse_msh_bytes(bytes).map_err(|e| {
-            let trace = e.filtered_backtrace();
-            let offset = trace.first().map_or(0, |(rest, _)| bytes.len() - rest.len());
-            let mut parts: Vec<String> = trace.iter().rev().map(|(_, kind)| kind.to_string()).collect();
-            parts.dedup();
-            format!("{} (near byte {offset})", parts.join(": "))
-        })
-    });
-    match result {
-        Ok(Ok(file)) => Ok(file),
-        Ok(Err(message)) => Err(parse_error(message)),
-        Err(_) => Err(parse_error(
-            "unsupported MSH data sizes (rollbem reads Gmsh's default 8-byte size_t, 4-byte int, \
-             8-byte double)"
-                .to_string(),
-        )),
-    }
-}
-
-/// Physical names of dimension 1 (curves) by tag, from the `$PhysicalNames` section.
-///
-/// Format (ASCII in both ASCII and binary files):
-/// ```text
-/// $PhysicalNames
-/// 2
-/// 1 3 "contact"
-/// 2 7 "body"
-/// $EndPhysicalNames
-/// ```
-fn physical_names(bytes: &[u8]) -> HashMap<i32, String> {
-    let mut names = HashMap::new();
-    let key = b"$PhysicalNames";
-    let Some(start) = bytes
-        .windows(key.len())
-        .enumerate()
-        .find(|(i, w)| *w == key && (*i == 0 || bytes[i - 1] == b'\n'))
-        .map(|(i, _)| i + key.len())
-    else {
-        return names;
-    };
-    let end_key = b"$EndPhysicalNames";
-    let end = bytes[start..]
-        .windows(end_key.len())
-        .position(|w| w == end_key)
-        .map_or(bytes.len(), |p| start + p);
-    let text = String::from_utf8_lossy(&bytes[start..end]);
-    // Skip the count line; each following line is `dim tag "name"`.
-    for line in text.lines().map(str::trim).filter(|l| !l.is_empty()).skip(1) {
-        let mut parts = line.splitn(3, char::is_whitespace);
-        let (Some(dim), Some(tag), Some(name)) = (parts.next(), parts.next(), parts.next()) else {
-            continue;
-        };
-        let (Ok(dim), Ok(tag)) = (dim.parse::<i32>(), tag.parse::<i32>()) else {
-            continue;
-        };
-        if dim == 1 {
-            names.insert(tag, name.trim().trim_matches('"').to_string());
+        other => {
+            return Err(parse_error(format!(
+                "$MeshFormat gives file type {other:?}; expected 0 (ASCII) or 1 (binary)"
+            )))
         }
-    }
-    names
+    };
+    let mut r = Cursor::new(bytes, data_end, format);
+    r.end_marker("MeshFormat")
+        .map_err(|e| parse_error(format!("$MeshFormat section: {e} (near byte {})", r.pos)))?;
+    Ok((format, r.pos))
 }
 
 #[cfg(test)]
@@ -601,7 +289,9 @@ mod tests {
     fn physical_names_are_read_with_spaces_and_only_for_curves() {
         let text = b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n1 2 \"contact\"\n\
                      1 5 \"outer free\"\n2 9 \"body\"\n$EndPhysicalNames\n";
-        let names = physical_names(text);
+        let (format, body) = check_version(text, "m.msh").unwrap();
+        assert_eq!(format, Format::Ascii);
+        let names = sections::read_sections(text, body, format).unwrap().names;
         assert_eq!(names.len(), 2);
         assert_eq!(names[&2], "contact");
         assert_eq!(names[&5], "outer free");

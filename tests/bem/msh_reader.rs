@@ -186,3 +186,108 @@ fn truncated_files_and_unknown_groups_are_reported() {
     let text = err.to_string();
     assert!(text.contains("`contacts`") && text.contains("contact, shaft"), "{text}");
 }
+
+/// Nodes, elements and groups of two meshes are the same (the source label aside).
+fn assert_same_mesh(a: &BoundaryMesh, b: &BoundaryMesh, what: &str) {
+    assert_eq!(a.nodes, b.nodes, "{what}");
+    assert_eq!(a.elements, b.elements, "{what}");
+    assert_eq!(a.groups, b.groups, "{what}");
+}
+
+/// Files written by `meshio` (`meshio.write(..., file_format="gmsh")`, ASCII and binary) from
+/// Gmsh's meshes read as those meshes: meshio writes 17 significant digits, so exactly.
+#[test]
+fn meshio_written_files_read_as_the_gmsh_originals() {
+    for (original, copy) in [
+        ("annulus.msh", "annulus_meshio.msh"),
+        ("plate.msh", "plate_meshio_bin.msh"),
+    ] {
+        assert_same_mesh(&load(original).0, &load(copy).0, copy);
+    }
+}
+
+/// A 2D mesh saved with everything (point elements, triangles of a physical surface,
+/// parametric node coordinates) has the boundary of the 1D mesh of the same square.
+#[test]
+fn point_and_surface_elements_and_parametric_nodes_are_read_past() {
+    let (line, _) = load("square_linear.msh");
+    for name in ["square_surface.msh", "square_surface_bin.msh"] {
+        let text = std::fs::read(data(name)).unwrap();
+        // The file does hold what is to be read past.
+        assert!(String::from_utf8_lossy(&text).contains("\"body\""), "{name}");
+        assert_same_mesh(&line, &load(name).0, name);
+    }
+}
+
+/// `bytes` with `insert` put in front of the first line that starts with `before`.
+fn insert_before(bytes: &[u8], before: &[u8], insert: &[u8]) -> Vec<u8> {
+    let at = bytes.windows(before.len()).position(|w| w == before).unwrap();
+    [&bytes[..at], insert, &bytes[at..]].concat()
+}
+
+/// Sections rollbem does not read are skipped to their end marker, binary content and all.
+#[test]
+fn unknown_sections_are_skipped() {
+    let comments = b"$Comments\nmade by hand; $EndComment is not its end\n$EndComments\n".as_slice();
+    let ascii = std::fs::read(data("annulus.msh")).unwrap();
+    let with = insert_before(&ascii, b"$Nodes", comments);
+    let read = |bytes: &[u8]| mesh::parse_msh_bytes(bytes, "m.msh").unwrap();
+    assert_same_mesh(&read(&ascii), &read(&with), "ASCII");
+
+    let binary = std::fs::read(data("plate_bin.msh")).unwrap();
+    let mut data_section = b"$NodeData\n".to_vec();
+    data_section.extend((0..=255u8).chain(0..=255u8));
+    data_section.extend(b"\n$EndNodeData\n");
+    let with = insert_before(&binary, b"$Elements", &data_section);
+    assert_same_mesh(&read(&binary), &read(&with), "binary");
+}
+
+/// A section without its end marker is named, in ASCII and binary files.
+#[test]
+fn a_missing_end_marker_names_the_section() {
+    for name in ["annulus.msh", "annulus_bin.msh"] {
+        let bytes = std::fs::read(data(name)).unwrap();
+        let end = bytes.windows(12).rposition(|w| w == b"$EndElements").unwrap();
+        let err = mesh::parse_msh_bytes(&bytes[..end], name).unwrap_err().to_string();
+        assert!(
+            err.contains("$Elements section") && err.contains("ends before $EndElements"),
+            "{name}: {err}"
+        );
+    }
+}
+
+/// A count forged to more than the file can hold is refused (not allocated), naming the
+/// section: the number of nodes of the binary $Nodes header, the number of elements of an
+/// ASCII block.
+#[test]
+fn forged_counts_are_refused_before_anything_is_allocated() {
+    let mut binary = std::fs::read(data("plate_bin.msh")).unwrap();
+    let at = binary.windows(7).position(|w| w == b"$Nodes\n").unwrap() + 7 + 8;
+    binary[at..at + 8].copy_from_slice(&(u64::MAX / 3).to_le_bytes());
+    let err = mesh::parse_msh_bytes(&binary, "forged_bin.msh")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("$Nodes section") && err.contains("number of nodes = 6148914691236517205, more than the rest"),
+        "{err}"
+    );
+
+    let ascii = std::fs::read_to_string(data("square_linear.msh")).unwrap();
+    let forged = ascii.replacen("\n1 1 1 2\n", "\n1 1 1 2000000000000\n", 1);
+    let err = mesh::parse_msh_bytes(forged.as_bytes(), "forged.msh")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("$Elements section: element block 1 of 4: number of elements in block = 2000000000000"),
+        "{err}"
+    );
+}
+
+/// Windows line ends (`\r\n`) read as `\n` ones.
+#[test]
+fn crlf_line_ends_read_the_same() {
+    let text = std::fs::read_to_string(data("plate.msh")).unwrap();
+    let crlf = text.replace('\n', "\r\n");
+    let read = |t: &str| mesh::parse_msh_bytes(t.as_bytes(), "plate.msh").unwrap();
+    assert_same_mesh(&read(&text), &read(&crlf), "CRLF");
+}
