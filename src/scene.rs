@@ -72,7 +72,18 @@ impl Scene {
         let bodies = registry::setups_of_case(case)?;
         // Before the grid is built: the checks keep it finite and the matrices within memory.
         preflight::check(case, &bodies)?;
-        Ok(Self::new(case.clone(), bodies))
+        let scene = Self::new(case.clone(), bodies);
+        // What building the bodies would refuse, found without building them, so that `check`
+        // refuses what `run` does.
+        for (k, side) in [Side::A, Side::B].into_iter().enumerate() {
+            let ctx = BuildContext {
+                grid: &scene.grid,
+                side,
+                rolling: scene.rolling(),
+            };
+            scene.bodies[k].preflight(&ctx)?;
+        }
+        Ok(scene)
     }
 
     /// The scene of a case's contact, load and solver settings with the given bodies (which

@@ -45,14 +45,15 @@ pub struct BemBody {
 }
 
 impl BemBody {
-    /// Condenses `model` to the nodes of `grid` for a body on `side`.
-    ///
-    /// Fails unless `grid` uses discontinuous quadratic elements, the contact group's field
-    /// nodes lie at the grid's node abscissae (to 1e-6 of their element's length: the grid of a mesh
-    /// follows its curved elements, [`crate::grid::ContactGrid::from_mapped_edges`]), and the
-    /// contact surface faces the other body (outward normal −y on A, +y on B, within
-    /// [`MAX_CONTACT_ANGLE_DEG`]).
-    pub fn new(model: BemModel, contact_group: &str, grid: &ContactGrid, side: Side) -> Result<Self, BemError> {
+    /// The checks of [`Self::new`] before it condenses (cheap: no assembly): the grid's
+    /// element kind, the contact group's field nodes at the grid's nodes, the contact surface
+    /// facing the other body. `rollbem check` runs them as `run` does.
+    pub fn check_contact(
+        model: &BemModel,
+        contact_group: &str,
+        grid: &ContactGrid,
+        side: Side,
+    ) -> Result<(), BemError> {
         let mismatch = |problem: String| BemError::ContactGridMismatch {
             path: model.mesh.source.clone(),
             group: contact_group.to_string(),
@@ -119,6 +120,23 @@ impl BemBody {
                 field[k].position[0], field[k].normal
             )));
         }
+        Ok(())
+    }
+
+    /// Condenses `model` to the nodes of `grid` for a body on `side`.
+    ///
+    /// Fails unless `grid` uses discontinuous quadratic elements, the contact group's field
+    /// nodes lie at the grid's node abscissae (to 1e-6 of their element's length: the grid of a mesh
+    /// follows its curved elements, [`crate::grid::ContactGrid::from_mapped_edges`]), and the
+    /// contact surface faces the other body (outward normal −y on A, +y on B, within
+    /// [`MAX_CONTACT_ANGLE_DEG`]).
+    pub fn new(model: BemModel, contact_group: &str, grid: &ContactGrid, side: Side) -> Result<Self, BemError> {
+        Self::check_contact(&model, contact_group, grid, side)?;
+        let facing = match side {
+            Side::A => -1.0,
+            Side::B => 1.0,
+        };
+        let g = model.mesh.group_index(contact_group)?;
         let condensed = condense(&model, contact_group)?;
         let extreme = contact_heights(&model, g)
             .into_iter()

@@ -158,6 +158,14 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         &[]
     }
 
+    /// The checks of [`Self::build`] that need no large computation (a BEM body: its boundary
+    /// conditions hold it against rigid motion, its contact group has the grid's nodes and
+    /// faces the other body), so that `rollbem check` refuses what `run` would; nothing by
+    /// default.
+    fn preflight(&self, _ctx: &BuildContext) -> Result<(), BuildError> {
+        Ok(())
+    }
+
     /// Builds the body model on `ctx.grid`, seen from `ctx.side`.
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError>;
 

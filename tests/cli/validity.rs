@@ -91,3 +91,25 @@ fn runs_beyond_the_models_validity_are_warned() {
         serde_json::from_str(&std::fs::read_to_string(plain.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["warnings"].as_array().unwrap().len(), 0);
 }
+
+/// What building a BEM body refuses, `check` refuses too, without assembling anything: a body
+/// whose boundary conditions leave it free to move as a rigid body.
+#[test]
+fn check_refuses_what_building_the_bodies_would() {
+    let case = case_path("fig14_true_geometry");
+    let free = ["--set", "bodies.A.boundaries.shaft=free"];
+    let (code, _, err) = rollbem(&["check", case.to_str().unwrap(), free[0], free[1]]);
+    assert_eq!(code, 1, "check: {err}");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let (code_run, _, err_run) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        free[0],
+        free[1],
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code_run, 1, "run: {err_run}");
+    assert_eq!(err, err_run, "check and run give the same message");
+}

@@ -40,15 +40,24 @@ pub struct BemSetup {
 }
 
 impl BemSetup {
-    /// The model of the body's mesh, condensed to its own contact nodes.
-    fn own_body(&self, side: Side) -> Result<BemBody, BuildError> {
-        let model = BemModel::new(
+    /// The BEM model of the body's mesh (its discretisation; nothing assembled).
+    fn bem_model(&self) -> Result<BemModel, BuildError> {
+        Ok(BemModel::new(
             self.mesh.mesh.clone(),
             self.material,
             self.conditions.clone(),
             BemOptions::default(),
-        )?;
-        Ok(BemBody::new(model, &self.contact, &self.mesh.contact_grid(), side)?)
+        )?)
+    }
+
+    /// The model of the body's mesh, condensed to its own contact nodes.
+    fn own_body(&self, side: Side) -> Result<BemBody, BuildError> {
+        Ok(BemBody::new(
+            self.bem_model()?,
+            &self.contact,
+            &self.mesh.contact_grid(),
+            side,
+        )?)
     }
 }
 
@@ -116,6 +125,16 @@ impl BodySetup for BemSetup {
 
     fn notices(&self) -> &[String] {
         &self.mesh.notices
+    }
+
+    /// The model's boundary data (held against rigid motion, no pressure mode of an
+    /// incompressible body) and its contact nodes against its own contact grid, facing the
+    /// other body: what [`Self::build`] checks before it assembles.
+    fn preflight(&self, ctx: &BuildContext) -> Result<(), BuildError> {
+        let model = self.bem_model()?;
+        model.boundary_data(&[])?;
+        BemBody::check_contact(&model, &self.contact, &self.mesh.contact_grid(), ctx.side)?;
+        Ok(())
     }
 
     /// Condensed to its own contact nodes; if those differ from the grid's, its flexibility is
