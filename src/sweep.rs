@@ -287,8 +287,10 @@ pub fn run(
             "nothing to sweep: give at least one --vary key.path=v1,v2,...".into(),
         ));
     }
-    // Fail fast on an unreadable case; value errors are per-run failures.
+    // Fail fast on an unreadable case or a --set or --vary key that no run could take; value
+    // errors (out of range, or only in some combinations) are per-run failures.
     crate::case::load(case, base_set)?;
+    check_keys(case, base_set, varies)?;
     let record = SweepRecord::new(case, base_set, varies, shard)?;
     let access = if shard.is_some() {
         Access::Shared
@@ -329,6 +331,53 @@ pub fn run(
         total_runs: record.runs,
         resumed,
     })
+}
+
+/// Refuses, before anything is written, a `--vary` that every run with one of its values would
+/// fail alike: a key given in two `--vary` options, or a key (or value) that the case cannot
+/// take at all (a misspelt key, a value that is not of the key's type: what `--set` would refuse).
+/// Each value is applied once to the case with the `--set` overrides. A `--vary` of a key that a
+/// `--set` also sets wins over it: said in a warning.
+fn check_keys(case: &Path, base_set: &[String], varies: &[Vary]) -> Result<(), Error> {
+    for (i, v) in varies.iter().enumerate() {
+        if varies[..i].iter().any(|w| w.key == v.key) {
+            return Err(sweep_err(format!(
+                "--vary {} is given twice; give all its values in one --vary {}=v1,v2,... (nothing was run \
+                 or written)",
+                v.key, v.key
+            )));
+        }
+        for set in base_set {
+            if set.split_once('=').is_some_and(|(k, _)| k == v.key) {
+                log::warn!(
+                    "--vary {} overrides --set {set}: the runs take the varied values",
+                    v.key
+                );
+            }
+        }
+    }
+    let text = std::fs::read_to_string(case).map_err(|e| sweep_err(format!("{}: {e}", case.display())))?;
+    for v in varies {
+        let mut seen = std::collections::HashSet::new();
+        for value in v.values.iter().filter(|x| seen.insert(x.as_str())) {
+            let argument = format!("{}={value}", v.key);
+            let mut set = base_set.to_vec();
+            set.push(argument.clone());
+            if let Err(crate::case::CaseError::Override {
+                argument: blamed,
+                message,
+            }) = crate::case::parse(&text, case, &set)
+            {
+                if blamed == argument {
+                    return Err(sweep_err(format!(
+                        "--vary {}: the value `{value}` cannot be used: {message}; nothing was run or written",
+                        v.key
+                    )));
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Locks a shard's table in `dir` (two processes must not run the same shard).

@@ -390,3 +390,64 @@ fn shards_share_a_folder_and_a_second_writer_is_refused() {
     assert_eq!(code, 1, "{stderr}");
     assert!(stderr.contains("being written by another rollbem process"), "{stderr}");
 }
+
+/// Every `--vary` key and value is applied to the case once before the first run: a misspelt
+/// key, a value of the wrong type or a key varied twice is exit 1 with nothing written (each run
+/// used to fail alike, exit 2, a folder written); a `--vary` of a `--set` key is a warning.
+#[test]
+fn vary_keys_are_checked_before_any_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let o = out.to_str().unwrap();
+    for (args, says) in [
+        (
+            vec!["--vary", "contact.frictio=0.1,0.2"],
+            vec!["--vary contact.frictio", "unknown field `frictio`"],
+        ),
+        (
+            vec![
+                "--vary",
+                "contact.friction=0.1,0.2",
+                "--vary",
+                "contact.grid.elements=21,2.5",
+            ],
+            vec!["--vary contact.grid.elements", "`2.5`", "expected a whole number"],
+        ),
+        (
+            vec!["--vary", "contact.friction=0.1,0.2", "--vary", "contact.friction=0.3"],
+            vec!["--vary contact.friction is given twice"],
+        ),
+    ] {
+        let mut all = vec!["sweep", case_str(), "--out", o];
+        all.extend(&args);
+        let (code, stdout, stderr) = rollbem(&all);
+        assert_eq!(code, 1, "{args:?}: {stdout}{stderr}");
+        for s in &says {
+            assert!(stderr.contains(s), "{args:?}: expected `{s}` in {stderr}");
+        }
+        assert!(!out.exists(), "{args:?}: a folder was written");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "{args:?}");
+    }
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        case_str(),
+        "--set",
+        "contact.friction=0.9",
+        "--vary",
+        "contact.friction=0.3,0.4",
+        "--out",
+        o,
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stderr.contains("--vary contact.friction overrides --set contact.friction=0.9"),
+        "{stderr}"
+    );
+    let r = rows(&out.join("sweep.csv"));
+    assert_eq!((r[0][2].as_str(), r[1][2].as_str()), ("0.3", "0.4"));
+}
+
+/// The case as a `&'static str` (for argument lists).
+fn case_str() -> &'static str {
+    Box::leak(case().into_boxed_str())
+}
