@@ -39,7 +39,7 @@ mod contents;
 mod lock;
 
 pub use claim::{inject_fault, write_atomically, Claim};
-pub use contents::{clean_stale_siblings, remove_owned, shard_file_name, sweep_owns, SweepEntry};
+pub use contents::{check_run_folder, clean_stale_siblings, remove_owned, shard_file_name, sweep_owns, SweepEntry};
 pub use lock::{Access, FileLock};
 
 /// File name of the manifest in every folder rollbem writes.

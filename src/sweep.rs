@@ -82,21 +82,80 @@ impl Shard {
     pub fn owns(&self, run: usize) -> bool {
         run % self.count == self.index - 1
     }
+
+    /// The run numbers of this shard among `total` runs, in order (without visiting the others).
+    pub fn runs(&self, total: usize) -> impl Iterator<Item = usize> {
+        (self.index - 1..total).step_by(self.count)
+    }
 }
 
-/// The runs of a sweep: each is a list of (key, value) overrides.
-pub fn product(varies: &[Vary]) -> Vec<Vec<(String, String)>> {
-    varies.iter().fold(vec![Vec::new()], |acc, v| {
-        acc.iter()
-            .flat_map(|prefix| {
-                v.values.iter().map(move |value| {
-                    let mut run = prefix.clone();
-                    run.push((v.key.clone(), value.clone()));
-                    run
-                })
-            })
+/// Most runs one sweep may have: a sweep's table, its run numbers and `--merge` hold a row per
+/// run; beyond this a typo (three `--vary` of 1000 values) is far likelier than intent.
+pub const MAX_RUNS: usize = 10_000_000;
+
+/// The runs of a sweep, generated one at a time (never the whole product in memory): run n's
+/// values are the digits of n in the mixed radix of the value counts, the last `--vary` varying
+/// fastest.
+#[derive(Debug, Clone, Copy)]
+pub struct Runs<'a> {
+    varies: &'a [Vary],
+    count: usize,
+}
+
+impl<'a> Runs<'a> {
+    /// The runs of `varies`; more than [`MAX_RUNS`] (or more than a `usize` counts) is refused
+    /// with the count.
+    pub fn new(varies: &'a [Vary]) -> Result<Self, Error> {
+        let count = varies
+            .iter()
+            .try_fold(1usize, |n, v| n.checked_mul(v.values.len()))
+            .filter(|&n| n <= MAX_RUNS);
+        match count {
+            Some(count) => Ok(Self { varies, count }),
+            None => {
+                let shown = varies
+                    .iter()
+                    .map(|v| v.values.len().to_string())
+                    .collect::<Vec<_>>()
+                    .join(" × ");
+                let total: f64 = varies.iter().map(|v| v.values.len() as f64).product();
+                Err(sweep_err(format!(
+                    "the --vary options make {shown} = {total:.3e} runs; a sweep may have at most \
+                     {MAX_RUNS} runs: vary fewer keys or values (or split the study into several sweeps)"
+                )))
+            }
+        }
+    }
+
+    /// Number of runs.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// Index of run `run`'s value of `--vary` number `key` (`run` < [`Self::count`]).
+    fn index(&self, run: usize, key: usize) -> usize {
+        let inner: usize = self.varies[key + 1..].iter().map(|v| v.values.len()).product();
+        (run / inner) % self.varies[key].values.len()
+    }
+
+    /// Run `run`'s value of `--vary` number `key`.
+    pub fn value(&self, run: usize, key: usize) -> &'a str {
+        &self.varies[key].values[self.index(run, key)]
+    }
+
+    /// Run `run`'s overrides: (key, value) per `--vary`, in order.
+    pub fn overrides(&self, run: usize) -> Vec<(String, String)> {
+        (0..self.varies.len())
+            .map(|k| (self.varies[k].key.clone(), self.value(run, k).to_string()))
             .collect()
-    })
+    }
+}
+
+/// The runs of a sweep, all at once: each is a list of (key, value) overrides (for small sweeps;
+/// [`Runs`] generates them one at a time). Panics beyond [`MAX_RUNS`] runs.
+pub fn product(varies: &[Vary]) -> Vec<Vec<(String, String)>> {
+    let runs = Runs::new(varies).expect("at most MAX_RUNS runs");
+    (0..runs.count()).map(|n| runs.overrides(n)).collect()
 }
 
 /// Summary columns of sweep.csv after `run`, `folder`, `status`, the varied keys and `message`.
@@ -289,6 +348,7 @@ pub fn run(
     }
     // Fail fast on an unreadable case or a --set or --vary key that no run could take; value
     // errors (out of range, or only in some combinations) are per-run failures.
+    Runs::new(varies)?;
     crate::case::load(case, base_set)?;
     check_keys(case, base_set, varies)?;
     let record = SweepRecord::new(case, base_set, varies, shard)?;
@@ -402,6 +462,18 @@ fn check_other_records(dir: &Path, record: &SweepRecord, resume: bool) -> Result
     if record.shards.is_none() && !resume {
         return Ok(());
     }
+    let table = dir.join(record.csv_name());
+    let own = dir.join(record.csv_name().replace(".csv", ".json"));
+    if resume && table.exists() && !own.exists() {
+        return Err(sweep_err(format!(
+            "{}: no record {} says what sweep this table belongs to (deleted, or copied without \
+             it), so --resume cannot tell its runs from another sweep's: run without --resume (a \
+             sweep replaces the folder's, a shard reruns its runs), or give another --out",
+            table.display(),
+            own.file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+        )));
+    }
     let Ok(names) = std::fs::read_dir(dir) else {
         return Ok(());
     };
@@ -443,7 +515,7 @@ impl Job<'_> {
     /// temporaries removed, finished runs kept when resuming, the rest run in parallel with
     /// their rows appended to the table as they finish. Returns the rows and how many were kept.
     fn run_in(&self, dir: &Path, resume: bool) -> Result<(Vec<RunRow>, usize), Error> {
-        let runs = product(self.varies);
+        let runs = Runs::new(self.varies)?;
         let mine = |n: usize| self.shard.is_none_or(|s| s.owns(n));
         let csv_name = self.record.csv_name();
         let mut tables = vec![csv_name.clone(), csv_name.replace(".csv", ".json")];
@@ -458,17 +530,16 @@ impl Job<'_> {
             read_rows_leniently(&csv_path, &keys, &runs)
                 .into_iter()
                 .filter(|r| mine(r.run) && (r.status == "ok" || r.status == "not_converged"))
-                .filter(|r| folder::read_manifest(&dir.join(&r.folder)).is_some())
+                // A row is kept only with its own run's folder, whole (every file its manifest
+                // lists); otherwise the run is done again.
+                .filter(|r| r.folder == run_folder(r.run) && folder::check_run_folder(&dir.join(&r.folder)).is_ok())
                 .collect()
         } else {
             Vec::new()
         };
         let done: std::collections::HashSet<usize> = kept.iter().map(|r| r.run).collect();
-        let todo: Vec<(usize, &Vec<(String, String)>)> = runs
-            .iter()
-            .enumerate()
-            .filter(|(n, _)| mine(*n) && !done.contains(n))
-            .collect();
+        let shard = self.shard.unwrap_or(Shard { index: 1, count: 1 });
+        let todo: Vec<usize> = shard.runs(runs.count()).filter(|n| !done.contains(n)).collect();
         write_rows(&csv_path, &keys, &kept)?;
         let table = Mutex::new(Appender::open(&csv_path)?);
         let bar = ProgressBar::new(todo.len() as u64);
@@ -478,8 +549,8 @@ impl Job<'_> {
         );
         let new_rows: Vec<Result<RunRow, Error>> = todo
             .par_iter()
-            .map(|(n, overrides)| {
-                let row = run_one(self.case, self.base_set, dir, *n, overrides);
+            .map(|&n| {
+                let row = run_one(self.case, self.base_set, dir, n, &runs.overrides(n));
                 let appended = table
                     .lock()
                     .map_err(|_| sweep_err("the table writer failed in another thread".into()))

@@ -268,3 +268,38 @@ pub fn clean_stale_siblings(target: &Path) {
         }
     }
 }
+
+/// Whether `dir` holds a complete run result: a manifest of a finished run (not a temporary
+/// folder's) and every file and sub-folder it lists. `Err` says what is missing (for a sweep's
+/// `--resume` and `--merge`, which trust a run's row only with its folder whole).
+pub fn check_run_folder(dir: &Path) -> Result<(), String> {
+    if !is_dir(dir) {
+        return Err(format!("its folder {} is missing", dir.display()));
+    }
+    let Some(manifest) = read_manifest(dir) else {
+        return Err(format!("its folder {} has no manifest {MANIFEST}", dir.display()));
+    };
+    if manifest.kind != Kind::Run || manifest.partial {
+        return Err(format!(
+            "its folder {} does not hold a finished run (its manifest says {}{})",
+            dir.display(),
+            manifest.kind.name(),
+            if manifest.partial { ", being written" } else { "" }
+        ));
+    }
+    for entry in &manifest.files {
+        let path = dir.join(entry.trim_end_matches('/'));
+        let there = if entry.ends_with('/') {
+            is_dir(&path)
+        } else {
+            is_file(&path)
+        };
+        if !there {
+            return Err(format!(
+                "its folder {} lacks {entry}, which its manifest lists",
+                dir.display()
+            ));
+        }
+    }
+    Ok(())
+}
