@@ -27,7 +27,9 @@
 //!
 //! For the tests, `ROLLBEM_TEST_FAULT=panic` or `=abort` (optionally `panic@NAME`, `abort@NAME`
 //! for the folder NAME only) makes the writer panic or abort after the results are written into
-//! the temporary folder and before it is renamed into place; nothing else reads it.
+//! the temporary folder and before it is renamed into place; `intrude@NAME` puts a file into
+//! NAME's earlier result after it was checked, so that its removal stops (and is reported).
+//! Nothing else reads it.
 
 use serde::{Deserialize, Serialize};
 use std::fs;
@@ -160,6 +162,18 @@ pub enum FolderError {
         dir: PathBuf,
         /// The lock file.
         lock: PathBuf,
+    },
+    /// A file at a lock file's path that rollbem did not create (no marker, a symbolic link).
+    #[error(
+        "{path} is named like a rollbem lock file but is {what} (rollbem's lock files start with \
+         `rollbem lock file`); rollbem neither locks through it nor removes it: move it away (if a \
+         rollbem process was killed while creating it, delete it)"
+    )]
+    NotALock {
+        /// The file.
+        path: PathBuf,
+        /// What it is.
+        what: &'static str,
     },
     /// The path exists and is not a folder.
     #[error("{path} exists and is not a folder; give a folder for the results (--out)")]
