@@ -28,9 +28,16 @@ fn write_shards(dir: &Path, n: usize) {
             values: (0..inner).map(|j| format!("{j}")).collect(),
         },
     ];
-    let mut header: Vec<String> = ["run", "folder", "status", "contact.friction", "load.tangential.ratio", "message"]
-        .map(String::from)
-        .to_vec();
+    let mut header: Vec<String> = [
+        "run",
+        "folder",
+        "status",
+        "contact.friction",
+        "load.tangential.ratio",
+        "message",
+    ]
+    .map(String::from)
+    .to_vec();
     header.extend(RESULT_COLUMNS.map(String::from));
     let empty = ",".repeat(RESULT_COLUMNS.len());
     for k in 1..=SHARDS {

@@ -159,7 +159,7 @@ pub fn product(varies: &[Vary]) -> Vec<Vec<(String, String)>> {
 }
 
 /// Summary columns of sweep.csv after `run`, `folder`, `status`, the varied keys and `message`.
-pub const RESULT_COLUMNS: [&str; 19] = [
+pub const RESULT_COLUMNS: [&str; 20] = [
     "converged",
     "iterations",
     "residual",
@@ -170,6 +170,7 @@ pub const RESULT_COLUMNS: [&str; 19] = [
     "creep",
     "contact_x_min",
     "contact_x_max",
+    "contact_centre",
     "half_width",
     "max_pressure",
     "slip_regime",
@@ -278,6 +279,7 @@ fn run_one_unguarded(
                     f(s.creep),
                     c.map_or(String::new(), |c| f(c.x_min)),
                     c.map_or(String::new(), |c| f(c.x_max)),
+                    c.map_or(String::new(), |c| f(c.centre)),
                     c.map_or(String::new(), |c| f(c.half_width)),
                     f(s.max_pressure),
                     s.slip_regime.to_string(),

@@ -669,3 +669,45 @@ fn merge_checks_its_arguments_the_output_folder_and_the_run_folders() {
     let (code, _, stderr) = rollbem(&["sweep", "--merge", sa, sb, "--out", merged.to_str().unwrap()]);
     assert_eq!(code, 0, "{stderr}");
 }
+
+/// sweep.csv has the contact's centre (the middle of x_min and x_max, as in summary.json), and
+/// every number in the shortest form that reads back to the same double (as contact.csv).
+#[test]
+fn the_table_has_the_contact_centre_and_shortest_numbers() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        "load.tangential.ratio=-0.74,0.05,0.41",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let mut r = csv::Reader::from_path(out.join("sweep.csv")).unwrap();
+    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (lo, hi, centre) = (col("contact_x_min"), col("contact_x_max"), col("contact_centre"));
+    for rec in r.records() {
+        let rec = rec.unwrap();
+        let num = |i: usize| rec[i].parse::<f64>().unwrap();
+        let (a, b, c) = (num(lo), num(hi), num(centre));
+        assert!((c - 0.5 * (a + b)).abs() <= 1e-12 * (a.abs() + b.abs()), "{a} {b} {c}");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join(&rec[1]).join("summary.json")).unwrap()).unwrap();
+        // summary.json holds the centre in the case's units, converted: equal to round-off.
+        let json = summary["contact"]["centre"].as_f64().unwrap();
+        assert!((json - c).abs() <= 1e-12 * (a.abs() + b.abs()), "{json} {c}");
+        for (i, cell) in rec.iter().enumerate().skip(col("message") + 1) {
+            if let Ok(v) = cell.parse::<f64>() {
+                let shortest = if (1e-4..1e16).contains(&v.abs()) || v == 0.0 {
+                    format!("{v}")
+                } else {
+                    format!("{v:e}")
+                };
+                assert_eq!(cell, shortest, "column {}", header[i]);
+            }
+        }
+    }
+}
