@@ -711,3 +711,41 @@ fn the_table_has_the_contact_centre_and_shortest_numbers() {
         }
     }
 }
+
+/// A merge of shards written by different rollbem versions warns; the error for one shard of
+/// 100 000 lists the first few missing shards and their number, not all 99 999.
+#[test]
+fn merge_warns_of_mixed_versions_and_summarises_long_lists() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    assert_eq!(shard(MU, 1, 2, &a).0, 0);
+    assert_eq!(shard(MU, 2, 2, &b).0, 0);
+    let record = b.join("sweep_shard_2_of_2.json");
+    let text = std::fs::read_to_string(&record).unwrap();
+    let older = text.replace(&format!("rollbem {}", env!("CARGO_PKG_VERSION")), "rollbem 0.0.1");
+    assert_ne!(older, text);
+    std::fs::write(&record, older).unwrap();
+    let merged = dir.path().join("merged");
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        "--merge",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stderr.contains("different rollbem versions") && stderr.contains("rollbem 0.0.1 (1 shard)"),
+        "{stderr}"
+    );
+    let one = dir.path().join("one");
+    assert_eq!(shard(MU, 1, 100_000, &one).0, 0);
+    let (code, _, stderr) = rollbem(&["sweep", "--merge", one.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("2/100000, 3/100000, 4/100000, 5/100000, 6/100000, … (99999 in all)"),
+        "{stderr}"
+    );
+    assert!(stderr.len() < 1000, "{} bytes", stderr.len());
+}
