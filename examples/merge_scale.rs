@@ -98,7 +98,7 @@ fn main() {
         std::fs::create_dir(&shards).unwrap();
         write_shards(&shards, n);
         let start = Instant::now();
-        let out = merge(&[shards.clone()], &tmp.path().join("merged")).expect("the merge succeeds");
+        let out = merge(std::slice::from_ref(&shards), &tmp.path().join("merged")).expect("the merge succeeds");
         let t = start.elapsed().as_secs_f64();
         let lines = std::fs::read_to_string(&out).unwrap().lines().count();
         assert_eq!(lines, n + 1, "the merged table has every row");
