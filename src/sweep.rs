@@ -634,6 +634,54 @@ mod tests {
     }
 
     #[test]
+    fn runs_are_generated_one_at_a_time_and_counted_without_overflow() {
+        let v = [
+            Vary::parse("a=1,2,3").unwrap(),
+            Vary::parse("b=x,y").unwrap(),
+            Vary::parse("c=p,q,r,s").unwrap(),
+        ];
+        let runs = Runs::new(&v).unwrap();
+        assert_eq!(runs.count(), 24);
+        let all = product(&v);
+        for (n, run) in all.iter().enumerate() {
+            assert_eq!(&runs.overrides(n), run);
+        }
+        // The first --vary varies slowest, the last fastest.
+        assert_eq!(
+            all[5],
+            [("a", "1"), ("b", "y"), ("c", "q")].map(|(k, v)| (k.to_string(), v.to_string()))
+        );
+        let shard = Shard { index: 3, count: 5 };
+        assert_eq!(shard.runs(24).collect::<Vec<_>>(), [2, 7, 12, 17, 22]);
+        // 2^64 runs overflow a usize count: refused like any count above the limit.
+        let wide = Vary {
+            key: "k".into(),
+            values: vec!["0".into(); 1 << 16],
+        };
+        let huge = [wide.clone(), wide.clone(), wide.clone(), wide];
+        let err = Runs::new(&huge).unwrap_err().to_string();
+        assert!(
+            err.contains("65536 × 65536 × 65536 × 65536") && err.contains("at most"),
+            "{err}"
+        );
+        // 3163² = 10 004 569 runs: just above the limit; 3162² just below.
+        let side = |n: usize| Vary {
+            key: "k".into(),
+            values: vec!["0".into(); n],
+        };
+        assert!(Runs::new(&[side(3163), side(3163)]).is_err());
+        assert_eq!(Runs::new(&[side(3162), side(3162)]).unwrap().count(), 3162 * 3162);
+    }
+
+    #[test]
+    fn long_lists_are_summarised() {
+        let few: Vec<String> = (1..=5).map(|k| k.to_string()).collect();
+        assert_eq!(super::merge::summarise(&few), "1, 2, 3, 4, 5");
+        let many: Vec<String> = (1..=100_000).map(|k| k.to_string()).collect();
+        assert_eq!(super::merge::summarise(&many), "1, 2, 3, 4, 5, … (100000 in all)");
+    }
+
+    #[test]
     fn relative_paths() {
         assert_eq!(relative(Path::new("/a/b"), Path::new("/a/b/c")), "c");
         assert_eq!(relative(Path::new("/a/b"), Path::new("/a/d/c")), "../d/c");
