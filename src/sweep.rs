@@ -152,10 +152,10 @@ impl<'a> Runs<'a> {
 }
 
 /// The runs of a sweep, all at once: each is a list of (key, value) overrides (for small sweeps;
-/// [`Runs`] generates them one at a time). Panics beyond [`MAX_RUNS`] runs.
-pub fn product(varies: &[Vary]) -> Vec<Vec<(String, String)>> {
-    let runs = Runs::new(varies).expect("at most MAX_RUNS runs");
-    (0..runs.count()).map(|n| runs.overrides(n)).collect()
+/// [`Runs`] generates them one at a time). Refused like [`Runs::new`] beyond [`MAX_RUNS`] runs.
+pub fn product(varies: &[Vary]) -> Result<Vec<Vec<(String, String)>>, Error> {
+    let runs = Runs::new(varies)?;
+    Ok((0..runs.count()).map(|n| runs.overrides(n)).collect())
 }
 
 /// Summary columns of sweep.csv after `run`, `folder`, `status`, the varied keys and `message`.
@@ -620,7 +620,7 @@ mod tests {
     #[test]
     fn product_order_and_shards_partition_the_runs() {
         let v = [Vary::parse("a=1,2,3").unwrap(), Vary::parse("b=x,y").unwrap()];
-        let runs = product(&v);
+        let runs = product(&v).unwrap();
         assert_eq!(runs.len(), 6);
         assert_eq!(runs[1], vec![("a".into(), "1".into()), ("b".into(), "y".into())]);
         let mut seen = [0; 6];
@@ -642,7 +642,7 @@ mod tests {
         ];
         let runs = Runs::new(&v).unwrap();
         assert_eq!(runs.count(), 24);
-        let all = product(&v);
+        let all = product(&v).unwrap();
         for (n, run) in all.iter().enumerate() {
             assert_eq!(&runs.overrides(n), run);
         }

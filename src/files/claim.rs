@@ -39,7 +39,21 @@ impl Claim {
     pub fn acquire(dir: &Path, kind: Kind, access: Access) -> Result<Claim, FolderError> {
         let target = resolve(dir)?;
         // Refuse a foreign folder before creating anything (the lock's parent, the lock).
-        check_replaceable(&target, kind)?;
+        if let Err(e) = check_replaceable(&target, kind) {
+            // A folder that another process is writing changes under the look (a run's
+            // temporary folder just created, its manifest not yet in it): busy, not foreign.
+            let lock_file = lock_path(&target);
+            if matches!(e, FolderError::Foreign { .. })
+                && fs::symlink_metadata(&lock_file).is_ok()
+                && matches!(FileLock::try_acquire(&lock_file, access), Ok(None))
+            {
+                return Err(FolderError::Busy {
+                    dir: target,
+                    lock: lock_file,
+                });
+            }
+            return Err(e);
+        }
         let created = create_dirs(parent_of(&target))?;
         let mut claim = Claim {
             target,

@@ -124,6 +124,12 @@ pub(super) fn contents(dir: &Path) -> Result<Contents, FolderError> {
                 Some(SweepEntry::Temporary) if is_dir(&path) && read_manifest(&path).is_some() => {
                     entries.push(Owned::Temporary(path))
                 }
+                // A writer's temporary folder in the instant between its creation and its
+                // manifest (another shard's run, seen while it starts): empty, or holding only
+                // the manifest's own temporary file.
+                Some(SweepEntry::Temporary) if is_dir(&path) && being_created(&path) => {
+                    entries.push(Owned::Temporary(path))
+                }
                 Some(SweepEntry::Temporary) if is_file(&path) => entries.push(Owned::File(path)),
                 _ => return Err(foreign(name.clone())),
             }
@@ -142,6 +148,13 @@ pub(super) fn contents(dir: &Path) -> Result<Contents, FolderError> {
         kind: manifest.kind,
         entries,
     })
+}
+
+/// Whether the folder `dir` holds nothing, or only the temporary file of its manifest being
+/// written (`.rollbem-manifest.partial-PID`): a temporary folder a writer has just created.
+fn being_created(dir: &Path) -> bool {
+    let prefix = format!(".{MANIFEST}.partial-");
+    list(dir).is_ok_and(|names| names.iter().all(|n| n.starts_with(&prefix)))
 }
 
 enum WalkError {
