@@ -1,14 +1,15 @@
 //! Internal and conformal contact with the true geometry: the tables of docs/theory.md
 //! ("Tractions along the contact": what the traction axes change on every shipped case) and
 //! docs/conformal.md §6 (the roller-in-a-ring-bore cases against Hertz, Carter and the
-//! half-space model), and the plot docs/img/bore_a020.svg. The `docs` test compares the tables
-//! with the pages.
+//! half-space model), and the plot bore_a020.svg, drawn into a temporary folder (`--figures
+//! DIR`: into DIR; `--update-docs`: docs/img/, the figure of docs/conformal.md). The `docs` test
+//! compares the tables with the pages.
 //!
-//! Run: `cargo run --release --example conformal_report` (a few seconds).
+//! Run: `cargo run --release --example conformal_report [-- --update-docs]` (a few seconds).
 
 pub mod common;
 
-use common::{root, shipped_cases, signed, solve, Table};
+use common::{figure_dir, shipped_cases, signed, solve, Table};
 use plotters::prelude::*;
 use rollbem::analytic::creepage::{free_rolling_creepage_in_a_bore, BoreRing, ShaftRoller};
 use rollbem::analytic::Carter;
@@ -283,8 +284,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let rows = bore_runs();
     println!("## docs/conformal.md §6: a roller in a ring bore\n");
     println!("{}", bore_table(&rows).markdown());
-    let img = root().join("docs/img");
-    std::fs::create_dir_all(&img)?;
+    let img = figure_dir();
     plot(&rows[4], &img.join("bore_a020.svg"))?;
     Ok(())
 }

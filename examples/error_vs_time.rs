@@ -1,14 +1,15 @@
 //! Error against time on CONTACT's carter2d problem (cases/carter2d_contact.yaml): uniform
 //! grids, error-controlled grids (`contact.grid.tolerance`) and CONTACT's measured curve
 //! (docs/data/contact_carter2d.csv). Prints the table of docs/performance.md and draws
-//! docs/img/error_vs_time.svg. Times are the whole `rollbem run` process (best of 3); the
-//! `docs` test compares the columns that are not times.
+//! error_vs_time.svg into a temporary folder (`--figures DIR`: into DIR; `--update-docs`: the
+//! figure of the docs, docs/img/error_vs_time.svg). Times are the whole `rollbem run` process
+//! (best of 3); the `docs` test compares the columns that are not times.
 //!
-//! Run: `cargo build --release && cargo run --release --example error_vs_time`.
+//! Run: `cargo build --release && cargo run --release --example error_vs_time [-- --update-docs]`.
 
 pub mod common;
 
-use common::{case_path, root, solve, Table};
+use common::{case_path, figure_dir, root, solve, Table};
 use rollbem::app::Solved;
 use rollbem::output::charts::accuracy::{self, Curve, Point};
 use rollbem::post::norms::nodal_error_against;
@@ -150,7 +151,7 @@ fn main() {
         });
     }
     print!("{}", t.markdown());
-    let path = root().join("docs/img/error_vs_time.svg");
+    let path = figure_dir().join("error_vs_time.svg");
     accuracy::write(
         &path,
         "carter2d: RMS shear error against whole-process time",

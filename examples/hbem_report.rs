@@ -1,13 +1,14 @@
 //! Finite-difference against HBEM slip: the tables of docs/hbem.md (the `docs` test compares
-//! them with the page) and its two plots, docs/img/hbem_carter.svg (Carter, true rollers) and
-//! docs/img/hbem_fig4.svg (paper Fig. 4, true geometry, with the half-space model for
-//! reference).
+//! them with the page) and its two plots, hbem_carter.svg (Carter, true rollers) and
+//! hbem_fig4.svg (paper Fig. 4, true geometry, with the half-space model for reference), drawn
+//! into a temporary folder (`--figures DIR`: into DIR; `--update-docs`: docs/img/, the figures
+//! of the docs).
 //!
-//! Run: `cargo run --release --example hbem_report` (a few seconds).
+//! Run: `cargo run --release --example hbem_report [-- --update-docs]` (a few seconds).
 
 pub mod common;
 
-use common::{root, signed, solve, Table};
+use common::{figure_dir, signed, solve, Table};
 use plotters::prelude::*;
 use rollbem::app::Solved;
 use rollbem::post::{ContactSolution, NodeState};
@@ -223,8 +224,7 @@ fn series(sol: &ContactSolution, sc: &Scales, v: &[f64]) -> Vec<(f64, f64)> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let img = root().join("docs/img");
-    std::fs::create_dir_all(&img)?;
+    let img = figure_dir();
 
     // Carter, true rollers R = 100 mm on shafts.
     let s = solve("carter_051_true", &[] as &[&str]);

@@ -1,7 +1,8 @@
 #!/bin/sh
 # Fills the seed corpora of the fuzz targets from the repository's cases and test meshes:
 # cases/*.yaml for case_parse; the sections (after the $MeshFormat header) of the ASCII and
-# binary meshes of tests/data/msh and meshes/ for msh_ascii and msh_binary.
+# binary meshes of tests/data/msh and meshes/ for msh_ascii and msh_binary, and the regression
+# inputs of tests/data/msh/fuzz/ (earlier findings, sections only) for the target they belong to.
 set -e
 cd "$(dirname "$0")"
 mkdir -p corpus/case_parse corpus/msh_ascii corpus/msh_binary
@@ -16,3 +17,5 @@ for f in ../tests/data/msh/*.msh ../meshes/*.msh; do
     tail -n +4 "$f" > "corpus/msh_ascii/$name"
   fi
 done
+for f in ../tests/data/msh/fuzz/*_ascii.sections; do cp "$f" corpus/msh_ascii/; done
+for f in ../tests/data/msh/fuzz/*_binary.sections; do cp "$f" corpus/msh_binary/; done

@@ -167,16 +167,43 @@ pub fn parse(text: &str, path: &Path, overrides: &[String]) -> Result<LoadedCase
             violations,
         });
     }
-    let case: Case = serde_path_to_error::deserialize(value.clone()).map_err(|e| CaseError::Schema {
-        path: path.to_path_buf(),
-        key: match e.path().to_string() {
+    let case: Case = serde_path_to_error::deserialize(value.clone()).map_err(|e| {
+        let key = match e.path().to_string() {
             p if p == "." => "(top level)".to_string(),
             p => p,
-        },
-        message: e.inner().to_string(),
+        };
+        let message = plain_message(&e.inner().to_string());
+        // The key at fault: an unknown field's own key, else the key where the value failed.
+        let culprit = message
+            .strip_prefix("unknown field `")
+            .and_then(|rest| rest.split_once('`'))
+            .map_or_else(
+                || key.clone(),
+                |(field, _)| match e.path().to_string() {
+                    p if p == "." => field.to_string(),
+                    p => format!("{p}.{field}"),
+                },
+            );
+        match blamed_override(overrides, &culprit) {
+            Some(argument) => CaseError::Override {
+                argument: argument.clone(),
+                message: format!("key `{key}`: {message}"),
+            },
+            None => CaseError::Schema {
+                path: path.to_path_buf(),
+                key,
+                message,
+            },
+        }
     })?;
-    let violations = validate::validate(&case);
+    let mut violations = validate::validate(&case);
     if !violations.is_empty() {
+        // Say which values came from the command line rather than from the file.
+        for v in &mut violations {
+            if let Some(argument) = blamed_override(overrides, &v.key) {
+                v.message = format!("{} (the value given by --set {argument})", v.message);
+            }
+        }
         return Err(CaseError::Invalid {
             path: path.to_path_buf(),
             violations,
@@ -188,6 +215,49 @@ pub fn parse(text: &str, path: &Path, overrides: &[String]) -> Result<LoadedCase
         path: path.to_path_buf(),
         resolved,
     })
+}
+
+/// The last `--set` argument whose key is `key`, lies inside it or holds it (so that its value
+/// put there what failed), if any.
+fn blamed_override<'a>(overrides: &'a [String], key: &str) -> Option<&'a String> {
+    let related = |set: &str| {
+        set == key
+            || key.strip_prefix(set).is_some_and(|rest| rest.starts_with(['.', '[']))
+            || set.strip_prefix(key).is_some_and(|rest| rest.starts_with('.'))
+    };
+    overrides
+        .iter()
+        .rev()
+        .find(|a| a.split_once('=').is_some_and(|(k, _)| related(k)))
+}
+
+/// Serde's message in the words of a case file: Rust's type names become what a value must
+/// be ("expected f64" → "expected a number"), and the YAML library's name for an enum becomes
+/// what to write.
+pub fn plain_message(message: &str) -> String {
+    let mut out = message.to_string();
+    for (rust, plain) in [
+        ("expected f64", "expected a number"),
+        ("expected f32", "expected a number"),
+        ("expected usize", "expected a whole number (0, 1, 2, …)"),
+        ("expected u64", "expected a whole number (0, 1, 2, …)"),
+        ("expected u32", "expected a whole number (0, 1, 2, …)"),
+        ("expected u16", "expected a whole number (0, 1, 2, …)"),
+        ("expected u8", "expected a whole number (0, 1, 2, …)"),
+        ("expected i64", "expected a whole number"),
+        ("expected i32", "expected a whole number"),
+        ("expected a boolean", "expected true or false"),
+        (
+            "expected a Value::Tagged enum",
+            "expected one of the names this key takes (cases/README.md); leave the key out for its default",
+        ),
+        ("invalid type: unit value", "got null"),
+        ("invalid type: floating point `", "got the number `"),
+        ("invalid type: ", "got "),
+    ] {
+        out = out.replace(rust, plain);
+    }
+    out
 }
 
 /// What the typed schema cannot see in the raw YAML tree: local tags (`friction: !weird 0.1`,
@@ -242,7 +312,8 @@ fn check_tree(value: &serde_norway::Value, key: &str, out: &mut Vec<Violation>) 
 }
 
 /// Applies `key.path=value` to the value tree, creating missing mappings on the way. The value
-/// is read as YAML, so `0.5`, `true`, `phi` and `{force: 10}` all work.
+/// is read as YAML, so `0.5`, `true`, `phi` and `{force: 10}` all work; `null` (or `~`, or
+/// nothing after `=`) removes the key.
 pub fn apply_override(root: &mut serde_norway::Value, argument: &str) -> Result<(), CaseError> {
     let err = |message: String| CaseError::Override {
         argument: argument.to_string(),
@@ -276,7 +347,17 @@ pub fn apply_override(root: &mut serde_norway::Value, argument: &str) -> Result<
         };
         let k = serde_norway::Value::String(part.to_string());
         if depth + 1 == parts.len() {
-            map.insert(k, value);
+            if value.is_null() {
+                // `key=null` removes the key: its default applies, and a key that the new
+                // value of another key does not take (a rigid body's material) can go.
+                map.remove(&k);
+            } else {
+                map.insert(k, value);
+            }
+            return Ok(());
+        }
+        if value.is_null() && !map.contains_key(&k) {
+            // Nothing to remove.
             return Ok(());
         }
         node = map.entry(k).or_insert(serde_norway::Value::Null);

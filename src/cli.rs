@@ -82,15 +82,16 @@ pub enum Command {
     /// Large sweeps: `--shard K/N` runs the K-th of N deterministic slices (one per Slurm array
     /// task), then `rollbem sweep --merge DIR... --out DIR` joins the shards.
     Sweep {
-        /// Case file (not needed with --merge).
-        #[arg(required_unless_present = "merge")]
+        /// Case file (not with --merge: the shards' records say what sweep they are).
+        #[arg(required_unless_present = "merge", conflicts_with = "merge")]
         case: Option<PathBuf>,
         /// key.path=v1,v2,... — values for one case key (read as YAML, like --set). Repeatable:
-        /// the runs are the Cartesian product, the first --vary varying slowest.
-        #[arg(long = "vary", value_name = "KEY.PATH=V1,V2,...")]
+        /// the runs are the Cartesian product, the first --vary varying slowest (at most
+        /// 10 000 000 runs).
+        #[arg(long = "vary", value_name = "KEY.PATH=V1,V2,...", conflicts_with = "merge")]
         vary: Vec<String>,
         /// Fixed overrides applied to every run. Repeatable.
-        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE", conflicts_with = "merge")]
         set: Vec<String>,
         /// Output folder (default: the case's output folder with `_sweep` appended).
         #[arg(long)]

@@ -27,7 +27,9 @@
 //!
 //! For the tests, `ROLLBEM_TEST_FAULT=panic` or `=abort` (optionally `panic@NAME`, `abort@NAME`
 //! for the folder NAME only) makes the writer panic or abort after the results are written into
-//! the temporary folder and before it is renamed into place; nothing else reads it.
+//! the temporary folder and before it is renamed into place; `intrude@NAME` puts a file into
+//! NAME's earlier result after it was checked, so that its removal stops (and is reported).
+//! Nothing else reads it.
 
 use serde::{Deserialize, Serialize};
 use std::fs;
@@ -39,7 +41,7 @@ mod contents;
 mod lock;
 
 pub use claim::{inject_fault, write_atomically, Claim};
-pub use contents::{clean_stale_siblings, remove_owned, shard_file_name, sweep_owns, SweepEntry};
+pub use contents::{check_run_folder, clean_stale_siblings, remove_owned, shard_file_name, sweep_owns, SweepEntry};
 pub use lock::{Access, FileLock};
 
 /// File name of the manifest in every folder rollbem writes.
@@ -160,6 +162,18 @@ pub enum FolderError {
         dir: PathBuf,
         /// The lock file.
         lock: PathBuf,
+    },
+    /// A file at a lock file's path that rollbem did not create (no marker, a symbolic link).
+    #[error(
+        "{path} is named like a rollbem lock file but is {what} (rollbem's lock files start with \
+         `rollbem lock file`); rollbem neither locks through it nor removes it: move it away (if a \
+         rollbem process was killed while creating it, delete it)"
+    )]
+    NotALock {
+        /// The file.
+        path: PathBuf,
+        /// What it is.
+        what: &'static str,
     },
     /// The path exists and is not a folder.
     #[error("{path} exists and is not a folder; give a folder for the results (--out)")]

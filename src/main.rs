@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     reuse_freed_matrices();
+    survive_file_size_limit();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return usage_error(&e),
@@ -58,6 +59,23 @@ fn reuse_freed_matrices() {
 /// Other platforms keep their allocator's defaults.
 #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
 fn reuse_freed_matrices() {}
+
+/// Makes a file-size limit (`ulimit -f`) an error, not death: a write past the limit raises
+/// SIGXFSZ, whose default action kills the process at once (exit 153, no message, a temporary
+/// folder and the lock left). With a handler installed (signal-hook's safe registration of a
+/// flag, which nothing reads) the write fails with EFBIG instead, "File too large": the writer
+/// reports it, removes its temporary folder and exits 1.
+#[cfg(unix)]
+fn survive_file_size_limit() {
+    let flag = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    if let Err(e) = signal_hook::flag::register(signal_hook::consts::SIGXFSZ, flag) {
+        eprintln!("warning: cannot catch SIGXFSZ ({e}): a file-size limit (ulimit -f) will kill rollbem");
+    }
+}
+
+/// Other platforms have no SIGXFSZ.
+#[cfg(not(unix))]
+fn survive_file_size_limit() {}
 
 /// The default folder of a sweep or study: the case's output folder with `_<what>` appended.
 fn default_output_dir(case: &rollbem::case::LoadedCase, what: &str) -> PathBuf {

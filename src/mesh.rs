@@ -431,6 +431,14 @@ pub enum ElementDefect {
     ZeroLength,
     /// The mid node of a 3-node element is so far off-centre that the mapping folds over.
     Distorted,
+    /// Its node count (2 or 3) differs from that of the mesh's first element: the boundary
+    /// mixes line2 and line3 elements.
+    MixedOrder {
+        /// Nodes of this element.
+        nodes: usize,
+        /// Nodes of the mesh's first element.
+        first: usize,
+    },
 }
 
 impl std::fmt::Display for ElementDefect {
@@ -440,6 +448,15 @@ impl std::fmt::Display for ElementDefect {
             Self::Distorted => {
                 "is distorted (its mid node is not in the middle third between its ends); \
                  regenerate the mesh"
+            }
+            Self::MixedOrder { nodes, first } => {
+                return write!(
+                    f,
+                    "has {nodes} nodes where the mesh's first element has {first}: rollbem takes a \
+                     boundary of line2 elements or of line3 elements, not both; mesh every curve at \
+                     one order (Gmsh: Mesh.ElementOrder = {order}, or `SetOrder {order};`)",
+                    order = first - 1
+                )
             }
         })
     }

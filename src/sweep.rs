@@ -82,25 +82,84 @@ impl Shard {
     pub fn owns(&self, run: usize) -> bool {
         run % self.count == self.index - 1
     }
+
+    /// The run numbers of this shard among `total` runs, in order (without visiting the others).
+    pub fn runs(&self, total: usize) -> impl Iterator<Item = usize> {
+        (self.index - 1..total).step_by(self.count)
+    }
 }
 
-/// The runs of a sweep: each is a list of (key, value) overrides.
-pub fn product(varies: &[Vary]) -> Vec<Vec<(String, String)>> {
-    varies.iter().fold(vec![Vec::new()], |acc, v| {
-        acc.iter()
-            .flat_map(|prefix| {
-                v.values.iter().map(move |value| {
-                    let mut run = prefix.clone();
-                    run.push((v.key.clone(), value.clone()));
-                    run
-                })
-            })
+/// Most runs one sweep may have: a sweep's table, its run numbers and `--merge` hold a row per
+/// run; beyond this a typo (three `--vary` of 1000 values) is far likelier than intent.
+pub const MAX_RUNS: usize = 10_000_000;
+
+/// The runs of a sweep, generated one at a time (never the whole product in memory): run n's
+/// values are the digits of n in the mixed radix of the value counts, the last `--vary` varying
+/// fastest.
+#[derive(Debug, Clone, Copy)]
+pub struct Runs<'a> {
+    varies: &'a [Vary],
+    count: usize,
+}
+
+impl<'a> Runs<'a> {
+    /// The runs of `varies`; more than [`MAX_RUNS`] (or more than a `usize` counts) is refused
+    /// with the count.
+    pub fn new(varies: &'a [Vary]) -> Result<Self, Error> {
+        let count = varies
+            .iter()
+            .try_fold(1usize, |n, v| n.checked_mul(v.values.len()))
+            .filter(|&n| n <= MAX_RUNS);
+        match count {
+            Some(count) => Ok(Self { varies, count }),
+            None => {
+                let shown = varies
+                    .iter()
+                    .map(|v| v.values.len().to_string())
+                    .collect::<Vec<_>>()
+                    .join(" × ");
+                let total: f64 = varies.iter().map(|v| v.values.len() as f64).product();
+                Err(sweep_err(format!(
+                    "the --vary options make {shown} = {total:.3e} runs; a sweep may have at most \
+                     {MAX_RUNS} runs: vary fewer keys or values (or split the study into several sweeps)"
+                )))
+            }
+        }
+    }
+
+    /// Number of runs.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// Index of run `run`'s value of `--vary` number `key` (`run` < [`Self::count`]).
+    fn index(&self, run: usize, key: usize) -> usize {
+        let inner: usize = self.varies[key + 1..].iter().map(|v| v.values.len()).product();
+        (run / inner) % self.varies[key].values.len()
+    }
+
+    /// Run `run`'s value of `--vary` number `key`.
+    pub fn value(&self, run: usize, key: usize) -> &'a str {
+        &self.varies[key].values[self.index(run, key)]
+    }
+
+    /// Run `run`'s overrides: (key, value) per `--vary`, in order.
+    pub fn overrides(&self, run: usize) -> Vec<(String, String)> {
+        (0..self.varies.len())
+            .map(|k| (self.varies[k].key.clone(), self.value(run, k).to_string()))
             .collect()
-    })
+    }
+}
+
+/// The runs of a sweep, all at once: each is a list of (key, value) overrides (for small sweeps;
+/// [`Runs`] generates them one at a time). Refused like [`Runs::new`] beyond [`MAX_RUNS`] runs.
+pub fn product(varies: &[Vary]) -> Result<Vec<Vec<(String, String)>>, Error> {
+    let runs = Runs::new(varies)?;
+    Ok((0..runs.count()).map(|n| runs.overrides(n)).collect())
 }
 
 /// Summary columns of sweep.csv after `run`, `folder`, `status`, the varied keys and `message`.
-pub const RESULT_COLUMNS: [&str; 19] = [
+pub const RESULT_COLUMNS: [&str; 20] = [
     "converged",
     "iterations",
     "residual",
@@ -111,6 +170,7 @@ pub const RESULT_COLUMNS: [&str; 19] = [
     "creep",
     "contact_x_min",
     "contact_x_max",
+    "contact_centre",
     "half_width",
     "max_pressure",
     "slip_regime",
@@ -219,6 +279,7 @@ fn run_one_unguarded(
                     f(s.creep),
                     c.map_or(String::new(), |c| f(c.x_min)),
                     c.map_or(String::new(), |c| f(c.x_max)),
+                    c.map_or(String::new(), |c| f(c.centre)),
                     c.map_or(String::new(), |c| f(c.half_width)),
                     f(s.max_pressure),
                     s.slip_regime.to_string(),
@@ -287,8 +348,11 @@ pub fn run(
             "nothing to sweep: give at least one --vary key.path=v1,v2,...".into(),
         ));
     }
-    // Fail fast on an unreadable case; value errors are per-run failures.
+    // Fail fast on an unreadable case or a --set or --vary key that no run could take; value
+    // errors (out of range, or only in some combinations) are per-run failures.
+    Runs::new(varies)?;
     crate::case::load(case, base_set)?;
+    check_keys(case, base_set, varies)?;
     let record = SweepRecord::new(case, base_set, varies, shard)?;
     let access = if shard.is_some() {
         Access::Shared
@@ -331,6 +395,53 @@ pub fn run(
     })
 }
 
+/// Refuses, before anything is written, a `--vary` that every run with one of its values would
+/// fail alike: a key given in two `--vary` options, or a key (or value) that the case cannot
+/// take at all (a misspelt key, a value that is not of the key's type: what `--set` would refuse).
+/// Each value is applied once to the case with the `--set` overrides. A `--vary` of a key that a
+/// `--set` also sets wins over it: said in a warning.
+fn check_keys(case: &Path, base_set: &[String], varies: &[Vary]) -> Result<(), Error> {
+    for (i, v) in varies.iter().enumerate() {
+        if varies[..i].iter().any(|w| w.key == v.key) {
+            return Err(sweep_err(format!(
+                "--vary {} is given twice; give all its values in one --vary {}=v1,v2,... (nothing was run \
+                 or written)",
+                v.key, v.key
+            )));
+        }
+        for set in base_set {
+            if set.split_once('=').is_some_and(|(k, _)| k == v.key) {
+                log::warn!(
+                    "--vary {} overrides --set {set}: the runs take the varied values",
+                    v.key
+                );
+            }
+        }
+    }
+    let text = std::fs::read_to_string(case).map_err(|e| sweep_err(format!("{}: {e}", case.display())))?;
+    for v in varies {
+        let mut seen = std::collections::HashSet::new();
+        for value in v.values.iter().filter(|x| seen.insert(x.as_str())) {
+            let argument = format!("{}={value}", v.key);
+            let mut set = base_set.to_vec();
+            set.push(argument.clone());
+            if let Err(crate::case::CaseError::Override {
+                argument: blamed,
+                message,
+            }) = crate::case::parse(&text, case, &set)
+            {
+                if blamed == argument {
+                    return Err(sweep_err(format!(
+                        "--vary {}: the value `{value}` cannot be used: {message}; nothing was run or written",
+                        v.key
+                    )));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Locks a shard's table in `dir` (two processes must not run the same shard).
 fn lock_table(dir: &Path, record: &SweepRecord) -> Result<FileLock, Error> {
     let lock = dir.join(format!(".{}.rollbem-lock", record.csv_name()));
@@ -352,6 +463,18 @@ fn lock_table(dir: &Path, record: &SweepRecord) -> Result<FileLock, Error> {
 fn check_other_records(dir: &Path, record: &SweepRecord, resume: bool) -> Result<(), Error> {
     if record.shards.is_none() && !resume {
         return Ok(());
+    }
+    let table = dir.join(record.csv_name());
+    let own = dir.join(record.csv_name().replace(".csv", ".json"));
+    if resume && table.exists() && !own.exists() {
+        return Err(sweep_err(format!(
+            "{}: no record {} says what sweep this table belongs to (deleted, or copied without \
+             it), so --resume cannot tell its runs from another sweep's: run without --resume (a \
+             sweep replaces the folder's, a shard reruns its runs), or give another --out",
+            table.display(),
+            own.file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+        )));
     }
     let Ok(names) = std::fs::read_dir(dir) else {
         return Ok(());
@@ -394,7 +517,7 @@ impl Job<'_> {
     /// temporaries removed, finished runs kept when resuming, the rest run in parallel with
     /// their rows appended to the table as they finish. Returns the rows and how many were kept.
     fn run_in(&self, dir: &Path, resume: bool) -> Result<(Vec<RunRow>, usize), Error> {
-        let runs = product(self.varies);
+        let runs = Runs::new(self.varies)?;
         let mine = |n: usize| self.shard.is_none_or(|s| s.owns(n));
         let csv_name = self.record.csv_name();
         let mut tables = vec![csv_name.clone(), csv_name.replace(".csv", ".json")];
@@ -409,17 +532,16 @@ impl Job<'_> {
             read_rows_leniently(&csv_path, &keys, &runs)
                 .into_iter()
                 .filter(|r| mine(r.run) && (r.status == "ok" || r.status == "not_converged"))
-                .filter(|r| folder::read_manifest(&dir.join(&r.folder)).is_some())
+                // A row is kept only with its own run's folder, whole (every file its manifest
+                // lists); otherwise the run is done again.
+                .filter(|r| r.folder == run_folder(r.run) && folder::check_run_folder(&dir.join(&r.folder)).is_ok())
                 .collect()
         } else {
             Vec::new()
         };
         let done: std::collections::HashSet<usize> = kept.iter().map(|r| r.run).collect();
-        let todo: Vec<(usize, &Vec<(String, String)>)> = runs
-            .iter()
-            .enumerate()
-            .filter(|(n, _)| mine(*n) && !done.contains(n))
-            .collect();
+        let shard = self.shard.unwrap_or(Shard { index: 1, count: 1 });
+        let todo: Vec<usize> = shard.runs(runs.count()).filter(|n| !done.contains(n)).collect();
         write_rows(&csv_path, &keys, &kept)?;
         let table = Mutex::new(Appender::open(&csv_path)?);
         let bar = ProgressBar::new(todo.len() as u64);
@@ -429,8 +551,8 @@ impl Job<'_> {
         );
         let new_rows: Vec<Result<RunRow, Error>> = todo
             .par_iter()
-            .map(|(n, overrides)| {
-                let row = run_one(self.case, self.base_set, dir, *n, overrides);
+            .map(|&n| {
+                let row = run_one(self.case, self.base_set, dir, n, &runs.overrides(n));
                 let appended = table
                     .lock()
                     .map_err(|_| sweep_err("the table writer failed in another thread".into()))
@@ -498,7 +620,7 @@ mod tests {
     #[test]
     fn product_order_and_shards_partition_the_runs() {
         let v = [Vary::parse("a=1,2,3").unwrap(), Vary::parse("b=x,y").unwrap()];
-        let runs = product(&v);
+        let runs = product(&v).unwrap();
         assert_eq!(runs.len(), 6);
         assert_eq!(runs[1], vec![("a".into(), "1".into()), ("b".into(), "y".into())]);
         let mut seen = [0; 6];
@@ -509,6 +631,54 @@ mod tests {
         assert!(seen.iter().all(|&c| c == 1));
         assert!(Shard::parse("0/4").is_err() && Shard::parse("5/4").is_err() && Shard::parse("x").is_err());
         assert!(Vary::parse("a").is_err() && Vary::parse("a=1,,2").is_err());
+    }
+
+    #[test]
+    fn runs_are_generated_one_at_a_time_and_counted_without_overflow() {
+        let v = [
+            Vary::parse("a=1,2,3").unwrap(),
+            Vary::parse("b=x,y").unwrap(),
+            Vary::parse("c=p,q,r,s").unwrap(),
+        ];
+        let runs = Runs::new(&v).unwrap();
+        assert_eq!(runs.count(), 24);
+        let all = product(&v).unwrap();
+        for (n, run) in all.iter().enumerate() {
+            assert_eq!(&runs.overrides(n), run);
+        }
+        // The first --vary varies slowest, the last fastest.
+        assert_eq!(
+            all[5],
+            [("a", "1"), ("b", "y"), ("c", "q")].map(|(k, v)| (k.to_string(), v.to_string()))
+        );
+        let shard = Shard { index: 3, count: 5 };
+        assert_eq!(shard.runs(24).collect::<Vec<_>>(), [2, 7, 12, 17, 22]);
+        // 2^64 runs overflow a usize count: refused like any count above the limit.
+        let wide = Vary {
+            key: "k".into(),
+            values: vec!["0".into(); 1 << 16],
+        };
+        let huge = [wide.clone(), wide.clone(), wide.clone(), wide];
+        let err = Runs::new(&huge).unwrap_err().to_string();
+        assert!(
+            err.contains("65536 × 65536 × 65536 × 65536") && err.contains("at most"),
+            "{err}"
+        );
+        // 3163² = 10 004 569 runs: just above the limit; 3162² just below.
+        let side = |n: usize| Vary {
+            key: "k".into(),
+            values: vec!["0".into(); n],
+        };
+        assert!(Runs::new(&[side(3163), side(3163)]).is_err());
+        assert_eq!(Runs::new(&[side(3162), side(3162)]).unwrap().count(), 3162 * 3162);
+    }
+
+    #[test]
+    fn long_lists_are_summarised() {
+        let few: Vec<String> = (1..=5).map(|k| k.to_string()).collect();
+        assert_eq!(super::merge::summarise(&few), "1, 2, 3, 4, 5");
+        let many: Vec<String> = (1..=100_000).map(|k| k.to_string()).collect();
+        assert_eq!(super::merge::summarise(&many), "1, 2, 3, 4, 5, … (100000 in all)");
     }
 
     #[test]

@@ -13,6 +13,23 @@ pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// Where a report draws its figures: `--update-docs` writes docs/img/ (the figures the docs
+/// show, tracked by git), `--figures DIR` writes DIR, and by default a folder of the system's
+/// temporary folder (`rollbem-figures`), so that running a report to reproduce its numbers
+/// leaves the repository as it was. The folder is created.
+pub fn figure_dir() -> PathBuf {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let dir = if args.iter().any(|a| a == "--update-docs") {
+        root().join("docs/img")
+    } else if let Some(i) = args.iter().position(|a| a == "--figures") {
+        PathBuf::from(args.get(i + 1).expect("--figures DIR: a folder"))
+    } else {
+        std::env::temp_dir().join("rollbem-figures")
+    };
+    std::fs::create_dir_all(&dir).expect("create the figure folder");
+    dir
+}
+
 /// Path of a shipped case by its stem.
 pub fn case_path(name: &str) -> PathBuf {
     root().join("cases").join(format!("{name}.yaml"))

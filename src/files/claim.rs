@@ -39,7 +39,21 @@ impl Claim {
     pub fn acquire(dir: &Path, kind: Kind, access: Access) -> Result<Claim, FolderError> {
         let target = resolve(dir)?;
         // Refuse a foreign folder before creating anything (the lock's parent, the lock).
-        check_replaceable(&target, kind)?;
+        if let Err(e) = check_replaceable(&target, kind) {
+            // A folder that another process is writing changes under the look (a run's
+            // temporary folder just created, its manifest not yet in it): busy, not foreign.
+            let lock_file = lock_path(&target);
+            if matches!(e, FolderError::Foreign { .. })
+                && fs::symlink_metadata(&lock_file).is_ok()
+                && matches!(FileLock::try_acquire(&lock_file, access), Ok(None))
+            {
+                return Err(FolderError::Busy {
+                    dir: target,
+                    lock: lock_file,
+                });
+            }
+            return Err(e);
+        }
         let created = create_dirs(parent_of(&target))?;
         let mut claim = Claim {
             target,
@@ -206,9 +220,13 @@ fn replace(target: &Path, kind: Kind, tmp: &Path) -> Result<(), FolderError> {
     if !target.exists() {
         return fs::rename(tmp, target).map_err(|e| io_err(target, e));
     }
+    // The folder the user gave (or chmod-ed) keeps its permissions (0700 stays 0700).
+    let permissions = fs::metadata(target).map_err(|e| io_err(target, e))?.permissions();
+    let keep_mode = || fs::set_permissions(target, permissions.clone()).map_err(|e| io_err(target, e));
     if list(target)?.is_empty() {
         fs::remove_dir(target).map_err(|e| io_err(target, e))?;
-        return fs::rename(tmp, target).map_err(|e| io_err(target, e));
+        fs::rename(tmp, target).map_err(|e| io_err(target, e))?;
+        return keep_mode();
     }
     let old = old_path(target);
     fs::rename(target, &old).map_err(|e| io_err(target, e))?;
@@ -216,10 +234,27 @@ fn replace(target: &Path, kind: Kind, tmp: &Path) -> Result<(), FolderError> {
         let _ = fs::rename(&old, target);
         return Err(io_err(target, e));
     }
-    // The old result holds only what rollbem wrote (checked above, under the lock); anything
-    // that appeared since stays in `.NAME.old-PID`.
-    let _ = remove_owned(&old);
+    keep_mode()?;
+    inject_intruder(&name_of(target), &old);
+    // The old result holds only what rollbem wrote (checked above, under the lock); what cannot
+    // be removed (a read-only folder, a file that appeared since) stays, and the user is told.
+    if let Err(e) = remove_owned(&old) {
+        log::warn!(
+            "{} now holds the new result, but the earlier one could not be removed completely ({e}); \
+             what is left of it is in {}: remove it yourself",
+            target.display(),
+            old.display()
+        );
+    }
     Ok(())
+}
+
+/// The fault injection `intrude@NAME` of the tests: a file that rollbem did not write appears
+/// in the earlier result of NAME after it was checked, so that its removal stops.
+fn inject_intruder(name: &str, old: &Path) {
+    if std::env::var(FAULT_ENV).is_ok_and(|spec| spec == format!("intrude@{name}")) {
+        let _ = fs::write(old.join("intruder.txt"), "not rollbem's");
+    }
 }
 
 /// The fault injection of the tests (`ROLLBEM_TEST_FAULT`, see the module docs).

@@ -124,6 +124,12 @@ pub(super) fn contents(dir: &Path) -> Result<Contents, FolderError> {
                 Some(SweepEntry::Temporary) if is_dir(&path) && read_manifest(&path).is_some() => {
                     entries.push(Owned::Temporary(path))
                 }
+                // A writer's temporary folder in the instant between its creation and its
+                // manifest (another shard's run, seen while it starts): empty, or holding only
+                // the manifest's own temporary file.
+                Some(SweepEntry::Temporary) if is_dir(&path) && being_created(&path) => {
+                    entries.push(Owned::Temporary(path))
+                }
                 Some(SweepEntry::Temporary) if is_file(&path) => entries.push(Owned::File(path)),
                 _ => return Err(foreign(name.clone())),
             }
@@ -142,6 +148,13 @@ pub(super) fn contents(dir: &Path) -> Result<Contents, FolderError> {
         kind: manifest.kind,
         entries,
     })
+}
+
+/// Whether the folder `dir` holds nothing, or only the temporary file of its manifest being
+/// written (`.rollbem-manifest.partial-PID`): a temporary folder a writer has just created.
+fn being_created(dir: &Path) -> bool {
+    let prefix = format!(".{MANIFEST}.partial-");
+    list(dir).is_ok_and(|names| names.iter().all(|n| n.starts_with(&prefix)))
 }
 
 enum WalkError {
@@ -267,4 +280,39 @@ pub fn clean_stale_siblings(target: &Path) {
             let _ = fs::remove_dir(&path);
         }
     }
+}
+
+/// Whether `dir` holds a complete run result: a manifest of a finished run (not a temporary
+/// folder's) and every file and sub-folder it lists. `Err` says what is missing (for a sweep's
+/// `--resume` and `--merge`, which trust a run's row only with its folder whole).
+pub fn check_run_folder(dir: &Path) -> Result<(), String> {
+    if !is_dir(dir) {
+        return Err(format!("its folder {} is missing", dir.display()));
+    }
+    let Some(manifest) = read_manifest(dir) else {
+        return Err(format!("its folder {} has no manifest {MANIFEST}", dir.display()));
+    };
+    if manifest.kind != Kind::Run || manifest.partial {
+        return Err(format!(
+            "its folder {} does not hold a finished run (its manifest says {}{})",
+            dir.display(),
+            manifest.kind.name(),
+            if manifest.partial { ", being written" } else { "" }
+        ));
+    }
+    for entry in &manifest.files {
+        let path = dir.join(entry.trim_end_matches('/'));
+        let there = if entry.ends_with('/') {
+            is_dir(&path)
+        } else {
+            is_file(&path)
+        };
+        if !there {
+            return Err(format!(
+                "its folder {} lacks {entry}, which its manifest lists",
+                dir.display()
+            ));
+        }
+    }
+    Ok(())
 }

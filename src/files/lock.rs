@@ -1,8 +1,16 @@
 //! Advisory locks on lock files: exclusive for one writer, shared for the shards of a sweep.
+//!
+//! A lock file holds [`MARKER`], written by the process that created it: a file of that name
+//! without it (the user's file, a symbolic link, a folder) is not rollbem's, and is neither
+//! locked through nor removed ([`FolderError::NotALock`]).
 
 use super::{io_err, FolderError};
 use std::fs::{self, File, OpenOptions};
+use std::io::{ErrorKind, Read, Seek, Write};
 use std::path::{Path, PathBuf};
+
+/// The first line of every lock file rollbem creates.
+pub const MARKER: &str = "rollbem lock file\n";
 
 /// Exclusive (one writer) or shared (the shards of one sweep) access to a folder.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -23,17 +31,69 @@ pub struct FileLock {
     remove: bool,
 }
 
+/// The error for a file at a lock's path that rollbem did not create.
+fn not_ours(path: &Path, what: &'static str) -> FolderError {
+    FolderError::NotALock {
+        path: path.to_path_buf(),
+        what,
+    }
+}
+
+/// Opens the lock file at `path`, creating it (never through a symbolic link) if it is absent:
+/// the file and whether this call created it.
+fn open_lock_file(path: &Path) -> Result<(File, bool), FolderError> {
+    for _ in 0..16 {
+        match fs::symlink_metadata(path) {
+            Ok(m) if !m.file_type().is_file() => {
+                let what = if m.file_type().is_symlink() {
+                    "a symbolic link"
+                } else {
+                    "not a regular file"
+                };
+                return Err(not_ours(path, what));
+            }
+            Ok(_) => match OpenOptions::new().read(true).write(true).open(path) {
+                Ok(f) => return Ok((f, false)),
+                Err(e) if e.kind() == ErrorKind::NotFound => continue,
+                Err(e) => return Err(io_err(path, e)),
+            },
+            Err(e) if e.kind() == ErrorKind::NotFound => {
+                // O_EXCL: fails on anything at the path, a dangling symbolic link included.
+                match OpenOptions::new().read(true).write(true).create_new(true).open(path) {
+                    Ok(f) => return Ok((f, true)),
+                    Err(e) if e.kind() == ErrorKind::AlreadyExists => continue,
+                    Err(e) => return Err(io_err(path, e)),
+                }
+            }
+            Err(e) => return Err(io_err(path, e)),
+        }
+    }
+    Err(io_err(path, "the lock file keeps being replaced by other processes"))
+}
+
+/// Whether the open lock file holds [`MARKER`]. Its creator writes it right after creating and
+/// locking the file, so an empty file is read again for a moment before it counts as foreign.
+fn holds_marker(mut file: &File) -> bool {
+    for _ in 0..20 {
+        let mut text = String::new();
+        let read = file
+            .rewind()
+            .and_then(|()| file.take(MARKER.len() as u64).read_to_string(&mut text));
+        match read {
+            Ok(_) if text == MARKER => return true,
+            Ok(0) => std::thread::sleep(std::time::Duration::from_millis(10)),
+            _ => return false,
+        }
+    }
+    false
+}
+
 impl FileLock {
-    /// Takes the lock on `path` without waiting: `Ok(None)` when another process holds it.
+    /// Takes the lock on `path` without waiting: `Ok(None)` when another process holds it;
+    /// `Err(NotALock)` when something at `path` is not a lock file rollbem created.
     pub fn try_acquire(path: &Path, access: Access) -> Result<Option<FileLock>, FolderError> {
         for _ in 0..16 {
-            let file = OpenOptions::new()
-                .read(true)
-                .write(true)
-                .create(true)
-                .truncate(false)
-                .open(path)
-                .map_err(|e| io_err(path, e))?;
+            let (mut file, created) = open_lock_file(path)?;
             // Fully qualified: std's inherent File::try_lock (Rust 1.89) has another error type.
             let taken = match access {
                 Access::Exclusive => fs4::FileExt::try_lock(&file),
@@ -44,13 +104,20 @@ impl FileLock {
                 Err(fs4::TryLockError::WouldBlock) => return Ok(None),
                 Err(fs4::TryLockError::Error(e)) => return Err(io_err(path, e)),
             }
-            if names_file(path, &file) {
-                return Ok(Some(FileLock {
-                    file,
-                    path: path.to_path_buf(),
-                    remove: access == Access::Exclusive,
-                }));
+            if !names_file(path, &file) {
+                continue;
             }
+            if created {
+                file.write_all(MARKER.as_bytes()).map_err(|e| io_err(path, e))?;
+            } else if !holds_marker(&file) {
+                let _ = fs4::FileExt::unlock(&file);
+                return Err(not_ours(path, "a file rollbem did not create"));
+            }
+            return Ok(Some(FileLock {
+                file,
+                path: path.to_path_buf(),
+                remove: access == Access::Exclusive,
+            }));
         }
         Err(io_err(path, "the lock file keeps being replaced by other processes"))
     }
@@ -63,18 +130,20 @@ impl FileLock {
 
 impl Drop for FileLock {
     fn drop(&mut self) {
-        if self.remove {
+        // Only the file this lock holds (checked: rollbem's), not one put there since.
+        if self.remove && names_file(&self.path, &self.file) {
             let _ = fs::remove_file(&self.path);
         }
         let _ = fs4::FileExt::unlock(&self.file);
     }
 }
 
-/// Whether `path` still names the open `file` (the lock file was not removed meanwhile).
+/// Whether `path` itself (not a symbolic link's target) still names the open `file` (the lock
+/// file was not removed or replaced meanwhile).
 #[cfg(unix)]
 fn names_file(path: &Path, file: &File) -> bool {
     use std::os::unix::fs::MetadataExt;
-    match (fs::metadata(path), file.metadata()) {
+    match (fs::symlink_metadata(path), file.metadata()) {
         (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
         _ => false,
     }

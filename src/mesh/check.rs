@@ -90,7 +90,8 @@ struct TracedLoop {
     reversed: Vec<bool>,
 }
 
-/// Per-element checks: node counts and indices, group index, zero length, distortion.
+/// Per-element checks: node counts and indices, group index, zero length, distortion, one
+/// order (2 or 3 nodes) for all (the loops' polygons, the contact grid and the BEM take one).
 fn check_elements(mesh: &BoundaryMesh) -> Result<(), MeshError> {
     let path = || mesh.source.clone();
     let tolerance = 1e-10 * mesh.size();
@@ -117,6 +118,7 @@ fn check_elements(mesh: &BoundaryMesh) -> Result<(), MeshError> {
                 count: mesh.nodes.len(),
             });
         }
+        let first = mesh.elements[0].nodes.len();
         let [x0, y0] = mesh.nodes[el.nodes[0]];
         let bad = |defect| MeshError::BadElement {
             path: path(),
@@ -126,6 +128,12 @@ fn check_elements(mesh: &BoundaryMesh) -> Result<(), MeshError> {
             y: y0,
             defect,
         };
+        if el.nodes.len() != first {
+            return Err(bad(ElementDefect::MixedOrder {
+                nodes: el.nodes.len(),
+                first,
+            }));
+        }
         let [x1, y1] = mesh.nodes[el.nodes[1]];
         let chord = [x1 - x0, y1 - y0];
         let length2 = chord[0] * chord[0] + chord[1] * chord[1];
@@ -265,13 +273,17 @@ fn check_no_crossings(mesh: &BoundaryMesh, traced: &[TracedLoop]) -> Result<(), 
     let mut lengths = Vec::with_capacity(traced.len());
     for (k, t) in traced.iter().enumerate() {
         let points = polygon(mesh, t);
-        let per_element = if points.len() == 2 * t.elements.len() { 2 } else { 1 };
-        for i in 0..points.len() {
+        // The element each polygon point starts a segment of (one or two points per element).
+        let owners = t
+            .elements
+            .iter()
+            .flat_map(|&e| std::iter::repeat_n(e, mesh.elements[e].nodes.len() - 1));
+        for (i, element) in owners.enumerate() {
             segments.push(Segment {
                 a: points[i],
                 b: points[(i + 1) % points.len()],
                 at: (k, i),
-                element: t.elements[i / per_element],
+                element,
             });
         }
         lengths.push(points.len());

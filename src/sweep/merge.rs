@@ -1,13 +1,29 @@
 //! `rollbem sweep --merge`: the shard tables of one sweep, from one folder or several, joined
 //! into one sweep.csv and sweep.pvd; incomplete, mixed or malformed sets are refused.
+//!
+//! Linear in the number of rows and shards (hash sets, no pairwise comparisons): a million rows
+//! merge in seconds (docs/performance.md, `cargo run --release --example merge_scale`).
 
 use super::record::{read_record, write_record, SweepRecord};
 use super::table::{header, parse_row, write_collection_atomically, write_rows};
-use super::{lock_table, product, run_folder, sweep_err, RunRow, Shard, Vary};
+use super::{lock_table, run_folder, sweep_err, RunRow, Runs, Shard, Vary};
 use crate::error::Error;
-use crate::output::folder::{self, Access, Claim, FileLock, FolderError, Kind};
+use crate::output::folder::{self, Access, Claim, FileLock, FolderError, Kind, SweepEntry};
 use crate::output::vtk::CollectionEntry;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
+
+/// How many items a message lists before it gives only their number.
+const SHOWN: usize = 5;
+
+/// `items` for a message: all of them when few, else the first [`SHOWN`] and how many in all.
+pub(super) fn summarise(items: &[String]) -> String {
+    if items.len() <= SHOWN {
+        items.join(", ")
+    } else {
+        format!("{}, … ({} in all)", items[..SHOWN].join(", "), items.len())
+    }
+}
 
 /// One shard table found by [`merge`].
 struct ShardTable {
@@ -23,8 +39,11 @@ struct ShardTable {
 ///
 /// Refused (nothing written) unless the tables make exactly one complete sweep: every shard 1..N
 /// present once, all of one sweep (same case content, `--set`, `--vary`, N), each holding a row
-/// for every run it owns; an empty or malformed table is named with what is wrong. `out` must be
-/// new, empty or a sweep folder, and no sweep may still be writing any of the folders.
+/// for every run it owns, each run recorded as done with its folder whole; an empty or malformed
+/// table is named with what is wrong. `out` must be new, empty, a shard folder of this sweep or
+/// its earlier merge: a folder that holds another sweep (its sweep.json differs, or run folders
+/// that no shard table names) is refused. No sweep may still be writing any of the folders.
+/// Shards written by different rollbem versions merge with a warning.
 pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<PathBuf, Error> {
     let claim = Claim::acquire(out, Kind::Sweep, Access::Exclusive)?;
     let out_abs = claim.path().to_path_buf();
@@ -61,8 +80,13 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<PathBuf, Error> {
             )));
         }
     }
+    warn_of_versions(&tables);
     let count = first.record.shards.unwrap_or(1);
     check_shards_complete(&tables, count)?;
+    let mut record = first.record.clone();
+    record.shard = None;
+    record.written_by = format!("rollbem {}", env!("CARGO_PKG_VERSION"));
+    check_output_folder(&out_abs, &record)?;
     let keys: Vec<String> = first.record.vary.iter().map(|v| v.key.clone()).collect();
     let varies: Vec<Vary> = first
         .record
@@ -73,21 +97,20 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<PathBuf, Error> {
             values: v.values.clone(),
         })
         .collect();
-    let runs = product(&varies);
-    let mut rows: Vec<RunRow> = Vec::new();
+    let runs = Runs::new(&varies)?;
+    let mut rows: Vec<RunRow> = Vec::with_capacity(runs.count());
     for t in &tables {
         let mut shard_rows = read_table_strictly(t, &keys, &runs)?;
         for r in &mut shard_rows {
-            r.has_vtk = t.dir.join(&r.folder).join("contact.vtu").is_file();
-            r.folder = relative(&out_abs, &t.dir.join(&r.folder));
+            let dir = t.dir.join(&r.folder);
+            r.has_vtk = r.status == "ok" && dir.join("contact.vtu").is_file();
+            r.folder = relative(&out_abs, &dir);
         }
         rows.extend(shard_rows);
     }
     rows.sort_by_key(|r| r.run);
+    check_no_foreign_runs(&out_abs, &rows)?;
     claim.create_in_place()?;
-    let mut record = first.record.clone();
-    record.shard = None;
-    record.written_by = format!("rollbem {}", env!("CARGO_PKG_VERSION"));
     write_record(&out_abs, &record)?;
     let path = out_abs.join("sweep.csv");
     write_rows(&path, &keys, &rows)?;
@@ -104,6 +127,76 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<PathBuf, Error> {
     write_collection_atomically(&out_abs.join("sweep.pvd"), &entries)?;
     drop(locks);
     Ok(path)
+}
+
+/// A warning when the shards were written by more than one rollbem version: their tables have
+/// one layout (the header is checked), but their numbers may differ in the last digits.
+fn warn_of_versions(tables: &[ShardTable]) {
+    let mut versions: Vec<(&str, usize)> = Vec::new();
+    for t in tables {
+        match versions.iter_mut().find(|(v, _)| *v == t.record.written_by) {
+            Some((_, n)) => *n += 1,
+            None => versions.push((&t.record.written_by, 1)),
+        }
+    }
+    if versions.len() > 1 {
+        let shown: Vec<String> = versions
+            .iter()
+            .map(|(v, n)| format!("{v} ({n} shard{})", if *n == 1 { "" } else { "s" }))
+            .collect();
+        log::warn!(
+            "the shards were written by different rollbem versions: {}; their results may differ \
+             in ways the merged table does not show (rerun the shards with one version to be sure)",
+            shown.join(", ")
+        );
+    }
+}
+
+/// Refuses to merge into a folder that holds another sweep's table: a sweep.json of another
+/// sweep (or a sweep.csv without one). The same sweep's earlier merge is replaced.
+fn check_output_folder(out: &Path, record: &SweepRecord) -> Result<(), Error> {
+    let (json, csv) = (out.join("sweep.json"), out.join("sweep.csv"));
+    if json.exists() {
+        let other = read_record(&json)?;
+        if let Some(diff) = record.difference(&other) {
+            return Err(sweep_err(format!(
+                "--out {}: it holds another sweep ({} differs from the merged one: {diff}); the merge \
+                 does not replace it: give another --out",
+                out.display(),
+                json.display()
+            )));
+        }
+    } else if csv.exists() {
+        return Err(sweep_err(format!(
+            "--out {}: it holds a sweep.csv without the record sweep.json that says what sweep it \
+             is; the merge does not replace it: give another --out",
+            out.display()
+        )));
+    }
+    Ok(())
+}
+
+/// Refuses an output folder holding run folders that the merged table does not name (another
+/// sweep's runs, which the merged sweep.csv would leave beside it as if they were its own).
+fn check_no_foreign_runs(out: &Path, rows: &[RunRow]) -> Result<(), Error> {
+    let Ok(entries) = std::fs::read_dir(out) else {
+        return Ok(());
+    };
+    let named: HashSet<&str> = rows.iter().map(|r| r.folder.as_str()).collect();
+    let mut foreign: Vec<String> = entries
+        .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned()))
+        .filter(|n| folder::sweep_owns(n) == Some(SweepEntry::Run) && !named.contains(n.as_str()))
+        .collect();
+    if foreign.is_empty() {
+        return Ok(());
+    }
+    foreign.sort();
+    Err(sweep_err(format!(
+        "--out {}: it holds run folders that no merged shard table names ({}): they belong to \
+         another sweep, and the merge does not replace it: give another --out",
+        out.display(),
+        summarise(&foreign)
+    )))
 }
 
 /// The shard tables in `dirs`, each with its record; a table without a record, a record without
@@ -123,6 +216,7 @@ fn find_tables(dirs: &[PathBuf]) -> Result<Vec<ShardTable>, Error> {
                 dir.display()
             )));
         }
+        let present: HashSet<&str> = names.iter().map(String::as_str).collect();
         for name in &names {
             let Some((k, n, ext)) = folder::shard_file_name(name) else {
                 continue;
@@ -130,7 +224,7 @@ fn find_tables(dirs: &[PathBuf]) -> Result<Vec<ShardTable>, Error> {
             let stem = format!("sweep_shard_{k}_of_{n}");
             let (csv, json) = (dir.join(format!("{stem}.csv")), dir.join(format!("{stem}.json")));
             if ext == "json" {
-                if !csv.is_file() {
+                if !present.contains(format!("{stem}.csv").as_str()) || !csv.is_file() {
                     return Err(sweep_err(format!(
                         "{}: shard {k}/{n} has no table {stem}.csv (it was killed before its first run \
                          finished?): rerun it with --shard {k}/{n} --resume",
@@ -139,7 +233,7 @@ fn find_tables(dirs: &[PathBuf]) -> Result<Vec<ShardTable>, Error> {
                 }
                 continue;
             }
-            if !json.is_file() {
+            if !present.contains(format!("{stem}.json").as_str()) || !json.is_file() {
                 return Err(sweep_err(format!(
                     "{}: no record {stem}.json says what sweep this table belongs to (written by an \
                      older rollbem, or copied without it): rerun the shard with --shard {k}/{n}",
@@ -171,18 +265,19 @@ fn find_tables(dirs: &[PathBuf]) -> Result<Vec<ShardTable>, Error> {
 
 /// Every shard 1..=count exactly once.
 fn check_shards_complete(tables: &[ShardTable], count: usize) -> Result<(), Error> {
-    for (i, a) in tables.iter().enumerate() {
-        if let Some(b) = tables[i + 1..].iter().find(|b| b.record.shard == a.record.shard) {
+    let mut seen: HashMap<usize, &ShardTable> = HashMap::with_capacity(tables.len());
+    for t in tables {
+        let k = t.record.shard.unwrap_or(0);
+        if let Some(earlier) = seen.insert(k, t) {
             return Err(sweep_err(format!(
-                "shard {}/{count} is given twice: {} and {}; merge one of them",
-                a.record.shard.unwrap_or(0),
-                a.csv.display(),
-                b.csv.display()
+                "shard {k}/{count} is given twice: {} and {}; merge one of them",
+                earlier.csv.display(),
+                t.csv.display()
             )));
         }
     }
     let missing: Vec<String> = (1..=count)
-        .filter(|k| !tables.iter().any(|t| t.record.shard == Some(*k)))
+        .filter(|k| !seen.contains_key(k))
         .map(|k| format!("{k}/{count}"))
         .collect();
     if missing.is_empty() {
@@ -191,14 +286,15 @@ fn check_shards_complete(tables: &[ShardTable], count: usize) -> Result<(), Erro
         Err(sweep_err(format!(
             "the sweep is incomplete: shard(s) {} missing (no sweep_shard_K_of_{count}.csv in the merged \
              folders); run them with --shard K/{count}, or add their folders to --merge",
-            missing.join(", ")
+            summarise(&missing)
         )))
     }
 }
 
-/// The rows of one shard table, every one checked; a table that lacks some of its runs names
-/// them.
-fn read_table_strictly(t: &ShardTable, keys: &[String], runs: &[Vec<(String, String)>]) -> Result<Vec<RunRow>, Error> {
+/// The rows of one shard table, every one checked: its runs all there, once, and each run
+/// recorded as done (`ok`, `not_converged`) with its own folder whole. A table that lacks some of
+/// its runs names them.
+fn read_table_strictly(t: &ShardTable, keys: &[String], runs: &Runs) -> Result<Vec<RunRow>, Error> {
     let shown = t.csv.display();
     let bad = |m: String| {
         sweep_err(format!(
@@ -228,6 +324,7 @@ fn read_table_strictly(t: &ShardTable, keys: &[String], runs: &[Vec<(String, Str
         count: t.record.shards.unwrap_or(1),
     };
     let mut rows: Vec<RunRow> = Vec::new();
+    let mut seen: HashSet<usize> = HashSet::new();
     for (line, rec) in reader.records().enumerate() {
         let rec = rec.map_err(|e| bad(e.to_string()))?;
         // Line 1 is the header.
@@ -241,13 +338,29 @@ fn read_table_strictly(t: &ShardTable, keys: &[String], runs: &[Vec<(String, Str
                 shard.count
             )));
         }
-        if rows.iter().any(|r| r.run == row.run) {
+        if !seen.insert(row.run) {
             return Err(bad(format!("line {}: run {} appears twice", line + 2, row.run)));
+        }
+        if row.status != "failed" {
+            let whole = if row.folder == run_folder(row.run) {
+                folder::check_run_folder(&t.dir.join(&row.folder))
+            } else {
+                Err(format!("its folder column names `{}`", row.folder))
+            };
+            if let Err(why) = whole {
+                return Err(bad(format!(
+                    "line {}: {} is recorded {} but {why}",
+                    line + 2,
+                    run_folder(row.run),
+                    row.status
+                )));
+            }
         }
         rows.push(row);
     }
-    let missing: Vec<String> = (0..runs.len())
-        .filter(|&n| shard.owns(n) && !rows.iter().any(|r| r.run == n))
+    let missing: Vec<String> = shard
+        .runs(runs.count())
+        .filter(|n| !seen.contains(n))
         .map(run_folder)
         .collect();
     if !missing.is_empty() {
@@ -257,7 +370,7 @@ fn read_table_strictly(t: &ShardTable, keys: &[String], runs: &[Vec<(String, Str
             shard.index,
             shard.count,
             missing.len(),
-            missing.join(", "),
+            summarise(&missing),
             shard.index,
             shard.count
         )));

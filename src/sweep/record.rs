@@ -1,7 +1,7 @@
 //! What sweep a table belongs to: the record written next to it and compared on `--resume`,
 //! by shards that share a folder, and by `--merge`.
 
-use super::{product, sweep_err, Shard, Vary};
+use super::{sweep_err, Runs, Shard, Vary};
 use crate::error::Error;
 use crate::output::folder;
 use serde::{Deserialize, Serialize};
@@ -57,7 +57,7 @@ impl SweepRecord {
                     values: v.values.clone(),
                 })
                 .collect(),
-            runs: product(varies).len(),
+            runs: Runs::new(varies)?.count(),
             shards: shard.map(|s| s.count),
             shard: shard.map(|s| s.index),
         })

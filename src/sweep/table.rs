@@ -1,7 +1,7 @@
 //! The sweep's tables: sweep.csv (or a shard's), written whole or appended row by row, read
 //! back leniently on `--resume`, and the sweep.pvd collection of the runs' contact lines.
 
-use super::{RunRow, RESULT_COLUMNS};
+use super::{RunRow, Runs, RESULT_COLUMNS};
 use crate::error::Error;
 use crate::output::folder;
 use crate::output::vtk::{write_collection, CollectionEntry};
@@ -65,7 +65,7 @@ impl Appender {
 /// Rows of a table written by a sweep that may have been killed: a row that does not parse (a
 /// torn last line), does not fit the header or does not match its run's values is dropped, so
 /// that its run is done again. A missing or unreadable table gives no rows.
-pub(super) fn read_rows_leniently(path: &Path, keys: &[String], runs: &[Vec<(String, String)>]) -> Vec<RunRow> {
+pub(super) fn read_rows_leniently(path: &Path, keys: &[String], runs: &Runs) -> Vec<RunRow> {
     let Ok(mut reader) = csv::ReaderBuilder::new().flexible(true).from_path(path) else {
         return Vec::new();
     };
@@ -83,11 +83,7 @@ pub(super) fn read_rows_leniently(path: &Path, keys: &[String], runs: &[Vec<(Str
 
 /// A table row as a [`RunRow`], checked against the sweep: field count, run number in range,
 /// folder and values those of that run, a known status.
-pub(super) fn parse_row(
-    rec: &csv::StringRecord,
-    n_keys: usize,
-    runs: &[Vec<(String, String)>],
-) -> Result<RunRow, String> {
+pub(super) fn parse_row(rec: &csv::StringRecord, n_keys: usize, runs: &Runs) -> Result<RunRow, String> {
     let width = 4 + n_keys + RESULT_COLUMNS.len();
     if rec.len() != width {
         return Err(format!("{} fields where the header has {width}", rec.len()));
@@ -96,11 +92,14 @@ pub(super) fn parse_row(
     let run: usize = field(0)
         .parse()
         .map_err(|_| format!("run number `{}` is not a number", field(0)))?;
-    let Some(overrides) = runs.get(run) else {
-        return Err(format!("run {run} is not a run of this sweep (it has {})", runs.len()));
-    };
+    if run >= runs.count() {
+        return Err(format!(
+            "run {run} is not a run of this sweep (it has {})",
+            runs.count()
+        ));
+    }
     let values: Vec<String> = (0..n_keys).map(|i| field(3 + i)).collect();
-    if values.iter().zip(overrides).any(|(v, (_, expected))| v != expected) {
+    if values.iter().enumerate().any(|(k, v)| v != runs.value(run, k)) {
         return Err(format!("the values of run {run} are not those of the sweep"));
     }
     let status = field(2);

@@ -349,3 +349,110 @@ fn an_overlong_or_nul_output_dir_creates_nothing() {
     assert_eq!(code, 1, "{stderr}");
     assert_eq!(snapshot(dir.path()), before);
 }
+
+/// Hidden entries of `dir` (locks, temporaries).
+fn hidden_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    names.sort();
+    names
+}
+
+/// A file or a symbolic link named like rollbem's lock beside `--out res` is the user's: it is
+/// neither locked through nor removed (it was taken for a stale lock and deleted), and the run
+/// is refused with exit 1; rollbem's own lock is removed when it finishes.
+#[test]
+fn a_user_file_or_link_named_like_the_lock_is_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "case.yaml", CASE);
+    let lock = dir.path().join(".res.rollbem-lock");
+    std::fs::write(&lock, "my notes").unwrap();
+    let (code, _, stderr) = rollbem(dir.path(), &["run", "case.yaml", "--out", "res"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("named like a rollbem lock file"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(&lock).unwrap(), "my notes");
+    assert!(!dir.path().join("res").exists());
+    std::fs::remove_file(&lock).unwrap();
+    let target = write(dir.path(), "precious.txt", "keep me");
+    std::os::unix::fs::symlink(&target, &lock).unwrap();
+    let (code, _, stderr) = rollbem(dir.path(), &["run", "case.yaml", "--out", "res"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("a symbolic link"), "{stderr}");
+    assert!(std::fs::symlink_metadata(&lock).unwrap().file_type().is_symlink());
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "keep me");
+    std::fs::remove_file(&lock).unwrap();
+    let (code, _, stderr) = rollbem(dir.path(), &["run", "case.yaml", "--out", "res"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(hidden_in(dir.path()).is_empty(), "{:?}", hidden_in(dir.path()));
+}
+
+/// Under a file-size limit (`ulimit -f`) a run fails with "File too large" and exit 1, leaving
+/// no temporary folder and no lock (SIGXFSZ killed it: exit 153, no message, both left).
+#[test]
+fn a_file_size_limit_is_an_error_not_a_kill() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "case.yaml", CASE);
+    let out = Command::new("sh")
+        .current_dir(dir.path())
+        .arg("-c")
+        .arg("ulimit -f 2 && exec \"$0\" run case.yaml --out res")
+        .arg(env!("CARGO_BIN_EXE_rollbem"))
+        .env_remove("ROLLBEM_TEST_FAULT")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("File too large"), "{stderr}");
+    assert!(!dir.path().join("res").exists());
+    assert!(hidden_in(dir.path()).is_empty(), "{:?}", hidden_in(dir.path()));
+}
+
+/// When the earlier result cannot be removed whole after the new one took its place (a file
+/// appeared in it since it was checked; a read-only folder alike), the run says what was left
+/// where instead of leaving `.res.old-PID` silently.
+#[test]
+fn what_is_left_of_a_replaced_result_is_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "case.yaml", CASE);
+    let (code, _, stderr) = rollbem(dir.path(), &["run", "case.yaml", "--out", "res"]);
+    assert_eq!(code, 0, "{stderr}");
+    let (code, _, stderr) = rollbem_in(
+        dir.path(),
+        &[("ROLLBEM_TEST_FAULT", "intrude@res")],
+        &["run", "case.yaml", "--out", "res", "--set", "contact.friction=0.2"],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let left = hidden_in(dir.path());
+    assert_eq!(left.len(), 1, "{left:?}");
+    assert!(left[0].starts_with(".res.old-"), "{left:?}");
+    assert!(
+        stderr.contains("could not be removed completely")
+            && stderr.contains(&left[0])
+            && stderr.contains("intruder.txt"),
+        "{stderr}"
+    );
+    assert!(dir.path().join(&left[0]).join("intruder.txt").is_file());
+}
+
+/// An empty folder of the user's (here reached through a symbolic link) keeps its mode when a
+/// result is written into it (it became 0755).
+#[test]
+fn the_users_folder_keeps_its_mode() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "case.yaml", CASE);
+    let mine = dir.path().join("mine");
+    std::fs::create_dir(&mine).unwrap();
+    std::fs::set_permissions(&mine, std::fs::Permissions::from_mode(0o700)).unwrap();
+    std::os::unix::fs::symlink(&mine, dir.path().join("link")).unwrap();
+    for _ in 0..2 {
+        let (code, _, stderr) = rollbem(dir.path(), &["run", "case.yaml", "--out", "link"]);
+        assert_eq!(code, 0, "{stderr}");
+        let mode = std::fs::metadata(&mine).unwrap().permissions().mode() & 0o7777;
+        assert_eq!(mode, 0o700, "{mode:o}");
+        assert!(mine.join("summary.json").is_file());
+    }
+}

@@ -390,3 +390,362 @@ fn shards_share_a_folder_and_a_second_writer_is_refused() {
     assert_eq!(code, 1, "{stderr}");
     assert!(stderr.contains("being written by another rollbem process"), "{stderr}");
 }
+
+/// Every `--vary` key and value is applied to the case once before the first run: a misspelt
+/// key, a value of the wrong type or a key varied twice is exit 1 with nothing written (each run
+/// used to fail alike, exit 2, a folder written); a `--vary` of a `--set` key is a warning.
+#[test]
+fn vary_keys_are_checked_before_any_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let o = out.to_str().unwrap();
+    for (args, says) in [
+        (
+            vec!["--vary", "contact.frictio=0.1,0.2"],
+            vec!["--vary contact.frictio", "unknown field `frictio`"],
+        ),
+        (
+            vec![
+                "--vary",
+                "contact.friction=0.1,0.2",
+                "--vary",
+                "contact.grid.elements=21,2.5",
+            ],
+            vec!["--vary contact.grid.elements", "`2.5`", "expected a whole number"],
+        ),
+        (
+            vec!["--vary", "contact.friction=0.1,0.2", "--vary", "contact.friction=0.3"],
+            vec!["--vary contact.friction is given twice"],
+        ),
+    ] {
+        let mut all = vec!["sweep", case_str(), "--out", o];
+        all.extend(&args);
+        let (code, stdout, stderr) = rollbem(&all);
+        assert_eq!(code, 1, "{args:?}: {stdout}{stderr}");
+        for s in &says {
+            assert!(stderr.contains(s), "{args:?}: expected `{s}` in {stderr}");
+        }
+        assert!(!out.exists(), "{args:?}: a folder was written");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "{args:?}");
+    }
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        case_str(),
+        "--set",
+        "contact.friction=0.9",
+        "--vary",
+        "contact.friction=0.3,0.4",
+        "--out",
+        o,
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stderr.contains("--vary contact.friction overrides --set contact.friction=0.9"),
+        "{stderr}"
+    );
+    let r = rows(&out.join("sweep.csv"));
+    assert_eq!((r[0][2].as_str(), r[1][2].as_str()), ("0.3", "0.4"));
+}
+
+/// The case as a `&'static str` (for argument lists).
+fn case_str() -> &'static str {
+    Box::leak(case().into_boxed_str())
+}
+
+/// Runs rollbem under `ulimit -v` (KiB of address space) through `sh -c`.
+fn rollbem_limited(kib: u64, args: &[&str]) -> (i32, String, String) {
+    let mut cmd = Command::new("sh");
+    cmd.arg("-c")
+        .arg(format!("ulimit -v {kib} && exec \"$0\" \"$@\""))
+        .arg(env!("CARGO_BIN_EXE_rollbem"))
+        .args(args)
+        .env_remove("ROLLBEM_TEST_FAULT");
+    let out = cmd.output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// `KEY=v0,v1,…` with `n` values `start + i·step`.
+fn values(key: &str, n: usize, start: f64, step: f64) -> String {
+    let v: Vec<String> = (0..n).map(|i| format!("{}", start + i as f64 * step)).collect();
+    format!("{key}={}", v.join(","))
+}
+
+/// The runs are counted with overflow checks and generated one at a time: 10⁹ runs are refused
+/// at once with the count and the limit (the whole product was built first and aborted under
+/// 4 GiB), and one shard of an 8-million-run sweep runs its one run under 2 GiB.
+#[test]
+fn huge_sweeps_are_refused_and_a_shard_of_a_large_one_costs_its_slice() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let (mu, ratio, extent) = (
+        values("contact.friction", 1000, 0.1, 1e-4),
+        values("load.tangential.ratio", 1000, 0.2, 1e-4),
+        values("contact.grid.extent", 1000, 1.3, 1e-3),
+    );
+    let (code, stdout, stderr) = rollbem_limited(
+        4 << 20,
+        &[
+            "sweep",
+            &case(),
+            "--vary",
+            &mu,
+            "--vary",
+            &ratio,
+            "--vary",
+            &extent,
+            "--shard",
+            "1/1000000000",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    assert!(
+        stderr.contains("1000 × 1000 × 1000") && stderr.contains("at most 10000000 runs"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+    let (mu, ratio, extent) = (
+        values("contact.friction", 200, 0.1, 1e-4),
+        values("load.tangential.ratio", 200, 0.2, 1e-4),
+        values("contact.grid.extent", 200, 1.3, 1e-3),
+    );
+    let (code, stdout, stderr) = rollbem_limited(
+        2 << 20,
+        &[
+            "sweep",
+            &case(),
+            "--vary",
+            &mu,
+            "--vary",
+            &ratio,
+            "--vary",
+            &extent,
+            "--shard",
+            "1/8000000",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains("1 of 8000000 runs"), "{stdout}");
+    let r = rows(&out.join("sweep_shard_1_of_8000000.csv"));
+    assert_eq!(r.len(), 1);
+    assert_eq!((r[0][0].as_str(), r[0][1].as_str()), ("0", "ok"));
+}
+
+/// `--resume` trusts a table only with its record: without sweep.json it cannot tell the table
+/// from another sweep's (it kept another case's runs, exit 0).
+#[test]
+fn resume_refuses_a_table_without_its_record() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let o = out.to_str().unwrap();
+    let (code, _, stderr) = rollbem(&["sweep", &case(), "--vary", "contact.friction=0.1,0.2", "--out", o]);
+    assert_eq!(code, 0, "{stderr}");
+    std::fs::remove_file(out.join("sweep.json")).unwrap();
+    let before = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let other = format!("{}/cases/carter_051.yaml", env!("CARGO_MANIFEST_DIR"));
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        &other,
+        "--vary",
+        "contact.friction=0.1,0.2",
+        "--out",
+        o,
+        "--resume",
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("no record sweep.json"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(out.join("sweep.csv")).unwrap(), before);
+    assert!(!out.join("sweep.json").exists());
+    // A shard's table without its record alike.
+    let sh = dir.path().join("sh");
+    assert_eq!(shard(MU, 1, 2, &sh).0, 0);
+    std::fs::remove_file(sh.join("sweep_shard_1_of_2.json")).unwrap();
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        MU,
+        "--shard",
+        "1/2",
+        "--out",
+        sh.to_str().unwrap(),
+        "--resume",
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("no record sweep_shard_1_of_2.json"), "{stderr}");
+}
+
+/// `--merge` takes no case, `--set` or `--vary` (the shards' records say what sweep they are),
+/// and does not write over another sweep's folder; a run recorded done whose folder is gone or
+/// incomplete is refused by `--merge` and run again by `--resume`.
+#[test]
+fn merge_checks_its_arguments_the_output_folder_and_the_run_folders() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    assert_eq!(shard(MU, 1, 2, &a).0, 0);
+    assert_eq!(shard(MU, 2, 2, &b).0, 0);
+    let (sa, sb) = (a.to_str().unwrap(), b.to_str().unwrap());
+    for extra in [
+        vec![case()],
+        vec!["--set".to_string(), "contact.friction=0.2".to_string()],
+        vec!["--vary".to_string(), MU.to_string()],
+    ] {
+        let mut args = vec!["sweep"];
+        args.extend(extra.iter().map(String::as_str));
+        args.extend(["--merge", sa, sb]);
+        let (code, _, stderr) = rollbem(&args);
+        assert_eq!(code, 1, "{extra:?}: {stderr}");
+        assert!(stderr.contains("cannot be used with"), "{extra:?}: {stderr}");
+        assert!(!a.join("sweep.csv").exists());
+    }
+    // A complete sweep of other values in --out: left as it was.
+    let other = dir.path().join("other");
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        "contact.friction=0.1,0.2",
+        "--out",
+        other.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let before = std::fs::read_to_string(other.join("sweep.csv")).unwrap();
+    let (code, _, stderr) = rollbem(&["sweep", "--merge", sa, sb, "--out", other.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("holds another sweep"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(other.join("sweep.csv")).unwrap(), before);
+    // Its table and record gone, its run folders still refuse it.
+    std::fs::remove_file(other.join("sweep.csv")).unwrap();
+    std::fs::remove_file(other.join("sweep.json")).unwrap();
+    std::fs::remove_file(other.join("sweep.pvd")).unwrap();
+    let (code, _, stderr) = rollbem(&["sweep", "--merge", sa, sb, "--out", other.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("run folders that no merged shard table names (run_0000, run_0001)"),
+        "{stderr}"
+    );
+    // A run folder deleted after its shard finished.
+    let gone = b.join("run_0003");
+    std::fs::rename(&gone, dir.path().join("moved")).unwrap();
+    let merged = dir.path().join("merged");
+    let (code, _, stderr) = rollbem(&["sweep", "--merge", sa, sb, "--out", merged.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("run_0003 is recorded ok but its folder") && stderr.contains("is missing"),
+        "{stderr}"
+    );
+    std::fs::rename(dir.path().join("moved"), &gone).unwrap();
+    // A file of a run's manifest gone: --merge refuses, --resume runs it again.
+    std::fs::remove_file(gone.join("summary.json")).unwrap();
+    let (code, _, stderr) = rollbem(&["sweep", "--merge", sa, sb, "--out", merged.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("lacks summary.json"), "{stderr}");
+    // The folder column of run 1 naming run 3's folder.
+    let table = b.join("sweep_shard_2_of_2.csv");
+    let text = std::fs::read_to_string(&table).unwrap();
+    std::fs::write(&table, text.replacen("\n1,run_0001,", "\n1,run_0003,", 1)).unwrap();
+    let (code, stdout, stderr) = rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        MU,
+        "--shard",
+        "2/2",
+        "--out",
+        sb,
+        "--resume",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("2 of 5 runs here"), "{stdout}");
+    assert!(!stdout.contains("kept from"), "{stdout}");
+    assert!(gone.join("summary.json").is_file());
+    let (code, _, stderr) = rollbem(&["sweep", "--merge", sa, sb, "--out", merged.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+}
+
+/// sweep.csv has the contact's centre (the middle of x_min and x_max, as in summary.json), and
+/// every number in the shortest form that reads back to the same double (as contact.csv).
+#[test]
+fn the_table_has_the_contact_centre_and_shortest_numbers() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        "load.tangential.ratio=-0.74,0.05,0.41",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let mut r = csv::Reader::from_path(out.join("sweep.csv")).unwrap();
+    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (lo, hi, centre) = (col("contact_x_min"), col("contact_x_max"), col("contact_centre"));
+    for rec in r.records() {
+        let rec = rec.unwrap();
+        let num = |i: usize| rec[i].parse::<f64>().unwrap();
+        let (a, b, c) = (num(lo), num(hi), num(centre));
+        assert!((c - 0.5 * (a + b)).abs() <= 1e-12 * (a.abs() + b.abs()), "{a} {b} {c}");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join(&rec[1]).join("summary.json")).unwrap()).unwrap();
+        // summary.json holds the centre in the case's units, converted: equal to round-off.
+        let json = summary["contact"]["centre"].as_f64().unwrap();
+        assert!((json - c).abs() <= 1e-12 * (a.abs() + b.abs()), "{json} {c}");
+        for (i, cell) in rec.iter().enumerate().skip(col("message") + 1) {
+            if let Ok(v) = cell.parse::<f64>() {
+                let shortest = if (1e-4..1e16).contains(&v.abs()) || v == 0.0 {
+                    format!("{v}")
+                } else {
+                    format!("{v:e}")
+                };
+                assert_eq!(cell, shortest, "column {}", header[i]);
+            }
+        }
+    }
+}
+
+/// A merge of shards written by different rollbem versions warns; the error for one shard of
+/// 100 000 lists the first few missing shards and their number, not all 99 999.
+#[test]
+fn merge_warns_of_mixed_versions_and_summarises_long_lists() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    assert_eq!(shard(MU, 1, 2, &a).0, 0);
+    assert_eq!(shard(MU, 2, 2, &b).0, 0);
+    let record = b.join("sweep_shard_2_of_2.json");
+    let text = std::fs::read_to_string(&record).unwrap();
+    let older = text.replace(&format!("rollbem {}", env!("CARGO_PKG_VERSION")), "rollbem 0.0.1");
+    assert_ne!(older, text);
+    std::fs::write(&record, older).unwrap();
+    let merged = dir.path().join("merged");
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        "--merge",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stderr.contains("different rollbem versions") && stderr.contains("rollbem 0.0.1 (1 shard)"),
+        "{stderr}"
+    );
+    let one = dir.path().join("one");
+    assert_eq!(shard(MU, 1, 100_000, &one).0, 0);
+    let (code, _, stderr) = rollbem(&["sweep", "--merge", one.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("2/100000, 3/100000, 4/100000, 5/100000, 6/100000, … (99999 in all)"),
+        "{stderr}"
+    );
+    assert!(stderr.len() < 1000, "{} bytes", stderr.len());
+}

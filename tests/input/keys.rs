@@ -337,3 +337,46 @@ fn check_describes_the_error_controlled_grid() {
     );
     assert!(stdout.contains("for the start grid"), "{stdout}");
 }
+
+/// A `--set` value the key cannot take is blamed on the `--set` option (not on the case file)
+/// in words, not Rust's type names; `--set KEY=null` removes the key, so a body's model can be
+/// switched; a null enum in the file says what to write.
+#[test]
+fn set_errors_name_the_option_in_words_and_null_removes_a_key() {
+    for (set, says) in [
+        ("contact.friction=abc", "expected a number"),
+        ("contact.grid.elements=2.5", "expected a whole number"),
+    ] {
+        for verb in ["run", "check"] {
+            let (code, stderr, written) = run_base(verb, None, &[set]);
+            assert_eq!(code, 1, "{verb} {set}: {stderr}");
+            assert!(
+                stderr.contains(&format!("--set {set}")) && stderr.contains(says),
+                "{verb} {set}: {stderr}"
+            );
+            assert!(
+                !stderr.contains("case.yaml") && !stderr.contains("f64") && !stderr.contains("usize"),
+                "{verb} {set}: {stderr}"
+            );
+            assert!(!written);
+        }
+    }
+    let (code, stderr, _) = run_base("check", None, &["bodies.A.model=rigid"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("unknown field `material`"), "{stderr}");
+    let (code, stderr, _) = run_base("check", None, &["bodies.A.model=rigid", "bodies.A.material=null"]);
+    assert_eq!(code, 0, "{stderr}");
+    // Removing a key that is not there changes nothing.
+    let (code, stderr, _) = run_base("check", None, &["output.interior=null", "units=null"]);
+    assert_eq!(code, 0, "{stderr}");
+    let (code, stderr, _) = run_base(
+        "check",
+        Some(("  friction: 0.1\n", "  friction: 0.1\n  traction_axes: null\n")),
+        &[],
+    );
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("contact.traction_axes") && stderr.contains("leave the key out") && !stderr.contains("Value::"),
+        "{stderr}"
+    );
+}

@@ -154,6 +154,83 @@ fn check_and_run_refuse_broken_meshes_alike() {
     }
 }
 
+/// A boundary that mixes line2 and line3 elements (plate.msh with one contact element made a
+/// 2-node line) is refused by `check` and `run` with exit code 1, naming the element and what to
+/// do; it crashed the crossing check (one point count per element assumed) with exit code 3.
+#[test]
+fn a_loop_of_mixed_element_orders_is_refused_naming_the_element() {
+    let err = load_err("mixed_order.msh");
+    assert!(
+        matches!(
+            err,
+            MeshError::BadElement {
+                ref group,
+                defect: mesh::ElementDefect::MixedOrder { nodes: 2, first: 3 },
+                ..
+            } if group == "contact"
+        ),
+        "{err}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let text = format!(
+        "materials:\n  steel: {{E: 210000.0, nu: 0.3}}\nbodies:\n  A: {{model: half_space, material: steel, radius: 100.0}}\n  \
+         B: {{model: bem, mesh: '{}', material: steel, contact: contact, boundaries: {{fixed: fixed}}, radius: 100.0}}\n\
+         contact: {{friction: 0.1}}\nload: {{normal: {{force: 10.0}}}}\noutput: {{dir: out}}\n",
+        data("mixed_order.msh").display()
+    );
+    let case = dir.path().join("case.yaml");
+    std::fs::write(&case, text).unwrap();
+    for verb in ["check", "run"] {
+        let (code, _, stderr) = rollbem(&[verb, case.to_str().unwrap()]);
+        assert_eq!(code, 1, "{verb}: {stderr}");
+        assert!(
+            stderr.contains("mixed_order.msh") && stderr.contains("`contact`") && stderr.contains("has 2 nodes"),
+            "{verb}: {stderr}"
+        );
+        assert!(!dir.path().join("out").exists(), "{verb}: output written");
+    }
+}
+
+/// Every element of the shipped and test meshes turned into the other order in turn (a line3
+/// element losing its mid node, a line2 element gaining one at its middle): each mixed mesh is
+/// refused with that element named, never a panic. Returns how many meshes were tried.
+#[test]
+fn every_element_of_another_order_is_refused() {
+    let mut tried = 0;
+    let mut files: Vec<PathBuf> = ["plate.msh", "annulus.msh", "square_linear.msh", "plate_bin.msh"]
+        .iter()
+        .map(|n| data(n))
+        .collect();
+    files.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r100_shaft10_A.msh"));
+    for file in files {
+        let (valid, _) = mesh::load(&file).unwrap();
+        for i in 0..valid.elements.len() {
+            let mut m = valid.clone();
+            let el = &mut m.elements[i];
+            if el.nodes.len() == 3 {
+                el.nodes.truncate(2);
+            } else {
+                let ([x0, y0], [x1, y1]) = (m.nodes[el.nodes[0]], m.nodes[el.nodes[1]]);
+                el.nodes.push(m.nodes.len());
+                m.nodes.push([0.5 * (x0 + x1), 0.5 * (y0 + y1)]);
+            }
+            // The first element sets the order: turning it makes the second one differ.
+            let culprit = if i == 0 { 1 } else { i };
+            match mesh::validate_and_orient(&mut m) {
+                Err(MeshError::BadElement {
+                    element,
+                    defect: mesh::ElementDefect::MixedOrder { .. },
+                    ..
+                }) => assert_eq!(element, culprit, "{}", file.display()),
+                other => panic!("{} element {i}: {other:?}", file.display()),
+            }
+            tried += 1;
+        }
+    }
+    // The number docs/reliability.md quotes: the elements of the five meshes.
+    assert_eq!(tried, 295);
+}
+
 /// Runs rollbem and kills it if it has not finished in `limit` (a FIFO would block it for ever).
 fn rollbem_within(args: &[&str], limit: Duration) -> Option<(i32, String)> {
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rollbem"))
@@ -231,4 +308,12 @@ fn fuzz_findings_are_refused_cleanly() {
         let err = mesh::parse_msh_bytes(&bytes, name).unwrap_err();
         assert!(err.to_string().contains(expected), "{name}: {err}");
     }
+    // Read, then refused by the checks: a loop of line3 elements and one line2 element (the
+    // crossing check indexed its elements by one point count for all and went out of bounds).
+    let name = "mixed_order_loop_ascii.sections";
+    let mut bytes = ascii.to_vec();
+    bytes.extend(std::fs::read(data("fuzz").join(name)).unwrap());
+    let mut read = mesh::parse_msh_bytes(&bytes, name).unwrap();
+    let err = mesh::validate_and_orient(&mut read).unwrap_err();
+    assert!(err.to_string().contains("has 2 nodes where"), "{name}: {err}");
 }

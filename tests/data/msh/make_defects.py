@@ -14,6 +14,8 @@ Plain Python (no gmsh needed): the ASCII MSH 4.1 files are edited section by sec
 - hole_crossing.msh       annulus.msh with the hole (radius 10) moved to x = +15: it crosses the
                           outer circle (radius 20).
 - hole_outside.msh        annulus.msh with the hole moved to x = +40: outside the body.
+- mixed_order.msh         plate.msh whose last contact element (tag 21) is a 2-node line in a
+                          block of its own: one loop of line3 and line2 elements.
 """
 import math
 import os
@@ -124,6 +126,18 @@ annulus = read(os.path.join(HERE, "annulus.msh"))
 hole = group_nodes(annulus, {1, 2})
 write("hole_crossing.msh", move(annulus, hole, 15.0))
 write("hole_outside.msh", move(annulus, hole, 40.0))
+
+plate = read(os.path.join(HERE, "plate.msh"))
+start, end = section(plate, "Elements")
+mixed = list(plate)
+blocks, entities, first, last = (int(v) for v in plate[start].split())
+mixed[start] = f"{blocks + 1} {entities} {first} {last}"
+block = mixed.index("1 4 8 6")
+mixed[block] = "1 4 8 5"
+element = block + 6
+tag, a, b, _mid = plate[element].split()
+mixed[element:element + 1] = ["1 4 1 1", f"{tag} {a} {b} "]
+write("mixed_order.msh", mixed)
 
 with open(os.path.join(HERE, "annulus_bin.msh"), "rb") as f:
     data = bytearray(f.read())
