@@ -153,6 +153,13 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         None
     }
 
+    /// [`Self::discretisation_nodes`] once the body has followed a grid of `contact_elements`
+    /// elements (an error-controlled grid at its limit), for the memory estimate of a
+    /// tolerance run; the same as on the start grid by default.
+    fn discretisation_nodes_on(&self, _contact_elements: usize) -> Option<usize> {
+        self.discretisation_nodes()
+    }
+
     /// Notices of the body's inputs (a mesh loop turned round), for the console.
     fn notices(&self) -> &[String] {
         &[]

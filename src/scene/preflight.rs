@@ -269,11 +269,15 @@ fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &BodySetups) -
 /// The problem sizes of a case with its bodies resolved.
 pub fn problem_sizes(case: &LoadedCase, bodies: &BodySetups) -> ProblemSizes {
     let c = &case.case;
+    // An error-controlled grid may grow to its limit: the mesh's contact group is then cut
+    // into that many elements.
+    let limit = c.contact.grid.tolerance.map(|_| c.contact.grid.max_elements);
     let contact_nodes = match bodies.iter().find_map(|b| b.contact_mesh()) {
         // The mesh's discontinuous quadratic contact elements carry three nodes each.
         Some(own) => {
             let lm = own.mesh;
-            3 * lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count()
+            let elements = lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count();
+            3 * limit.map_or(elements, |n| n.max(elements))
         }
         None => {
             let kind = c.contact.grid.element;
@@ -285,7 +289,10 @@ pub fn problem_sizes(case: &LoadedCase, bodies: &BodySetups) -> ProblemSizes {
             kind.node_stride().saturating_mul(n) + usize::from(kind.shares_nodes())
         }
     };
-    let bem_nodes = [0, 1].map(|k| bodies[k].discretisation_nodes());
+    let bem_nodes = [0, 1].map(|k| match limit {
+        Some(n) => bodies[k].discretisation_nodes_on(n),
+        None => bodies[k].discretisation_nodes(),
+    });
     let interior_points = c
         .output
         .interior
@@ -365,15 +372,27 @@ fn advice(case: &LoadedCase, bodies: &BodySetups, sizes: &ProblemSizes, e: &Memo
             fit.floor()
         );
     }
+    if let (Some(_), true) = (c.contact.grid.tolerance, grid_from_mesh(bodies)) {
+        // The mesh grows with the grid: its limit sets both terms.
+        return format!(
+            "lower contact.grid.max_elements (now {}): an error-controlled grid cuts the mesh's contact \
+             group into up to that many elements, and the estimate is for the grid at its limit",
+            c.contact.grid.max_elements
+        );
+    }
     if e.bem > e.contact {
         let k = if sizes.bem_nodes[0] >= sizes.bem_nodes[1] { 0 } else { 1 };
         let side = ["A", "B"][k];
         let nodes = sizes.bem_nodes[k].unwrap_or(0);
         let fit = (room(e.contact + e.interior) / limits::BYTES_PER_BEM_UNKNOWN_SQUARED).sqrt() / 2.0;
+        let fits = if fit >= 1.0 {
+            format!("about {:.0} fit", fit.floor())
+        } else {
+            "no BEM body fits beside the rest of the case".to_string()
+        };
         return format!(
-            "coarsen the mesh of bodies.{side} ({}, {nodes} boundary nodes; about {:.0} fit)",
-            mesh_of(k),
-            fit.floor()
+            "coarsen the mesh of bodies.{side} ({}, {nodes} boundary nodes; {fits})",
+            mesh_of(k)
         );
     }
     match bodies.iter().position(|b| b.contact_mesh().is_some()) {

@@ -17,6 +17,11 @@ use std::sync::Arc;
 /// the mesh: the ratio an error-controlled grid keeps between its own elements.
 pub const MAX_TRANSITION_RATIO: f64 = 2.0;
 
+/// Most halvings of one transition element for the memory estimate: the grid grades an element
+/// at most 2⁻¹² per pass, and a transition follows its neighbour's length within
+/// [`MAX_TRANSITION_RATIO`], so some tens cover the deepest grids.
+pub const MAX_TRANSITION_HALVINGS: usize = 40;
+
 /// A `bem` body of a scene: its mesh, material and boundary conditions.
 #[derive(Debug, Clone)]
 pub struct BemSetup {
@@ -121,6 +126,16 @@ impl BodySetup for BemSetup {
         let lm = &self.mesh;
         let contact_elements = lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count();
         Some(lm.mesh.nodes.len() + contact_elements)
+    }
+
+    /// Each contact element cut off adds an end node, a mid node and a field node; the graded
+    /// transitions at the contact's two ends add at most two nodes per halving of each of
+    /// their elements, [`MAX_TRANSITION_HALVINGS`] at most.
+    fn discretisation_nodes_on(&self, contact_elements: usize) -> Option<usize> {
+        let lm = &self.mesh;
+        let own = lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count();
+        let added = 3 * contact_elements.saturating_sub(own) + 2 * 2 * MAX_TRANSITION_HALVINGS;
+        self.discretisation_nodes().map(|n| n + added)
     }
 
     fn notices(&self) -> &[String] {
