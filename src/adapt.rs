@@ -91,38 +91,6 @@ struct Solve {
     report: SolveReport,
 }
 
-/// Every `bem` body's contact elements end where the scene's grid's do: the error control cuts
-/// the meshes along one grid.
-fn check_matching_meshes(scene: &Scene) -> Result<(), Error> {
-    for (name, body) in ["A", "B"].iter().zip(&scene.bodies) {
-        if let Some(own) = body.contact_mesh() {
-            let mesh = own.mesh;
-            // The element ends must coincide; mid nodes may differ (two curvatures): the cuts
-            // put both meshes' new mid nodes at the grid's x.
-            let own = mesh.contact_grid();
-            let tol = 1e-9 * mesh.mesh.size();
-            let same_ends = own.edges.len() == scene.grid.edges.len()
-                && own
-                    .edges
-                    .iter()
-                    .zip(&scene.grid.edges)
-                    .all(|(a, b)| (a - b).abs() <= tol);
-            if !same_ends {
-                return Err(Error::GridControl {
-                    case: scene.case.path.clone(),
-                    message: format!(
-                        "the contact elements of body {name}'s mesh ({}) do not coincide with the other \
-                         body's (their ends differ): an error-controlled grid refines matching contact \
-                         meshes; mesh both contact groups alike, or remove contact.grid.tolerance",
-                        mesh.path.display()
-                    ),
-                });
-            }
-        }
-    }
-    Ok(())
-}
-
 /// Builds the scene's models, assembles and solves (from `warm`, carried from the grid it was
 /// solved on), adding the times to `timings`.
 fn solve_on(scene: Scene, warm: Option<(&ContactGrid, &State)>, timings: &mut Timings) -> Result<Solve, Error> {
@@ -186,7 +154,6 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
         return Ok(finished(only, timings, None));
     };
     let (tolerance, max_elements) = (control.tolerance, control.max_elements);
-    check_matching_meshes(scene)?;
     let mut timings = Timings::default();
     let mut coarse = DyadicGrid::new(&scene.grid);
     let mut warm: Option<(ContactGrid, State)> = None;

@@ -49,25 +49,36 @@ pub fn cut_along_grid(loaded: &LoadedMesh, grid: &ContactGrid, max_ratio: f64) -
         let geom = ElementGeometry::from_mesh(mesh, e);
         let (xa, xb) = (geom.nodes[0][0], geom.nodes[1][0]);
         let (lo, hi) = (xa.min(xb), xa.max(xb));
-        let tol = SNAP_TOLERANCE * (hi - lo);
+        // Never below twice the distance at which the mesh's contact grid takes two edges as
+        // one ([`LoadedMesh::contact_grid`]): no piece is shorter than that.
+        let tol = (SNAP_TOLERANCE * (hi - lo)).max(2e-9 * mesh.size());
         let increasing = xa <= xb;
         let (at_lo, at_hi) = if increasing {
             (el.nodes[0], el.nodes[1])
         } else {
             (el.nodes[1], el.nodes[0])
         };
-        // The grid's edges inside the element, its own ends snapped onto the nearest.
-        let first = grid.edges.partition_point(|&x| x < lo - tol);
-        let last = grid.edges.partition_point(|&x| x <= hi + tol);
-        let inside = &grid.edges[first..last];
-        if inside.len() < 2 || (inside[0] - lo).abs() > tol || (inside[inside.len() - 1] - hi).abs() > tol {
-            // Not along the grid (a body's contact group longer than the grid): kept.
-            elements.push(el.clone());
-            continue;
-        }
+        // The element's ends snapped onto the grid's edges they stand for, and the grid's edges
+        // strictly inside it (a body whose contact elements end elsewhere than the grid's, a
+        // non-matching mesh, is cut at every grid edge it holds and carried over to the grid
+        // by interpolation).
+        let snapped = |x: f64| {
+            let k = grid.edges.partition_point(|&e| e < x);
+            [k.wrapping_sub(1), k]
+                .into_iter()
+                .filter_map(|k| grid.edges.get(k).copied())
+                .find(|e| (e - x).abs() <= tol)
+                .unwrap_or(x)
+        };
+        let (x_lo, x_hi) = (snapped(lo), snapped(hi));
+        let first = grid.edges.partition_point(|&x| x <= x_lo + tol);
+        let last = grid.edges.partition_point(|&x| x < x_hi - tol);
+        let mut inside = vec![x_lo];
+        inside.extend_from_slice(&grid.edges[first..last.max(first)]);
+        inside.push(x_hi);
         let (xi_lo, xi_hi) = if increasing { (-1.0, 1.0) } else { (1.0, -1.0) };
-        snap(&mut nodes, at_lo, &geom, inside[0], lo);
-        snap(&mut nodes, at_hi, &geom, inside[inside.len() - 1], hi);
+        snap(&mut nodes, at_lo, &geom, x_lo, lo);
+        snap(&mut nodes, at_hi, &geom, x_hi, hi);
         if inside.len() == 2 {
             elements.push(el.clone());
             continue;

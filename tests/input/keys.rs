@@ -289,27 +289,6 @@ fn error_controlled_grid_keys_are_checked() {
         "contact.grid.max_elements",
         &["twice"],
     );
-    // Contact meshes that do not coincide cannot be cut along one grid.
-    let case = common::case_path("carter_051_true_nonmatching");
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out");
-    let (code, _, stderr) = rollbem(&[
-        "run",
-        case.to_str().unwrap(),
-        "--set",
-        "contact.grid.tolerance=1e-3",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 1, "{stderr}");
-    assert!(
-        stderr.contains("contact.grid.tolerance") && stderr.contains("do not coincide"),
-        "{stderr}"
-    );
-    assert!(
-        std::fs::read_dir(&out).map_or(true, |d| d.count() == 0),
-        "nothing written"
-    );
 }
 
 #[test]
