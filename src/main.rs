@@ -8,7 +8,6 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    reuse_freed_matrices();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return usage_error(&e),
@@ -37,27 +36,6 @@ fn main() -> ExitCode {
         }
     }
 }
-
-/// Keeps freed blocks of up to 32 MB in the heap for reuse.
-///
-/// A run allocates and frees dense m × m matrices of a few MB many times (an error-controlled
-/// run assembles each of its grids anew). glibc serves blocks above its mmap threshold by fresh
-/// mappings, whose pages the kernel faults in and zeroes at first touch and unmaps at free: a
-/// quarter of such a run's time went to those page faults (docs/performance.md). With the
-/// threshold at 32 MB (m up to 2000) and no trimming, a freed matrix's pages serve the next one.
-#[cfg(all(target_os = "linux", target_env = "gnu"))]
-fn reuse_freed_matrices() {
-    // SAFETY: mallopt only sets parameters of the allocator; it is called before any other
-    // thread exists.
-    unsafe {
-        libc::mallopt(libc::M_MMAP_THRESHOLD, 32 << 20);
-        libc::mallopt(libc::M_TRIM_THRESHOLD, i32::MAX);
-    }
-}
-
-/// Other platforms keep their allocator's defaults.
-#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-fn reuse_freed_matrices() {}
 
 /// The default folder of a sweep or study: the case's output folder with `_<what>` appended.
 fn default_output_dir(case: &rollbem::case::LoadedCase, what: &str) -> PathBuf {

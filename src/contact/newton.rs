@@ -21,6 +21,7 @@ pub use super::direction::Block;
 use super::report::{IterationRecord, Method, NewtonSettings, SolveReport};
 use super::residual::{axpy, merit, scaled_residual, start_vector, ConvergenceMeasure, Formulation, State, System};
 use super::stall::{Progress, NEWTON_STALL, NORMAL_START_STALL, PLAIN_NEWTON_STALL};
+use super::workspace::Workspace;
 use super::ContactProblem;
 
 /// What a damped Newton loop on one block ended with.
@@ -61,7 +62,8 @@ pub(crate) enum FirstStep {
 
 /// Generalized Newton with Armijo line search on `block` from `z`, stopping when
 /// `measure(G_block(z), z) ≤ settings.tolerance` or after `settings.max_iterations` steps, or when
-/// the Newton matrix is singular, or when the attempt stalls ([`super::stall`]).
+/// the Newton matrix is singular, or when the attempt stalls ([`super::stall`]). The Newton
+/// systems are solved in the memory of `ws`.
 pub(crate) fn damped_newton(
     sys: &System,
     block: Block,
@@ -69,6 +71,7 @@ pub(crate) fn damped_newton(
     settings: &NewtonSettings,
     measure: &dyn Fn(&[f64], &State) -> f64,
     first_step: FirstStep,
+    ws: &mut Workspace,
 ) -> BlockOutcome {
     let mut g = sys.block_residual(&z, block);
     let mut history = Vec::new();
@@ -90,7 +93,7 @@ pub(crate) fn damped_newton(
         && !progress.stalled()
     {
         let residual = measure(&g, &z);
-        let (dz, size) = match sys.newton_direction(&z, &g, block) {
+        let (dz, size) = match sys.newton_direction(&z, &g, block, ws) {
             Ok(d) => d,
             Err(_) => {
                 singular = true;
@@ -160,7 +163,13 @@ pub(crate) fn damped_newton(
 
 /// Solves one block of the problem from `z` and stops on the block's own scaled residual (the
 /// inner solves of NORM/TANG).
-pub(crate) fn solve_block(pb: &ContactProblem, block: Block, z: State, settings: &NewtonSettings) -> BlockOutcome {
+pub(crate) fn solve_block(
+    pb: &ContactProblem,
+    block: Block,
+    z: State,
+    settings: &NewtonSettings,
+    ws: &mut Workspace,
+) -> BlockOutcome {
     // TANG works with the given traction bound μ max(0, p): Ψ's bound (see `super::direction`).
     let form = match block {
         Block::Tangential => Formulation::Psi,
@@ -175,6 +184,7 @@ pub(crate) fn solve_block(pb: &ContactProblem, block: Block, z: State, settings:
         settings,
         &|g, z| scaled_residual(g, z, scale),
         FirstStep::Searched,
+        ws,
     )
 }
 
@@ -188,6 +198,7 @@ pub(crate) fn coupled_attempt(
     first_step: FirstStep,
     settings: &NewtonSettings,
     measure: &ConvergenceMeasure,
+    ws: &mut Workspace,
 ) -> (BlockOutcome, [f64; 2]) {
     let sys = System::new(pb, form, penalty_scale);
     let out = damped_newton(
@@ -197,6 +208,7 @@ pub(crate) fn coupled_attempt(
         settings,
         &|g, z| measure.of_with(&sys, g, z),
         first_step,
+        ws,
     );
     (out, sys.reference)
 }
@@ -207,9 +219,10 @@ pub(crate) fn paper_attempt(
     pb: &ContactProblem,
     settings: &NewtonSettings,
     measure: &ConvergenceMeasure,
+    ws: &mut Workspace,
 ) -> (BlockOutcome, [f64; 2]) {
     let own = (settings.formulation, settings.penalty_scale);
-    coupled_attempt(pb, own, start_vector(pb), FirstStep::Searched, settings, measure)
+    coupled_attempt(pb, own, start_vector(pb), FirstStep::Searched, settings, measure, ws)
 }
 
 /// The common report of a Newton run that ended with `out`, the last attempt having used the
@@ -240,8 +253,14 @@ pub(crate) fn report(
 }
 
 /// One attempt of the generalized Newton method from the paper's start vector (line search as
-/// set by `settings.max_backtracks`), stopping on the common measure; no restart.
-pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
-    let (out, penalties) = paper_attempt(pb, settings, measure);
+/// set by `settings.max_backtracks`), stopping on the common measure; no restart. The Newton
+/// systems are solved in the memory of `ws`.
+pub fn solve(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let (out, penalties) = paper_attempt(pb, settings, measure, ws);
     report(settings, out, penalties, measure, Vec::new())
 }
