@@ -109,6 +109,23 @@ fn warn_restarts(s: &rollbem::output::Summary) {
 /// out (then more `solver.max_iterations` may help) or the residual stopped improving (then it
 /// will not), and where the history is.
 fn not_converged_message(summary: &rollbem::output::Summary, output_dir: &std::path::Path) -> String {
+    use rollbem::contact::stall::{at_roundoff, roundoff_advice};
+    if at_roundoff(summary.residual, summary.grid.nodes) {
+        let history = summary.solver.history.iter().map(|h| h.residual);
+        let smallest = history.fold(summary.residual, f64::min);
+        let tolerance = summary
+            .case
+            .pointer("/solver/tolerance")
+            .and_then(serde_json::Value::as_f64);
+        return format!(
+            "the solver did not converge in {} iterations (scaled residual {:.3e}); {}. The residual \
+             history is in {}.",
+            summary.iterations,
+            summary.residual,
+            roundoff_advice(smallest, tolerance),
+            output_dir.join("summary.json").display()
+        );
+    }
     let budget = summary
         .case
         .pointer("/solver/max_iterations")

@@ -21,6 +21,7 @@ use super::direction::Block;
 use super::newton::{damped_newton, BlockOutcome, FirstStep};
 use super::report::NewtonSettings;
 use super::residual::{scaled_residual, ConvergenceMeasure, State, System};
+use super::stall::at_roundoff;
 use super::start::complete_slip_step;
 use super::workspace::Workspace;
 use super::ContactProblem;
@@ -154,12 +155,14 @@ pub(crate) fn solve(
     }
     let residual = measure.of(&current.outcome.state);
     let converged = residual <= settings.tolerance;
+    let roundoff = !converged && at_roundoff(residual, m);
     Some(BlockOutcome {
         state: current.outcome.state,
         converged,
         residual,
         history,
-        stalled: !converged,
+        stalled: !converged && !roundoff,
+        at_roundoff: roundoff,
     })
 }
 

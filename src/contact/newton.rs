@@ -15,12 +15,15 @@
 //! (the direction is no descent direction: a kink of G lies between the iterate and the
 //! solution), or when ‖G‖₂ has not improved by 10 % on its best for a number of steps
 //! ([`super::stall`]: 5 from the normal start, 50 otherwise, 100 without line search). What the
-//! default method does then is the start and restart policy of [`super::restart`].
+//! default method does then is the start and restart policy of [`super::restart`]. An attempt
+//! whose measure has reached round-off ([`super::stall::roundoff_level`]) and has not halved its
+//! best there in 3 steps ([`super::stall::ROUNDOFF_STALL`]) ends too, not stalled but
+//! `at_roundoff`: its tolerance is below what double precision gives.
 
 pub use super::direction::Block;
 use super::report::{IterationRecord, Method, NewtonSettings, SolveReport};
 use super::residual::{axpy, merit, scaled_residual, start_vector, ConvergenceMeasure, Formulation, State, System};
-use super::stall::{Progress, NEWTON_STALL, NORMAL_START_STALL, PLAIN_NEWTON_STALL};
+use super::stall::{at_roundoff, Progress, NEWTON_STALL, NORMAL_START_STALL, PLAIN_NEWTON_STALL, ROUNDOFF_STALL};
 use super::workspace::Workspace;
 use super::ContactProblem;
 
@@ -40,6 +43,10 @@ pub(crate) struct BlockOutcome {
     /// tolerance. A run cut short on purpose (`max_iterations` below that) is not stalled, so it
     /// is not restarted.
     pub stalled: bool,
+    /// Not converged because the tolerance is below round-off: the stopping measure reached
+    /// [`super::stall::roundoff_level`] and stopped improving there. No restart can do better,
+    /// so such an outcome is not `stalled`.
+    pub at_roundoff: bool,
 }
 
 /// Smallest iteration budget for which a non-converged attempt counts as stalled.
@@ -87,10 +94,13 @@ pub(crate) fn damped_newton(
         FirstStep::Searched => NEWTON_STALL,
     };
     let mut progress = Progress::new(rule, norm(&g));
+    // Started when the measure first reaches round-off: a tolerance below it can never be met.
+    let mut floor: Option<Progress> = None;
     while !converged
         && history.len() < settings.max_iterations
         && failed_searches < MAX_FAILED_SEARCHES
         && !progress.stalled()
+        && !floor.is_some_and(|f| f.stalled())
     {
         let residual = measure(&g, &z);
         let (dz, size) = match sys.newton_direction(&z, &g, block, ws) {
@@ -142,6 +152,11 @@ pub(crate) fn damped_newton(
         z = trial;
         g = g_trial;
         converged = next <= settings.tolerance;
+        if at_roundoff(next, sys.m()) {
+            floor
+                .get_or_insert_with(|| Progress::new(ROUNDOFF_STALL, f64::INFINITY))
+                .record(next);
+        }
         if searched {
             progress.record(norm(&g));
         } else {
@@ -151,13 +166,17 @@ pub(crate) fn damped_newton(
     }
     let residual = measure(&g, &z);
     let exhausted = history.len() >= settings.max_iterations.max(MIN_RESTART_BUDGET);
+    // Ended at round-off, whichever test ended it (line searches also fail there).
+    let roundoff = !converged && !singular && !overflow && at_roundoff(residual, sys.m());
     BlockOutcome {
         state: z,
         converged,
         residual,
         history,
         stalled: !converged
+            && !roundoff
             && (singular || overflow || exhausted || failed_searches >= MAX_FAILED_SEARCHES || progress.stalled()),
+        at_roundoff: roundoff,
     }
 }
 

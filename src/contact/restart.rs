@@ -32,9 +32,10 @@
 //!    relaxations [`FALLBACK_GS_RELAXATIONS`] (0.5, then 0.25), which find the contact and stick
 //!    sets without a merit function.
 //!
-//! Stalls are met near complete slip (μ → 0), at large μ with strong coupling β, where the
-//! contact shifts far from Hertz (docs/stability.md), and when the tolerance is below the
-//! round-off of the residual ([`super::stall`]).
+//! Stalls are met near complete slip (μ → 0), and at large μ with strong coupling β, where the
+//! contact shifts far from Hertz (docs/stability.md). An attempt that ends with its residual at
+//! round-off ([`super::stall::roundoff_level`]: the tolerance is below what double precision
+//! gives) is not stalled: no restart can do better, so none is tried.
 
 use super::newton::{self, coupled_attempt, BlockOutcome, FirstStep};
 use super::report::{GaussSeidelSettings, NewtonSettings, SolveReport};
@@ -207,7 +208,7 @@ pub fn solve_warm(
 ) -> (State, SolveReport) {
     let own = (settings.formulation, settings.penalty_scale);
     let (out, used) = coupled_attempt(pb, own, warm, FirstStep::Searched, settings, measure, ws);
-    if out.converged {
+    if out.converged || out.at_roundoff {
         return newton::report(settings, out, used, measure, Vec::new());
     }
     let (state, mut report) = solve(pb, settings, measure, ws);
