@@ -16,7 +16,7 @@
 //! tractions. [`Block::Coupled`] is the full problem.
 
 use super::residual::{Formulation, State, System};
-use super::workspace::Workspace;
+use super::workspace::{Tangential, Workspace};
 use crate::linalg::mat_vec2;
 use faer::Mat;
 
@@ -50,14 +50,6 @@ impl Block {
     pub(crate) fn solves_tangential(self) -> bool {
         self != Block::Normal
     }
-}
-
-/// Tangential state of a node for the pseudo-Jacobian.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Tangential {
-    Free,
-    Stick,
-    Slip(f64),
 }
 
 impl System<'_> {

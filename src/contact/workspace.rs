@@ -13,9 +13,17 @@
 //! A workspace holds no state of the solution: a solve with a used workspace gives the same
 //! numbers as one with a new one (`solves_alike_with_a_used_workspace` below).
 
-use super::direction::Tangential;
 use crate::linalg::LuWorkspace;
 use faer::Mat;
+
+/// Tangential state of a node for the pseudo-Jacobian of [`super::direction`] (free: no
+/// friction bound; stick; slip with the sign of the slip).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Tangential {
+    Free,
+    Stick,
+    Slip(f64),
+}
 
 /// Memory reused by the Newton solves of [`super::methods`] (module docs). Create one with
 /// [`Workspace::new`] and pass it to every solve of a sequence (e.g. the grids of an
