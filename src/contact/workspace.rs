@@ -7,8 +7,10 @@
 //! step, each such block is a fresh mapping whose pages the kernel faults in and zeroes at first
 //! touch (glibc serves large blocks by `mmap`): a quarter of an error-controlled run's time once
 //! went to those faults (docs/performance.md). A [`Workspace`] holds that memory across the
-//! Newton steps of a solve, its restarts and, passed on, across the grids of an error-controlled
-//! run: its capacity grows to the largest system met and is reused for the smaller ones.
+//! Newton steps of a solve and its restarts, and across the solves it is passed to
+//! ([`super::methods::solve_in`], [`super::methods::solve_from_in`]: e.g. the grids of an
+//! error-controlled run): its capacity grows to the largest system met and is reused for the
+//! smaller ones.
 //!
 //! A workspace holds no state of the solution: a solve with a used workspace gives the same
 //! numbers as one with a new one (`solves_alike_with_a_used_workspace` below).
