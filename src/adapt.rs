@@ -35,7 +35,7 @@ pub mod estimate;
 
 use crate::analytic::{hertz_half_width, hertz_peak_pressure};
 use crate::contact::residual::State;
-use crate::contact::{methods, ContactProblem, NormalControl, SolveReport, TangentialControl};
+use crate::contact::{methods, ContactProblem, NormalControl, SolveReport, TangentialControl, Workspace};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::post::adaptation::{AdaptationStep, GridAdaptation};
@@ -93,7 +93,12 @@ struct Solve {
 
 /// Builds the scene's models, assembles and solves (from `warm`, carried from the grid it was
 /// solved on), adding the times to `timings`.
-fn solve_on(scene: Scene, warm: Option<(&ContactGrid, &State)>, timings: &mut Timings) -> Result<Solve, Error> {
+fn solve_on(
+    scene: Scene,
+    warm: Option<(&ContactGrid, &State)>,
+    timings: &mut Timings,
+    ws: &mut Workspace,
+) -> Result<Solve, Error> {
     let t = Instant::now();
     // The strain operator serves only the outputs: the final grid's is added by `finished`.
     let (models, problem) = scene.assemble_without_strain()?;
@@ -108,7 +113,7 @@ fn solve_on(scene: Scene, warm: Option<(&ContactGrid, &State)>, timings: &mut Ti
     );
     let t = Instant::now();
     let warm = warm.map(|(from, z)| carried(&problem, from, z));
-    let (state, report) = methods::solve_from(&problem, &scene.solver, warm);
+    let (state, report) = methods::solve_from_in(&problem, &scene.solver, warm, ws);
     timings.solve_s += t.elapsed().as_secs_f64();
     Ok(Solve {
         scene,
@@ -148,9 +153,11 @@ fn carried(pb: &ContactProblem, from: &ContactGrid, z: &State) -> State {
 /// estimated error meets the scene's tolerance (module docs). A solve that does not converge
 /// ends the loop: its solution comes back with `report.converged == false`.
 pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
+    // One solver workspace for every solve of the run: it grows to the largest grid's system.
+    let mut ws = Workspace::new();
     let Some(control) = scene.grid_control else {
         let mut timings = Timings::default();
-        let only = solve_on(scene.clone(), None, &mut timings)?;
+        let only = solve_on(scene.clone(), None, &mut timings, &mut ws)?;
         return Ok(finished(only, timings, None));
     };
     let (tolerance, max_elements) = (control.tolerance, control.max_elements);
@@ -164,6 +171,7 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
             scene.on_grid(coarse.grid()),
             warm.as_ref().map(|(g, z)| (g, z)),
             &mut timings,
+            &mut ws,
         )?;
         if !g.report.converged {
             return Ok(finished(g, timings, Some((tolerance, steps))));
@@ -180,6 +188,7 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
             scene.on_grid(coarse.bisected().grid()),
             Some((&g.problem.grid, &g.state)),
             &mut timings,
+            &mut ws,
         )?;
         if !h.report.converged {
             return Ok(finished(h, timings, Some((tolerance, steps))));

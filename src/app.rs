@@ -91,6 +91,8 @@ pub struct RunReport {
     pub report: SolveReport,
     /// The iteration budget the solver had (`solver.max_iterations`).
     pub max_iterations: usize,
+    /// The scaled residual the solver had to reach (`solver.tolerance`).
+    pub tolerance: f64,
     /// Where the outputs were written.
     pub output_dir: PathBuf,
 }
@@ -126,6 +128,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         problem: s.problem,
         report: s.report,
         max_iterations: s.scene.solver.newton.max_iterations,
+        tolerance: s.scene.solver.newton.tolerance,
         output_dir,
     })
 }

@@ -31,6 +31,7 @@ pub mod restart;
 pub mod slip_operator;
 pub mod stall;
 mod start;
+pub mod workspace;
 
 use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;
@@ -41,6 +42,7 @@ pub use report::{GaussSeidelSettings, IterationRecord, Method, NewtonSettings, S
 pub use residual::{Formulation, State};
 use serde::{Deserialize, Serialize};
 pub use slip_operator::{SlipDerivative, SlipOperator};
+pub use workspace::Workspace;
 
 /// Direction in which the contact moves over the bodies (docs/theory.md, conventions).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -45,31 +45,82 @@ pub fn mat_vec2(a: &Mat<f64>, x: &[f64], b: &Mat<f64>, z: &[f64]) -> Vec<f64> {
 /// largest Newton system is 573: 0.07 s against 0.09 s).
 pub const PARALLEL_LU_MIN: usize = 1024;
 
-/// Solves A X = B in place by LU with partial pivoting: `a` is overwritten by its factors and
-/// `rhs` by the solution. faer's `PartialPivLu` copies the matrix and then splits it into L and
-/// U (three more n × n matrices, each paid in page faults at the sizes of the Newton systems);
-/// this factors the caller's matrix where it lies, with faer's same routines.
+/// The memory of [`LuWorkspace::solve_in_place`] besides the matrix: the row permutation and
+/// its inverse, and faer's scratch space. Kept across solves, it grows to the largest order met
+/// and is then reused, so that a Newton iteration allocates nothing for its LU.
+pub struct LuWorkspace {
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+    scratch: faer::dyn_stack::MemBuffer,
+    /// What `scratch` was allocated for.
+    scratch_req: faer::dyn_stack::StackReq,
+}
+
+impl std::fmt::Debug for LuWorkspace {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LuWorkspace")
+            .field("order", &self.perm.len())
+            .field("scratch_bytes", &self.scratch_req.size_bytes())
+            .finish()
+    }
+}
+
+impl Default for LuWorkspace {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl LuWorkspace {
+    /// An empty workspace: the first solve allocates.
+    pub fn new() -> Self {
+        let req = faer::dyn_stack::StackReq::EMPTY;
+        Self {
+            perm: Vec::new(),
+            perm_inv: Vec::new(),
+            scratch: faer::dyn_stack::MemBuffer::new(req),
+            scratch_req: req,
+        }
+    }
+
+    /// Solves A X = B in place by LU with partial pivoting: `a` (square) is overwritten by its
+    /// factors and `rhs` by the solution. faer's `PartialPivLu` copies the matrix and then splits
+    /// it into L and U (three more n × n matrices, each paid in page faults at the sizes of the
+    /// Newton systems); this factors the caller's matrix where it lies, with faer's same
+    /// routines, and keeps the pivots and scratch space for the next solve.
+    pub fn solve_in_place(&mut self, mut a: faer::MatMut<'_, f64>, rhs: faer::MatMut<'_, f64>) {
+        use faer::dyn_stack::MemStack;
+        use faer::linalg::lu::partial_pivoting::{factor, solve};
+        let n = a.nrows();
+        assert_eq!(n, a.ncols(), "a square matrix");
+        assert_eq!(n, rhs.nrows(), "a right side of the matrix's order");
+        // Below PARALLEL_LU_MIN unknowns the threads' hand-offs cost more than they share on two
+        // cores (docs/performance.md).
+        let par = if n < PARALLEL_LU_MIN {
+            faer::Par::Seq
+        } else {
+            faer::get_global_parallelism()
+        };
+        self.perm.resize(n, 0);
+        self.perm_inv.resize(n, 0);
+        let req = factor::lu_in_place_scratch::<usize, f64>(n, n, par, Default::default())
+            .or(solve::solve_in_place_scratch::<usize, f64>(n, rhs.ncols(), par));
+        let grown = self.scratch_req.or(req);
+        if grown != self.scratch_req {
+            self.scratch = faer::dyn_stack::MemBuffer::new(grown);
+            self.scratch_req = grown;
+        }
+        let stack = MemStack::new(&mut self.scratch);
+        let (perm, perm_inv) = (&mut self.perm[..n], &mut self.perm_inv[..n]);
+        let (_, row_perm) = factor::lu_in_place(a.as_mut(), perm, perm_inv, par, stack, Default::default());
+        // L (unit lower) and U share the factored matrix: each solve reads only its own triangle.
+        solve::solve_in_place(a.as_ref(), a.as_ref(), row_perm, rhs, par, stack);
+    }
+}
+
+/// [`LuWorkspace::solve_in_place`] with a workspace of its own, for a single solve.
 pub fn lu_solve_in_place(mut a: Mat<f64>, rhs: faer::MatMut<'_, f64>) {
-    use faer::dyn_stack::{MemBuffer, MemStack};
-    use faer::linalg::lu::partial_pivoting::{factor, solve};
-    let n = a.nrows();
-    assert_eq!(n, a.ncols(), "a square matrix");
-    // Below PARALLEL_LU_MIN unknowns the threads' hand-offs cost more than they share on two
-    // cores (docs/performance.md).
-    let par = if n < PARALLEL_LU_MIN {
-        faer::Par::Seq
-    } else {
-        faer::get_global_parallelism()
-    };
-    let mut perm = vec![0usize; n];
-    let mut perm_inv = vec![0usize; n];
-    let scratch = factor::lu_in_place_scratch::<usize, f64>(n, n, par, Default::default())
-        .or(solve::solve_in_place_scratch::<usize, f64>(n, rhs.ncols(), par));
-    let mut buffer = MemBuffer::new(scratch);
-    let stack = MemStack::new(&mut buffer);
-    let (_, row_perm) = factor::lu_in_place(a.as_mut(), &mut perm, &mut perm_inv, par, stack, Default::default());
-    // L (unit lower) and U share the factored matrix: each solve reads only its own triangle.
-    solve::solve_in_place(a.as_ref(), a.as_ref(), row_perm, rhs, par, stack);
+    LuWorkspace::new().solve_in_place(a.as_mut(), rhs);
 }
 
 #[cfg(test)]
@@ -87,6 +138,37 @@ mod tests {
         assert_eq!(mat_vec2(&a, &x, &b, &z), want);
         let ax: Vec<f64> = (0..3).map(|i| (0..3).map(|j| a[(i, j)] * x[j]).sum()).collect();
         assert_eq!(mat_vec(&a, &x), ax);
+    }
+
+    /// A workspace that served larger and smaller orders (on both sides of
+    /// [`PARALLEL_LU_MIN`]) solves to the same bits as a new one: it keeps nothing of the last
+    /// solve but memory.
+    #[test]
+    fn a_reused_lu_workspace_solves_like_a_new_one() {
+        let system = |n: usize| {
+            let a = Mat::from_fn(n, n, |i, j| {
+                let v = ((i * 5 + j * 11) % 13) as f64 / 13.0 - 0.5;
+                if i == j {
+                    v + 3.0
+                } else {
+                    v / n as f64
+                }
+            });
+            let b = Mat::from_fn(n, 1, |i, _| (i as f64 + 0.5).cos());
+            (a, b)
+        };
+        let mut ws = LuWorkspace::new();
+        for n in [40, PARALLEL_LU_MIN + 3, 9, 40, PARALLEL_LU_MIN + 3] {
+            let (a, b) = system(n);
+            let (mut a_used, mut x_used) = (a.clone(), b.clone());
+            ws.solve_in_place(a_used.as_mut(), x_used.as_mut());
+            let mut x_new = b.clone();
+            lu_solve_in_place(a, x_new.as_mut());
+            assert!(
+                (0..n).all(|i| x_used[(i, 0)].to_bits() == x_new[(i, 0)].to_bits()),
+                "n {n}: a used workspace solves differently"
+            );
+        }
     }
 
     /// The in-place LU solves what faer's `PartialPivLu` solves, on both sides of

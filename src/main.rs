@@ -8,7 +8,6 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    reuse_freed_matrices();
     survive_file_size_limit();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -38,27 +37,6 @@ fn main() -> ExitCode {
         }
     }
 }
-
-/// Keeps freed blocks of up to 32 MB in the heap for reuse.
-///
-/// A run allocates and frees dense m × m matrices of a few MB many times (an error-controlled
-/// run assembles each of its grids anew). glibc serves blocks above its mmap threshold by fresh
-/// mappings, whose pages the kernel faults in and zeroes at first touch and unmaps at free: a
-/// quarter of such a run's time went to those page faults (docs/performance.md). With the
-/// threshold at 32 MB (m up to 2000) and no trimming, a freed matrix's pages serve the next one.
-#[cfg(all(target_os = "linux", target_env = "gnu"))]
-fn reuse_freed_matrices() {
-    // SAFETY: mallopt only sets parameters of the allocator; it is called before any other
-    // thread exists.
-    unsafe {
-        libc::mallopt(libc::M_MMAP_THRESHOLD, 32 << 20);
-        libc::mallopt(libc::M_TRIM_THRESHOLD, i32::MAX);
-    }
-}
-
-/// Other platforms keep their allocator's defaults.
-#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-fn reuse_freed_matrices() {}
 
 /// Makes a file-size limit (`ulimit -f`) an error, not death: a write past the limit raises
 /// SIGXFSZ, whose default action kills the process at once (exit 153, no message, a temporary
@@ -149,7 +127,20 @@ fn warn_restarts(s: &rollbem::output::Summary) {
 /// out (then more `solver.max_iterations` may help) or the residual stopped improving (then it
 /// will not), and where the history is.
 fn not_converged_message(report: &rollbem::app::RunReport) -> String {
+    use rollbem::contact::stall::{at_roundoff, roundoff_advice};
     let (summary, output_dir) = (&report.summary, &report.output_dir);
+    if at_roundoff(summary.residual, summary.grid.nodes) {
+        let history = summary.solver.history.iter().map(|h| h.residual);
+        let smallest = history.fold(summary.residual, f64::min);
+        return format!(
+            "the solver did not converge in {} iterations (scaled residual {:.3e}); {}. The residual \
+             history is in {}.",
+            summary.iterations,
+            summary.residual,
+            roundoff_advice(smallest, Some(report.tolerance)),
+            output_dir.join("summary.json").display()
+        );
+    }
     let cause = if summary.iterations >= report.max_iterations {
         "the iteration budget ran out: give more solver.max_iterations (gauss_seidel counts sweeps and \
          needs thousands), or try"

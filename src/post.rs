@@ -91,7 +91,12 @@ pub fn process(
         check_grid_contains_contact(&scene, &solution)?;
     }
     let regime = slip_regime(&solution, scene.leading_edge_sign(), 1);
-    let friction_check = check_friction_law(&solution, scene.friction(), DEFAULT_THRESHOLD_FRACTION);
+    let friction_check = check_friction_law(
+        &solution,
+        scene.friction(),
+        DEFAULT_THRESHOLD_FRACTION,
+        scene.estimates.hertz_half_width / scene.estimates.effective_radius.abs(),
+    );
     let output = &scene.case.case.output;
     let boundary = if report.converged && output.vtk {
         fields::boundary_fields(models, &problem.grid, &problem.frame, &solution)?

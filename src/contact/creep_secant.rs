@@ -21,7 +21,9 @@ use super::direction::Block;
 use super::newton::{damped_newton, BlockOutcome, FirstStep};
 use super::report::NewtonSettings;
 use super::residual::{scaled_residual, ConvergenceMeasure, State, System};
+use super::stall::at_roundoff;
 use super::start::complete_slip_step;
+use super::workspace::Workspace;
 use super::ContactProblem;
 
 /// Largest number of creepage evaluations (each a warm-started Newton solve with ξ fixed).
@@ -41,6 +43,7 @@ fn evaluate(
     creep: f64,
     settings: &NewtonSettings,
     scale: f64,
+    ws: &mut Workspace,
 ) -> Evaluation {
     let z = State { creep, ..start.clone() };
     let outcome = damped_newton(
@@ -50,6 +53,7 @@ fn evaluate(
         settings,
         &|g, z| scaled_residual(g, z, scale),
         FirstStep::Searched,
+        ws,
     );
     let load_error = load_error(fixed.pb, load, &outcome.state);
     Evaluation { outcome, load_error }
@@ -69,6 +73,7 @@ pub(crate) fn solve(
     settings: &NewtonSettings,
     measure: &ConvergenceMeasure,
     start: &State,
+    ws: &mut Workspace,
 ) -> Option<BlockOutcome> {
     let full = System::new(pb, settings.formulation, settings.penalty_scale);
     let load = full.tangential_load()?;
@@ -83,7 +88,7 @@ pub(crate) fn solve(
     let creep_scale = pb.friction.max(1e-3) * scale * compliance;
 
     let mut history = Vec::new();
-    let mut current = evaluate(&fixed, load, start, start.creep, settings, scale);
+    let mut current = evaluate(&fixed, load, start, start.creep, settings, scale, ws);
     history.extend(current.outcome.history.iter().cloned());
     let mut previous: Option<(f64, f64)> = None;
     // Bracket ends (ξ, F) with F < 0 and F > 0, and which end was kept last (Illinois).
@@ -117,7 +122,7 @@ pub(crate) fn solve(
         let predicted = match complete_slip_step(&full, z) {
             // The root lies on the ramp of the node that sticks here (or sits at its flip): F is
             // linear along that ramp and the coupled Newton step (ξ free) follows it.
-            Some((p, k)) if is_stick(&full, z, k) || (p - x).abs() <= same => ramp_step(&full, z).map(|d| x + d),
+            Some((p, k)) if is_stick(&full, z, k) || (p - x).abs() <= same => ramp_step(&full, z, ws).map(|d| x + d),
             other => other.map(|(p, _)| p),
         }
         .filter(|&p| (p - x).abs() > same);
@@ -145,17 +150,19 @@ pub(crate) fn solve(
             }
         };
         previous = Some((x, f));
-        current = evaluate(&fixed, load, &current.outcome.state, next, settings, scale);
+        current = evaluate(&fixed, load, &current.outcome.state, next, settings, scale, ws);
         history.extend(current.outcome.history.iter().cloned());
     }
     let residual = measure.of(&current.outcome.state);
     let converged = residual <= settings.tolerance;
+    let roundoff = !converged && at_roundoff(residual, m);
     Some(BlockOutcome {
         state: current.outcome.state,
         converged,
         residual,
         history,
-        stalled: !converged,
+        stalled: !converged && !roundoff,
+        at_roundoff: roundoff,
     })
 }
 
@@ -167,7 +174,9 @@ fn is_stick(sys: &System, z: &State, k: usize) -> bool {
 
 /// The creepage change of the coupled Newton step (ξ free) from `z`: on a ramp of F, where the
 /// stick and slip sets do not change, the step that zeroes F.
-fn ramp_step(sys: &System, z: &State) -> Option<f64> {
+fn ramp_step(sys: &System, z: &State, ws: &mut Workspace) -> Option<f64> {
     let g = sys.block_residual(z, Block::Coupled);
-    sys.newton_direction(z, &g, Block::Coupled).ok().map(|(dz, _)| dz.creep)
+    sys.newton_direction(z, &g, Block::Coupled, ws)
+        .ok()
+        .map(|(dz, _)| dz.creep)
 }

@@ -16,6 +16,7 @@
 //! tractions. [`Block::Coupled`] is the full problem.
 
 use super::residual::{Formulation, State, System};
+use super::workspace::{Tangential, Workspace};
 use crate::linalg::mat_vec2;
 use faer::Mat;
 
@@ -49,14 +50,6 @@ impl Block {
     pub(crate) fn solves_tangential(self) -> bool {
         self != Block::Normal
     }
-}
-
-/// Tangential state of a node for the pseudo-Jacobian.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Tangential {
-    Free,
-    Stick,
-    Slip(f64),
 }
 
 impl System<'_> {
@@ -102,14 +95,13 @@ impl System<'_> {
     /// at a near-tie. An iterate with every node open is met after a full step into tension,
     /// e.g. on an incompressible layer, whose volume constraint makes the all-contact start
     /// solve for negative pressures everywhere.
-    fn ensure_contact_row(&self, z: &State, mut contact: Vec<bool>, block: Block) -> Vec<bool> {
+    fn ensure_contact_row(&self, z: &State, contact: &mut [bool], block: Block) {
         let needed = (self.free_overlap && block.solves_normal()) || (self.free_creep && block.solves_tangential());
         if needed && !contact.iter().any(|&c| c) {
             let f = |k: usize| z.pressure[k] - self.rn[k] * z.gap[k];
             let k = (0..contact.len()).max_by(|&i, &j| f(i).total_cmp(&f(j))).unwrap_or(0);
             contact[k] = true;
         }
-        contact
     }
 
     /// With ξ free, ξ enters only the stick rows: when every loaded node slips (a full-sliding
@@ -137,7 +129,8 @@ impl System<'_> {
         }
     }
 
-    /// Solves the linearized equations BG(z)Δz = −G(z) by the reduction in the module docs.
+    /// Solves the linearized equations BG(z)Δz = −G(z) by the reduction in the module docs, in
+    /// the memory of `ws` (its matrix, pivots and work vectors, overwritten).
     /// Returns Δz and the size of the reduced system.
     #[allow(non_snake_case)]
     pub(crate) fn newton_direction(
@@ -145,20 +138,32 @@ impl System<'_> {
         z: &State,
         G: &[f64],
         block: Block,
+        ws: &mut Workspace,
     ) -> Result<(State, usize), SingularNewtonMatrix> {
         let pb = self.pb;
         let m = self.m();
         let (g1, g2, g3, g4) = (&G[0..m], &G[m..2 * m], &G[2 * m..3 * m], &G[3 * m..4 * m]);
         let mu = pb.friction;
+        fn reset<T: Clone>(v: &mut Vec<T>, m: usize, value: T) {
+            v.clear();
+            v.resize(m, value);
+        }
 
         // Δp_j = p_const + [column p_col]; Δq_j = q_const + [column q_col] + q_pcoef·Δp_j.
         let mut n_cols = 0;
-        let mut p_col = vec![None; m];
-        let mut p_const = vec![0.0; m];
-        let mut contact_rows = Vec::new();
-        let normal_contact: Vec<bool> = (0..m).map(|i| self.is_contact(z, i)).collect();
-        let mut tangential: Vec<Tangential> = (0..m).map(|i| self.tangential_state(z, i)).collect();
-        let normal_contact = self.ensure_contact_row(z, normal_contact, block);
+        let mut p_col = std::mem::take(&mut ws.p_col);
+        reset(&mut p_col, m, None);
+        let mut p_const = std::mem::take(&mut ws.p_const);
+        reset(&mut p_const, m, 0.0);
+        let mut contact_rows = std::mem::take(&mut ws.contact_rows);
+        contact_rows.clear();
+        let mut normal_contact = std::mem::take(&mut ws.normal_contact);
+        normal_contact.clear();
+        normal_contact.extend((0..m).map(|i| self.is_contact(z, i)));
+        let mut tangential = std::mem::take(&mut ws.tangential);
+        tangential.clear();
+        tangential.extend((0..m).map(|i| self.tangential_state(z, i)));
+        self.ensure_contact_row(z, &mut normal_contact, block);
         self.ensure_stick_row(z, &normal_contact, &mut tangential, block);
         // Frozen unknowns of a block: Δp = 0 (Tangential) or Δq = 0 (Normal), no rows or columns.
         let (solve_p, solve_q) = (block.solves_normal(), block.solves_tangential());
@@ -176,10 +181,14 @@ impl System<'_> {
                 p_const[i] = -g3[i];
             }
         }
-        let mut q_col = vec![None; m];
-        let mut q_const = vec![0.0; m];
-        let mut q_pcoef = vec![0.0; m];
-        let mut stick_rows = Vec::new();
+        let mut q_col = std::mem::take(&mut ws.q_col);
+        reset(&mut q_col, m, None);
+        let mut q_const = std::mem::take(&mut ws.q_const);
+        reset(&mut q_const, m, 0.0);
+        let mut q_pcoef = std::mem::take(&mut ws.q_pcoef);
+        reset(&mut q_pcoef, m, 0.0);
+        let mut stick_rows = std::mem::take(&mut ws.stick_rows);
+        stick_rows.clear();
         for i in 0..m {
             if !solve_q {
                 continue;
@@ -210,8 +219,7 @@ impl System<'_> {
             n_cols - 1
         });
         let n = n_cols;
-        let mut J = Mat::<f64>::zeros(n, n);
-        let mut rhs = Mat::<f64>::zeros(n, 1);
+        let (J, rhs, lu) = ws.system(n);
 
         // Adds Σ_j (ap_j Δp_j + aq_j Δq_j) to row `row`, moving known parts to the right side.
         let add_row =
@@ -268,7 +276,7 @@ impl System<'_> {
         for (k, &i) in contact_rows.iter().enumerate() {
             rhs[(k, 0)] = -g3[i] + g1[i];
         }
-        fill_elastic(&mut J, &mut rhs, 0, &contact_rows, &self.rn, &pb.flex.hp, &pb.flex.hq);
+        fill_elastic(J, rhs, 0, &contact_rows, &self.rn, &pb.flex.hp, &pb.flex.hq);
         if let Some(c) = col_overlap {
             for (k, &i) in contact_rows.iter().enumerate() {
                 J[(k, c)] = -self.rn[i];
@@ -278,7 +286,7 @@ impl System<'_> {
         for (k, &i) in stick_rows.iter().enumerate() {
             rhs[(first + k, 0)] = -g4[i] + g2[i];
         }
-        fill_elastic(&mut J, &mut rhs, first, &stick_rows, &self.rt, &pb.bp, &pb.bq);
+        fill_elastic(J, rhs, first, &stick_rows, &self.rt, &pb.bp, &pb.bq);
         if let Some(c) = col_creep {
             for (k, &i) in stick_rows.iter().enumerate() {
                 J[(first + k, c)] = self.rt[i] * pb.flow_sign * pb.slip_operator.creep_weight[i];
@@ -290,25 +298,21 @@ impl System<'_> {
         let k = 4 * m + usize::from(self.free_overlap);
         if free_overlap {
             rhs[(row, 0)] = -self.length * G[4 * m];
-            add_row(&mut J, &mut rhs, row, &|j| w[j], &|_| 0.0);
+            add_row(J, rhs, row, &|j| w[j], &|_| 0.0);
             row += 1;
         }
         if let (true, Some((ratio, _))) = (free_creep, self.tangential_load()) {
             rhs[(row, 0)] = -self.length * G[k];
-            add_row(&mut J, &mut rhs, row, &|j| -ratio * mu * w[j], &|j| w[j]);
+            add_row(J, rhs, row, &|j| -ratio * mu * w[j], &|j| w[j]);
             row += 1;
         }
         debug_assert_eq!(row, n);
 
-        let y = if n > 0 {
-            crate::linalg::lu_solve_in_place(J, rhs.as_mut());
-            rhs
-        } else {
-            rhs
-        };
-        if (0..n).any(|r| !y[(r, 0)].is_finite()) {
-            return Err(SingularNewtonMatrix { size: n });
+        if n > 0 {
+            lu.solve_in_place(J.as_mut(), rhs.as_mut());
         }
+        let y = &*rhs;
+        let singular = (0..n).any(|r| !y[(r, 0)].is_finite());
         let dp: Vec<f64> = (0..m)
             .map(|j| p_const[j] + p_col[j].map_or(0.0, |c| y[(c, 0)]))
             .collect();
@@ -317,6 +321,19 @@ impl System<'_> {
             .collect();
         let d_overlap = col_overlap.map_or(0.0, |c| y[(c, 0)]);
         let d_creep = col_creep.map_or(0.0, |c| y[(c, 0)]);
+        // The work vectors go back to the workspace for the next step.
+        ws.p_col = p_col;
+        ws.p_const = p_const;
+        ws.q_col = q_col;
+        ws.q_const = q_const;
+        ws.q_pcoef = q_pcoef;
+        ws.contact_rows = contact_rows;
+        ws.stick_rows = stick_rows;
+        ws.normal_contact = normal_contact;
+        ws.tangential = tangential;
+        if singular {
+            return Err(SingularNewtonMatrix { size: n });
+        }
         let dh = pb.compression(&dp, &dq);
         let db = mat_vec2(&pb.bp, &dp, &pb.bq, &dq);
         let dg = (0..m).map(|i| -g1[i] / self.rn[i] - d_overlap + dh[i]).collect();
@@ -367,7 +384,9 @@ mod tests {
                 break;
             }
             let g = sys.block_residual(&z, Block::Coupled);
-            let (dz, _) = sys.newton_direction(&z, &g, Block::Coupled).expect("regular");
+            let (dz, _) = sys
+                .newton_direction(&z, &g, Block::Coupled, &mut Workspace::new())
+                .expect("regular");
             z = axpy(&z, 1.0, &dz);
         }
         assert!(measure.of(&z) <= 1e-10, "full Newton steps did not converge");
@@ -401,7 +420,9 @@ mod tests {
     /// max |G(z + εΔz) − (1 − ε)G(z)| / (ε max|G(z)|) along the Newton direction of `block`.
     fn linearization_error(sys: &System, z: &State, block: Block, eps: f64) -> f64 {
         let g = sys.block_residual(z, block);
-        let (dz, _) = sys.newton_direction(z, &g, block).expect("regular Newton matrix");
+        let (dz, _) = sys
+            .newton_direction(z, &g, block, &mut Workspace::new())
+            .expect("regular Newton matrix");
         if !block.solves_normal() {
             assert!(
                 dz.pressure.iter().all(|&d| d == 0.0) && dz.overlap == 0.0,
@@ -490,7 +511,9 @@ mod tests {
         let z = perturbed(&z0, p0, pb.friction);
         let sys = System::new(&pb, Formulation::Phi, 1.0);
         let g = sys.block_residual(&z, Block::Coupled);
-        let (dz, _) = sys.newton_direction(&z, &g, Block::Coupled).expect("regular");
+        let (dz, _) = sys
+            .newton_direction(&z, &g, Block::Coupled, &mut Workspace::new())
+            .expect("regular");
         let other = ContactProblem {
             friction: pb.friction * 1.01,
             ..pb.clone()

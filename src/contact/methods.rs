@@ -17,23 +17,32 @@
 
 use super::report::{Method, NewtonSettings, SolveReport, SolverSettings};
 use super::residual::{ConvergenceMeasure, State};
+pub use super::workspace::Workspace;
 use super::{gauss_seidel, newton, norm_tang, restart, ContactProblem};
 use std::time::Instant;
 
-/// Solves the contact problem with the chosen method (start and restarts as in the module docs).
+/// Solves the contact problem with the chosen method (start and restarts as in the module docs),
+/// with a workspace of its own ([`solve_in`] reuses one).
 pub fn solve(pb: &ContactProblem, settings: &SolverSettings) -> (State, SolveReport) {
+    solve_in(pb, settings, &mut Workspace::new())
+}
+
+/// [`solve`] with the Newton systems in the memory of `ws` (a [`Workspace`] reused from solve
+/// to solve allocates its matrix once, at the size of the largest system). The result does not
+/// depend on what `ws` held before.
+pub fn solve_in(pb: &ContactProblem, settings: &SolverSettings, ws: &mut Workspace) -> (State, SolveReport) {
     let start = Instant::now();
     let measure = ConvergenceMeasure::new(pb);
     let (state, mut report) = match settings.method {
-        Method::Newton => restart::solve(pb, &settings.newton, &measure),
+        Method::Newton => restart::solve(pb, &settings.newton, &measure, ws),
         Method::NewtonPlain => {
             let plain = NewtonSettings {
                 max_backtracks: 0,
                 ..settings.newton
             };
-            newton::solve(pb, &plain, &measure)
+            newton::solve(pb, &plain, &measure, ws)
         }
-        Method::NormTang => norm_tang::solve(pb, &settings.newton, &measure),
+        Method::NormTang => norm_tang::solve(pb, &settings.newton, &measure, ws),
         Method::GaussSeidel => gauss_seidel::solve(pb, &settings.gauss_seidel(), &measure),
     };
     report.method = settings.method;
@@ -45,14 +54,26 @@ pub fn solve(pb: &ContactProblem, settings: &SolverSettings) -> (State, SolveRep
 /// Solves the contact problem from `warm`, a state of this problem's grid close to the solution
 /// (an error-controlled grid carries the previous grid's solution to the next): the default
 /// method starts from it, falling back to its cold start and restarts; the other methods keep
-/// their own start (their iteration counts are what `rollbem study stability` compares).
+/// their own start (their iteration counts are what `rollbem study stability` compares). With a
+/// workspace of its own ([`solve_from_in`] reuses one).
 pub fn solve_from(pb: &ContactProblem, settings: &SolverSettings, warm: Option<State>) -> (State, SolveReport) {
+    solve_from_in(pb, settings, warm, &mut Workspace::new())
+}
+
+/// [`solve_from`] with the Newton systems in the memory of `ws`: the grids of an error-controlled
+/// run pass one workspace from solve to solve, which grows to the largest grid's system.
+pub fn solve_from_in(
+    pb: &ContactProblem,
+    settings: &SolverSettings,
+    warm: Option<State>,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
     let Some(warm) = warm.filter(|_| settings.method == Method::Newton) else {
-        return solve(pb, settings);
+        return solve_in(pb, settings, ws);
     };
     let start = Instant::now();
     let measure = ConvergenceMeasure::new(pb);
-    let (state, mut report) = restart::solve_warm(pb, &settings.newton, &measure, warm);
+    let (state, mut report) = restart::solve_warm(pb, &settings.newton, &measure, warm, ws);
     report.method = settings.method;
     report.formulation = settings.newton.formulation;
     report.wall_time_s = start.elapsed().as_secs_f64();

@@ -15,12 +15,16 @@
 //! (the direction is no descent direction: a kink of G lies between the iterate and the
 //! solution), or when ‖G‖₂ has not improved by 10 % on its best for a number of steps
 //! ([`super::stall`]: 5 from the normal start, 50 otherwise, 100 without line search). What the
-//! default method does then is the start and restart policy of [`super::restart`].
+//! default method does then is the start and restart policy of [`super::restart`]. An attempt
+//! whose measure has reached round-off ([`super::stall::roundoff_level`]) and has not halved its
+//! best there in 3 steps ([`super::stall::ROUNDOFF_STALL`]) ends too, not stalled but
+//! `at_roundoff`: its tolerance is below what double precision gives.
 
 pub use super::direction::Block;
 use super::report::{IterationRecord, Method, NewtonSettings, SolveReport};
 use super::residual::{axpy, merit, scaled_residual, start_vector, ConvergenceMeasure, Formulation, State, System};
-use super::stall::{Progress, NEWTON_STALL, NORMAL_START_STALL, PLAIN_NEWTON_STALL};
+use super::stall::{at_roundoff, Progress, NEWTON_STALL, NORMAL_START_STALL, PLAIN_NEWTON_STALL, ROUNDOFF_STALL};
+use super::workspace::Workspace;
 use super::ContactProblem;
 
 /// What a damped Newton loop on one block ended with.
@@ -39,6 +43,10 @@ pub(crate) struct BlockOutcome {
     /// tolerance. A run cut short on purpose (`max_iterations` below that) is not stalled, so it
     /// is not restarted.
     pub stalled: bool,
+    /// Not converged because the tolerance is below round-off: the stopping measure reached
+    /// [`super::stall::roundoff_level`] and stopped improving there. No restart can do better,
+    /// so such an outcome is not `stalled`.
+    pub at_roundoff: bool,
 }
 
 /// Smallest iteration budget for which a non-converged attempt counts as stalled.
@@ -61,7 +69,8 @@ pub(crate) enum FirstStep {
 
 /// Generalized Newton with Armijo line search on `block` from `z`, stopping when
 /// `measure(G_block(z), z) ≤ settings.tolerance` or after `settings.max_iterations` steps, or when
-/// the Newton matrix is singular, or when the attempt stalls ([`super::stall`]).
+/// the Newton matrix is singular, or when the attempt stalls ([`super::stall`]). The Newton
+/// systems are solved in the memory of `ws`.
 pub(crate) fn damped_newton(
     sys: &System,
     block: Block,
@@ -69,6 +78,7 @@ pub(crate) fn damped_newton(
     settings: &NewtonSettings,
     measure: &dyn Fn(&[f64], &State) -> f64,
     first_step: FirstStep,
+    ws: &mut Workspace,
 ) -> BlockOutcome {
     let mut g = sys.block_residual(&z, block);
     let mut history = Vec::new();
@@ -84,13 +94,16 @@ pub(crate) fn damped_newton(
         FirstStep::Searched => NEWTON_STALL,
     };
     let mut progress = Progress::new(rule, norm(&g));
+    // Started when the measure first reaches round-off: a tolerance below it can never be met.
+    let mut floor: Option<Progress> = None;
     while !converged
         && history.len() < settings.max_iterations
         && failed_searches < MAX_FAILED_SEARCHES
         && !progress.stalled()
+        && !floor.is_some_and(|f| f.stalled())
     {
         let residual = measure(&g, &z);
-        let (dz, size) = match sys.newton_direction(&z, &g, block) {
+        let (dz, size) = match sys.newton_direction(&z, &g, block, ws) {
             Ok(d) => d,
             Err(_) => {
                 singular = true;
@@ -139,6 +152,11 @@ pub(crate) fn damped_newton(
         z = trial;
         g = g_trial;
         converged = next <= settings.tolerance;
+        if at_roundoff(next, sys.m()) {
+            floor
+                .get_or_insert_with(|| Progress::new(ROUNDOFF_STALL, f64::INFINITY))
+                .record(next);
+        }
         if searched {
             progress.record(norm(&g));
         } else {
@@ -148,19 +166,29 @@ pub(crate) fn damped_newton(
     }
     let residual = measure(&g, &z);
     let exhausted = history.len() >= settings.max_iterations.max(MIN_RESTART_BUDGET);
+    // Ended at round-off, whichever test ended it (line searches also fail there).
+    let roundoff = !converged && !singular && !overflow && at_roundoff(residual, sys.m());
     BlockOutcome {
         state: z,
         converged,
         residual,
         history,
         stalled: !converged
+            && !roundoff
             && (singular || overflow || exhausted || failed_searches >= MAX_FAILED_SEARCHES || progress.stalled()),
+        at_roundoff: roundoff,
     }
 }
 
 /// Solves one block of the problem from `z` and stops on the block's own scaled residual (the
 /// inner solves of NORM/TANG).
-pub(crate) fn solve_block(pb: &ContactProblem, block: Block, z: State, settings: &NewtonSettings) -> BlockOutcome {
+pub(crate) fn solve_block(
+    pb: &ContactProblem,
+    block: Block,
+    z: State,
+    settings: &NewtonSettings,
+    ws: &mut Workspace,
+) -> BlockOutcome {
     // TANG works with the given traction bound μ max(0, p): Ψ's bound (see `super::direction`).
     let form = match block {
         Block::Tangential => Formulation::Psi,
@@ -175,6 +203,7 @@ pub(crate) fn solve_block(pb: &ContactProblem, block: Block, z: State, settings:
         settings,
         &|g, z| scaled_residual(g, z, scale),
         FirstStep::Searched,
+        ws,
     )
 }
 
@@ -188,6 +217,7 @@ pub(crate) fn coupled_attempt(
     first_step: FirstStep,
     settings: &NewtonSettings,
     measure: &ConvergenceMeasure,
+    ws: &mut Workspace,
 ) -> (BlockOutcome, [f64; 2]) {
     let sys = System::new(pb, form, penalty_scale);
     let out = damped_newton(
@@ -197,6 +227,7 @@ pub(crate) fn coupled_attempt(
         settings,
         &|g, z| measure.of_with(&sys, g, z),
         first_step,
+        ws,
     );
     (out, sys.reference)
 }
@@ -207,9 +238,10 @@ pub(crate) fn paper_attempt(
     pb: &ContactProblem,
     settings: &NewtonSettings,
     measure: &ConvergenceMeasure,
+    ws: &mut Workspace,
 ) -> (BlockOutcome, [f64; 2]) {
     let own = (settings.formulation, settings.penalty_scale);
-    coupled_attempt(pb, own, start_vector(pb), FirstStep::Searched, settings, measure)
+    coupled_attempt(pb, own, start_vector(pb), FirstStep::Searched, settings, measure, ws)
 }
 
 /// The common report of a Newton run that ended with `out`, the last attempt having used the
@@ -240,8 +272,14 @@ pub(crate) fn report(
 }
 
 /// One attempt of the generalized Newton method from the paper's start vector (line search as
-/// set by `settings.max_backtracks`), stopping on the common measure; no restart.
-pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
-    let (out, penalties) = paper_attempt(pb, settings, measure);
+/// set by `settings.max_backtracks`), stopping on the common measure; no restart. The Newton
+/// systems are solved in the memory of `ws`.
+pub fn solve(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let (out, penalties) = paper_attempt(pb, settings, measure, ws);
     report(settings, out, penalties, measure, Vec::new())
 }

@@ -37,6 +37,7 @@ use super::newton::solve_block;
 use super::report::{IterationRecord, Method, NewtonSettings, SolveReport};
 use super::residual::{automatic_penalties, start_vector, ConvergenceMeasure, State};
 use super::stall::{Progress, NORM_TANG_STALL};
+use super::workspace::Workspace;
 use super::ContactProblem;
 
 /// Newton steps allowed for each NORM or TANG solve.
@@ -45,8 +46,14 @@ pub const INNER_ITERATIONS: usize = 50;
 /// Ratio of the inner (NORM, TANG) tolerance to the outer one.
 pub const INNER_TOLERANCE_RATIO: f64 = 0.1;
 
-/// Solves the contact problem by alternating NORM and TANG from the paper's start vector.
-pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
+/// Solves the contact problem by alternating NORM and TANG from the paper's start vector, their
+/// Newton systems in the memory of `ws`.
+pub fn solve(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
     let inner = NewtonSettings {
         max_iterations: INNER_ITERATIONS,
         tolerance: INNER_TOLERANCE_RATIO * settings.tolerance,
@@ -58,8 +65,8 @@ pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &Convergen
     let mut history = Vec::new();
     let mut progress = Progress::new(NORM_TANG_STALL, residual);
     while !converged && history.len() < settings.max_iterations && !progress.stalled() {
-        let normal = solve_block(pb, Block::Normal, z.clone(), &inner);
-        let tangential = solve_block(pb, Block::Tangential, normal.state, &inner);
+        let normal = solve_block(pb, Block::Normal, z.clone(), &inner, ws);
+        let tangential = solve_block(pb, Block::Tangential, normal.state, &inner, ws);
         let steps = normal.history.iter().chain(&tangential.history);
         history.push(IterationRecord {
             residual,

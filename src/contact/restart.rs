@@ -32,14 +32,16 @@
 //!    relaxations [`FALLBACK_GS_RELAXATIONS`] (0.5, then 0.25), which find the contact and stick
 //!    sets without a merit function.
 //!
-//! Stalls are met near complete slip (μ → 0), at large μ with strong coupling β, where the
-//! contact shifts far from Hertz (docs/stability.md), and when the tolerance is below the
-//! round-off of the residual ([`super::stall`]).
+//! Stalls are met near complete slip (μ → 0), and at large μ with strong coupling β, where the
+//! contact shifts far from Hertz (docs/stability.md). An attempt that ends with its residual at
+//! round-off ([`super::stall::roundoff_level`]: the tolerance is below what double precision
+//! gives) is not stalled: no restart can do better, so none is tried.
 
 use super::newton::{self, coupled_attempt, BlockOutcome, FirstStep};
 use super::report::{GaussSeidelSettings, NewtonSettings, SolveReport};
 use super::residual::{automatic_penalties, start_vector, ConvergenceMeasure, Formulation, State};
 use super::start::normal_start;
+use super::workspace::Workspace;
 use super::{creep_secant, gauss_seidel, ContactProblem};
 
 /// Friction coefficient above which the first attempt starts from the normal start instead of
@@ -123,6 +125,7 @@ struct Attempts<'a> {
     settings: &'a NewtonSettings,
     measure: &'a ConvergenceMeasure<'a>,
     normal: Option<BlockOutcome>,
+    ws: &'a mut Workspace,
 }
 
 impl Attempts<'_> {
@@ -133,9 +136,10 @@ impl Attempts<'_> {
         match start {
             Start::Normal(form) => {
                 let first = self.normal.is_none();
-                let norm = self.normal.get_or_insert_with(|| normal_start(pb, settings));
+                let ws = &mut *self.ws;
+                let norm = self.normal.get_or_insert_with(|| normal_start(pb, settings, ws));
                 let own = (form, settings.penalty_scale);
-                let (out, used) = coupled_attempt(pb, own, norm.state.clone(), FirstStep::Full, settings, measure);
+                let (out, used) = coupled_attempt(pb, own, norm.state.clone(), FirstStep::Full, settings, measure, ws);
                 (if first { then(norm.clone(), out) } else { out }, used)
             }
             Start::Paper(form, scale) => coupled_attempt(
@@ -145,6 +149,7 @@ impl Attempts<'_> {
                 FirstStep::Searched,
                 settings,
                 measure,
+                self.ws,
             ),
         }
     }
@@ -157,7 +162,7 @@ impl Attempts<'_> {
         let form = |f: Formulation| format!("{f:?}").to_lowercase();
         match restart {
             Restart::CreepIteration => {
-                let out = creep_secant::solve(pb, settings, measure, &last.state)?;
+                let out = creep_secant::solve(pb, settings, measure, &last.state, self.ws)?;
                 let (rn, rt) = automatic_penalties(pb, settings.penalty_scale);
                 Some((out, [rn, rt], "creep iteration".into()))
             }
@@ -171,7 +176,7 @@ impl Attempts<'_> {
                 if !gs_report.residual.is_finite() {
                     return None;
                 }
-                let (out, used) = coupled_attempt(pb, own, start, FirstStep::Searched, settings, measure);
+                let (out, used) = coupled_attempt(pb, own, start, FirstStep::Searched, settings, measure, self.ws);
                 let label = format!("gauss_seidel start (omega {omega}, {} sweeps)", gs_report.iterations);
                 Some((out, used, label))
             }
@@ -192,19 +197,21 @@ impl Attempts<'_> {
 
 /// The line-search Newton from `warm` (a solution of a neighbouring problem, e.g. a coarser grid's
 /// carried to this one): when that attempt does not converge, the cold start and restarts of
-/// [`solve`] follow, the warm attempt's steps kept in the history.
+/// [`solve`] follow, the warm attempt's steps kept in the history. The Newton systems are solved
+/// in the memory of `ws`.
 pub fn solve_warm(
     pb: &ContactProblem,
     settings: &NewtonSettings,
     measure: &ConvergenceMeasure,
     warm: State,
+    ws: &mut Workspace,
 ) -> (State, SolveReport) {
     let own = (settings.formulation, settings.penalty_scale);
-    let (out, used) = coupled_attempt(pb, own, warm, FirstStep::Searched, settings, measure);
-    if out.converged {
+    let (out, used) = coupled_attempt(pb, own, warm, FirstStep::Searched, settings, measure, ws);
+    if out.converged || out.at_roundoff {
         return newton::report(settings, out, used, measure, Vec::new());
     }
-    let (state, mut report) = solve(pb, settings, measure);
+    let (state, mut report) = solve(pb, settings, measure, ws);
     report.iterations += out.history.len();
     report.inner_iterations += out.history.len();
     report.history = [out.history, report.history].concat();
@@ -214,10 +221,16 @@ pub fn solve_warm(
 
 /// The line-search Newton with the start and restarts of the module docs (none when
 /// `settings.max_backtracks` is 0: a run without line search is not globalized, and starts from
-/// the paper's start vector), stopping on the common measure.
-pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &ConvergenceMeasure) -> (State, SolveReport) {
+/// the paper's start vector), stopping on the common measure. The Newton systems are solved in
+/// the memory of `ws`.
+pub fn solve(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
     if settings.max_backtracks == 0 {
-        return newton::solve(pb, settings, measure);
+        return newton::solve(pb, settings, measure, ws);
     }
     let (first, restarts) = chain(pb, settings);
     let mut attempts = Attempts {
@@ -225,6 +238,7 @@ pub fn solve(pb: &ContactProblem, settings: &NewtonSettings, measure: &Convergen
         settings,
         measure,
         normal: None,
+        ws,
     };
     let (mut out, mut penalties) = attempts.attempt_from(first);
     let mut fallbacks = Vec::new();

@@ -64,6 +64,46 @@ pub const GAUSS_SEIDEL_STALL: StallRule = StallRule {
     patience: 2_500,
 };
 
+/// The scaled residual (the common measure ‖G‖∞/p_ref) that double precision reaches on a grid of
+/// `nodes` contact nodes, with a margin: 10 ε max(m, 100) (2.2e-13 up to 100 nodes, 2.1e-12 at
+/// 963). Each row of G sums m products H_ij p_j (and B_ij q_j), whose rounding errors grow like
+/// m ε times the traction scale, and the Newton step solves a system whose condition grows with
+/// m too. Measured on Carter's case (carter_051) with `solver.tolerance=1e-20`, the smallest
+/// residual the Newton iteration reaches is 8.9e-15, 2.0e-13 and 5.7e-13 at m = 63, 483 and 963
+/// (0.6, 1.8 and 2.7 m ε): this level is 4–15 times above them, and below every tolerance a
+/// converging run needs (the default is 1e-10).
+pub fn roundoff_level(nodes: usize) -> f64 {
+    10.0 * f64::EPSILON * nodes.max(100) as f64
+}
+
+/// Whether a run that did not converge ended with its residual at round-off: at or below
+/// [`roundoff_level`], where no iteration can do better, however many it is given.
+pub fn at_roundoff(residual: f64, nodes: usize) -> bool {
+    residual <= roundoff_level(nodes)
+}
+
+/// Newton steps at round-off ([`roundoff_level`]): no halving of the best residual in 3 steps.
+/// Newton converges quadratically, so above round-off a step gains far more than a factor 2;
+/// at round-off the residual wanders within a factor of about 2 of its floor (measured on
+/// Carter's case at tolerance 1e-20: 1.5e-14, 1.2e-14, 1.2e-14, 8.9e-15, 8.9e-15, ...).
+pub const ROUNDOFF_STALL: StallRule = StallRule {
+    margin: 0.5,
+    patience: 3,
+};
+
+/// The advice when a run ended at round-off ([`at_roundoff`]), `smallest` being the smallest
+/// scaled residual it reached: the tolerance asks for more than double precision gives, and a
+/// tolerance of at least 10 × `smallest` (rounded up to a power of ten) is reachable.
+pub fn roundoff_advice(smallest: f64, tolerance: Option<f64>) -> String {
+    let reachable = 10f64.powf((10.0 * smallest).log10().ceil());
+    let asked = tolerance.map_or(String::new(), |t| format!(" ({t:e})"));
+    format!(
+        "the residual reached round-off: solver.tolerance{asked} is below what double precision \
+         gives on this grid (the smallest scaled residual reached is {smallest:.2e}); more iterations \
+         or restarts will not help: set solver.tolerance to {reachable:.0e} or more"
+    )
+}
+
 /// The running state of a stall test.
 #[derive(Debug, Clone, Copy)]
 pub struct Progress {
@@ -103,6 +143,19 @@ impl Progress {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_roundoff_level_grows_with_the_grid_and_the_advice_rounds_up() {
+        assert_eq!(roundoff_level(10), roundoff_level(100));
+        assert!((roundoff_level(100) - 1e3 * f64::EPSILON).abs() < 1e-28);
+        assert_eq!(roundoff_level(1000), 10.0 * roundoff_level(100));
+        assert!(at_roundoff(1e-14, 63) && !at_roundoff(1e-12, 63) && at_roundoff(1e-12, 963));
+        // 10 × 8.9e-15 = 8.9e-14, rounded up to 1e-13; 10 × 5.7e-13 → 1e-11.
+        let advice = roundoff_advice(8.926e-15, Some(1e-20));
+        assert!(advice.contains("(1e-20)") && advice.contains("8.93e-15"), "{advice}");
+        assert!(advice.contains("set solver.tolerance to 1e-13 or more"), "{advice}");
+        assert!(roundoff_advice(5.7e-13, None).contains("to 1e-11 or more"));
+    }
 
     #[test]
     fn a_run_that_keeps_gaining_never_stalls() {

@@ -31,14 +31,15 @@ use super::direction::Block;
 use super::newton::{solve_block, BlockOutcome};
 use super::report::NewtonSettings;
 use super::residual::{start_vector, State, System};
+use super::workspace::Workspace;
 use super::ContactProblem;
 
 /// The NORM solve from the paper's start vector (q and ξ frozen at their start values) with the
 /// formulation and penalties of `settings`, then, when ξ is unknown, ξ set to
 /// [`complete_slip_creep`] and the slip recomputed from it. The outcome's history holds the NORM
 /// steps; its state is the start of the coupled attempt.
-pub(crate) fn normal_start(pb: &ContactProblem, settings: &NewtonSettings) -> BlockOutcome {
-    let mut out = solve_block(pb, Block::Normal, start_vector(pb), settings);
+pub(crate) fn normal_start(pb: &ContactProblem, settings: &NewtonSettings, ws: &mut Workspace) -> BlockOutcome {
+    let mut out = solve_block(pb, Block::Normal, start_vector(pb), settings, ws);
     let sys = System::new(pb, settings.formulation, settings.penalty_scale);
     if let Some(creep) = complete_slip_creep(&sys, &out.state) {
         out.state.creep = creep;
@@ -117,7 +118,7 @@ mod tests {
         // Measured: −0.18 %, +0.12 %, +0.17 % at 41, 81, 161 elements.
         for elements in [41, 81, 161] {
             let (pb, e) = free_rolling(elements);
-            let start = normal_start(&pb, &NewtonSettings::default());
+            let start = normal_start(&pb, &NewtonSettings::default(), &mut Workspace::new());
             assert!(start.converged, "NORM did not converge");
             let limit = free_rolling_creep_complete_slip(e.dundurs_beta, e.hertz_half_width, e.effective_radius);
             let err = start.state.creep / limit - 1.0;
@@ -138,7 +139,7 @@ mod tests {
     #[test]
     fn no_complete_slip_creep_when_it_is_prescribed_or_out_of_reach() {
         let (pb, _) = free_rolling(41);
-        let z = normal_start(&pb, &NewtonSettings::default()).state;
+        let z = normal_start(&pb, &NewtonSettings::default(), &mut Workspace::new()).state;
         let kinematic = ContactProblem {
             tangential: TangentialControl::Creep(1e-3),
             ..pb.clone()

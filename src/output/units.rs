@@ -110,6 +110,7 @@ pub const SUMMARY_KEYS: &[(&str, Dimension)] = &[
     ("solver.history[].system_size", Count),
     ("solver.history[].inner_iterations", Count),
     ("hbem_check.threshold", Dimensionless),
+    ("hbem_check.threshold_floor", Dimensionless),
     ("hbem_check.threshold_fraction", Dimensionless),
     ("hbem_check.slip_scale", Dimensionless),
     ("hbem_check.max_difference_slip_nodes", Dimensionless),

@@ -3,7 +3,7 @@
 //! the tolerance, and the estimate is within a factor 3 of it (its effectivity).
 //! docs/validation.md quotes the same runs (examples/adaptive_report.rs).
 
-use crate::common::solve;
+use crate::common::{fitted_rate, solve};
 use rollbem::analytic::hertz_pressure;
 use rollbem::app::Solved;
 use rollbem::post::adaptation::ErrorEstimate;
@@ -44,8 +44,10 @@ fn assert_effective(what: &str, est: f64, truth: f64) {
     );
 }
 
-/// An error-controlled run of carter2d with `overrides`: the true errors meet the tolerance,
-/// the estimates keep the window [1/3, 3] of effectivities, and the grid is graded.
+/// An error-controlled run of carter2d with `overrides`: the true errors against Hertz and
+/// Carter's closed form meet the tolerance, the estimates keep the window [1/3, 3] of
+/// effectivities, and the grid is graded. (The estimate itself meets the tolerance whenever
+/// the run returns: that is when the refinement stops, so only the true errors are asserted.)
 fn check_carter(overrides: &[&str], tolerance: f64) {
     let tol = format!("contact.grid.tolerance={tolerance:e}");
     let mut set = vec![tol.as_str()];
@@ -54,7 +56,6 @@ fn check_carter(overrides: &[&str], tolerance: f64) {
     let e = estimate(&s);
     let [p, q, xi] = carter_errors(&s);
     let label = format!("carter2d {overrides:?} at {tolerance:e}");
-    assert!(e.within(tolerance), "{label}: estimate {e:?} above the tolerance");
     assert!(
         p <= tolerance && q <= tolerance,
         "{label}: true errors p {p:.3e}, q {q:.3e}"
@@ -205,9 +206,11 @@ fn assert_true_errors_within(label: &str, tolerance: f64, (p, q, xi): (f64, f64,
 
 /// A dissimilar pair in regime 4 (no closed form). The reference is the error-controlled run
 /// at 1e-5, and it is checked independently first: the uniform grids (the block-Toeplitz
-/// influence matrix, no error control) converge towards it — from 161 to 641 elements the
-/// pressure error falls tenfold (3.8e-4 to 3.3e-5 p0) and the creepage error twentyfold
-/// (1.6e-5 to 8e-7). Against it the run at 1e-3 meets the tolerance with a faithful estimate
+/// influence matrix, no error control) converge towards it — from 81 to 321 elements the
+/// pressure error falls sixfold (5.9e-4 to 9.5e-5 p0; the bound 1/4 is first order) and the
+/// creepage error twentyfold (7.5e-5 to 3.7e-6). (From 161 to 641 elements, the same check
+/// before, they fell tenfold and twentyfold; the 641-element grid took two thirds of the
+/// test's time.) Against it the run at 1e-3 meets the tolerance with a faithful estimate
 /// of p and q; its creepage estimate (2.5e-4) is four times the true error (5.9e-5): the
 /// creepage converges faster than first order here, and the estimate errs on the safe side.
 #[test]
@@ -215,11 +218,11 @@ fn a_dissimilar_pair_in_regime_4_converges_with_a_faithful_estimate() {
     let case = "dissimilar_beta0288_004";
     let limit = solve(case, &["contact.grid.tolerance=1e-5"]);
     let errors = |u: &Solved| errors_against(&limit, u);
-    let (p161, _, xi161) = errors(&solve(case, &["contact.grid.elements=161"]));
-    let (p641, _, xi641) = errors(&solve(case, &["contact.grid.elements=641"]));
+    let (p81, _, xi81) = errors(&solve(case, &["contact.grid.elements=81"]));
+    let (p321, _, xi321) = errors(&solve(case, &["contact.grid.elements=321"]));
     assert!(
-        p641 < 0.2 * p161 && xi641 < 0.1 * xi161,
-        "uniform grids: p {p161:.2e} → {p641:.2e}, ξ {xi161:.2e} → {xi641:.2e}"
+        p321 < 0.25 * p81 && xi321 < 0.1 * xi81,
+        "uniform grids: p {p81:.2e} → {p321:.2e}, ξ {xi81:.2e} → {xi321:.2e}"
     );
     let s = solve(case, &["contact.grid.tolerance=1e-3"]);
     assert_eq!(
@@ -274,15 +277,13 @@ fn bem_rollers_at_1e_3_meet_the_tolerance_on_fewer_elements_than_a_uniform_cut()
 /// rigid cylinder on a thin bonded layer (cases/tyre_b05_compressible.yaml, b/a = 0.5), whose
 /// overlap the case's half-plane estimate turns into a tenth of the solved force (it once gave
 /// 3e-10 N/mm, and then no grid met 1e-3 within 1000 elements). In the solved force's units the
-/// tolerance is met, and the true errors against the run at 3e-4 (in the same units) are
-/// below it.
+/// true errors against the run at 3e-4 (in the same units; a bonded layer has no closed form)
+/// are below the tolerance.
 #[test]
 fn an_overlap_controlled_layer_meets_the_tolerance_in_the_units_of_its_solved_force() {
     let case = "tyre_b05_compressible";
     let fine = solve(case, &["contact.grid.tolerance=3e-4"]);
     let s = solve(case, &["contact.grid.tolerance=1e-3"]);
-    let e = estimate(&s);
-    assert!(e.within(1e-3), "estimate {e:?}");
     let est = &fine.scene.estimates;
     let force = fine.solution.normal_force;
     let a = rollbem::analytic::hertz_half_width(force, est.effective_radius, est.e_star);
@@ -299,18 +300,29 @@ fn an_overlap_controlled_layer_meets_the_tolerance_in_the_units_of_its_solved_fo
 /// Free rolling of similar BEM rollers (cases/carter_051_true.yaml with Q = 0): the creepage is
 /// zero up to round-off (1e-17), whose relative differences between grids are of order one.
 /// Measured against 5 % of Carter's complete-slip creepage μa/R* it is no obstacle: the run
-/// meets 1e-3 (before the floor it stopped at max_elements with a creepage estimate of 3), its
-/// pressure against Hertz's and its creepage against zero.
+/// meets 1e-3 (before the floor it stopped at max_elements with a creepage estimate of 3) in
+/// its true errors: its pressure against Hertz's, its shear against Carter's closed form at
+/// Q = 0 (c = a, d = 0: q ≡ 0) and its creepage against zero.
 #[test]
 fn free_rolling_bem_rollers_meet_the_tolerance_despite_a_round_off_creepage() {
     let s = solve(
         "carter_051_true",
         &["contact.grid.tolerance=1e-3", "load.tangential.ratio=0"],
     );
-    let e = estimate(&s);
-    assert!(e.within(1e-3), "estimate {e:?}");
     let p = hertz_pressure_error(&s);
     assert!(p <= 1e-3, "true pressure error {p:.3e}");
+    let c = s.scene.carter_reference().expect("the case prescribes Q/μP");
+    assert_eq!(
+        c.stick_zone(),
+        [-c.half_width, c.half_width],
+        "Carter at Q = 0 sticks everywhere"
+    );
+    let sol = &s.solution;
+    let q = nodal_error(&sol.x, c.half_width, |i| {
+        (sol.shear[i] - c.shear(sol.x[i])).abs() / (c.friction * c.peak_pressure)
+    })
+    .rms;
+    assert!(q <= 1e-3, "true shear error {q:.3e} against q = 0");
     let est = &s.scene.estimates;
     let slip_creepage = s.scene.friction() * est.hertz_half_width / est.effective_radius;
     assert!(
@@ -330,4 +342,51 @@ fn the_error_controlled_grid_costs_far_fewer_nodes_than_the_uniform_grid_of_equa
     let [_, q_adaptive, _] = carter_errors(&adaptive);
     assert!(q_adaptive < q_uniform / 3.0, "{q_adaptive:.3e} vs {q_uniform:.3e}");
     assert!(adaptive.problem.n_nodes() < uniform.problem.n_nodes());
+}
+
+/// The observed order of error-controlled grids: carter_051 at tolerances 1e-3, 1e-4 and 1e-5,
+/// the true RMS errors of q/(μp0) and p/p0 against Carter's closed form and Hertz's pressure,
+/// fitted by least squares in log(error) against log(elements). The radii are 10 m instead of
+/// 100 mm: Carter and Hertz solve the parabolic profile, from which the circle of the case
+/// departs by (a/R)²/4 ≈ 2.5e-5 p0 at R = 100 mm (a floor above the tolerance 1e-5), 2.5e-7
+/// at 10 m.
+///
+/// Measured (80, 158, 302 elements): q 1.44e-4, 9.9e-6, 8.7e-6, fitted rate 2.1; p 7.8e-5,
+/// 6.5e-6, 9.7e-7, rate 3.3. The shear error falls in steps, as the refinement reaches the
+/// stick/slip boundary, whose square-root kink holds uniform grids to first order (the RMS
+/// pressure error of uniform grids halves per doubling too, docs/validation.md); graded grids
+/// should recover about h² there. The bounds, 1.5 for q and 2 for p, are a clear margin below
+/// the measured rates and above first order: a refinement that graded nothing (first order)
+/// fails them. Each run's true errors also meet its tolerance.
+#[test]
+fn error_controlled_grids_converge_faster_than_first_order() {
+    let mut elements = Vec::new();
+    let (mut p_errors, mut q_errors) = (Vec::new(), Vec::new());
+    for tolerance in [1e-3, 1e-4, 1e-5] {
+        let set = format!("contact.grid.tolerance={tolerance:e}");
+        let s = solve(
+            "carter_051",
+            &[set.as_str(), "bodies.A.radius=10000", "bodies.B.radius=10000"],
+        );
+        let [p, q, _] = carter_errors(&s);
+        let n = s.problem.grid.n_elements();
+        println!("carter_051 at {tolerance:e}: {n} elements, true RMS errors p {p:.3e}, q {q:.3e}");
+        assert!(
+            p <= tolerance && q <= tolerance,
+            "{tolerance:e}: true errors p {p:.3e}, q {q:.3e}"
+        );
+        elements.push(n);
+        p_errors.push(p);
+        q_errors.push(q);
+    }
+    let (q_rate, p_rate) = (fitted_rate(&elements, &q_errors), fitted_rate(&elements, &p_errors));
+    println!("fitted rates: q {q_rate:.2}, p {p_rate:.2}");
+    assert!(
+        q_rate >= 1.5,
+        "shear: rate {q_rate:.2} over {elements:?} elements, errors {q_errors:?}"
+    );
+    assert!(
+        p_rate >= 2.0,
+        "pressure: rate {p_rate:.2} over {elements:?} elements, errors {p_errors:?}"
+    );
 }
