@@ -320,12 +320,17 @@ pub enum MeshError {
     /// A boundary loop is not closed.
     #[error(
         "{path}: the boundary is not closed: element {element} of group `{group}` ends at node \
-         {node} ({x}, {y}) and no other element starts there; close the curve loop in the .geo \
-         (shared end points, `Coherence;`) and mesh all its curves"
+         {node} ({x}, {y}) and no other element starts there. Gmsh writes only the curves of \
+         physical groups: if a curve of the outline is in none, it is missing from the file \
+         (this file has the groups {groups}): add it to one (`Physical Curve(\"contact\") = \
+         {{...}};`). Otherwise close the curve loop in the .geo (shared end points, `Coherence;`) \
+         and mesh all its curves"
     )]
     OpenLoop {
         /// The mesh.
         path: String,
+        /// The physical groups the file has, listed for the message.
+        groups: String,
         /// Group of the dangling element.
         group: String,
         /// Element index (0-based).

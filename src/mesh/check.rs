@@ -165,8 +165,10 @@ fn trace_loops(mesh: &BoundaryMesh) -> Result<Vec<TracedLoop>, MeshError> {
             0 | 2 => {}
             1 => {
                 let el = list[0];
+                let groups: Vec<String> = mesh.groups.iter().map(|g| format!("`{}`", g.name)).collect();
                 return Err(MeshError::OpenLoop {
                     path: mesh.source.clone(),
+                    groups: groups.join(", "),
                     group: mesh.groups[mesh.elements[el].group].name.clone(),
                     element: el,
                     node,
