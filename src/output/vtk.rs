@@ -12,6 +12,9 @@
 
 pub mod xml;
 
+#[cfg(test)]
+mod tests;
+
 use crate::contact::ContactProblem;
 use crate::error::Error;
 use crate::post::{ContactSolution, NodeState};

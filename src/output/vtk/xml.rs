@@ -313,6 +313,18 @@ impl<'a> Base64<'a> {
     }
 }
 
+/// `bytes` in base64, pushed in two pieces to cross the encoder's 3-byte groups.
+#[cfg(test)]
+pub(super) fn base64(bytes: &[u8]) -> String {
+    let mut out = Vec::new();
+    let mut e = Base64::new(&mut out);
+    let (a, b) = bytes.split_at(bytes.len() / 2);
+    e.push(a).unwrap();
+    e.push(b).unwrap();
+    e.finish().unwrap();
+    String::from_utf8(out).unwrap()
+}
+
 /// The four base64 characters of three bytes.
 fn quad(a: u8, b: u8, c: u8) -> [u8; 4] {
     let n = (u32::from(a) << 16) | (u32::from(b) << 8) | u32::from(c);
