@@ -169,7 +169,7 @@ impl UnstructuredGrid {
     fn check(&self) -> io::Result<()> {
         let invalid = |m: String| Err(io::Error::new(io::ErrorKind::InvalidInput, m));
         let n = self.points.len();
-        if self.connectivity.len() % self.cell_type.points() != 0 {
+        if !self.connectivity.len().is_multiple_of(self.cell_type.points()) {
             return invalid(format!(
                 "{} point indices are not whole cells of {} points",
                 self.connectivity.len(),
