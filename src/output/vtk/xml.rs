@@ -2,10 +2,10 @@
 //! by VTK ≥ 6, ParaView, pyvista and meshio): one piece, every array inline in the `binary`
 //! format, that is base64 of a little-endian UInt64 byte count followed by the little-endian
 //! values (the VTK User's Guide, "VTK File Formats", XML formats). Binary keeps every double
-//! exact and the files a third the size of ASCII with round-trip digits.
+//! exact. The optional `RangeMin`/`RangeMax` hints are not written: readers compute the ranges.
 //!
-//! The file is streamed to disk array by array: nothing but the arrays the caller built is held
-//! in memory.
+//! The document is streamed to the writer array by array: nothing but the arrays the caller
+//! built is held in memory.
 
 use std::borrow::Cow;
 use std::io::{self, Write};
