@@ -80,9 +80,10 @@ pub const BYTES_PER_CONTACT_NODE_SQUARED: f64 = 180.0;
 /// varying by 15 % from run to run at the largest size.
 pub const BYTES_PER_BEM_UNKNOWN_SQUARED: f64 = 64.0;
 
-/// Memory per interior point with VTK output [bytes]: the fields, the CSV rows and vtkio's
-/// XML document. Measured 940–1060 bytes (grids of 300² and 600² points).
-pub const BYTES_PER_INTERIOR_POINT_VTK: f64 = 1200.0;
+/// Memory per interior point with VTK output [bytes]: the fields, the CSV rows and the arrays
+/// of interior_<body>.vtu (src/output/vtk.rs streams the file from them). Measured 215–230 bytes
+/// (grids of 300² and 600² points).
+pub const BYTES_PER_INTERIOR_POINT_VTK: f64 = 260.0;
 
 /// Memory per interior point without VTK output [bytes]. Measured 50–100 bytes.
 pub const BYTES_PER_INTERIOR_POINT: f64 = 130.0;

@@ -1,7 +1,7 @@
 //! Results on disk: summary.json, contact.csv, contact.svg, the VTK files, and the terminal
 //! table (cases/README.md lists the files and their columns). This stage and its files are the
-//! only places that name plotters and vtkio; they write what the earlier stages computed and
-//! compute no physics.
+//! only places that name plotters and write VTK XML (output/vtk/xml.rs); they write what the
+//! earlier stages computed and compute no physics.
 //!
 //! Everything is written to a temporary sibling folder and renamed onto the output folder only
 //! when complete, so a failed run never leaves a half-written result; an output folder that

@@ -1,5 +1,6 @@
-//! VTK XML output (vtkio): the contact line as an unstructured grid of line cells, and `.pvd`
-//! collections that tie a run's (or a sweep's) datasets together for ParaView.
+//! VTK XML output: the contact line, `bem` boundaries and interior grids as unstructured grids
+//! (`.vtu`, written by [`xml`], rollbem's own writer), and `.pvd` collections that tie a run's
+//! (or a sweep's) datasets together for ParaView.
 //!
 //! Point data of `contact.vtu` (one point per contact node, at (x, 0, 0) in the contact frame):
 //! every column of contact.csv — `pressure`, `shear`, `gap`, `slip`, `slip_hbem` (only when the
@@ -9,14 +10,17 @@
 //! contact frame (u_n is positive into each body, and B lies at y < 0). Displacements are real,
 //! not scaled: use ParaView's Warp By Vector.
 
+pub mod xml;
+
+#[cfg(test)]
+mod tests;
+
 use crate::contact::ContactProblem;
 use crate::error::Error;
 use crate::post::{ContactSolution, NodeState};
+use std::io::Write;
 use std::path::Path;
-use vtkio::model::{
-    Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, ElementType, UnstructuredGridPiece, Version,
-    VertexNumbers, Vtk,
-};
+use xml::{escape, CellType, DataArray, UnstructuredGrid, Values};
 
 /// Integer code of a node state in VTK files (documented legend: 0 open, 1 stick, 2 slip).
 pub fn state_code(state: NodeState) -> i32 {
@@ -27,111 +31,59 @@ pub fn state_code(state: NodeState) -> i32 {
     }
 }
 
-fn scalar(name: &str, values: Vec<f64>) -> Attribute {
-    Attribute::DataArray(DataArray {
-        name: name.into(),
-        elem: ElementType::Scalars {
-            num_comp: 1,
-            lookup_table: None,
-        },
-        data: values.into(),
-    })
-}
-
-fn vector(name: &str, x: &[f64], y: &[f64]) -> Attribute {
-    let data: Vec<f64> = x.iter().zip(y).flat_map(|(a, b)| [*a, *b, 0.0]).collect();
-    Attribute::DataArray(DataArray {
-        name: name.into(),
-        elem: ElementType::Vectors,
-        data: data.into(),
-    })
-}
-
 /// Writes the contact line of a solved run as `contact.vtu`.
 pub fn write_contact_line(path: &Path, sol: &ContactSolution, pb: &ContactProblem) -> Result<(), Error> {
     let m = sol.x.len();
-    let points: Vec<f64> = sol.x.iter().flat_map(|&x| [x, 0.0, 0.0]).collect();
-    let connectivity: Vec<u64> = (0..m.saturating_sub(1) as u64).flat_map(|i| [i, i + 1]).collect();
-    let offsets: Vec<u64> = (1..m as u64).map(|k| 2 * k).collect();
     let disp = pb.surface_displacements(&sol.pressure, &sol.shear);
     let mut point = vec![
-        scalar("pressure", sol.pressure.clone()),
-        scalar("shear", sol.shear.clone()),
-        scalar("gap", sol.gap.clone()),
-        scalar("slip", sol.slip.clone()),
+        DataArray::scalar("pressure", sol.pressure.clone()),
+        DataArray::scalar("shear", sol.shear.clone()),
+        DataArray::scalar("gap", sol.gap.clone()),
+        DataArray::scalar("slip", sol.slip.clone()),
     ];
     if let Some(s) = &sol.slip_strain {
-        point.push(scalar("slip_hbem", s.clone()));
+        point.push(DataArray::scalar("slip_hbem", s.clone()));
     }
-    point.push(Attribute::DataArray(DataArray {
-        name: "state".into(),
-        elem: ElementType::Scalars {
-            num_comp: 1,
-            lookup_table: None,
-        },
-        data: sol.state.iter().map(|&s| state_code(s)).collect::<Vec<i32>>().into(),
-    }));
+    let state = sol.state.iter().map(|&s| state_code(s)).collect();
+    let minus_u_n_b: Vec<f64> = disp.normal_b.iter().map(|v| -v).collect();
     point.extend([
-        scalar("u_n_A", disp.normal_a.clone()),
-        scalar("u_t_A", disp.tangential_a.clone()),
-        scalar("u_n_B", disp.normal_b.clone()),
-        scalar("u_t_B", disp.tangential_b.clone()),
-        vector("traction", &sol.shear, &sol.pressure),
-        vector("displacement_A", &disp.tangential_a, &disp.normal_a),
-        vector(
-            "displacement_B",
-            &disp.tangential_b,
-            &disp.normal_b.iter().map(|v| -v).collect::<Vec<_>>(),
-        ),
+        DataArray::scalars("state", 1, Values::I32(state)),
+        DataArray::scalar("u_n_A", disp.normal_a.clone()),
+        DataArray::scalar("u_t_A", disp.tangential_a.clone()),
+        DataArray::scalar("u_n_B", disp.normal_b.clone()),
+        DataArray::scalar("u_t_B", disp.tangential_b.clone()),
+        DataArray::vector_xy("traction", &sol.shear, &sol.pressure),
+        DataArray::vector_xy("displacement_A", &disp.tangential_a, &disp.normal_a),
+        DataArray::vector_xy("displacement_B", &disp.tangential_b, &minus_u_n_b),
     ]);
-    let cell_types = vec![CellType::Line; m.saturating_sub(1)];
-    export_unstructured(
-        path,
-        "rollbem contact line".into(),
-        points,
-        connectivity,
-        offsets,
-        cell_types,
-        point,
-        Vec::new(),
-    )
+    let grid = UnstructuredGrid {
+        points: sol.x.iter().map(|&x| [x, 0.0, 0.0]).collect(),
+        cell_type: CellType::Line,
+        connectivity: (0..m.saturating_sub(1) as u64).flat_map(|i| [i, i + 1]).collect(),
+        point_data: point,
+        cell_data: Vec::new(),
+    };
+    write_file(path, |out| grid.write(out))
 }
 
 /// Writes a body's boundary as quadratic edges (VTK type 21) with point data `displacement`
-/// and `traction` (3-vectors, z = 0) and cell data `group` (the physical group's index; the
-/// names are in the field data `group_names` order of the mesh, also listed in summary.json).
+/// [length] and `traction` [stress] (3-vectors, z = 0) and cell data `group` (the index of the
+/// element's physical group in the mesh, in the order of `BoundaryField::group_names`).
 pub fn write_boundary(path: &Path, field: &crate::body::BoundaryField) -> Result<(), Error> {
-    let n = field.points.len();
-    let cells = n / 3;
-    let points: Vec<f64> = field.points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect();
-    let connectivity: Vec<u64> = (0..n as u64).collect();
-    let offsets: Vec<u64> = (1..=cells as u64).map(|k| 3 * k).collect();
-    let split = |v: &[[f64; 2]]| {
-        (
-            v.iter().map(|a| a[0]).collect::<Vec<_>>(),
-            v.iter().map(|a| a[1]).collect::<Vec<_>>(),
-        )
+    let (ux, uy): (Vec<f64>, Vec<f64>) = field.displacement.iter().map(|u| (u[0], u[1])).unzip();
+    let (tx, ty): (Vec<f64>, Vec<f64>) = field.traction.iter().map(|t| (t[0], t[1])).unzip();
+    let grid = UnstructuredGrid {
+        points: field.points.iter().map(|p| [p[0], p[1], 0.0]).collect(),
+        cell_type: CellType::QuadraticEdge,
+        // Every element has its own three points, in VTK's order (start, end, mid).
+        connectivity: (0..field.points.len() as u64).collect(),
+        point_data: vec![
+            DataArray::vector_xy("displacement", &ux, &uy),
+            DataArray::vector_xy("traction", &tx, &ty),
+        ],
+        cell_data: vec![DataArray::scalars("group", 1, Values::I32(field.group.clone()))],
     };
-    let (ux, uy) = split(&field.displacement);
-    let (tx, ty) = split(&field.traction);
-    let group = Attribute::DataArray(DataArray {
-        name: "group".into(),
-        elem: ElementType::Scalars {
-            num_comp: 1,
-            lookup_table: None,
-        },
-        data: field.group.clone().into(),
-    });
-    export_unstructured(
-        path,
-        format!("rollbem boundary; groups: {}", field.group_names.join(", ")),
-        points,
-        connectivity,
-        offsets,
-        vec![CellType::QuadraticEdge; cells],
-        vec![vector("displacement", &ux, &uy), vector("traction", &tx, &ty)],
-        vec![group],
-    )
+    write_file(path, |out| grid.write(out))
 }
 
 /// Writes interior fields as a grid of quadrilaterals: point data `stress` (4 components
@@ -142,11 +94,10 @@ pub fn write_boundary(path: &Path, field: &crate::body::BoundaryField) -> Result
 pub fn write_interior(path: &Path, f: &crate::interior::InteriorField) -> Result<(), Error> {
     use crate::interior::PointStatus;
     let [nx, ny] = f.shape;
-    let points: Vec<f64> = f.points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect();
     let inside = |k: usize| f.status[k] == PointStatus::Inside;
     let mut connectivity = Vec::new();
-    for j in 0..ny - 1 {
-        for i in 0..nx - 1 {
+    for j in 0..ny.saturating_sub(1) {
+        for i in 0..nx.saturating_sub(1) {
             let k = j * nx + i;
             let quad = [k, k + 1, k + 1 + nx, k + nx];
             if quad.iter().all(|&c| inside(c)) {
@@ -154,75 +105,34 @@ pub fn write_interior(path: &Path, f: &crate::interior::InteriorField) -> Result
             }
         }
     }
-    let cells = connectivity.len() / 4;
-    let offsets: Vec<u64> = (1..=cells as u64).map(|c| 4 * c).collect();
     let (vm, ms): (Vec<f64>, Vec<f64>) = f.stress.iter().map(crate::interior::invariants).unzip();
-    let stress = Attribute::DataArray(DataArray {
-        name: "stress".into(),
-        elem: ElementType::Scalars {
-            num_comp: 4,
-            lookup_table: None,
-        },
-        data: f.stress.iter().flatten().copied().collect::<Vec<f64>>().into(),
-    });
     let (ux, uy): (Vec<f64>, Vec<f64>) = f.displacement.iter().map(|u| (u[0], u[1])).unzip();
-    let status = Attribute::DataArray(DataArray {
-        name: "status".into(),
-        elem: ElementType::Scalars {
-            num_comp: 1,
-            lookup_table: None,
-        },
-        data: f.status.iter().map(|s| s.code()).collect::<Vec<i32>>().into(),
-    });
-    export_unstructured(
-        path,
-        format!(
-            "rollbem interior of body {} ({} model): stress (sxx, syy, szz, txy), displacement; status 0 outside, 1 inside, 2 boundary",
-            f.body, f.model
-        ),
-        points,
+    let stress = f.stress.iter().flatten().copied().collect();
+    let status = f.status.iter().map(|s| s.code()).collect();
+    let grid = UnstructuredGrid {
+        points: f.points.iter().map(|p| [p[0], p[1], 0.0]).collect(),
+        cell_type: CellType::Quad,
         connectivity,
-        offsets,
-        vec![CellType::Quad; cells],
-        vec![
-            stress,
-            scalar("von_mises", vm),
-            scalar("max_shear", ms),
-            vector("displacement", &ux, &uy),
-            status,
+        point_data: vec![
+            DataArray::scalars("stress", 4, Values::F64(stress)),
+            DataArray::scalar("von_mises", vm),
+            DataArray::scalar("max_shear", ms),
+            DataArray::vector_xy("displacement", &ux, &uy),
+            DataArray::scalars("status", 1, Values::I32(status)),
         ],
-        Vec::new(),
-    )
+        cell_data: Vec::new(),
+    };
+    write_file(path, |out| grid.write(out))
 }
 
-/// Writes an unstructured grid (XML `.vtu`) from flat points (x, y, z per point), XML-style
-/// connectivity/offsets, one cell type per cell, and point and cell data.
-#[allow(clippy::too_many_arguments)]
-fn export_unstructured(
-    path: &Path,
-    title: String,
-    points: Vec<f64>,
-    connectivity: Vec<u64>,
-    offsets: Vec<u64>,
-    types: Vec<CellType>,
-    point: Vec<Attribute>,
-    cell: Vec<Attribute>,
-) -> Result<(), Error> {
-    let vtk = Vtk {
-        version: Version::new_xml(1, 0),
-        title,
-        byte_order: ByteOrder::LittleEndian,
-        file_path: None,
-        data: DataSet::inline(UnstructuredGridPiece {
-            points: points.into(),
-            cells: Cells {
-                cell_verts: VertexNumbers::XML { connectivity, offsets },
-                types,
-            },
-            data: Attributes { point, cell },
-        }),
-    };
-    vtk.export(path).map_err(|e| Error::Output {
+/// Creates `path` and writes it through a buffer; any failure is an [`Error::Output`] naming it.
+fn write_file(path: &Path, write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<(), Error> {
+    let written = std::fs::File::create(path).and_then(|file| {
+        let mut out = std::io::BufWriter::new(file);
+        write(&mut out)?;
+        out.flush()
+    });
+    written.map_err(|e| Error::Output {
         path: path.to_path_buf(),
         message: e.to_string(),
     })
@@ -241,20 +151,23 @@ pub struct CollectionEntry {
     pub name: String,
 }
 
-/// Writes a ParaView collection file (`.pvd`).
+/// Writes a ParaView collection file (`.pvd`). File names and dataset names are escaped, so a
+/// folder named `a&b` or `"q"` still gives a well-formed file.
 pub fn write_collection(path: &Path, entries: &[CollectionEntry]) -> Result<(), Error> {
-    let mut text = String::from(
-        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n",
-    );
-    for e in entries {
-        text.push_str(&format!(
-            "    <DataSet timestep=\"{}\" group=\"\" part=\"{}\" file=\"{}\" name=\"{}\"/>\n",
-            e.timestep, e.part, e.file, e.name
-        ));
-    }
-    text.push_str("  </Collection>\n</VTKFile>\n");
-    std::fs::write(path, text).map_err(|e| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
+    write_file(path, |out| {
+        out.write_all(
+            b"<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n",
+        )?;
+        for e in entries {
+            writeln!(
+                out,
+                "    <DataSet timestep=\"{}\" group=\"\" part=\"{}\" file=\"{}\" name=\"{}\"/>",
+                e.timestep,
+                e.part,
+                escape(&e.file),
+                escape(&e.name)
+            )?;
+        }
+        out.write_all(b"  </Collection>\n</VTKFile>\n")
     })
 }

@@ -362,9 +362,13 @@ fn advice(case: &LoadedCase, bodies: &BodySetups, sizes: &ProblemSizes, e: &Memo
         let g = c.output.interior.as_ref();
         let (nx, ny) = g.map_or((0.0, 0.0), |g| (g.x[2], g.y[2]));
         let vtk = if c.output.vtk {
-            " (or set output.vtk: false, which takes a tenth of the memory per point)"
+            let share = limits::BYTES_PER_INTERIOR_POINT / limits::BYTES_PER_INTERIOR_POINT_VTK;
+            format!(
+                " (or set output.vtk: false, which takes {:.0} % of the memory per point)",
+                100.0 * share
+            )
         } else {
-            ""
+            String::new()
         };
         return format!(
             "ask fewer output.interior points: now {nx} x {ny} = {}, about {:.0} fit{vtk}",
