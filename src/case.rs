@@ -167,7 +167,7 @@ pub fn parse(text: &str, path: &Path, overrides: &[String]) -> Result<LoadedCase
             violations,
         });
     }
-    let case: Case = serde_path_to_error::deserialize(value.clone()).map_err(|e| {
+    let mut case: Case = serde_path_to_error::deserialize(value.clone()).map_err(|e| {
         let key = match e.path().to_string() {
             p if p == "." => "(top level)".to_string(),
             p => p,
@@ -208,6 +208,11 @@ pub fn parse(text: &str, path: &Path, overrides: &[String]) -> Result<LoadedCase
             path: path.to_path_buf(),
             violations,
         });
+    }
+    // The title names the file's case; a run changed on the command line says so (unless the
+    // command line sets the title itself).
+    if !overrides.is_empty() && !overrides.iter().any(|o| o.trim_start().starts_with("title=")) {
+        case.title.push_str(" (modified by --set)");
     }
     let resolved = serde_json::to_value(&value).unwrap_or(serde_json::Value::Null);
     Ok(LoadedCase {

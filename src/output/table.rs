@@ -82,15 +82,17 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
             .join(" ")
     };
     line(&format!("stick zones [{len}]"), zones(&s.stick_zones));
-    line(
-        &format!("slip zones [{len}]"),
+    let slip = if s.slip_zones.is_empty() {
+        format!("none (full stick)  regime {}", s.slip_regime)
+    } else {
         format!(
             "{}  directions {:?}  regime {}",
             zones(&s.slip_zones),
             s.slip_directions.iter().map(|d| d.sign()).collect::<Vec<_>>(),
             s.slip_regime
-        ),
-    );
+        )
+    };
+    line(&format!("slip zones [{len}]"), slip);
     if let Some(check) = s.hbem_check.as_ref().and_then(|c| c.summary_line()) {
         line("HBEM slip check", check);
     }

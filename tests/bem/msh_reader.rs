@@ -149,10 +149,7 @@ fn bad_files_give_errors_that_name_the_file_and_the_culprit() {
     // An open loop may be a curve left out of every physical group (Gmsh then writes none of
     // its elements): the message says so and lists the groups the file has.
     let text = err.to_string();
-    assert!(
-        text.contains("in none") && text.contains("`free`"),
-        "{text}"
-    );
+    assert!(text.contains("in none") && text.contains("`free`"), "{text}");
 
     let err = load_err("unnamed_group.msh");
     assert!(matches!(err, MeshError::MissingPhysicalName { tag: 7, .. }), "{err}");

@@ -113,3 +113,34 @@ fn check_refuses_what_building_the_bodies_would() {
     assert_eq!(code_run, 1, "run: {err_run}");
     assert_eq!(err, err_run, "check and run give the same message");
 }
+
+/// The console of a run changed on the command line: its title says so, and a full-stick
+/// contact prints "none (full stick)" for its slip zones rather than an empty list.
+#[test]
+fn the_console_says_what_was_overridden_and_when_nothing_slips() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_path("carter_051");
+    let out = dir.path().join("stick");
+    let (code, stdout, err) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        "--set",
+        "load.tangential.ratio=0",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("Q/(mu P) = 0.51 (modified by --set)"), "{stdout}");
+    assert!(stdout.contains("none (full stick)"), "{stdout}");
+    let (code, stdout, _) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        dir.path().join("plain").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0);
+    assert!(
+        !stdout.contains("modified by --set") && stdout.contains("directions [-1]"),
+        "{stdout}"
+    );
+}
