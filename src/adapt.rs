@@ -25,7 +25,8 @@
 //!
 //! The result is H's solution; summary.json reports the estimate (`error_estimate`) and the
 //! grid's passes. With the estimate not reached within `contact.grid.max_elements` elements
-//! the run ends with exit code 2 and the last estimate.
+//! the run ends with exit code 2: the best solution comes back marked (`reached: false`), and
+//! `rollbem run` writes its summary.json with `converged: false` and the last estimate.
 //!
 //! A fixed grid (no `contact.grid.tolerance`) is the same loop stopped after its first solve:
 //! [`solve`] is the one driver of every run.
@@ -219,15 +220,12 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
         let next = coarse.refined(&actions(&coarse, &cmp, &singular, tolerance, half_width));
         log::debug!("singular points {singular:?}; next grid {} elements", next.len());
         if 2 * next.len() > max_elements || steps.len() >= MAX_PASSES {
-            return Err(Error::ToleranceNotReached {
-                case: scene.case.path.clone(),
-                tolerance,
-                elements: h.problem.grid.n_elements(),
-                max_elements,
-                pressure: e.pressure_rms,
-                shear: e.shear_rms,
-                creep: e.creep_rel,
-            });
+            // The best solution reached, marked: the driver reports it as not converged.
+            let mut best = finished(h, timings, Some((tolerance, steps)));
+            if let Some(a) = best.adaptation.as_mut() {
+                a.reached = false;
+            }
+            return Ok(best);
         }
         warm = Some((h.problem.grid, h.state));
         coarse = next;
@@ -289,6 +287,7 @@ fn finished(mut s: Solve, mut timings: Timings, passes: Option<(f64, Vec<Adaptat
             estimate: steps.last().map(|s| s.estimate),
             refinements: steps.len().saturating_sub(1),
             steps,
+            reached: true,
         }),
         scene: s.scene,
         models: s.models,

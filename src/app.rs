@@ -63,8 +63,20 @@ pub fn solve(case: &LoadedCase) -> Result<Solved, Error> {
 }
 
 /// Solves a scene: builds the body models, assembles and solves the contact problem and
-/// post-processes it; `start` is when the run began, for the timings.
+/// post-processes it; `start` is when the run began, for the timings. An error-controlled grid
+/// that reaches `contact.grid.max_elements` before its tolerance is an error
+/// ([`Error::ToleranceNotReached`]); [`run`] writes its best solution's summary first.
 pub fn solve_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
+    let solved = solve_scene_best(scene, start)?;
+    match tolerance_not_reached(&solved) {
+        Some(e) => Err(e),
+        None => Ok(solved),
+    }
+}
+
+/// [`solve_scene`], returning the best solution of an error-controlled grid that did not
+/// reach its tolerance (its `adaptation.reached` false).
+fn solve_scene_best(scene: Scene, start: Instant) -> Result<Solved, Error> {
     // Scenes of a study's own bodies are not checked by `Scene::from_case`.
     crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
     // Reading the case and the meshes counts as assembly.
@@ -76,6 +88,21 @@ pub fn solve_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
     let mut solved = post::process(a.scene, &a.models, a.problem, &a.state, a.report, timings)?;
     solved.adaptation = a.adaptation;
     Ok(solved)
+}
+
+/// The error of a solution whose error-controlled grid stopped at its limit, if it did.
+fn tolerance_not_reached(s: &Solved) -> Option<Error> {
+    let a = s.adaptation.as_ref().filter(|a| !a.reached)?;
+    let e = a.estimate?;
+    Some(Error::ToleranceNotReached {
+        case: s.scene.case.path.clone(),
+        tolerance: a.tolerance,
+        elements: s.problem.grid.n_elements(),
+        max_elements: s.scene.grid_control.map_or(0, |c| c.max_elements),
+        pressure: e.pressure_rms,
+        shear: e.shear_rms,
+        creep: e.creep_rel,
+    })
 }
 
 /// Everything a run produced.
@@ -110,8 +137,14 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         output::folder::Kind::Run,
         output::folder::Access::Exclusive,
     )?;
-    let s = solve_scene(Scene::from_case(&case)?, start)?;
+    let s = solve_scene_best(Scene::from_case(&case)?, start)?;
+    let missed = tolerance_not_reached(&s);
     let mut summary = output::summary(&s);
+    if missed.is_some() {
+        // The best solution reached is written as a result that did not converge: its summary
+        // with the estimate, nothing else.
+        summary.converged = false;
+    }
     post::finite::check(&case.path, "summary.json", &summary)?;
     output::write_run(
         &output_dir,
@@ -122,6 +155,9 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         s.interior.as_ref(),
         start,
     )?;
+    if let Some(e) = missed {
+        return Err(e);
+    }
     Ok(RunReport {
         summary,
         solution: s.solution,

@@ -79,7 +79,8 @@ pub enum Error {
         value: f64,
     },
     /// An error-controlled grid reached `contact.grid.max_elements` before the tolerance.
-    /// Exit code 2 (like non-convergence); nothing is written.
+    /// Exit code 2 (like non-convergence); `rollbem run` writes the best solution's summary.json
+    /// (`converged: false`, with the estimate).
     #[error(
         "{case}: the estimated error did not reach contact.grid.tolerance = {tolerance:e} within \
          contact.grid.max_elements = {max_elements}: at {elements} elements the estimates are \

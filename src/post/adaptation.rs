@@ -52,4 +52,7 @@ pub struct GridAdaptation {
     pub refinements: usize,
     /// Every pass, the start grid's first.
     pub steps: Vec<AdaptationStep>,
+    /// Whether the estimate met the tolerance (false: the grid reached
+    /// `contact.grid.max_elements` first, and the solution is the best one reached).
+    pub reached: bool,
 }

@@ -144,3 +144,35 @@ fn the_console_says_what_was_overridden_and_when_nothing_slips() {
         "{stdout}"
     );
 }
+
+/// An error-controlled grid that reaches `contact.grid.max_elements` before its tolerance
+/// exits 2 and writes its best solution's summary.json, marked not converged, with the
+/// estimate it reached (before: exit 2 and nothing written, though the docs promised a
+/// summary with `converged: false`).
+#[test]
+fn a_missed_grid_tolerance_writes_the_best_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let case = case_path("carter_051");
+    let (code, _, err) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        "--set",
+        "contact.grid.tolerance=1e-7",
+        "--set",
+        "contact.grid.max_elements=100",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("max_elements = 100"), "{err}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["converged"], false);
+    let e = &summary["error_estimate"];
+    assert!(e["shear_rms"].as_f64().unwrap() > 1e-7, "{e}");
+    assert!(
+        !out.join("contact.csv").exists(),
+        "only the summary of a run that did not converge"
+    );
+}
