@@ -37,9 +37,10 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
             line(
                 &format!("  {side}: group `{}`", group.name),
                 format!(
-                    "{} elements, length {:.6}",
+                    "{} elements, length {:.6} {}",
                     lm.mesh.count_in_group(g),
-                    lm.group_length(g)
+                    lm.group_length(g),
+                    c.units.length
                 ),
             );
         }
@@ -56,7 +57,11 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
         ranges.push([x0, x1]);
         line(
             &format!("  {side}: contact segment"),
-            format!("x in [{x0:.6}, {x1:.6}], profile radius {:.6}", body.radius()),
+            format!(
+                "x in [{x0:.6}, {x1:.6}] {l}, profile radius {:.6} {l}",
+                body.radius(),
+                l = c.units.length
+            ),
         );
     }
     for (side, body) in ["A", "B"].iter().zip(bodies) {

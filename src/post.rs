@@ -128,7 +128,11 @@ pub fn process(
     timings.interior_s = t_interior.elapsed().as_secs_f64();
     finite::check_fields(&scene.case.path, interior.as_ref(), &boundary)?;
     notices.extend(interior.as_ref().and_then(fields::unevaluated_points_notice));
-    let warnings = crate::scene::validity::warnings(&scene.bodies, &scene.estimates);
+    let mut warnings = crate::scene::validity::warnings(&scene.bodies, &scene.estimates);
+    warnings.extend(crate::scene::validity::traction_axes_warning(
+        &scene.case,
+        &scene.bodies,
+    ));
     Ok(Solved {
         scene,
         problem,

@@ -61,7 +61,9 @@ pub fn validate_and_orient(mesh: &mut BoundaryMesh) -> Result<Vec<String>, MeshE
             groups.dedup();
             notices.push(format!(
                 "{}: loop {k} ({}, groups {}; {} elements): turned {turned} element(s) round so \
-                 that the material lies on their left and the normals point out of the material",
+                 that the material lies on their left and the normals point out of the material \
+                 (harmless: Gmsh orients a curve as the .geo draws it, and rollbem orients every \
+                 loop itself)",
                 mesh.source,
                 if lp.is_hole() { "hole" } else { "outer contour" },
                 groups.join(", "),

@@ -146,26 +146,27 @@ fn radius_contradicts_mesh(radius: f64, mesh: &LoadedMesh) -> Option<String> {
 /// How `rollbem check` describes a body: its model and the keys that define it, with the
 /// values resolved (material constants, a fitted radius).
 pub fn describe(case: &LoadedCase, spec: &BodySpec, setup: &dyn BodySetup) -> String {
+    let (l, f) = (&case.case.units.length, &case.case.units.force);
     match spec {
         BodySpec::HalfSpace { material, radius } => {
             let m = case.material(material);
             format!(
-                "half_space, R = {radius}, material `{material}` (E = {:.6}, G = {:.6}, nu = {})",
+                "half_space, R = {radius} {l}, material `{material}` (E = {:.6} {f}/{l}^2, G = {:.6} {f}/{l}^2, nu = {})",
                 m.young,
                 m.shear(),
                 m.poisson
             )
         }
-        BodySpec::Rigid { radius: Some(r), .. } => format!("rigid, R = {r}"),
+        BodySpec::Rigid { radius: Some(r), .. } => format!("rigid, R = {r} {l}"),
         BodySpec::Rigid { mesh, contact, .. } => format!(
-            "rigid, R = {:.6} (circle fitted to group `{contact}` of {})",
+            "rigid, R = {:.6} {l} (circle fitted to group `{contact}` of {})",
             setup.radius(),
             mesh.as_deref().unwrap_or("")
         ),
         BodySpec::Bem { mesh, material, .. } => {
             let m = case.material(material);
             format!(
-                "bem, mesh {mesh}, material `{material}` (E = {:.6}, G = {:.6}, nu = {})",
+                "bem, mesh {mesh}, material `{material}` (E = {:.6} {f}/{l}^2, G = {:.6} {f}/{l}^2, nu = {})",
                 m.young,
                 m.shear(),
                 m.poisson

@@ -42,6 +42,26 @@ pub fn half_space_error(bodies: &BodySetups, est: &Estimates) -> HalfSpaceError 
     }
 }
 
+/// Why the contact frame a case asks for explicitly (`contact.traction_axes: contact`) cannot
+/// be had: a body without a geometry of its own (a half-space is flat in its model) leaves the
+/// tractions along the global axes. None when the case did not ask (the default) or was
+/// honoured.
+pub fn traction_axes_warning(case: &crate::case::LoadedCase, bodies: &BodySetups) -> Option<String> {
+    let asked = case.resolved.pointer("/contact/traction_axes").and_then(|v| v.as_str());
+    let flat = ["A", "B"]
+        .iter()
+        .zip(bodies)
+        .find_map(|(side, b)| b.surface_at(0.0, crate::body::Side::A).is_none().then_some(side))?;
+    (asked == Some("contact")).then(|| {
+        format!(
+            "contact.traction_axes: contact cannot be honoured: body {flat} ({}) is flat in its model, \
+             so the tractions act along the global axes (summary.json `traction_axes`); model both \
+             bodies with their geometry (`bem` or `rigid`) for the contact's own axes",
+            bodies[if *flat == "A" { 0 } else { 1 }].model_name()
+        )
+    })
+}
+
 /// The validity warnings of a scene (module docs), A's body first.
 pub fn warnings(bodies: &BodySetups, est: &Estimates) -> Vec<String> {
     let mut out = Vec::new();

@@ -176,3 +176,36 @@ fn a_missed_grid_tolerance_writes_the_best_summary() {
         "only the summary of a run that did not converge"
     );
 }
+
+/// `contact.traction_axes: contact` asked explicitly where a body is a half-space (flat in its
+/// model) cannot be honoured: the run says so and records the global axes it used; the default
+/// (not asked) says nothing.
+#[test]
+fn an_explicit_traction_axes_that_cannot_be_honoured_is_warned() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_path("carter_051");
+    let out = dir.path().join("axes");
+    let (code, _, err) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        "--set",
+        "contact.traction_axes=contact",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("warning: contact.traction_axes: contact cannot be honoured"),
+        "{err}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["traction_axes"], "global");
+    let (_, _, err) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        dir.path().join("d").to_str().unwrap(),
+    ]);
+    assert!(!err.contains("traction_axes"), "{err}");
+}
