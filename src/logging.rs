@@ -100,10 +100,15 @@ pub fn init(verbosity: Verbosity) {
             .and_then(|s| s.parse::<f64>().ok())
             .filter(|s| s.is_finite() && *s >= 0.0)
             .unwrap_or(1.0);
-        std::thread::spawn(move || {
-            std::thread::sleep(Duration::from_secs_f64(delay));
+        if delay == 0.0 {
+            // At once, not from a thread that a quick run may finish before it is scheduled.
             logger.go_live();
-        });
+        } else {
+            std::thread::spawn(move || {
+                std::thread::sleep(Duration::from_secs_f64(delay));
+                logger.go_live();
+            });
+        }
     }
 }
 
