@@ -1,7 +1,7 @@
 //! What rollbem accepts as input and what it refuses before solving: the case's keys and ranges
-//! (`keys`), meshes with one defect each (`meshes`), the memory estimate against the measured
-//! peak (`memory`), and property tests over case texts, numeric values and mesh bytes
-//! (`properties`). docs/reliability.md lists the probes.
+//! (`keys`), meshes with one defect each (`meshes`), and property tests over case texts, numeric values and mesh bytes
+//! (`properties`). docs/reliability.md lists the probes; the memory estimate against the measured
+//! peak is the program `tests/memory`.
 //!
 //! Run one file's tests with its module name, e.g. `cargo test --release --test input meshes::`.
 
@@ -9,6 +9,5 @@
 mod common;
 
 mod keys;
-mod memory;
 mod meshes;
 mod properties;

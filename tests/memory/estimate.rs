@@ -3,7 +3,7 @@
 //! above the peak, so that a case it lets through fits, and within a factor 2 of it, so that it
 //! does not refuse cases that would fit.
 //!
-//! `cargo test --release --test input memory:: -- --ignored --nocapture` prints the larger
+//! `cargo test --release --test memory -- --ignored --nocapture` prints the larger
 //! calibration table of docs/reliability.md.
 
 use rollbem::limits::MemoryEstimate;
