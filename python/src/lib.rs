@@ -368,7 +368,8 @@ fn sweep_row(run: usize, outcome: Result<Summary, Failure>) -> serde_json::Value
             let c = s.contact.as_ref();
             row.insert("status".into(), json!(if s.converged { "ok" } else { "not_converged" }));
             row.insert("message".into(), json!(""));
-            let values: [Value; 19] = [
+            // In the order of sweep.csv's columns (rollbem::sweep::RESULT_COLUMNS).
+            let values: [Value; rollbem::sweep::RESULT_COLUMNS.len()] = [
                 json!(s.converged),
                 json!(s.iterations),
                 json!(s.residual),
@@ -379,6 +380,7 @@ fn sweep_row(run: usize, outcome: Result<Summary, Failure>) -> serde_json::Value
                 json!(s.creep),
                 json!(c.map(|c| c.x_min)),
                 json!(c.map(|c| c.x_max)),
+                json!(c.map(|c| c.centre)),
                 json!(c.map(|c| c.half_width)),
                 json!(s.max_pressure),
                 json!(s.slip_regime.number()),
@@ -456,7 +458,7 @@ fn sweep(
                     values: values.clone(),
                 })
                 .collect();
-            let runs = rollbem::sweep::product(&varies);
+            let runs = rollbem::sweep::product(&varies)?;
             let one = |(n, run): (usize, &Vec<(String, String)>)| {
                 let mut set = overrides.clone();
                 set.extend(run.iter().map(|(k, v)| format!("{k}={v}")));

@@ -321,7 +321,7 @@ def sweep(
         ``status`` (``ok``, ``not_converged`` or ``failed``), each varied key with its value as
         given, ``message`` (why a run failed, else ""), then ``converged``, ``iterations``,
         ``residual``, ``normal_force``, ``tangential_force``, ``load_ratio``, ``overlap``,
-        ``creep``, ``contact_x_min``, ``contact_x_max``, ``half_width``, ``max_pressure``,
+        ``creep``, ``contact_x_min``, ``contact_x_max``, ``contact_centre``, ``half_width``, ``max_pressure``,
         ``slip_regime``, ``stick_zones``, ``slip_zones`` (counts), ``assembly_s``,
         ``condense_s``, ``solve_s``, ``total_s`` (None for a failed run). Units as in
         :class:`Result`. :func:`sweep_frame` makes a pandas DataFrame of them.
