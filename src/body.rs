@@ -32,6 +32,7 @@ pub mod half_space;
 pub mod rigid;
 pub mod setup;
 pub mod transfer;
+pub mod viscoelastic;
 
 use crate::grid::ContactGrid;
 use crate::interior::{InteriorOptions, InteriorSample};

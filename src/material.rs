@@ -49,6 +49,40 @@ impl Elastic {
     }
 }
 
+/// A standard linear solid (Zener model) with a constant Poisson's ratio: the shear and bulk
+/// moduli relax alike, from the glassy (instantaneous) modulus E_g to the rubbery (long-term)
+/// one E_r, with creep compliance J(t) = 1/E_r − (1/E_r − 1/E_g)·e^(−t/τc) (Johnson, *Contact
+/// Mechanics* §6.2; docs/viscoelastic.md for the other parametrisations).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StandardLinearSolid {
+    /// Glassy (instantaneous) constants: E_g [stress] and ν [-].
+    pub glassy: Elastic,
+    /// Rubbery (long-term) Young's modulus E_r ≤ E_g [stress].
+    pub rubbery_young: f64,
+    /// Creep (retardation) time τc ≥ 0 [time]: the time constant of the creep under constant
+    /// stress.
+    pub creep_time: f64,
+}
+
+impl StandardLinearSolid {
+    /// Rubbery (long-term) constants E_r, ν.
+    pub fn rubbery(&self) -> Elastic {
+        Elastic::new(self.rubbery_young, self.glassy.poisson)
+    }
+
+    /// Relaxation time τe = τc·E_r/E_g [time]: the time constant of the stress relaxation under
+    /// constant strain.
+    pub fn relaxation_time(&self) -> f64 {
+        self.creep_time * self.rubbery_young / self.glassy.young
+    }
+
+    /// The relaxing fraction f = E_g/E_r − 1 [-] (CONTACT's `FG` when its `GG` is the glassy
+    /// modulus).
+    pub fn relaxing_fraction(&self) -> f64 {
+        self.glassy.young / self.rubbery_young - 1.0
+    }
+}
+
 /// Combined contact modulus E* with 1/E* = (1−ν_A²)/E_A + (1−ν_B²)/E_B [stress].
 ///
 /// A rigid body contributes zero compliance; pass `None` for it.

@@ -95,9 +95,15 @@ impl Kernel {
 /// ∫ N_a(s) K(x − s) ds over the element [s1, s2] for each of its shape functions a, exactly
 /// (entries past the element's node count are 0).
 pub fn element_integrals_exact(kind: ElementKind, kernel: Kernel, s1: f64, s2: f64, x: f64) -> [f64; 3] {
+    shape_integrals_from_moments(kind, s1, s2, x, kernel.moments(s1 - x, s2 - x))
+}
+
+/// ∫ N_a(s) K(x − s) ds over the element [s1, s2] for each shape function a, from the kernel's
+/// moments M_k = ∫_{u1}^{u2} u^k K(−u) du, k = 0, 1, 2, in u = s − x (entries past the
+/// element's node count are 0): each shape function is a quadratic in u.
+pub fn shape_integrals_from_moments(kind: ElementKind, s1: f64, s2: f64, x: f64, moments: [f64; 3]) -> [f64; 3] {
     let (u1, u2) = (s1 - x, s2 - x);
     let length = s2 - s1;
-    let moments = kernel.moments(u1, u2);
     // ξ = α + γ u maps the element to [−1, 1].
     let alpha = -(u1 + u2) / length;
     let gamma = 2.0 / length;
@@ -182,18 +188,24 @@ pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
 /// The influence matrix of a non-uniform grid or of continuous elements: every node–element
 /// pair integrated (O(m²)); far elements by the series of [`FarField`].
 fn influence_matrix_direct(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
-    use rayon::prelude::*;
-    let m = grid.n_nodes();
     let far_field = FarField::new(grid.kind);
-    let npe = grid.kind.nodes_per_element();
-    let integrals = |e: usize, x: f64| {
-        let (s1, s2) = (grid.edges[e], grid.edges[e + 1]);
+    influence_matrix_of(grid, |s1, s2, x| {
         if (0.5 * (s1 + s2) - x).abs() > FAR_FIELD_RATIO * (s2 - s1) {
             far_field.integrals(kernel, s1, s2, x)
         } else {
             element_integrals_exact(grid.kind, kernel, s1, s2, x)
         }
-    };
+    })
+}
+
+/// Matrix K_ij = Σ_e ∫_e N_j(s) K(x_i − s) ds over the grid for any kernel, given its element
+/// integrals `integrals(s1, s2, x)` = [∫ N_a K(x − s) ds]_a over the element [s1, s2]
+/// (O(m²) pairs, elements in parallel).
+pub fn influence_matrix_of(grid: &ContactGrid, integrals: impl Fn(f64, f64, f64) -> [f64; 3] + Sync) -> Mat<f64> {
+    use rayon::prelude::*;
+    let m = grid.n_nodes();
+    let npe = grid.kind.nodes_per_element();
+    let integrals = |e: usize, x: f64| integrals(grid.edges[e], grid.edges[e + 1], x);
     let mut k = Mat::<f64>::zeros(m, m);
     if grid.kind.shares_nodes() {
         // Shared end nodes (continuous elements) collect both elements' integrals.

@@ -42,6 +42,13 @@ pub struct Units {
     pub length: String,
     /// Force unit label. Default = "N".
     pub force: String,
+    /// Time unit label (creep times, speeds). Default = "s".
+    #[serde(default = "default_time_unit")]
+    pub time: String,
+}
+
+fn default_time_unit() -> String {
+    "s".into()
 }
 
 impl Units {
@@ -55,6 +62,17 @@ impl Units {
         format!("{}/{}^2", self.force, self.length)
     }
 
+    /// Unit of a speed, e.g. `mm/s`.
+    pub fn speed(&self) -> String {
+        format!("{}/{}", self.length, self.time)
+    }
+
+    /// Unit of a power per unit length of the cylinders (a force per length times a speed),
+    /// e.g. `N/mm*mm/s`.
+    pub fn power_per_length(&self) -> String {
+        format!("{}*{}", self.force_per_length(), self.speed())
+    }
+
     /// Unit of a stress per length (the normal penalty r_n), e.g. `N/mm^3`.
     pub fn stress_per_length(&self) -> String {
         format!("{}/{}^3", self.force, self.length)
@@ -66,6 +84,7 @@ impl Default for Units {
         Self {
             length: "mm".into(),
             force: "N".into(),
+            time: default_time_unit(),
         }
     }
 }
@@ -82,6 +101,25 @@ pub struct MaterialSpec {
     pub shear: Option<f64>,
     /// Poisson's ratio ν ∈ (−1, 0.5].
     pub nu: f64,
+    /// Makes the material a standard linear solid: `E`/`G` above is then its glassy
+    /// (instantaneous) modulus and these keys give its rubbery modulus and creep time.
+    #[serde(default)]
+    pub viscoelastic: Option<ViscoelasticSpec>,
+}
+
+/// The keys under `materials.NAME.viscoelastic`: exactly one of `E_rubbery` and `G_rubbery`
+/// (the same kind of modulus as the glassy one), and `creep_time`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ViscoelasticSpec {
+    /// Rubbery (long-term) Young's modulus E_r ≤ E [stress].
+    #[serde(rename = "E_rubbery", default)]
+    pub young_rubbery: Option<f64>,
+    /// Rubbery (long-term) shear modulus G_r ≤ G [stress].
+    #[serde(rename = "G_rubbery", default)]
+    pub shear_rubbery: Option<f64>,
+    /// Creep (retardation) time τc ≥ 0 [time]; 0 gives the rubbery elastic material.
+    pub creep_time: f64,
 }
 
 /// The pair of bodies.
@@ -270,6 +308,10 @@ pub struct LoadSpec {
     /// Tangential load: `{ratio: Q/(μP)}`, `{force: Q}` [force/length] or `{creep: ξ}`. Default = {ratio: 0}.
     #[serde(rename = "tangential", default)]
     pub tangential_keys: TangentialKeys,
+    /// Rolling speed V > 0 [length/time]: the speed at which the contact moves over the bodies'
+    /// material; needed by viscoelastic materials (with a creep time > 0), ignored by elastic ones.
+    #[serde(default)]
+    pub speed: Option<f64>,
 }
 
 /// The keys under `load.normal`: exactly one must be given.

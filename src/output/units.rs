@@ -163,6 +163,7 @@ mod tests {
         let u = Units {
             length: "m".into(),
             force: "kN".into(),
+            time: "s".into(),
         };
         let block = summary_units(&u);
         assert_eq!(block["normal_force"], "kN/m");
