@@ -6,7 +6,7 @@
 pub mod schema;
 pub mod validate;
 
-use crate::material::Elastic;
+use crate::material::{Elastic, StandardLinearSolid};
 pub use schema::*;
 use std::path::{Path, PathBuf};
 pub use validate::Violation;
@@ -94,6 +94,29 @@ impl LoadedCase {
     pub fn material(&self, name: &str) -> Elastic {
         material_of(&self.case.materials[name])
     }
+
+    /// The standard linear solid of a viscoelastic material (validated), None for an elastic
+    /// one.
+    pub fn viscoelastic_material(&self, name: &str) -> Option<StandardLinearSolid> {
+        viscoelastic_of(&self.case.materials[name])
+    }
+}
+
+/// The standard linear solid of a material spec with `viscoelastic` keys: the spec's E or G is
+/// the glassy modulus, `E_rubbery` or `G_rubbery` the rubbery one (validated: the same kind).
+pub fn viscoelastic_of(spec: &MaterialSpec) -> Option<StandardLinearSolid> {
+    let v = spec.viscoelastic.as_ref()?;
+    let glassy = material_of(spec);
+    let rubbery_young = match (v.young_rubbery, v.shear_rubbery) {
+        (Some(e), _) => e,
+        (None, Some(g)) => 2.0 * g * (1.0 + spec.nu),
+        (None, None) => f64::NAN,
+    };
+    Some(StandardLinearSolid {
+        glassy,
+        rubbery_young,
+        creep_time: v.creep_time,
+    })
 }
 
 /// The elastic constants of a material spec (validated: exactly one of E and G).

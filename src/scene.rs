@@ -176,7 +176,7 @@ impl Scene {
     pub fn rolling(&self) -> Rolling {
         Rolling {
             direction: -self.case.case.contact.rolling_direction.flow_sign(),
-            speed: None,
+            speed: self.case.case.load.speed,
         }
     }
 

@@ -6,6 +6,7 @@ use crate::bem::BoundaryCondition;
 use crate::body::bem::setup::BemSetup;
 use crate::body::half_space::setup::HalfSpaceSetup;
 use crate::body::rigid::RigidSetup;
+use crate::body::viscoelastic::setup::ViscoelasticHalfSpaceSetup;
 use crate::body::BodySetup;
 use crate::case::{BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase};
 use crate::error::Error;
@@ -19,10 +20,16 @@ pub type BodySetups = [Arc<dyn BodySetup>; 2];
 /// case) and fits the profile radius where the case gives a mesh instead of a radius.
 pub fn setup_of(case: &LoadedCase, spec: &BodySpec) -> Result<Arc<dyn BodySetup>, Error> {
     Ok(match spec {
-        BodySpec::HalfSpace { material, radius } => Arc::new(HalfSpaceSetup {
-            material: case.material(material),
-            radius: *radius,
-        }),
+        BodySpec::HalfSpace { material, radius } => match case.viscoelastic_material(material) {
+            Some(sls) => Arc::new(ViscoelasticHalfSpaceSetup {
+                material: sls,
+                radius: *radius,
+            }),
+            None => Arc::new(HalfSpaceSetup {
+                material: case.material(material),
+                radius: *radius,
+            }),
+        },
         BodySpec::Rigid { radius: Some(r), .. } => Arc::new(RigidSetup { radius: *r }),
         BodySpec::Rigid {
             radius: None,
@@ -150,6 +157,22 @@ pub fn describe(case: &LoadedCase, spec: &BodySpec, setup: &dyn BodySetup) -> St
     match spec {
         BodySpec::HalfSpace { material, radius } => {
             let m = case.material(material);
+            if let Some(sls) = case.viscoelastic_material(material) {
+                let r = sls.rubbery();
+                let t = &case.case.units.time;
+                return format!(
+                    "viscoelastic half_space, R = {radius} {l}, material `{material}` (standard linear solid: glassy \
+                     E = {:.6} {f}/{l}^2, rubbery E = {:.6} {f}/{l}^2, G = {:.6} -> {:.6} {f}/{l}^2, nu = {}, creep time \
+                     {} {t}, relaxation time {:.6} {t})",
+                    m.young,
+                    r.young,
+                    m.shear(),
+                    r.shear(),
+                    m.poisson,
+                    sls.creep_time,
+                    sls.relaxation_time()
+                );
+            }
             format!(
                 "half_space, R = {radius} {l}, material `{material}` (E = {:.6} {f}/{l}^2, G = {:.6} {f}/{l}^2, nu = {})",
                 m.young,
