@@ -154,15 +154,37 @@ pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
     if !grid.is_uniform() || grid.kind.shares_nodes() {
         return influence_matrix_direct(grid, kernel);
     }
+    let rule = gauss_legendre(12);
+    uniform_influence_matrix_of(grid, |s1, s2, x| {
+        if x.abs() > FAR_FIELD_RATIO * (s2 - s1) {
+            let g = element_integrals_gauss(grid.kind, kernel, s1, s2, x, &rule);
+            std::array::from_fn(|a| g.get(a).copied().unwrap_or(0.0))
+        } else {
+            element_integrals_exact(grid.kind, kernel, s1, s2, x)
+        }
+    })
+}
+
+/// [`influence_matrix_of`] on a uniform grid of elements that do not share nodes: an entry
+/// depends only on the offset between the elements and the local indices, so only
+/// (2·n_elements − 1)·npe element integrals are evaluated, on a reference element centred at 0
+/// (`integrals` is called with s1 = −h/2, s2 = h/2 and the field point relative to it).
+///
+/// Panics (in debug) on a grid [`influence_matrix_of`] would not pass here.
+pub fn uniform_influence_matrix_of(
+    grid: &ContactGrid,
+    integrals: impl Fn(f64, f64, f64) -> [f64; 3] + Sync,
+) -> Mat<f64> {
+    use rayon::prelude::*;
+    debug_assert!(grid.is_uniform() && !grid.kind.shares_nodes());
     let m = grid.n_nodes();
     let ne = grid.n_elements();
     let npe = grid.kind.nodes_per_element();
     let length = grid.element_length();
-    let rule = gauss_legendre(12);
     let (s1, s2) = (-0.5 * length, 0.5 * length);
     // table[(d + ne − 1)·npe + a] = integrals over the reference element of the shapes, at the
     // field point of local node a of an element d lengths to the right.
-    let table: Vec<Vec<f64>> = (0..(2 * ne - 1))
+    let points: Vec<f64> = (0..(2 * ne - 1))
         .flat_map(|k| {
             let d = k as f64 - (ne - 1) as f64;
             grid.kind
@@ -170,14 +192,8 @@ pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
                 .iter()
                 .map(move |xi| d * length + 0.5 * length * xi)
         })
-        .map(|x| {
-            if x.abs() > FAR_FIELD_RATIO * length {
-                element_integrals_gauss(grid.kind, kernel, s1, s2, x, &rule)
-            } else {
-                element_integrals_exact(grid.kind, kernel, s1, s2, x).to_vec()
-            }
-        })
         .collect();
+    let table: Vec<[f64; 3]> = points.par_iter().map(|&x| integrals(s1, s2, x)).collect();
     Mat::from_fn(m, m, |i, j| {
         let (ei, ai) = grid.element_of(i);
         let (ej, aj) = grid.element_of(j);
@@ -189,7 +205,7 @@ pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
 /// pair integrated (O(m²)); far elements by the series of [`FarField`].
 fn influence_matrix_direct(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
     let far_field = FarField::new(grid.kind);
-    influence_matrix_of(grid, |s1, s2, x| {
+    direct_influence_matrix_of(grid, |s1, s2, x| {
         if (0.5 * (s1 + s2) - x).abs() > FAR_FIELD_RATIO * (s2 - s1) {
             far_field.integrals(kernel, s1, s2, x)
         } else {
@@ -201,7 +217,18 @@ fn influence_matrix_direct(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
 /// Matrix K_ij = Σ_e ∫_e N_j(s) K(x_i − s) ds over the grid for any kernel, given its element
 /// integrals `integrals(s1, s2, x)` = [∫ N_a K(x − s) ds]_a over the element [s1, s2]
 /// (O(m²) pairs, elements in parallel).
+///
+/// On a uniform grid of elements that do not share nodes the block-Toeplitz structure is
+/// used ([`uniform_influence_matrix_of`]).
 pub fn influence_matrix_of(grid: &ContactGrid, integrals: impl Fn(f64, f64, f64) -> [f64; 3] + Sync) -> Mat<f64> {
+    if grid.is_uniform() && !grid.kind.shares_nodes() {
+        return uniform_influence_matrix_of(grid, integrals);
+    }
+    direct_influence_matrix_of(grid, integrals)
+}
+
+/// [`influence_matrix_of`] pair by pair (O(m²) element integrals).
+fn direct_influence_matrix_of(grid: &ContactGrid, integrals: impl Fn(f64, f64, f64) -> [f64; 3] + Sync) -> Mat<f64> {
     use rayon::prelude::*;
     let m = grid.n_nodes();
     let npe = grid.kind.nodes_per_element();
