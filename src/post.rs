@@ -11,6 +11,7 @@ pub mod finite;
 pub mod friction_check;
 pub mod norms;
 pub mod regime;
+pub mod rolling_resistance;
 pub mod solution;
 pub mod zones;
 

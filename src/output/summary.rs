@@ -2,6 +2,7 @@
 
 use crate::contact::IterationRecord;
 use crate::post::friction_check::FrictionCheck;
+use crate::post::rolling_resistance::{rolling_resistance, RollingResistance};
 use crate::post::{NodeState, SlipDirection, SlipRegime, Solved, Timings, Zone};
 use crate::scene::Estimates;
 use serde::Serialize;
@@ -102,6 +103,9 @@ pub struct Summary {
     pub slip_regime: SlipRegime,
     /// Peak pressure [stress].
     pub max_pressure: f64,
+    /// The pressure's asymmetry and the rolling resistance it gives (null when nothing is in
+    /// contact; [`crate::post::rolling_resistance`]).
+    pub rolling_resistance: Option<RollingResistance>,
     /// Stage timings [s].
     pub timings: Timings,
     /// Model of each body.
@@ -201,6 +205,14 @@ pub fn summary(s: &Solved) -> Summary {
         zones: sol.zones.clone(),
         slip_regime: s.regime,
         max_pressure: sol.pressure.iter().fold(0.0, |a, &b| a.max(b)),
+        rolling_resistance: rolling_resistance(
+            &pb.grid,
+            &sol.pressure,
+            sol.contact_extent(),
+            scene.leading_edge_sign(),
+            scene.estimates.effective_radius,
+            case.case.load.speed,
+        ),
         timings: s.timings,
         models: Models {
             a: scene.bodies[0].model_name().to_string(),

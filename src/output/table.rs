@@ -75,6 +75,31 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
         &format!("max pressure [{stress}]"),
         format!("{:.6}{hertz}", s.max_pressure),
     );
+    if let Some(r) = s.rolling_resistance.as_ref().filter(|r| r.speed.is_some()) {
+        line(
+            &format!("asymmetry [{len}]"),
+            format!(
+                "leading edge {:+.5}, trailing edge {:+.5}, pressure centre {:+.5e} towards the leading edge",
+                r.leading_edge, r.trailing_edge, r.pressure_centre
+            ),
+        );
+        line(
+            &format!("rolling resistance [{force}]"),
+            format!(
+                "F_r = {:.6e}  (F_r/P = {:.6e}, moment {:.6e} {})",
+                r.force,
+                r.coefficient,
+                r.moment,
+                unit("rolling_resistance.moment")
+            ),
+        );
+        if let (Some(power), Some(v)) = (r.dissipated_power, r.speed) {
+            line(
+                &format!("dissipated power [{}]", unit("rolling_resistance.dissipated_power")),
+                format!("{power:.6e} at V = {v} {}", unit("rolling_resistance.speed")),
+            );
+        }
+    }
     let zones = |z: &[[f64; 2]]| {
         z.iter()
             .map(|[a, b]| format!("[{a:.4}, {b:.4}]"))

@@ -16,6 +16,12 @@ pub enum Dimension {
     Stress,
     /// A stress per length (the normal penalty r_n) [force/length³].
     StressPerLength,
+    /// A moment per unit length of the cylinders [force·length/length = force].
+    MomentPerLength,
+    /// A speed [length/time].
+    Speed,
+    /// A power per unit length of the cylinders [force/length · length/time].
+    PowerPerLength,
     /// A ratio or a velocity divided by |V| (creepage, slip, residuals) [-].
     Dimensionless,
     /// Wall-clock time [s].
@@ -35,6 +41,9 @@ impl Dimension {
             Dimension::ForcePerLength => u.force_per_length(),
             Dimension::Stress => u.stress(),
             Dimension::StressPerLength => u.stress_per_length(),
+            Dimension::MomentPerLength => format!("{}*{}/{}", u.force, u.length, u.length),
+            Dimension::Speed => u.speed(),
+            Dimension::PowerPerLength => u.power_per_length(),
             Dimension::Dimensionless => "-".into(),
             Dimension::Seconds => "s".into(),
             Dimension::Count => "count".into(),
@@ -75,6 +84,14 @@ pub const SUMMARY_KEYS: &[(&str, Dimension)] = &[
     ("zones[].nodes", Count),
     ("slip_regime", Dimensionless),
     ("max_pressure", Stress),
+    ("rolling_resistance.leading_edge", Length),
+    ("rolling_resistance.trailing_edge", Length),
+    ("rolling_resistance.pressure_centre", Length),
+    ("rolling_resistance.moment", MomentPerLength),
+    ("rolling_resistance.force", ForcePerLength),
+    ("rolling_resistance.coefficient", Dimensionless),
+    ("rolling_resistance.speed", Speed),
+    ("rolling_resistance.dissipated_power", PowerPerLength),
     ("timings.assembly_s", Seconds),
     ("timings.condense_s", Seconds),
     ("timings.solve_s", Seconds),
