@@ -22,3 +22,4 @@ mod slip_end;
 mod solver;
 mod true_geometry;
 mod tyre;
+mod viscoelastic;
