@@ -560,7 +560,7 @@ def row(case, bodies, radius, ns=GRID_NS):
         "R_star": case.radius,
         "P": case.load,
         "V_tau_c": case.l_creep,
-        "V_tau_c_over_a_r": case.l_creep / a_r,
+        "V_tau_c_over_a_r": round(case.l_creep / a_r, 12),
         "x_lead": ex["x_lead"],
         "x_trail": ex["x_trail"],
         "a": ex["a"],
@@ -577,6 +577,7 @@ def row(case, bodies, radius, ns=GRID_NS):
         "grid_err_a": gerr["a"],
         "grid_err_p_max": gerr["p_max"],
         "grid_err_x_p": gerr["x_p"],
+        "_grids": grids,
     }
 
 
@@ -659,6 +660,103 @@ def compare(path, rows, rtol=1e-9):
 
 
 # --------------------------------------------------------------------------------------------
+# the tables of docs/viscoelastic-reference.md (between <!-- begin NAME --> and <!-- end NAME -->)
+
+DOC = os.path.join(os.path.dirname(_HERE), "docs", "viscoelastic-reference.md")
+CONTACT_VISC = {0.0: (12.8, 60.32), 0.009: (9.9, 78.74), 0.045: (9.1, 84.72), 2.0: (9.0, 85.31)}
+CONTACT_H = 0.16  # CONTACT's element size in visc_cylindr [mm]
+
+
+def coarse_grid_readings(case, h=CONTACT_H, shifts=8):
+    """What a uniform grid of element size h reads, over `shifts` offsets of the grid against
+    the contact: (min, max) of the loaded width (elements x h) and of the largest element
+    pressure (no interpolation)."""
+    a_r = case.hertz_half_width(case.g_rubbery)
+    n = int(math.ceil(2.6 * a_r / h))
+    widths, pmaxs = [], []
+    for k in range(shifts):
+        xl = -0.5 * n * h + k * h / shifts
+        p, _, _, _, _ = grid_contact(case, xl, xl + n * h, n)
+        widths.append(np.count_nonzero(p > 0.0) * h)
+        pmaxs.append(float(np.max(p)))
+    return (min(widths), max(widths)), (min(pmaxs), max(pmaxs))
+
+
+def _g(v, digits=6):
+    return f"{v:.{digits}g}"
+
+
+def doc_blocks(rows):
+    """The page's generated tables, by name."""
+    blocks = {}
+    lines = [
+        "| f | V tau_c/a_r | x_lead | x_trail | a | p_max | x_pmax | x_p | F_r/P |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        if r["bodies"] != 1:
+            continue
+        lines.append(
+            f"| {r['f']:g} | {r['V_tau_c_over_a_r']:.3g} | {_g(r['x_lead'])} | {_g(r['x_trail'])} | "
+            f"{_g(r['a'])} | {_g(r['p_max'])} | {_g(r['x_pmax'], 4)} | {_g(r['x_p'])} | "
+            f"{_g(r['Fr_over_P'], 4)} |"
+        )
+    blocks["rigid"] = "\n".join(lines)
+
+    lines = [
+        "| tau_c [s] | V tau_c [mm] | 2a | 2a, CONTACT | 2a on a 0.16 mm grid | p_max | p_max, CONTACT "
+        "| p_max on a 0.16 mm grid | x_lead | x_trail | x_p | F_r/P |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for (cs, bodies, _), r in zip(all_cases(), rows):
+        if bodies != 2:
+            continue
+        tau = cs.l_creep / 1000.0
+        (w0, w1), (p0, p1) = coarse_grid_readings(cs)
+        cw, cp = CONTACT_VISC[tau]
+        lines.append(
+            f"| {tau:g} | {cs.l_creep:g} | {r['width_2a']:.3f} | {cw} | {w0:.2f} to {w1:.2f} | "
+            f"{r['p_max']:.3f} | {cp} | {p0:.2f} to {p1:.2f} | {r['x_lead']:.3f} | "
+            f"{r['x_trail']:.3f} | {r['x_p']:.4f} | {_g(r['Fr_over_P'], 4)} |"
+        )
+    blocks["visc_cylindr"] = "\n".join(lines)
+
+    ns = GRID_NS
+    head = " | ".join(f"n = {n}" for n in ns)
+    lines = [
+        "| case | quantity | " + head + " |",
+        "|---|---|" + "---|" * len(ns),
+    ]
+    worst = {q: [0.0] * len(ns) for q in QUANTS}
+    for (cs, _, _), r in zip(all_cases(), rows):
+        a_r = cs.hertz_half_width(cs.g_rubbery)
+        scale = {"a": a_r, "p_max": r["p_max"], "x_p": a_r}
+        for q in QUANTS:
+            for i, g in enumerate(r["_grids"]):
+                worst[q][i] = max(worst[q][i], abs(g[q] - r[q]) / scale[q])
+        if cs.name in ("f1_r0.01", "f9_r0.01", "f9_r0.3", "f9_r1", "f9_r100", "tau_c=0.009"):
+            for q in QUANTS:
+                cells = " | ".join(f"{(g[q] - r[q]) / scale[q]:+.1e}" for g in r["_grids"])
+                lines.append(f"| {cs.group} {cs.name} | {q} | {cells} |")
+    for q in QUANTS:
+        cells = " | ".join(f"{w:.1e}" for w in worst[q])
+        lines.append(f"| largest of all {len(rows)} rows | {q} | {cells} |")
+    blocks["convergence"] = "\n".join(lines)
+    return blocks
+
+
+def render_doc(text, blocks):
+    """The page with its generated blocks replaced (ValueError if a marker is missing)."""
+    for name, body in blocks.items():
+        begin, end = f"<!-- begin {name} -->", f"<!-- end {name} -->"
+        i, j = text.find(begin), text.find(end)
+        if i < 0 or j < i:
+            raise ValueError(f"{DOC}: markers {begin} ... {end} missing")
+        text = text[: i + len(begin)] + "\n" + body + "\n" + text[j:]
+    return text
+
+
+# --------------------------------------------------------------------------------------------
 # self-checks
 
 
@@ -719,21 +817,37 @@ def main(argv=None):
         convergence()
     if args.write or args.check:
         rows = table_rows()
+        blocks = doc_blocks(rows)
         if args.write:
             write_table(args.write, rows)
             print(f"wrote {args.write} ({len(rows)} rows)")
+            with open(DOC) as fh:
+                old = fh.read()
+            new = render_doc(old, blocks)
+            if new != old:
+                with open(DOC + ".tmp", "w") as fh:
+                    fh.write(new)
+                os.replace(DOC + ".tmp", DOC)
+                print(f"updated the tables of {DOC}")
         if args.check:
             try:
                 msgs = compare(args.check, rows)
             except (OSError, ValueError, KeyError) as err:
                 msgs = [f"{args.check}: cannot be read ({err})"]
+            try:
+                with open(DOC) as fh:
+                    text = fh.read()
+                if render_doc(text, blocks) != text:
+                    msgs.append(f"{DOC}: its generated tables differ from the script's")
+            except (OSError, ValueError) as err:
+                msgs.append(str(err))
             for m in msgs:
                 print(m, file=sys.stderr)
             if msgs:
-                print(f"{args.check}: {len(msgs)} differences; regenerate with --write", file=sys.stderr)
+                print("differences found: regenerate with --write and review the diff", file=sys.stderr)
                 status = 1
             else:
-                print(f"{args.check}: {len(rows)} rows agree")
+                print(f"{args.check}: {len(rows)} rows agree; {os.path.basename(DOC)}'s tables agree")
     return status
 
 
