@@ -748,8 +748,8 @@ def doc_blocks(rows):
 
     lines = [
         "| tau_c [s] | V tau_c [mm] | 2a | 2a, CONTACT | 2a on a 0.16 mm grid | p_max | p_max, CONTACT "
-        "| p_max on a 0.16 mm grid | x_lead | x_trail | x_p | F_r/P |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "| p_max on a 0.16 mm grid | CONTACT inside both | x_lead | x_trail | x_p | F_r/P |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for (cs, bodies, _), r in zip(all_cases(), rows, strict=True):
         if bodies != 2:
@@ -757,10 +757,12 @@ def doc_blocks(rows):
         tau = cs.l_creep / 1000.0
         (w0, w1), (p0, p1) = coarse_grid_readings(cs)
         cw, cp = CONTACT_VISC[tau]
+        # CONTACT prints 0.1 mm and 0.01 N/mm^2: inside the range up to half a printed unit
+        inside = w0 - 0.05 <= cw <= w1 + 0.05 and p0 - 0.005 <= cp <= p1 + 0.005
         lines.append(
             f"| {tau:g} | {cs.l_creep:g} | {r['width_2a']:.3f} | {cw} | {w0:.2f} to {w1:.2f} | "
-            f"{r['p_max']:.3f} | {cp} | {p0:.2f} to {p1:.2f} | {r['x_lead']:.3f} | "
-            f"{r['x_trail']:.3f} | {r['x_p']:.4f} | {_g(r['Fr_over_P'], 4)} |"
+            f"{r['p_max']:.3f} | {cp} | {p0:.2f} to {p1:.2f} | {'yes' if inside else 'NO'} | "
+            f"{r['x_lead']:.3f} | {r['x_trail']:.3f} | {r['x_p']:.4f} | {_g(r['Fr_over_P'], 4)} |"
         )
     blocks["visc_cylindr"] = "\n".join(lines)
 
