@@ -36,6 +36,7 @@ Usage:
       tables, or if a limit against Hertz is off)
   viscoelastic_reference.py --convergence      (grid solver on 3 grids against the exact solution)
   viscoelastic_reference.py --self-test        (limits tau_c -> 0 and tau_c -> inf against Hertz)
+  viscoelastic_reference.py --pressure f9_r1   (a row's exact pressure as x,p CSV)
 --write also rewrites the generated tables of docs/viscoelastic-reference.md.
 
 Units: N, mm, s (stresses in N/mm^2, loads per unit length in N/mm). numpy only.
@@ -304,7 +305,7 @@ def grid_solve(case, ns, window=None):
     for n in ns:
         p, xc, h, _, _ = grid_contact(case, xl, xr, n, guess)
         q = grid_quantities(case, p, xc, h)
-        q["n"], q["h"] = n, h
+        q["n"], q["h"], q["_p"], q["_xc"] = n, h, p, xc
         act = np.flatnonzero(p > 0.0)
         guess = (xc[act[0]] - 0.5 * h, xc[act[-1]] + 0.5 * h)
         out.append(q)
@@ -406,7 +407,24 @@ class Hunter:
         beta = brent(g, lo, hi)
         bhat = beta * scale
         c = self._c_for(bhat)
+        self.solution = (c, bhat)
         return self.quantities(c, bhat)
+
+    def pressure(self, x):
+        """The solved pressure at the points x [mm] (0 outside the contact); after solve()."""
+        c, bhat = self.solution
+        cs = self.case
+        _, ib = self._coeffs(c, bhat)
+        m = self._centre(bhat, ib[0])
+        beta = -2.0 * bhat * ib / (1.0 - cs.nu)
+        beta[1] += cs.g_rubbery * c / (cs.radius * (1.0 - cs.nu))
+        beta[0] = 0.0
+        t = (np.asarray(x, float) - m) / c
+        inside = np.abs(t) < 1.0
+        phi = np.arccos(t[inside])
+        out = np.zeros_like(t)
+        out[inside] = np.sin(np.outer(phi, np.arange(beta.size))) @ beta
+        return out
 
     def quantities(self, c, bhat):
         """Edges, p_max, pressure centre, and the least pressure (a positivity check)."""
@@ -493,8 +511,13 @@ def exact(case, fine=False):
     if case.l_creep == 0.0 or math.isinf(case.l_creep):
         g = case.g_rubbery if case.l_creep == 0.0 else case.g_glassy
         a, pm = hertz(case, g)
-        return {"x_lead": a, "x_trail": -a, "a": a, "p_max": pm, "x_p": 0.0, "p_min": 0.0, "x_pmax": 0.0}
-    return Hunter(case, nquad=24 if fine else 12, extra_terms=80 if fine else 40).solve()
+        out = {"x_lead": a, "x_trail": -a, "a": a, "p_max": pm, "x_p": 0.0, "p_min": 0.0, "x_pmax": 0.0}
+        out["_pressure"] = lambda x: pm * np.sqrt(np.clip(1.0 - (np.asarray(x, float) / a) ** 2, 0.0, None))
+        return out
+    solver = Hunter(case, nquad=24 if fine else 12, extra_terms=80 if fine else 40)
+    out = solver.solve()
+    out["_pressure"] = solver.pressure
+    return out
 
 
 # --------------------------------------------------------------------------------------------
@@ -621,6 +644,7 @@ def row(case, bodies, radius, ns=GRID_NS):
         "grid_err_p_max": gerr["p_max"],
         "grid_err_x_p": gerr["x_p"],
         "_grids": grids,
+        "_exact": ex,
     }
 
 
@@ -772,18 +796,26 @@ def doc_blocks(rows):
         "| case | quantity | " + head + " |",
         "|---|---|" + "---|" * len(ns),
     ]
-    worst = {q: [0.0] * len(ns) for q in QUANTS}
+    labels = QUANTS + ("p, interior",)
+    worst = {q: [0.0] * len(ns) for q in labels}
     for (cs, _, _), r in zip(all_cases(), rows, strict=True):
         a_r = cs.hertz_half_width(cs.g_rubbery)
         scale = {"a": a_r, "p_max": r["p_max"], "x_p": a_r}
-        for q in QUANTS:
-            for i, g in enumerate(r["_grids"]):
-                worst[q][i] = max(worst[q][i], abs(g[q] - r[q]) / scale[q])
+        errs = {q: [(g[q] - r[q]) / scale[q] for g in r["_grids"]] for q in QUANTS}
+        # the pressure itself at the cell centres more than 5 % of a from the exact edges
+        errs["p, interior"] = []
+        margin = 0.05 * r["a"]
+        for g in r["_grids"]:
+            inner = (g["_xc"] > r["x_trail"] + margin) & (g["_xc"] < r["x_lead"] - margin)
+            dp = g["_p"][inner] - r["_exact"]["_pressure"](g["_xc"][inner])
+            errs["p, interior"].append(float(np.max(np.abs(dp))) / r["p_max"])
+        for q in labels:
+            worst[q] = [max(w, abs(e)) for w, e in zip(worst[q], errs[q], strict=True)]
         if cs.name in ("f1_r0.01", "f9_r0.01", "f9_r0.3", "f9_r1", "f9_r100", "tau_c=0.009"):
-            for q in QUANTS:
-                cells = " | ".join(f"{(g[q] - r[q]) / scale[q]:+.1e}" for g in r["_grids"])
+            for q in labels:
+                cells = " | ".join(f"{e:+.1e}" if q in QUANTS else f"{e:.1e}" for e in errs[q])
                 lines.append(f"| {cs.group} {cs.name} | {q} | {cells} |")
-    for q in QUANTS:
+    for q in labels:
         cells = " | ".join(f"{w:.1e}" for w in worst[q])
         lines.append(f"| largest of all {len(rows)} rows | {q} | {cells} |")
     blocks["convergence"] = "\n".join(lines)
@@ -899,15 +931,40 @@ def convergence(ns=GRID_NS):
     print(f"largest |x_p(grid {ns[-1]}) - x_p(exact)|/a_r = {worst:.1e}")
 
 
+def print_pressure(name, points):
+    """The exact pressure of the row called name (e.g. f9_r1, tau_c=0.009) at `points` evenly
+    spaced x over the contact, as CSV on standard output. Exit status."""
+    found = [cs for cs, _, _ in all_cases() if cs.name == name]
+    if not found:
+        names = ", ".join(cs.name for cs, _, _ in all_cases())
+        print(f"--pressure: no row called {name!r}; the rows are {names}", file=sys.stderr)
+        return 1
+    cs = found[0]
+    ex = exact(cs)
+    x = np.linspace(ex["x_trail"], ex["x_lead"], points)
+    p = ex["_pressure"](x)
+    print(f"# {cs.group} {cs.name}: exact pressure; x [mm] positive towards the leading edge, p [N/mm^2]")
+    print("x,p")
+    for xi, pi in zip(x, p, strict=True):
+        print(f"{float(xi)!r},{max(float(pi), 0.0)!r}")
+    return 0
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--write", metavar="CSV", help="write the table")
     ap.add_argument("--check", metavar="CSV", help="regenerate and compare; exit 1 on a difference")
     ap.add_argument("--convergence", action="store_true", help="grid solver on 3 grids vs exact")
     ap.add_argument("--self-test", action="store_true", help="the limits against Hertz")
+    ap.add_argument("--pressure", metavar="ROW", help="print a row's exact pressure (x,p CSV), e.g. f9_r1")
+    ap.add_argument("--points", type=int, default=201, help="points for --pressure (default 201)")
     args = ap.parse_args(argv)
-    if not (args.write or args.check or args.convergence or args.self_test):
-        ap.error("give --write, --check, --convergence or --self-test")
+    if not (args.write or args.check or args.convergence or args.self_test or args.pressure):
+        ap.error("give --write, --check, --convergence, --self-test or --pressure ROW")
+    if args.pressure:
+        if args.points < 2:
+            ap.error("--points must be at least 2")
+        return print_pressure(args.pressure, args.points)
     status = 0
     if args.self_test:
         status |= self_test()
