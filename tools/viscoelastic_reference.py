@@ -59,7 +59,10 @@ import argparse  # noqa: E402
 import math  # noqa: E402
 from dataclasses import dataclass  # noqa: E402
 
-import numpy as np  # noqa: E402
+try:
+    import numpy as np  # noqa: E402
+except ImportError:  # the system Python may lack it; CI's venv has it
+    sys.exit("viscoelastic_reference.py needs numpy: pip install -r tools/requirements.txt")
 
 EULER = 0.57721566490153286060651209008240243
 
