@@ -12,8 +12,8 @@ Two solvers that share no code with rollbem and none with each other beyond the 
   p = sum_n beta_n sin(n phi). Three scalar conditions remain (p bounded at both edges, the load,
   and the leading-edge condition that u there is the one the material brings from ahead), solved
   for the centre m, the half-width c and B. The only numerics: scaled Bessel functions by Miller's
-  recurrence, one Gauss-Legendre integral and root finding; its error is estimated by repeating
-  with twice the quadrature nodes and Bessel terms.
+  recurrence, one integral by composite Gauss-Legendre, and root finding; its error is estimated
+  by repeating with twice the quadrature nodes and Bessel terms.
 
 * ``grid``: the same SLS law integrated in closed form. Its bounded solution is
   u = (eps W + (1 - eps) D)/G_r with D(x) = (1/L) int_0^inf exp(-t/L) W(x + t) dt, and for a
