@@ -219,7 +219,8 @@ def grid_contact(case, xl, xr, n, guess=None):
         active = np.abs(xc - 0.5 * (xl + xr)) < 0.3 * (xr - xl)
     else:  # a coarser grid's contact: the iteration then settles in a few steps
         active = (xc > guess[0]) & (xc < guess[1])
-    for it in range(200):
+    seen, cautious = {active.tobytes()}, False
+    for it in range(2000):
         idx = np.flatnonzero(active)
         m = idx.size
         sysm = np.empty((m + 1, m + 1))
@@ -234,9 +235,21 @@ def grid_contact(case, xl, xr, n, guess=None):
         delta = sol[m]
         gap = a_mat @ p - delta + prof
         scale = np.max(np.abs(prof[idx])) + abs(delta)
+        drop = active & (p < 0.0)
+        add = ~active & (gap < -1e-13 * scale)
         new = active.copy()
-        new[active & (p < 0.0)] = False
-        new[~active & (gap < -1e-13 * scale)] = True
+        if cautious:  # one cell at a time (the most negative pressure, else the deepest gap)
+            if drop.any():
+                new[np.flatnonzero(drop)[np.argmin(p[drop])]] = False
+            elif add.any():
+                new[np.flatnonzero(add)[np.argmin(gap[add])]] = True
+        else:
+            new[drop] = False
+            new[add] = True
+        key = new.tobytes()
+        if key in seen:  # changing all at once cycles (a stiff, thin boundary layer can)
+            cautious = True
+        seen.add(key)
         if np.array_equal(new, active):
             if active[0] or active[-1]:
                 raise RuntimeError(f"{case.name}: contact reaches the window [{xl}, {xr}]")
