@@ -680,7 +680,8 @@ HEADER = """\
 # cylinders the dissipation per unit distance rolled over P).
 # x_lead..Fr_over_P: Hunter's exact solution (Chebyshev/Bessel series); err_exact its change
 # at twice the resolution. grid_*: the closed-form grid solver on grid_n cells (uniform, about
-# 1.25 contact widths); grid_err_* its change from the grid with half the cells.
+# 1.25 contact widths); grid_err_* its change from the grid with half the cells, or half the
+# change between the two coarser grids (400 and 800 cells) if that is larger.
 """
 
 
