@@ -159,7 +159,7 @@ pub fn product(varies: &[Vary]) -> Result<Vec<Vec<(String, String)>>, Error> {
 }
 
 /// Summary columns of sweep.csv after `run`, `folder`, `status`, the varied keys and `message`.
-pub const RESULT_COLUMNS: [&str; 20] = [
+pub const RESULT_COLUMNS: [&str; 22] = [
     "converged",
     "iterations",
     "residual",
@@ -176,6 +176,8 @@ pub const RESULT_COLUMNS: [&str; 20] = [
     "slip_regime",
     "stick_zones",
     "slip_zones",
+    "pressure_centre",
+    "rolling_resistance",
     "assembly_s",
     "condense_s",
     "solve_s",
@@ -262,6 +264,7 @@ fn run_one_unguarded(
         Ok(report) => {
             let s = &report.summary;
             let c = s.contact.as_ref();
+            let r = s.rolling_resistance.as_ref();
             let f = crate::output::number;
             RunRow {
                 run,
@@ -285,6 +288,8 @@ fn run_one_unguarded(
                     s.slip_regime.to_string(),
                     s.stick_zones.len().to_string(),
                     s.slip_zones.len().to_string(),
+                    r.map_or(String::new(), |r| f(r.pressure_centre)),
+                    r.map_or(String::new(), |r| f(r.coefficient)),
                     f(s.timings.assembly_s),
                     f(s.timings.condense_s),
                     f(s.timings.solve_s),

@@ -386,6 +386,8 @@ fn sweep_row(run: usize, outcome: Result<Summary, Failure>) -> serde_json::Value
                 json!(s.slip_regime.number()),
                 json!(s.stick_zones.len()),
                 json!(s.slip_zones.len()),
+                json!(s.rolling_resistance.map(|r| r.pressure_centre)),
+                json!(s.rolling_resistance.map(|r| r.coefficient)),
                 json!(s.timings.assembly_s),
                 json!(s.timings.condense_s),
                 json!(s.timings.solve_s),

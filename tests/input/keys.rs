@@ -361,3 +361,54 @@ fn set_errors_name_the_option_in_words_and_null_removes_a_key() {
         "{stderr}"
     );
 }
+
+/// A standard linear solid's keys: a rubbery modulus above the glassy one, a negative creep
+/// time, the other kind of modulus than the glassy one, a missing or non-positive rolling
+/// speed, and a viscoelastic material on a `bem` body are each refused by key.
+#[test]
+fn viscoelastic_keys_are_checked() {
+    let sls = |rubbery: &str, time: &str| format!("materials.steel.viscoelastic={{{rubbery}, creep_time: {time}}}");
+    assert_refused(
+        &[&sls("E_rubbery: 300000", "1"), "load.speed=10"],
+        "materials.steel.viscoelastic.E_rubbery",
+        &["exceeds the glassy"],
+    );
+    assert_refused(
+        &[&sls("E_rubbery: 100000", "-1"), "load.speed=10"],
+        "materials.steel.viscoelastic.creep_time",
+        &["must be >= 0"],
+    );
+    assert_refused(
+        &[&sls("G_rubbery: 30000", "1"), "load.speed=10"],
+        "materials.steel.viscoelastic.E_rubbery",
+        &["same kind"],
+    );
+    assert_refused(
+        &[&sls("E_rubbery: 100000", "1")],
+        "load.speed",
+        &["missing", "creep_time > 0"],
+    );
+    assert_refused(
+        &[&sls("E_rubbery: 100000", "1"), "load.speed=0"],
+        "load.speed",
+        &["> 0"],
+    );
+    // τc = 0 (the rubbery elastic material) needs no speed.
+    let (code, stderr, _) = run_base("check", None, &[&sls("E_rubbery: 100000", "0")]);
+    assert_eq!(code, 0, "{stderr}");
+    // A bem body cannot take a viscoelastic material.
+    let case = common::case_path("fig14_true_geometry");
+    let (code, _, stderr) = rollbem(&[
+        "check",
+        case.to_str().unwrap(),
+        "--set",
+        "materials.aluminium.viscoelastic={G_rubbery: 10000, creep_time: 1}",
+        "--set",
+        "load.speed=3",
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("bodies.A.material") && stderr.contains("`half_space` bodies only"),
+        "{stderr}"
+    );
+}
