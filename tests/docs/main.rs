@@ -48,6 +48,9 @@ mod readme;
 #[allow(dead_code)]
 #[path = "../../examples/validation_report.rs"]
 mod validation_report;
+#[allow(dead_code)]
+#[path = "../../examples/viscoelastic_report.rs"]
+mod viscoelastic_report;
 
 use markdown::{assert_table, cell_mismatch, number_after, page, Printed, Rows};
 
@@ -121,6 +124,22 @@ fn validation_methods_table() {
 #[test]
 fn validation_regimes_table() {
     assert_same("validation.md", &validation_report::regimes());
+}
+
+/// docs/viscoelastic.md: CONTACT's visc_cylindr, Hunter's exact solution, the convergence.
+#[test]
+fn viscoelastic_tables() {
+    for t in [
+        viscoelastic_report::contact_comparison(),
+        viscoelastic_report::hunter(),
+        viscoelastic_report::convergence(),
+    ] {
+        let printed = Printed {
+            header: &t.header,
+            rows: &t.rows,
+        };
+        assert_table(&page("viscoelastic.md"), printed, Rows::All, &[], (&[], 0.0));
+    }
 }
 
 #[test]
