@@ -51,9 +51,17 @@ pub fn contact_comparison() -> Table {
             format!("{p_max:.2}"),
             format!("{:.3}", x1 - x0),
             format!("{width:.1}"),
-            if r.pressure_centre.abs() < 5e-5 { "0".to_string() } else { format!("{:.4}", r.pressure_centre) },
+            if r.pressure_centre.abs() < 5e-5 {
+                "0".to_string()
+            } else {
+                format!("{:.4}", r.pressure_centre)
+            },
             // τc = 0 is symmetric: its round-off (1e-12) printed as 0.
-            if r.coefficient.abs() < 1e-10 { "0".to_string() } else { format!("{:.4e}", r.coefficient) },
+            if r.coefficient.abs() < 1e-10 {
+                "0".to_string()
+            } else {
+                format!("{:.4e}", r.coefficient)
+            },
         ]);
     }
     t
@@ -144,7 +152,9 @@ pub fn hunter() -> Table {
     for row in exact_rows() {
         let s = solve_exact_row(&row, &["contact.grid.tolerance=1e-3"]);
         let r = resistance(&s);
-        let edge = (r.leading_edge - row.edges[0]).abs().max((r.trailing_edge - row.edges[1]).abs());
+        let edge = (r.leading_edge - row.edges[0])
+            .abs()
+            .max((r.trailing_edge - row.edges[1]).abs());
         t.push(vec![
             format!("{}", row.f),
             format!("{}", row.v_tau_over_a_r),
@@ -189,7 +199,9 @@ pub fn convergence() -> Table {
     for (label, set) in grids {
         let s = solve_exact_row(row, &[set.as_str()]);
         let r = resistance(&s);
-        let edge = (r.leading_edge - row.edges[0]).abs().max((r.trailing_edge - row.edges[1]).abs());
+        let edge = (r.leading_edge - row.edges[0])
+            .abs()
+            .max((r.trailing_edge - row.edges[1]).abs());
         let estimate = s
             .adaptation
             .as_ref()

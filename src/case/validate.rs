@@ -493,25 +493,6 @@ pub fn radius_pair_problem(ra: f64, rb: f64) -> Option<String> {
     })
 }
 
-#[cfg(test)]
-mod tests {
-    use super::radius_pair_problem;
-
-    #[test]
-    fn a_convex_body_touches_a_concave_one_only_inside_a_larger_bore() {
-        assert_eq!(radius_pair_problem(40.0, -50.0), None);
-        assert_eq!(radius_pair_problem(-50.0, 40.0), None);
-        assert_eq!(radius_pair_problem(40.0, 60.0), None);
-        let tight = radius_pair_problem(50.0, -50.0).unwrap();
-        assert!(tight.contains("must exceed R_convex = 50"), "{tight}");
-        assert!(radius_pair_problem(-30.0, 40.0).unwrap().contains("|R_concave| = 30"));
-        assert_eq!(radius_pair_problem(-40.0, 30.0), None);
-        assert!(radius_pair_problem(-40.0, -60.0)
-            .unwrap()
-            .contains("both bodies are concave"));
-    }
-}
-
 /// What is wrong with a material's `viscoelastic` keys, as (key under `viscoelastic`, message).
 fn viscoelastic_problems(m: &MaterialSpec, v: &ViscoelasticSpec) -> Vec<(&'static str, String)> {
     let mut out = Vec::new();
@@ -593,4 +574,23 @@ fn rolling_speed_problems(case: &Case) -> Vec<(String, String)> {
         _ => {}
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::radius_pair_problem;
+
+    #[test]
+    fn a_convex_body_touches_a_concave_one_only_inside_a_larger_bore() {
+        assert_eq!(radius_pair_problem(40.0, -50.0), None);
+        assert_eq!(radius_pair_problem(-50.0, 40.0), None);
+        assert_eq!(radius_pair_problem(40.0, 60.0), None);
+        let tight = radius_pair_problem(50.0, -50.0).unwrap();
+        assert!(tight.contains("must exceed R_convex = 50"), "{tight}");
+        assert!(radius_pair_problem(-30.0, 40.0).unwrap().contains("|R_concave| = 30"));
+        assert_eq!(radius_pair_problem(-40.0, 30.0), None);
+        assert!(radius_pair_problem(-40.0, -60.0)
+            .unwrap()
+            .contains("both bodies are concave"));
+    }
 }

@@ -178,7 +178,7 @@ impl Ageing {
         let length = s2 - s1;
         let ratio = (0.5 * (s1 + s2) - x).abs() / length;
         if ratio > FAR_FIELD_RATIO {
-            return self.gauss_integrals(kind, kernel, s1, s2, x, rule(far_points(ratio)), false);
+            return self.gauss_integrals(kind, kernel, [s1, s2], x, rule(far_points(ratio)), false);
         }
         if length >= self.length {
             return shape_integrals_from_moments(kind, s1, s2, x, self.moments_exact(kernel, s1 - x, s2 - x));
@@ -189,7 +189,7 @@ impl Ageing {
             let elastic = element_integrals_exact(kind, Kernel::Log, s1, s2, x);
             return std::array::from_fn(|a| self.direction * (aged[a] - elastic[a]) / self.length);
         }
-        self.gauss_integrals(kind, kernel, s1, s2, x, rule(GRADED_POINTS), true)
+        self.gauss_integrals(kind, kernel, [s1, s2], x, rule(GRADED_POINTS), true)
     }
 
     /// ∫ N_a(s) ∂K^L_sgn/∂x ds over [s1, s2]: the aged counterpart of the elastic sign
@@ -215,8 +215,7 @@ impl Ageing {
         &self,
         kind: ElementKind,
         kernel: Kernel,
-        s1: f64,
-        s2: f64,
+        [s1, s2]: [f64; 2],
         x: f64,
         rule: &(Vec<f64>, Vec<f64>),
         graded: bool,
