@@ -385,3 +385,62 @@ fn hunter_rigid_cylinder_on_a_standard_linear_solid() {
         assert!(coefficients[0].1 < 0.05 * top && coefficients.last().unwrap().1 < 0.1 * top);
     }
 }
+
+/// Inside the body: the aged interior displacement tends to the surface displacement the
+/// flexibility gives (the same ageing, the same datum) as the depth goes to zero, linearly in
+/// the depth (the strain is bounded): the differences at depths h/2, h/4, h/8 (h the element
+/// length) halve with the depth, and at h/8 they are below 1 % of the displacement.
+#[test]
+fn interior_displacements_meet_the_surface_ones() {
+    use rollbem::body::{BuildContext, ContactLoad, InteriorQuery, Side};
+    use rollbem::interior::{InteriorOptions, InteriorSample};
+    let s = solve("visc_cylindr_tc0009", &["load.tangential.ratio=0"]);
+    let grid = &s.problem.grid;
+    let ctx = BuildContext {
+        grid,
+        side: Side::B,
+        rolling: s.scene.rolling(),
+    };
+    let body = s.scene.bodies[1].build(&ctx).unwrap();
+    let (p, q) = (&s.solution.pressure, &s.solution.shear);
+    let surface = body.model().flexibility(grid, Side::B).normal(p, q);
+    let load = ContactLoad {
+        grid,
+        pressure: p,
+        shear: q,
+    };
+    let h = grid.element_length();
+    // Nodes in the contact's middle and near its leading edge.
+    let nodes: Vec<usize> = [0.0, 0.6 * 5.8]
+        .iter()
+        .map(|&x: &f64| {
+            (0..grid.n_nodes())
+                .min_by(|&a, &b| (grid.nodes[a] - x).abs().total_cmp(&(grid.nodes[b] - x).abs()))
+                .unwrap()
+        })
+        .collect();
+    for &i in &nodes {
+        let differences: Vec<f64> = [0.5, 0.25, 0.125]
+            .iter()
+            .map(|f| {
+                let points = [[grid.nodes[i], -f * h]];
+                let query = InteriorQuery {
+                    side: Side::B,
+                    load,
+                    points: &points,
+                    options: InteriorOptions { boundary_layer: 0.01 },
+                };
+                let InteriorSample::Inside(v) = body.fields().interior(&query).unwrap()[0] else {
+                    panic!("inside B")
+                };
+                // B's normal displacement into the body is −u_y.
+                (-v.displacement[1] - surface[i]).abs()
+            })
+            .collect();
+        assert!(differences[2] < 0.01 * surface[i].abs(), "node {i}: {differences:?}");
+        assert!(
+            differences[0] > 1.6 * differences[1] && differences[1] > 1.6 * differences[2],
+            "node {i}: {differences:?} should halve with the depth"
+        );
+    }
+}
