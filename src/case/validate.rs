@@ -318,6 +318,20 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 ),
             );
         }
+        if c.grid.element == crate::grid::ElementKind::Constant {
+            // The estimate compares the grid's interpolant with its bisection's; piecewise
+            // constant interpolants differ by O(h) jumps even where the nodal values are exact,
+            // so the estimate stays an order above the true error and the grid refines to its
+            // limit (Carter at 1e-4 stopped at max_elements with a true error of 9e-5).
+            bad(
+                "contact.grid.element".into(),
+                "an error-controlled grid (contact.grid.tolerance) needs quadratic elements: with \
+                 constant ones the error estimate is dominated by the jumps of the piecewise-constant \
+                 traction and overstates the error tenfold; use discontinuous_quadratic (the default) or \
+                 continuous_quadratic, or a fixed grid of constant elements without a tolerance"
+                    .into(),
+            );
+        }
         if c.grid.max_elements < 2 * c.grid.elements.max(1) || c.grid.max_elements > MAX_ADAPTIVE_ELEMENTS {
             bad(
                 "contact.grid.max_elements".into(),

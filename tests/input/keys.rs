@@ -412,3 +412,16 @@ fn viscoelastic_keys_are_checked() {
         "{stderr}"
     );
 }
+
+/// Constant elements with a tolerance are refused up front with the reason (their estimate
+/// overstates the error tenfold, so the grid would refine to its limit).
+#[test]
+fn constant_elements_with_a_tolerance_are_refused() {
+    assert_refused(
+        &["contact.grid.element=constant", "contact.grid.tolerance=1e-4"],
+        "contact.grid.element",
+        &["quadratic elements", "discontinuous_quadratic"],
+    );
+    let (code, stderr, _) = run_base("check", None, &["contact.grid.element=constant"]);
+    assert_eq!(code, 0, "a fixed grid of constant elements stays allowed: {stderr}");
+}
