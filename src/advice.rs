@@ -148,6 +148,20 @@ pub fn advise(error: &HalfSpaceError, tolerance: f64) -> String {
     )
 }
 
+/// The advice line when no true-geometry model of the scene's physics exists (a viscoelastic
+/// body): the half-space's estimated error, said as what it is.
+pub fn advise_without_alternative(error: &HalfSpaceError) -> String {
+    format!(
+        "half_space is the only model of this material (bem is elastic); its estimated error against the true \
+         geometry: {:.2} % of p0 in pressure{} ({}; docs/choosing-a-model.md)",
+        100.0 * error.pressure,
+        error
+            .shear
+            .map_or(String::new(), |q| format!(", {:.2} % of μp0 in shear", 100.0 * q)),
+        error.basis
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -185,7 +185,12 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
     } else {
         crate::scene::validity::half_space_error(bodies, est)
     };
-    line("model advice", crate::advice::advise(&error, tolerance));
+    let advice = if bodies.iter().all(|b| b.has_true_geometry_model()) {
+        crate::advice::advise(&error, tolerance)
+    } else {
+        crate::advice::advise_without_alternative(&error)
+    };
+    line("model advice", advice);
     for w in crate::scene::validity::warnings(bodies, est) {
         line("warning", w);
     }

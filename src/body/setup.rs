@@ -126,6 +126,13 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         false
     }
 
+    /// Whether a true-geometry (`bem`) model of the same physics exists, so that the advice may
+    /// suggest it when the half-space idealisation errs: false for physics the BEM lacks (a
+    /// viscoelastic material).
+    fn has_true_geometry_model(&self) -> bool {
+        true
+    }
+
     /// The body's contact group on its own mesh, if it has one (it then sets the grid).
     fn contact_mesh(&self) -> Option<ContactMesh<'_>> {
         None

@@ -99,10 +99,15 @@ pub fn warnings(bodies: &BodySetups, est: &Estimates) -> Vec<String> {
         let e = half_space_error(bodies, est);
         let worst = e.shear.map_or(e.pressure, |q| q.max(e.pressure));
         if worst > MAX_HALF_SPACE_ERROR {
+            let remedy = if bodies.iter().all(|b| b.has_true_geometry_model()) {
+                "model the bodies with `model: bem` (docs/choosing-a-model.md)"
+            } else {
+                "the true-geometry model (bem) is elastic only, so a viscoelastic body keeps this error \
+                 (docs/viscoelastic.md)"
+            };
             out.push(format!(
                 "body {side} is a half-space, which assumes a contact much smaller than the radii: here \
-                 ({}) its estimated error against the true geometry is {:.1} % of p0 in pressure{}; \
-                 model the bodies with `model: bem` (docs/choosing-a-model.md)",
+                 ({}) its estimated error against the true geometry is {:.1} % of p0 in pressure{}; {remedy}",
                 e.basis,
                 100.0 * e.pressure,
                 e.shear

@@ -52,6 +52,11 @@ impl BodySetup for ViscoelasticHalfSpaceSetup {
         true
     }
 
+    /// The BEM is elastic: no true-geometry model of a viscoelastic body.
+    fn has_true_geometry_model(&self) -> bool {
+        false
+    }
+
     fn surface_at(&self, _x: f64, _side: Side) -> Option<SurfaceAt> {
         None
     }
