@@ -411,6 +411,18 @@ fn viscoelastic_keys_are_checked() {
         stderr.contains("bodies.A.material") && stderr.contains("`half_space` bodies only"),
         "{stderr}"
     );
+    // Nor does the advice send a viscoelastic body to bem.
+    let case = common::case_path("visc_cylindr_tc0009");
+    let (code, stdout, _) = rollbem(&["check", case.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(
+        !stdout.contains("use bem") && !stdout.contains("model the bodies with `model: bem`"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("bem is elastic") && stdout.contains("elastic only"),
+        "{stdout}"
+    );
 }
 
 /// Constant elements with a tolerance are refused up front with the reason (their estimate
