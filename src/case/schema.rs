@@ -130,7 +130,7 @@ pub enum BodySpec {
         mesh: Option<String>,
         /// A parametric body (roller, ring, covered roller, block) meshed by rollbem, instead
         /// of `mesh`.
-        #[serde(default)]
+        #[serde(default, deserialize_with = "geometry_key")]
         geometry: Option<GeometrySpec>,
         /// Name of a material under `materials`.
         material: String,
@@ -172,6 +172,23 @@ pub enum GeometrySpec {
     CoveredRoller(CoveredRollerGeometry),
     /// A rectangle standing in for a half-space (groups `contact`, `free`, `far`).
     Block(BlockGeometry),
+}
+
+/// Reads `geometry:` with messages that name the key: inside a body (a tagged enum) the key
+/// path of a parse error ends at the body, so the message itself says `geometry` and lists the
+/// families or fields.
+fn geometry_key<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<GeometrySpec>, D::Error> {
+    let value: Option<serde_json::Value> = Option::deserialize(d)?;
+    value
+        .map(|v| {
+            GeometrySpec::deserialize(v).map_err(|e| {
+                serde::de::Error::custom(format!(
+                    "geometry: {e} (the families: {{roller: {{radius, shaft}}}}, {{ring: {{bore, rim}}}}, \
+                     {{covered_roller: {{radius, cover_thickness, core}}}}, {{block: {{width, depth}}}})"
+                ))
+            })
+        })
+        .transpose()
 }
 
 impl GeometrySpec {

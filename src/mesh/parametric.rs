@@ -124,19 +124,41 @@ impl Shape {
     /// the mesh in messages. The loops are not oriented yet: pass the mesh through
     /// [`super::validate_and_orient`].
     pub fn mesh(&self, edges: &[f64], contact: &str, above: bool, label: &str) -> BoundaryMesh {
+        self.mesh_refined(edges, contact, above, label, 1)
+    }
+
+    /// [`Self::mesh`] with the elements away from the contact `fineness` times finer: far
+    /// sizes divided by it, circles of fixed counts multiplied by it, and the growth
+    /// [`GROWTH`]`^(1/fineness)` (the contact elements stay those of `edges`). Measures the
+    /// discretisation error of the far field (docs/validation.md, "Parametric bodies").
+    pub fn mesh_refined(
+        &self,
+        edges: &[f64],
+        contact: &str,
+        above: bool,
+        label: &str,
+        fineness: usize,
+    ) -> BoundaryMesh {
+        let k = fineness.max(1);
+        let fine = Grading {
+            growth: GROWTH.powf(1.0 / k as f64),
+            scale: k as f64,
+        };
         let mut b = MeshBuilder::new(true, label);
         let s = if above { 1.0 } else { -1.0 };
         match *self {
             Shape::Roller { radius, shaft } => {
                 let centre = [0.0, s * radius];
-                outer_circle(&mut b, centre, radius, edges, above, contact, "free", far_size(radius));
-                b.circle(centre, shaft, 24, "shaft");
+                let far = far_size(radius) / fine.scale;
+                outer_circle(&mut b, centre, radius, edges, above, [contact, "free"], far, fine);
+                b.circle(centre, shaft, 24 * k, "shaft");
             }
             Shape::Ring { bore, rim } => {
                 // The bore's centre lies across the contact from the ring's material.
                 let centre = [0.0, -s * bore];
-                outer_circle(&mut b, centre, bore, edges, !above, contact, "bore", far_size(bore));
-                b.circle(centre, rim, 48, "rim");
+                let far = far_size(bore) / fine.scale;
+                outer_circle(&mut b, centre, bore, edges, !above, [contact, "bore"], far, fine);
+                b.circle(centre, rim, 48 * k, "rim");
             }
             Shape::CoveredRoller {
                 radius,
@@ -145,12 +167,12 @@ impl Shape {
                 let centre = [0.0, s * radius];
                 // Elements a few thicknesses long at most: the cover's field varies on the
                 // scale of its thickness.
-                let far = far_size(radius).min(4.0 * t);
-                outer_circle(&mut b, centre, radius, edges, above, contact, "free", far);
+                let far = far_size(radius).min(4.0 * t) / fine.scale;
+                outer_circle(&mut b, centre, radius, edges, above, [contact, "free"], far, fine);
                 let core = radius - t;
-                let core_far = (2.0 * PI * core / 24.0).min(4.0 * t);
-                let near = (edges[1] - edges[0]).max(t).min(core_far);
-                let lengths = two_sided(2.0 * PI * core, near, core_far);
+                let core_far = (2.0 * PI * core / 24.0).min(4.0 * t) / fine.scale;
+                let near = (edges[1] - edges[0]).max(t / fine.scale).min(core_far);
+                let lengths = two_sided(2.0 * PI * core, near, core_far, fine.growth);
                 // Smallest elements facing the contact.
                 let start = if above { -0.5 * PI } else { 0.5 * PI };
                 let at = |a: f64| [centre[0] + core * a.cos(), centre[1] + core * a.sin()];
@@ -164,12 +186,12 @@ impl Shape {
             }
             Shape::Block { width, depth } => {
                 let (w, y) = (0.5 * width, s * depth);
-                let far = (width / 20.0).min(depth / 10.0);
+                let far = (width / 20.0).min(depth / 10.0) / fine.scale;
                 let (x0, x1) = (edges[0], edges[edges.len() - 1]);
                 let first = edges[1] - edges[0];
                 let last = edges[edges.len() - 1] - edges[edges.len() - 2];
                 b.move_to([-w, 0.0]);
-                let left = one_sided(x0 + w, first, far);
+                let left = one_sided(x0 + w, first, far, fine.growth);
                 let mut x = -w;
                 for (k, l) in left.iter().rev().enumerate() {
                     x += l;
@@ -179,7 +201,7 @@ impl Shape {
                 for &xe in &edges[1..] {
                     b.line_to([xe, 0.0], 1, contact);
                 }
-                let right = one_sided(w - x1, last, far);
+                let right = one_sided(w - x1, last, far, fine.growth);
                 let mut x = x1;
                 for (k, l) in right.iter().enumerate() {
                     x += l;
@@ -197,6 +219,14 @@ impl Shape {
     }
 }
 
+/// How the elements grow away from the contact: by `growth` per element, to far sizes
+/// divided by `scale`.
+#[derive(Debug, Clone, Copy)]
+struct Grading {
+    growth: f64,
+    scale: f64,
+}
+
 /// Far element size of a circle of radius r: a 48th of its circumference, as the shipped
 /// Gmsh geometries give their far points.
 fn far_size(r: f64) -> f64 {
@@ -205,8 +235,9 @@ fn far_size(r: f64) -> f64 {
 
 /// A circle of radius `r` about `centre` touching the contact at the origin: the contact
 /// elements (ends at x = `edges`, on the circle's side facing the contact), then the rest of
-/// the circle back to the start, graded from the end contact elements' lengths to `far`.
-/// `centre_above`: the centre lies at y > 0 (the contact at the circle's bottom).
+/// the circle back to the start (group `groups[1]`; the contact's is `groups[0]`), graded
+/// from the end contact elements' lengths to `far`. `centre_above`: the centre lies at y > 0
+/// (the contact at the circle's bottom).
 #[allow(clippy::too_many_arguments)]
 fn outer_circle(
     b: &mut MeshBuilder,
@@ -214,10 +245,11 @@ fn outer_circle(
     r: f64,
     edges: &[f64],
     centre_above: bool,
-    contact: &str,
-    group: &str,
+    groups: [&str; 2],
     far: f64,
+    fine: Grading,
 ) {
+    let [contact, group] = groups;
     let s = if centre_above { 1.0 } else { -1.0 };
     let surface = |x: f64| [x, centre[1] - s * (r * r - x * x).sqrt()];
     // Walking the contact in +x is counter-clockwise round a centre above it.
@@ -235,8 +267,8 @@ fn outer_circle(
     let n = edges.len();
     let (h_end, h_start) = (arc(edges[n - 2], edges[n - 1]), arc(edges[0], edges[1]));
     let half = 0.5 * sweep * r;
-    let mut lengths = one_sided(half, h_end, far);
-    let mut back = one_sided(half, h_start, far);
+    let mut lengths = one_sided(half, h_end, far, fine.growth);
+    let mut back = one_sided(half, h_start, far, fine.growth);
     back.reverse();
     lengths.extend(back);
     let mut a = a0;
@@ -252,13 +284,13 @@ fn outer_circle(
 }
 
 /// Element lengths of a run of length `run` starting next to an element of length `first`:
-/// each [`GROWTH`] times the one before, up to `far`, scaled so that they fill the run exactly.
-fn one_sided(run: f64, first: f64, far: f64) -> Vec<f64> {
+/// each `growth` times the one before, up to `far`, scaled so that they fill the run exactly.
+fn one_sided(run: f64, first: f64, far: f64, growth: f64) -> Vec<f64> {
     let far = far.max(first);
     let mut lengths = Vec::new();
     let (mut h, mut total) = (first, 0.0);
     while total < run {
-        h = (h * GROWTH).min(far);
+        h = (h * growth).min(far);
         // The last element is merged into the others when less than half of it is left.
         if total + 0.5 * h >= run && !lengths.is_empty() {
             break;
@@ -276,8 +308,8 @@ fn one_sided(run: f64, first: f64, far: f64) -> Vec<f64> {
 
 /// Element lengths of a closed run of length `run` whose both ends meet an element of
 /// length `near`: [`one_sided`] over each half.
-fn two_sided(run: f64, near: f64, far: f64) -> Vec<f64> {
-    let mut lengths = one_sided(0.5 * run, near / GROWTH, far);
+fn two_sided(run: f64, near: f64, far: f64, growth: f64) -> Vec<f64> {
+    let mut lengths = one_sided(0.5 * run, near / growth, far, growth);
     let back: Vec<f64> = lengths.iter().rev().copied().collect();
     lengths.extend(back);
     lengths
@@ -364,13 +396,13 @@ mod tests {
     /// for the final fit) up to the far size.
     #[test]
     fn graded_runs_fill_their_length_and_grow_gently() {
-        let l = one_sided(235.0, 0.1176, 19.6);
+        let l = one_sided(235.0, 0.1176, 19.6, GROWTH);
         assert!((l.iter().sum::<f64>() - 235.0).abs() < 1e-9);
         assert!(l[0] < 0.1176 * GROWTH * 1.01);
         for w in l.windows(2) {
             assert!(w[1] / w[0] < GROWTH * 1.0001, "{w:?}");
         }
         assert!(*l.last().unwrap() < 19.6 * 1.01);
-        assert_eq!(one_sided(0.01, 1.0, 2.0), vec![0.01]);
+        assert_eq!(one_sided(0.01, 1.0, 2.0, GROWTH), vec![0.01]);
     }
 }
