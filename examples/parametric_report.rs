@@ -53,7 +53,10 @@ pub fn twins() -> Vec<Twin> {
         ("{ring: {bore: 50, rim: 65}}", "{rim: fixed, bore: free}"),
     );
     // The shipped meshes' contact segment: 52 elements on |x| <= 1.3a.
-    ring.extend(["contact.grid.elements=52".into(), "contact.grid.align_edges=false".into()]);
+    ring.extend([
+        "contact.grid.elements=52".into(),
+        "contact.grid.align_edges=false".into(),
+    ]);
     let block = "{block: {width: 80, depth: 40}}";
     let cover = "{covered_roller: {radius: 100, cover_thickness: 90}}";
     vec![
@@ -105,7 +108,13 @@ fn elements(s: &Solved) -> usize {
 
 /// A body's setup with its `geometry:` meshed `fineness` times finer away from the contact,
 /// on the contact elements of `setup` (the case's own mesh of it).
-fn refined_body(case: &LoadedCase, spec: &BodySpec, setup: &Arc<dyn BodySetup>, side: usize, fineness: usize) -> Arc<dyn BodySetup> {
+fn refined_body(
+    case: &LoadedCase,
+    spec: &BodySpec,
+    setup: &Arc<dyn BodySetup>,
+    side: usize,
+    fineness: usize,
+) -> Arc<dyn BodySetup> {
     let BodySpec::Bem {
         geometry: Some(g),
         material,
@@ -168,7 +177,11 @@ pub fn solve_generated(twin: &Twin, fineness: usize) -> Solved {
     let specs = [&case.case.bodies.a, &case.case.bodies.b];
     let bodies = [0, 1].map(|k| refined_body(&case, specs[k], &scene.bodies[k], k, fineness));
     let s = app::solve_scene(Scene::new(case, bodies), std::time::Instant::now()).expect("the refined scene solves");
-    assert!(s.report.converged, "{}: the refined scene did not converge", twin.family);
+    assert!(
+        s.report.converged,
+        "{}: the refined scene did not converge",
+        twin.family
+    );
     s
 }
 

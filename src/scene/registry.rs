@@ -199,7 +199,7 @@ fn contact_edges(case: &LoadedCase, given: &[Option<Arc<dyn BodySetup>>; 2]) -> 
     for (k, spec) in specs.iter().enumerate() {
         if let Some(shape) = shape_of(spec) {
             let max = shape.max_contact_half_length();
-            if !(reach <= max) {
+            if reach > max || reach.is_nan() {
                 return Err(invalid(
                     case,
                     format!("bodies.{}.geometry", ["A", "B"][k]),

@@ -50,6 +50,9 @@ fn mesh_of_a_case_without_geometry_is_refused() {
     let case = case_path("fig14_true_geometry");
     let (code, _, stderr) = rollbem(&["mesh", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     assert_eq!(code, 1, "{stderr}");
-    assert!(stderr.contains("bodies.A.geometry") && stderr.contains("no body is given by `geometry:`"), "{stderr}");
+    assert!(
+        stderr.contains("bodies.A.geometry") && stderr.contains("no body is given by `geometry:`"),
+        "{stderr}"
+    );
     assert!(!out.exists());
 }

@@ -25,8 +25,16 @@ fn assert_twin(family: &str) {
     let twin = twins().into_iter().find(|t| t.family == family).unwrap();
     let (d_twin, d_ref) = differences(&twin);
     for (k, what) in ["creepage", "overlap", "p_max"].iter().enumerate() {
-        assert!(d_twin[k] < 5e-7, "{family}: {what} differs from the Gmsh twin by {:e}", d_twin[k]);
-        assert!(d_ref[k] < 5e-5, "{family}: {what} moves by {:e} on the far field twice as fine", d_ref[k]);
+        assert!(
+            d_twin[k] < 5e-7,
+            "{family}: {what} differs from the Gmsh twin by {:e}",
+            d_twin[k]
+        );
+        assert!(
+            d_ref[k] < 5e-5,
+            "{family}: {what} moves by {:e} on the far field twice as fine",
+            d_ref[k]
+        );
     }
 }
 
