@@ -18,12 +18,14 @@ use rollbem::scene::Scene;
 use std::sync::Arc;
 
 /// Shipped cases that use every model between them: half-spaces, a rigid roller on a BEM
-/// layer, two BEM rollers on shafts, a BEM roller in a BEM ring's bore.
-const CASES: [&str; 4] = [
+/// layer, two BEM rollers on shafts, a BEM roller in a BEM ring's bore, and two BEM rollers
+/// that rollbem meshed itself (`geometry:`).
+const CASES: [&str; 5] = [
     "carter_051",
     "tyre_b05_compressible",
     "carter_051_true",
     "bore_a005_tractive",
+    "fig14_geometry",
 ];
 
 /// The body built on `grid` from `side`.
