@@ -165,13 +165,20 @@ impl Shape {
                 cover_thickness: t,
             } => {
                 let centre = [0.0, s * radius];
-                // Elements a few thicknesses long at most: the cover's field varies on the
-                // scale of its thickness.
-                let far = far_size(radius).min(4.0 * t) / fine.scale;
+                // Elements at most ten thicknesses long, as meshes/tyre_layer_strip.inc's far
+                // elements: the nearly singular integration copes with elements much longer
+                // than the cover is thick, and the field decays within some thicknesses of the
+                // contact (from 4 to 10 thicknesses, a cover of b = 0.5 under a rigid roller
+                // R = 100 changed its creepage by 4e-5).
+                let far = far_size(radius).min(10.0 * t) / fine.scale;
                 outer_circle(&mut b, centre, radius, edges, above, [contact, "free"], far, fine);
                 let core = radius - t;
-                let core_far = (2.0 * PI * core / 24.0).min(4.0 * t) / fine.scale;
-                let near = (edges[1] - edges[0]).max(t / fine.scale).min(core_far);
+                let core_far = (2.0 * PI * core / 24.0).min(10.0 * t) / fine.scale;
+                // The bond's elements facing the contact subtend the contact elements' angle:
+                // under a thin cover its tractions vary as fast as the contact's (elements of
+                // one thickness there cost 3e-3 of a thin cover's creepage,
+                // tests/validation/parametric.rs).
+                let near = ((edges[1] - edges[0]) * core / radius).min(core_far);
                 let lengths = two_sided(2.0 * PI * core, near, core_far, fine.growth);
                 // Smallest elements facing the contact.
                 let start = if above { -0.5 * PI } else { 0.5 * PI };
