@@ -177,8 +177,9 @@ impl Shape {
                 // The bond's elements facing the contact subtend the contact elements' angle:
                 // under a thin cover its tractions vary as fast as the contact's (elements of
                 // one thickness there cost 3e-3 of a thin cover's creepage,
-                // tests/validation/parametric.rs).
-                let near = ((edges[1] - edges[0]) * core / radius).min(core_far);
+                // tests/validation/parametric.rs); under a thick one they vary on the scale of
+                // the thickness, so not below a tenth of it.
+                let near = ((edges[1] - edges[0]) * core / radius).max(0.1 * t).min(core_far);
                 let lengths = two_sided(2.0 * PI * core, near, core_far, fine.growth);
                 // Smallest elements facing the contact.
                 let start = if above { -0.5 * PI } else { 0.5 * PI };
