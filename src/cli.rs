@@ -147,6 +147,17 @@ pub enum Command {
     /// in Gmsh to look at them, or give one to a case's `mesh:` key (it reads back to the same
     /// mesh, groups `contact`, `free`, `shaft`, ... included).
     ///
+    /// The families (lengths in the case's unit; the groups besides `contact`, the one held
+    /// fixed by default marked, the others free; `boundaries:` may change them):
+    ///
+    /// - geometry: {roller: {radius: 150, shaft: 15}}: free, shaft (fixed)
+    ///
+    /// - geometry: {ring: {bore: 50, rim: 65}}: bore, rim (fixed)
+    ///
+    /// - geometry: {covered_roller: {radius: 100, cover_thickness: 5, core: rigid}}: free, bonded (fixed)
+    ///
+    /// - geometry: {block: {width: 80, depth: 40}} with the body's radius: free, far (fixed)
+    ///
     /// Example: rollbem mesh cases/fig14_geometry.yaml --out meshes_fig14
     Mesh {
         /// Case file with at least one `geometry:` body.
