@@ -511,10 +511,11 @@ fn geometry_violations(
             all_positive = false;
         }
     }
+    let mut ordered = all_positive;
     if all_positive {
         let (outer, inner) = (lengths[0], lengths[1]);
-        match g {
-            GeometrySpec::Roller(_) | GeometrySpec::CoveredRoller(_) if inner.1 >= outer.1 => bad(
+        let misordered = match g {
+            GeometrySpec::Roller(_) | GeometrySpec::CoveredRoller(_) if inner.1 >= outer.1 => Some((
                 key(inner.0),
                 format!(
                     "{} = {} must be less than radius = {}: the {} lies inside the roller",
@@ -523,17 +524,37 @@ fn geometry_violations(
                     shown(outer.1),
                     if inner.0 == "shaft" { "shaft" } else { "cover" }
                 ),
-            ),
-            GeometrySpec::Ring(_) if inner.1 <= outer.1 => bad(
+            )),
+            GeometrySpec::Ring(_) if inner.1 <= outer.1 => Some((
                 key("rim"),
                 format!(
                     "rim = {} must exceed bore = {}: the rim is the ring's outer circle",
                     shown(inner.1),
                     shown(outer.1)
                 ),
-            ),
-            _ => {}
+            )),
+            _ => None,
+        };
+        if let Some((k, message)) = misordered {
+            bad(k, message);
+            ordered = false;
         }
+    }
+    let far = g.shape().far_elements();
+    if ordered && !(far <= crate::mesh::parametric::MAX_FAR_ELEMENTS) {
+        bad(
+            format!("bodies.{side}.geometry.{family}"),
+            format!(
+                "these lengths would need about {far:.3e} elements away from the contact (at most {:e}): {}",
+                crate::mesh::parametric::MAX_FAR_ELEMENTS,
+                if matches!(g, GeometrySpec::Block(_)) {
+                    "give the block a width and depth of similar size (it stands in for a half-space)"
+                } else {
+                    "the cover is too thin for its radius (its elements are at most 10 thicknesses long); \
+                     model a thin cover as a flat strip mesh (meshes/tyre_layer_strip.inc)"
+                }
+            ),
+        );
     }
     if let GeometrySpec::CoveredRoller(c) = g {
         if let CoreSpec::Elastic { material } = &c.core {

@@ -29,6 +29,11 @@ use std::f64::consts::PI;
 /// contact point of 0.12 mm and a far point of 20 mm a quarter circle away grows by 1.08).
 pub const GROWTH: f64 = 1.15;
 
+/// Most elements a generated body's far field may take ([`Shape::far_elements`]): far more
+/// than the dense BEM matrices of any machine hold, so that the memory estimate refuses such a
+/// body with its sizes, and the generator is never asked for billions of elements.
+pub const MAX_FAR_ELEMENTS: f64 = 1e5;
+
 /// Largest half-length of the contact segment as a fraction of the radius of a curved
 /// family (or of the half-width of a block): the contact stays a small arc of the body.
 pub const MAX_CONTACT_FRACTION: f64 = 0.5;
@@ -110,6 +115,27 @@ impl Shape {
                 Shape::Block { width, .. } => 0.5 * width,
                 _ => self.profile_radius().abs(),
             }
+    }
+
+    /// About how many elements the body's far field takes (away from the contact, where the
+    /// elements have their far size), before any is built: the lengths' ratios set it (a thin
+    /// cover's circumference over ten thicknesses, a deep narrow block's depth over its width).
+    pub fn far_elements(&self) -> f64 {
+        match *self {
+            Shape::Roller { .. } => 48.0 + 24.0,
+            Shape::Ring { .. } => 48.0 + 48.0,
+            Shape::CoveredRoller {
+                radius,
+                cover_thickness: t,
+            } => {
+                let circle = |r: f64| 2.0 * PI * r / (2.0 * PI * r / 48.0).min(10.0 * t);
+                circle(radius) + circle(radius - t)
+            }
+            Shape::Block { width, depth } => {
+                let far = (width / 20.0).min(depth / 10.0);
+                (2.0 * width + 2.0 * depth) / far
+            }
+        }
     }
 
     /// A contact half-length for a body whose contact is not sized yet (a small arc), used

@@ -172,6 +172,18 @@ fn contact_edges(case: &LoadedCase, given: &[Option<Arc<dyn BodySetup>>; 2]) -> 
         Some(edges) => (edges, "the other body's mesh sets the contact elements".to_string()),
         None => {
             let n = case.case.contact.grid.elements.max(1);
+            if n > MAX_GENERATED_CONTACT_ELEMENTS {
+                // Checked before anything is built: the memory estimate comes after the meshes.
+                return Err(invalid(
+                    case,
+                    "contact.grid.elements".into(),
+                    format!(
+                        "{n} contact elements for a `geometry:` body: at most \
+                         {MAX_GENERATED_CONTACT_ELEMENTS} (their dense BEM matrices take tens of GB \
+                         already); use contact.grid.tolerance to refine where it matters"
+                    ),
+                ));
+            }
             let mut provisional = Vec::new();
             for (k, spec) in specs.iter().enumerate() {
                 let setup = match (&given[k], shape_of(spec)) {
@@ -219,6 +231,10 @@ fn contact_edges(case: &LoadedCase, given: &[Option<Arc<dyn BodySetup>>; 2]) -> 
     }
     Ok(edges)
 }
+
+/// Most contact elements of a generated body: the memory estimate refuses far fewer (5000
+/// need some 100 GB), but it comes after the meshes are built.
+pub const MAX_GENERATED_CONTACT_ELEMENTS: usize = 20_000;
 
 /// The ends of `n` equal elements on [−l, l].
 fn uniform_edges(l: f64, n: usize) -> Vec<f64> {

@@ -1,7 +1,7 @@
 //! Parametric bodies (`geometry:`) refused before anything is meshed or solved: both `mesh`
 //! and `geometry`, neither, an unknown family or key, lengths out of order or negative, an
-//! elastic core (no two-region BEM), a group the family does not have, and a contact segment
-//! wider than the body. Each is exit code 1 with the key named, and nothing written.
+//! elastic core (no two-region BEM), a group the family does not have, a contact segment
+//! wider than the body, and lengths or grids that would take billions of elements. Each is exit code 1 with the key named, and nothing written.
 
 use crate::common::{case_path, rollbem};
 
@@ -107,5 +107,34 @@ fn a_contact_segment_wider_than_the_body_is_refused() {
     assert_refused(
         &["load.normal.force=1e7"],
         &["bodies.A.geometry", "wider than the roller allows"],
+    );
+}
+
+/// Lengths whose far field would take billions of elements are refused before anything is
+/// meshed (the generator would otherwise run out of memory or time before the memory estimate).
+#[test]
+fn a_cover_too_thin_or_a_block_too_deep_for_its_width_is_refused() {
+    assert_refused(
+        &[
+            "bodies.A.geometry={covered_roller: {radius: 150, cover_thickness: 1e-9}}",
+            "bodies.A.boundaries={}",
+        ],
+        &["bodies.A.geometry.covered_roller", "too thin"],
+    );
+    assert_refused(
+        &[
+            "bodies.A.geometry={block: {width: 1e-3, depth: 1e9}}",
+            "bodies.A.boundaries={}",
+        ],
+        &["bodies.A.geometry.block", "width and depth of similar size"],
+    );
+}
+
+/// A contact grid of 1e8 elements is refused before it is meshed.
+#[test]
+fn a_huge_generated_contact_segment_is_refused_before_it_is_built() {
+    assert_refused(
+        &["contact.grid.elements=100000000"],
+        &["contact.grid.elements", "at most 20000"],
     );
 }
