@@ -541,7 +541,7 @@ fn geometry_violations(
         }
     }
     let far = g.shape().far_elements();
-    if ordered && !(far <= crate::mesh::parametric::MAX_FAR_ELEMENTS) {
+    if ordered && (far > crate::mesh::parametric::MAX_FAR_ELEMENTS || far.is_nan()) {
         bad(
             format!("bodies.{side}.geometry.{family}"),
             format!(
