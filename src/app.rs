@@ -168,3 +168,35 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         output_dir,
     })
 }
+
+/// Writes the meshes rollbem generates for the `geometry:` bodies of a case (with `--set`
+/// overrides) into `out` as `A.msh`, `B.msh` (Gmsh MSH 4.1 ASCII; [`crate::mesh::write_msh41_ascii`]),
+/// atomically like a run's results. Returns the files written. A case without a `geometry:`
+/// body is bad input.
+pub fn write_meshes(case_path: &Path, overrides: &[String], out: &Path) -> Result<Vec<PathBuf>, Error> {
+    let case = case::load(case_path, overrides)?;
+    let meshes = crate::scene::registry::generated_meshes(&case)?;
+    if meshes.is_empty() {
+        return Err(Error::Case(case::CaseError::Invalid {
+            path: case.path.clone(),
+            violations: vec![case::Violation {
+                key: "bodies.A.geometry, bodies.B.geometry".into(),
+                message: "no body is given by `geometry:`, so rollbem generates no mesh; the meshes of \
+                          `mesh:` bodies are the files the case names"
+                    .into(),
+            }],
+        }));
+    }
+    let files: Vec<PathBuf> = meshes.iter().map(|(side, _)| out.join(format!("{side}.msh"))).collect();
+    output::write_atomically(out, output::folder::Kind::Mesh, |tmp| {
+        for (side, mesh) in &meshes {
+            let path = tmp.join(format!("{side}.msh"));
+            std::fs::write(&path, crate::mesh::write_msh41_ascii(mesh)).map_err(|e| Error::Output {
+                path: path.clone(),
+                message: e.to_string(),
+            })?;
+        }
+        Ok(())
+    })?;
+    Ok(files)
+}

@@ -42,7 +42,7 @@ impl Cli {
     /// The case file of the command, if it has one (named in the internal-error report).
     pub fn case_path(&self) -> Option<&std::path::Path> {
         match &self.command {
-            Command::Run { case, .. } | Command::Check { case, .. } => Some(case),
+            Command::Run { case, .. } | Command::Check { case, .. } | Command::Mesh { case, .. } => Some(case),
             Command::Sweep { case, .. } => case.as_deref(),
             Command::Study { study } => match study {
                 StudyCommand::Accuracy { case, .. } | StudyCommand::Stability { case, .. } => Some(case),
@@ -136,6 +136,38 @@ pub enum Command {
         /// Accuracy you need, as a fraction of p0 (pressure) and μp0 (shear): 0.01 is 1 %.
         #[arg(long, default_value_t = 0.01)]
         tolerance: f64,
+    },
+    /// Write the meshes rollbem generates for a case's `geometry:` bodies as Gmsh files.
+    ///
+    /// A `bem` body may give `geometry:` (a roller on a shaft, a ring, a covered roller, a
+    /// block; cases/README.md) instead of a Gmsh `mesh:`; rollbem then meshes it itself, with
+    /// its contact elements sized from the Hertz contact (the case's contact.grid) or matched
+    /// to the other body's mesh. This writes exactly the mesh `rollbem run` would solve on, as
+    /// A.msh and B.msh (Gmsh MSH 4.1 ASCII, the bodies without `geometry:` left out): open them
+    /// in Gmsh to look at them, or give one to a case's `mesh:` key (it reads back to the same
+    /// mesh, groups `contact`, `free`, `shaft`, ... included).
+    ///
+    /// The families (lengths in the case's unit; the groups besides `contact`, the one held
+    /// fixed by default marked, the others free; `boundaries:` may change them):
+    ///
+    /// - geometry: {roller: {radius: 150, shaft: 15}}: free, shaft (fixed)
+    ///
+    /// - geometry: {ring: {bore: 50, rim: 65}}: bore, rim (fixed)
+    ///
+    /// - geometry: {covered_roller: {radius: 100, cover_thickness: 5, core: rigid}}: free, bonded (fixed)
+    ///
+    /// - geometry: {block: {width: 80, depth: 40}} with the body's radius: free, far (fixed)
+    ///
+    /// Example: rollbem mesh cases/fig14_geometry.yaml --out meshes_fig14
+    Mesh {
+        /// Case file with at least one `geometry:` body.
+        case: PathBuf,
+        /// Output folder (default: the case's output folder with `_mesh` appended).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Override a case value (as for `run`), e.g. --set load.normal.force=800. Repeatable.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
     },
 }
 

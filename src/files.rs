@@ -75,6 +75,9 @@ pub enum Kind {
     /// `rollbem study stability`.
     #[serde(rename = "study stability")]
     StudyStability,
+    /// `rollbem mesh`: the generated meshes of a case's `geometry:` bodies.
+    #[serde(rename = "mesh")]
+    Mesh,
 }
 
 impl Kind {
@@ -85,6 +88,7 @@ impl Kind {
             Kind::Sweep => "sweep",
             Kind::StudyAccuracy => "study accuracy",
             Kind::StudyStability => "study stability",
+            Kind::Mesh => "mesh",
         }
     }
 }

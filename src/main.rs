@@ -329,6 +329,16 @@ fn dispatch(cli: Cli) -> Result<i32> {
                 Ok(if failures.is_empty() { 0 } else { EXIT_NOT_CONVERGED })
             }
         },
+        Command::Mesh { case, out, set } => {
+            let out = match out {
+                Some(o) => o,
+                None => default_output_dir(&rollbem::case::load(&case, &set)?, "mesh"),
+            };
+            for file in rollbem::app::write_meshes(&case, &set, &out)? {
+                println!("wrote {}", file.display());
+            }
+            Ok(0)
+        }
         Command::Check { case, set, tolerance } => {
             if !(tolerance > 0.0 && tolerance.is_finite()) {
                 anyhow::bail!("--tolerance must be a positive fraction, e.g. 0.01 for 1 % (value = {tolerance})");

@@ -23,11 +23,12 @@ pub mod cuts;
 pub mod geometry;
 pub mod loaded;
 pub mod msh;
+pub mod parametric;
 
 pub use check::{boundary_loops, validate_and_orient, BoundaryLoop};
 pub use geometry::ElementGeometry;
 pub use loaded::LoadedMesh;
-pub use msh::{parse_msh_bytes, read_msh};
+pub use msh::{parse_msh_bytes, read_msh, write_msh41_ascii};
 
 use std::path::Path;
 

@@ -5,6 +5,7 @@ pub use crate::contact::Formulation;
 pub use crate::contact::Method;
 use crate::contact::{RollingDirection, SlipDerivative, TractionAxes};
 use crate::grid::ElementKind;
+pub use crate::mesh::parametric::Shape;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -159,16 +160,25 @@ pub enum BodySpec {
         #[serde(default = "default_contact_group")]
         contact: String,
     },
-    /// Boundary element model of the body's true geometry, from a Gmsh boundary mesh.
+    /// Boundary element model of the body's true geometry, from a Gmsh boundary mesh or a
+    /// parametric geometry that rollbem meshes itself (exactly one of `mesh` and `geometry`).
     Bem {
         /// Gmsh MSH 4.1 boundary mesh (line3 or line2 elements), relative to the case file.
-        mesh: String,
+        #[serde(default)]
+        mesh: Option<String>,
+        /// A parametric body (roller, ring, covered roller, block) meshed by rollbem, instead
+        /// of `mesh`.
+        #[serde(default, deserialize_with = "geometry_key")]
+        geometry: Option<GeometrySpec>,
         /// Name of a material under `materials`.
         material: String,
         /// Physical group of the contact segment. Default = "contact".
         #[serde(default = "default_contact_group")]
         contact: String,
-        /// Boundary condition of every other physical group of the mesh.
+        /// Boundary condition of every other physical group of the mesh. With `geometry`,
+        /// optional: the family's groups not given keep their defaults (the shaft, rim, bond or
+        /// far face fixed, the rest free).
+        #[serde(default)]
         boundaries: BTreeMap<String, BoundarySpec>,
         /// Profile radius for the undeformed gap [length]; default = the mesh's own geometry.
         /// Give it for a block standing in for a half-space (paper Fig. 2).
@@ -185,6 +195,132 @@ impl BodySpec {
             BodySpec::Rigid { .. } => None,
         }
     }
+}
+
+/// A parametric body that rollbem meshes itself (cases/README.md, "Parametric bodies"):
+/// exactly one family key. Lengths in the case's unit.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum GeometrySpec {
+    /// A solid disc on a rigid shaft (groups `contact`, `free`, `shaft`).
+    Roller(RollerGeometry),
+    /// A ring: contact on its concave bore, outer rim (groups `contact`, `bore`, `rim`).
+    Ring(RingGeometry),
+    /// A cover layer bonded to a core (groups `contact`, `free`, `bonded`).
+    CoveredRoller(CoveredRollerGeometry),
+    /// A rectangle standing in for a half-space (groups `contact`, `free`, `far`).
+    Block(BlockGeometry),
+}
+
+/// Reads `geometry:` with messages that name the key: inside a body (a tagged enum) the key
+/// path of a parse error ends at the body, so the message itself says `geometry` and lists the
+/// families or fields.
+fn geometry_key<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<GeometrySpec>, D::Error> {
+    let value: Option<serde_json::Value> = Option::deserialize(d)?;
+    value
+        .map(|v| {
+            GeometrySpec::deserialize(v).map_err(|e| {
+                serde::de::Error::custom(format!(
+                    "geometry: {e} (the families: {{roller: {{radius, shaft}}}}, {{ring: {{bore, rim}}}}, \
+                     {{covered_roller: {{radius, cover_thickness, core}}}}, {{block: {{width, depth}}}})"
+                ))
+            })
+        })
+        .transpose()
+}
+
+impl GeometrySpec {
+    /// The body's family and lengths, as the mesh generator takes them.
+    pub fn shape(&self) -> Shape {
+        match self {
+            GeometrySpec::Roller(r) => Shape::Roller {
+                radius: r.radius,
+                shaft: r.shaft,
+            },
+            GeometrySpec::Ring(r) => Shape::Ring {
+                bore: r.bore,
+                rim: r.rim,
+            },
+            GeometrySpec::CoveredRoller(c) => Shape::CoveredRoller {
+                radius: c.radius,
+                cover_thickness: c.cover_thickness,
+            },
+            GeometrySpec::Block(b) => Shape::Block {
+                width: b.width,
+                depth: b.depth,
+            },
+        }
+    }
+}
+
+/// `geometry: {roller: {radius, shaft}}`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RollerGeometry {
+    /// Outer radius R [length].
+    pub radius: f64,
+    /// Radius of the shaft (the inner circle) [length], 0 < shaft < radius.
+    pub shaft: f64,
+}
+
+/// `geometry: {ring: {bore, rim}}`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RingGeometry {
+    /// Bore radius [length] (the profile radius is −bore: concave).
+    pub bore: f64,
+    /// Outer rim radius [length], > bore.
+    pub rim: f64,
+}
+
+/// `geometry: {covered_roller: {radius, cover_thickness, core}}`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CoveredRollerGeometry {
+    /// Outer radius R of the cover [length].
+    pub radius: f64,
+    /// Thickness b of the cover [length], 0 < b < R.
+    pub cover_thickness: f64,
+    /// The core: `rigid` (the cover's inner circle fixed). Default = rigid.
+    #[serde(default)]
+    pub core: CoreSpec,
+}
+
+/// The core of a covered roller.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum CoreSpec {
+    /// `rigid`.
+    Keyword(CoreKeyword),
+    /// `{material: NAME}`: an elastic core (refused: it needs a two-region BEM).
+    Elastic {
+        /// Name of a material under `materials`.
+        material: String,
+    },
+}
+
+impl Default for CoreSpec {
+    fn default() -> Self {
+        CoreSpec::Keyword(CoreKeyword::Rigid)
+    }
+}
+
+/// The keyword cores.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CoreKeyword {
+    /// A rigid core: the cover's inner circle does not move.
+    Rigid,
+}
+
+/// `geometry: {block: {width, depth}}`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockGeometry {
+    /// Width of the block (its contact face) [length].
+    pub width: f64,
+    /// Depth of the block below its contact face [length].
+    pub depth: f64,
 }
 
 fn default_contact_group() -> String {

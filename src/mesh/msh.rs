@@ -18,12 +18,14 @@
 
 mod cursor;
 mod sections;
+mod writer;
 
 use super::{BoundaryElement, BoundaryMesh, MeshError, PhysicalGroup};
 use cursor::{Cursor, Format};
 use sections::element_name;
 use std::collections::HashMap;
 use std::path::Path;
+pub use writer::write_msh41_ascii;
 
 /// Reads the MSH 4.1 file at `path` (ASCII or binary) into a raw [`BoundaryMesh`].
 pub fn read_msh(path: &Path) -> Result<BoundaryMesh, MeshError> {

@@ -423,11 +423,24 @@ fn advice(case: &LoadedCase, bodies: &BodySetups, sizes: &ProblemSizes, e: &Memo
 /// uniform grid; the mesh's contact group (or the load) when the grid is a `bem` body's own.
 pub fn grid_too_short_advice(case: &LoadedCase, bodies: &BodySetups) -> String {
     let c = &case.case;
-    let bem = ["A", "B"].into_iter().zip(bodies).find_map(|(side, b)| {
-        b.contact_mesh()
-            .map(|own| (side, own.mesh.path.display().to_string(), own.group))
-    });
+    let meshes: Vec<(&str, String, &str)> = ["A", "B"]
+        .into_iter()
+        .zip(bodies)
+        .filter_map(|(side, b)| {
+            b.contact_mesh()
+                .map(|own| (side, own.mesh.path.display().to_string(), own.group))
+        })
+        .collect();
+    // A `geometry:` body's mesh (labelled `<geometry …>`) is sized by the case's grid keys,
+    // unless a mesh file sets the contact elements.
+    let generated = |m: &&(&str, String, &str)| m.1.starts_with("<geometry");
+    let bem = meshes.iter().find(|m| !generated(m)).or(meshes.first());
     match bem {
+        Some((side, mesh, _)) if mesh.starts_with("<geometry") => format!(
+            "The grid is the contact segment rollbem generated for body {side}'s geometry around the \
+             Hertz contact: increase contact.grid.extent (now {}), or give contact.grid.half_length",
+            shown(c.contact.grid.extent)
+        ),
         Some((side, mesh, contact)) => format!(
             "The grid is the contact group `{contact}` of body {side}'s mesh {mesh}: extend that group \
              over a longer arc in the mesh, or lower the load"

@@ -8,7 +8,7 @@ use crate::body::half_space::setup::HalfSpaceSetup;
 use crate::body::rigid::RigidSetup;
 use crate::body::viscoelastic::setup::ViscoelasticHalfSpaceSetup;
 use crate::body::BodySetup;
-use crate::case::{BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase};
+use crate::case::{BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase, Shape};
 use crate::error::Error;
 use crate::mesh::LoadedMesh;
 use std::sync::Arc;
@@ -17,8 +17,10 @@ use std::sync::Arc;
 pub type BodySetups = [Arc<dyn BodySetup>; 2];
 
 /// Resolves a body spec into its model's setup: loads and checks the mesh of a `bem` body (paths relative to the
-/// case) and fits the profile radius where the case gives a mesh instead of a radius.
-pub fn setup_of(case: &LoadedCase, spec: &BodySpec) -> Result<Arc<dyn BodySetup>, Error> {
+/// case) and fits the profile radius where the case gives a mesh instead of a radius. A
+/// `geometry:` body is meshed with its contact elements ending at `edges` (ascending x; the
+/// caller sizes them, [`setups_of_case`]); `side` is 0 for A, 1 for B.
+fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> Result<Arc<dyn BodySetup>, Error> {
     Ok(match spec {
         BodySpec::HalfSpace { material, radius } => match case.viscoelastic_material(material) {
             Some(sls) => Arc::new(ViscoelasticHalfSpaceSetup {
@@ -52,13 +54,61 @@ pub fn setup_of(case: &LoadedCase, spec: &BodySpec) -> Result<Arc<dyn BodySetup>
             })
         }
         BodySpec::Bem {
+            geometry: Some(geometry),
+            material,
+            contact,
+            boundaries,
+            radius,
+            ..
+        } => {
+            let shape = geometry.shape();
+            let name = ["A", "B"][side];
+            let label = format!("<geometry {} of body {name}>", shape.family());
+            let mut m = shape.mesh(edges, contact, side == 0, &label);
+            // The loops are drawn in a fixed turn and oriented here; that is no news to the
+            // user, so the notices are dropped.
+            crate::mesh::validate_and_orient(&mut m)?;
+            let contact_group = m.group_index(contact)?;
+            let loaded = LoadedMesh {
+                path: label.into(),
+                mesh: m,
+                notices: Vec::new(),
+                contact_group,
+            };
+            let mut conditions: Vec<(String, BoundaryCondition)> = shape
+                .groups()
+                .iter()
+                .map(|(g, fixed)| {
+                    let default = if *fixed {
+                        BoundaryCondition::Fixed
+                    } else {
+                        BoundaryCondition::Free
+                    };
+                    (g.to_string(), boundaries.get(*g).map_or(default, boundary_condition))
+                })
+                .collect();
+            conditions.sort_by(|a, b| a.0.cmp(&b.0));
+            conditions.push((contact.clone(), BoundaryCondition::Contact));
+            Arc::new(BemSetup {
+                radius: radius.unwrap_or_else(|| loaded.contact_radius()),
+                mesh: loaded,
+                material: case.material(material),
+                contact: contact.clone(),
+                conditions,
+                profile_radius: *radius,
+                start_mesh: None,
+            })
+        }
+        BodySpec::Bem {
             mesh,
             material,
             contact,
             boundaries,
             radius,
+            ..
         } => {
-            let path = case.base_dir().join(mesh);
+            // Validated: a bem body without a geometry has a mesh.
+            let path = case.base_dir().join(mesh.as_deref().unwrap_or_default());
             let (m, notices) = crate::mesh::load(&path)?;
             let contact_group = m.group_index(contact)?;
             for name in m.group_names() {
@@ -97,39 +147,160 @@ pub fn setup_of(case: &LoadedCase, spec: &BodySpec) -> Result<Arc<dyn BodySetup>
     })
 }
 
+/// The parametric shape of a body spec, if it is a `geometry:` body.
+fn shape_of(spec: &BodySpec) -> Option<Shape> {
+    match spec {
+        BodySpec::Bem { geometry: Some(g), .. } => Some(g.shape()),
+        _ => None,
+    }
+}
+
+/// A case error of one key.
+fn invalid(case: &LoadedCase, key: String, message: String) -> Error {
+    Error::Case(crate::case::CaseError::Invalid {
+        path: case.path.clone(),
+        violations: vec![crate::case::Violation { key, message }],
+    })
+}
+
+/// The contact element ends of the case's `geometry:` bodies (ascending x): those of the other
+/// body's mesh file when it has one (so that the contact nodes pair up), else the uniform grid
+/// the case's `contact.grid` builds around the Hertz contact (its `elements`, and its half-length
+/// from `extent` or `half_length`), as the shipped meshes were made. The Hertz estimates need
+/// the bodies' radii and materials only, so they are taken on the bodies meshed with a
+/// provisional contact segment. Refuses a segment too wide for a body.
+fn contact_edges(case: &LoadedCase, given: &[Option<Arc<dyn BodySetup>>; 2]) -> Result<Vec<f64>, Error> {
+    let specs = [&case.case.bodies.a, &case.case.bodies.b];
+    let from_mesh = given
+        .iter()
+        .flatten()
+        .find_map(|b| b.contact_mesh().map(|own| own.mesh.contact_grid().edges.clone()));
+    let (edges, source) = match from_mesh {
+        Some(edges) => (edges, "the other body's mesh sets the contact elements".to_string()),
+        None => {
+            let n = case.case.contact.grid.elements.max(1);
+            if n > MAX_GENERATED_CONTACT_ELEMENTS {
+                // Checked before anything is built: the memory estimate comes after the meshes.
+                return Err(invalid(
+                    case,
+                    "contact.grid.elements".into(),
+                    format!(
+                        "{n} contact elements for a `geometry:` body: at most \
+                         {MAX_GENERATED_CONTACT_ELEMENTS} (their dense BEM matrices take tens of GB \
+                         already); use contact.grid.tolerance to refine where it matters"
+                    ),
+                ));
+            }
+            let mut provisional = Vec::new();
+            for (k, spec) in specs.iter().enumerate() {
+                let setup = match (&given[k], shape_of(spec)) {
+                    (Some(b), _) => b.clone(),
+                    (None, Some(shape)) => {
+                        let l = shape.provisional_half_length();
+                        setup_of(case, spec, k, &uniform_edges(l, n))?
+                    }
+                    (None, None) => setup_of(case, spec, k, &[])?,
+                };
+                provisional.push(setup);
+            }
+            let bodies: BodySetups = [provisional[0].clone(), provisional[1].clone()];
+            let estimates = crate::scene::Estimates::of(&case.case, &bodies);
+            let l = estimates.grid_half_length;
+            let why = format!(
+                "Hertz half-width a = {:.6} and contact.grid (extent, half_length) give the contact \
+                 segment |x| <= {l:.6}",
+                estimates.hertz_half_width
+            );
+            (uniform_edges(l, n), why)
+        }
+    };
+    let reach = edges.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    for (k, spec) in specs.iter().enumerate() {
+        if let Some(shape) = shape_of(spec) {
+            let max = shape.max_contact_half_length();
+            if reach > max || reach.is_nan() {
+                return Err(invalid(
+                    case,
+                    format!("bodies.{}.geometry", ["A", "B"][k]),
+                    format!(
+                        "{source}, wider than the {} allows (|x| <= {max:.6}, half its {}): lower the \
+                         load, or make the body larger",
+                        shape.family(),
+                        if matches!(shape, Shape::Block { .. }) {
+                            "half-width"
+                        } else {
+                            "radius"
+                        }
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(edges)
+}
+
+/// Most contact elements of a generated body: the memory estimate refuses far fewer (5000
+/// need some 100 GB), but it comes after the meshes are built.
+pub const MAX_GENERATED_CONTACT_ELEMENTS: usize = 20_000;
+
+/// The ends of `n` equal elements on [−l, l].
+fn uniform_edges(l: f64, n: usize) -> Vec<f64> {
+    (0..=n).map(|i| -l + 2.0 * l * i as f64 / n as f64).collect()
+}
+
 /// Both bodies of a case, A first. Radii fitted to meshes are checked as a pair like the
-/// case's own (two concave bodies, or a bore no larger than the roller, cannot touch).
+/// case's own (two concave bodies, or a bore no larger than the roller, cannot touch). Bodies
+/// with `geometry:` are meshed last, their contact segment sized by the others
+/// ([`contact_edges`]).
 pub fn setups_of_case(case: &LoadedCase) -> Result<BodySetups, Error> {
-    let bodies = [
-        setup_of(case, &case.case.bodies.a)?,
-        setup_of(case, &case.case.bodies.b)?,
-    ];
+    let specs = [&case.case.bodies.a, &case.case.bodies.b];
+    let mut given: [Option<Arc<dyn BodySetup>>; 2] = [None, None];
+    for (k, spec) in specs.iter().enumerate() {
+        if shape_of(spec).is_none() {
+            given[k] = Some(setup_of(case, spec, k, &[])?);
+        }
+    }
+    if given.iter().any(Option::is_none) {
+        let edges = contact_edges(case, &given)?;
+        for (k, spec) in specs.iter().enumerate() {
+            if given[k].is_none() {
+                given[k] = Some(setup_of(case, spec, k, &edges)?);
+            }
+        }
+    }
+    let [Some(a), Some(b)] = given else {
+        unreachable!("every body has its setup")
+    };
+    let bodies = [a, b];
     for (side, spec, setup) in [
         ("A", &case.case.bodies.a, &bodies[0]),
         ("B", &case.case.bodies.b, &bodies[1]),
     ] {
         if let (BodySpec::Bem { radius: Some(r), .. }, Some(own)) = (spec, setup.contact_mesh()) {
             if let Some(message) = radius_contradicts_mesh(*r, own.mesh) {
-                return Err(Error::Case(crate::case::CaseError::Invalid {
-                    path: case.path.clone(),
-                    violations: vec![crate::case::Violation {
-                        key: format!("bodies.{side}.radius"),
-                        message,
-                    }],
-                }));
+                return Err(invalid(case, format!("bodies.{side}.radius"), message));
             }
         }
     }
     if let Some(message) = crate::case::validate::radius_pair_problem(bodies[0].radius(), bodies[1].radius()) {
-        return Err(Error::Case(crate::case::CaseError::Invalid {
-            path: case.path.clone(),
-            violations: vec![crate::case::Violation {
-                key: "bodies.A, bodies.B (profile radii fitted to the meshes' contact groups)".into(),
-                message,
-            }],
-        }));
+        return Err(invalid(
+            case,
+            "bodies.A, bodies.B (profile radii fitted to the meshes' contact groups)".into(),
+            message,
+        ));
     }
     Ok(bodies)
+}
+
+/// The meshes rollbem generated for the case's `geometry:` bodies (checked and oriented), with
+/// their side, "A" or "B": what `rollbem mesh` writes.
+pub fn generated_meshes(case: &LoadedCase) -> Result<Vec<(&'static str, crate::mesh::BoundaryMesh)>, Error> {
+    let bodies = setups_of_case(case)?;
+    let specs = [&case.case.bodies.a, &case.case.bodies.b];
+    Ok((0..2)
+        .filter(|&k| shape_of(specs[k]).is_some())
+        .filter_map(|k| Some((["A", "B"][k], bodies[k].contact_mesh()?.mesh.mesh.clone())))
+        .collect())
 }
 
 /// Why a profile radius given to a `bem` body contradicts its mesh: the contact group is
@@ -186,10 +357,37 @@ pub fn describe(case: &LoadedCase, spec: &BodySpec, setup: &dyn BodySetup) -> St
             setup.radius(),
             mesh.as_deref().unwrap_or("")
         ),
-        BodySpec::Bem { mesh, material, .. } => {
+        BodySpec::Bem {
+            mesh,
+            geometry,
+            material,
+            ..
+        } => {
             let m = case.material(material);
+            let source = match (geometry, setup.contact_mesh()) {
+                (Some(g), Some(own)) => {
+                    let shape = g.shape();
+                    let lengths = match shape {
+                        Shape::Roller { radius, shaft } => format!("radius {radius} {l}, shaft {shaft} {l}"),
+                        Shape::Ring { bore, rim } => format!("bore {bore} {l}, rim {rim} {l}"),
+                        Shape::CoveredRoller {
+                            radius,
+                            cover_thickness,
+                        } => format!("radius {radius} {l}, cover {cover_thickness} {l} on a rigid core"),
+                        Shape::Block { width, depth } => format!("width {width} {l}, depth {depth} {l}"),
+                    };
+                    let lm = own.mesh;
+                    format!(
+                        "geometry {} ({lengths}; meshed by rollbem: {} elements, {} on the contact)",
+                        shape.family(),
+                        lm.mesh.elements.len(),
+                        lm.mesh.count_in_group(lm.contact_group)
+                    )
+                }
+                _ => format!("mesh {}", mesh.as_deref().unwrap_or_default()),
+            };
             format!(
-                "bem, mesh {mesh}, material `{material}` (E = {:.6} {f}/{l}^2, G = {:.6} {f}/{l}^2, nu = {})",
+                "bem, {source}, material `{material}` (E = {:.6} {f}/{l}^2, G = {:.6} {f}/{l}^2, nu = {})",
                 m.young,
                 m.shear(),
                 m.poisson

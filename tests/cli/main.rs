@@ -9,6 +9,7 @@ mod common;
 
 mod commands;
 mod files;
+mod mesh;
 mod stability;
 mod stall;
 mod study;

@@ -42,6 +42,9 @@ mod model_error_table;
 mod no_external_references;
 mod outputs;
 #[allow(dead_code)]
+#[path = "../../examples/parametric_report.rs"]
+mod parametric_report;
+#[allow(dead_code)]
 #[path = "../../examples/perf_report.rs"]
 mod perf_report;
 mod readme;
@@ -119,6 +122,17 @@ fn validation_methods_table() {
     };
     let noise = ["max Δq / μp0", "max Δp / p0"];
     assert_table(&page("validation.md"), printed, Rows::All, &[], (&noise, 1e-9));
+}
+
+/// docs/validation.md, "Parametric bodies": each family against its Gmsh twin.
+#[test]
+fn validation_parametric_table() {
+    let t = parametric_report::parametric();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("validation.md"), printed, Rows::All, &[], (&[], 0.0));
 }
 
 #[test]

@@ -8,6 +8,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod geometry;
 mod keys;
 mod meshes;
 mod properties;

@@ -18,13 +18,15 @@ use rollbem::scene::Scene;
 use std::sync::Arc;
 
 /// Shipped cases that use every model between them: half-spaces, a rigid roller on a BEM
-/// layer, two BEM rollers on shafts, a BEM roller in a BEM ring's bore, viscoelastic
-/// half-spaces (a pair, and under a rigid roller).
-const CASES: [&str; 6] = [
+/// layer, two BEM rollers on shafts, a BEM roller in a BEM ring's bore, two BEM rollers
+/// that rollbem meshed itself (`geometry:`), viscoelastic half-spaces (a pair, and under a
+/// rigid roller).
+const CASES: [&str; 7] = [
     "carter_051",
     "tyre_b05_compressible",
     "carter_051_true",
     "bore_a005_tractive",
+    "fig14_geometry",
     "visc_cylindr_tc0009",
     "hunter_rigid_on_sls",
 ];

@@ -18,6 +18,10 @@ mod friction_limits;
 mod hertz_carter;
 mod internal_contact;
 mod methods;
+mod parametric;
+#[allow(dead_code)]
+#[path = "../../examples/parametric_report.rs"]
+mod parametric_report;
 mod slip_end;
 mod solver;
 mod true_geometry;

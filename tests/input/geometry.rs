@@ -1,0 +1,140 @@
+//! Parametric bodies (`geometry:`) refused before anything is meshed or solved: both `mesh`
+//! and `geometry`, neither, an unknown family or key, lengths out of order or negative, an
+//! elastic core (no two-region BEM), a group the family does not have, a contact segment
+//! wider than the body, and lengths or grids that would take billions of elements. Each is exit code 1 with the key named, and nothing written.
+
+use crate::common::{case_path, rollbem};
+
+/// Runs `check` and `run` on cases/fig14_geometry.yaml with the overrides; asserts exit 1,
+/// every `needles` in the message, nothing written.
+fn assert_refused(set: &[&str], needles: &[&str]) {
+    let case = case_path("fig14_geometry");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    for verb in ["check", "run", "mesh"] {
+        let mut args = vec![verb, case.to_str().unwrap()];
+        if verb != "check" {
+            args.extend(["--out", out.to_str().unwrap()]);
+        }
+        for s in set {
+            args.extend(["--set", s]);
+        }
+        let (code, _, stderr) = rollbem(&args);
+        assert_eq!(code, 1, "{verb} {set:?}: {stderr}");
+        for n in needles {
+            assert!(stderr.contains(n), "{verb} {set:?}: does not say `{n}`: {stderr}");
+        }
+        assert!(!out.exists(), "{verb} {set:?} wrote {}", out.display());
+    }
+}
+
+#[test]
+fn both_mesh_and_geometry_are_refused() {
+    assert_refused(
+        &["bodies.A.mesh=../meshes/roller_r150_shaft15_A.msh"],
+        &["bodies.A.geometry", "exactly one of `mesh`"],
+    );
+}
+
+#[test]
+fn neither_mesh_nor_geometry_is_refused() {
+    assert_refused(&["bodies.B.geometry=null"], &["bodies.B.mesh", "`geometry`"]);
+}
+
+#[test]
+fn a_shaft_as_large_as_the_roller_is_refused() {
+    assert_refused(
+        &["bodies.A.geometry.roller.shaft=150"],
+        &["bodies.A.geometry.roller.shaft", "must be less than radius = 150"],
+    );
+}
+
+#[test]
+fn a_negative_cover_thickness_is_refused() {
+    assert_refused(
+        &[
+            "bodies.B.geometry={covered_roller: {radius: 300, cover_thickness: -5}}",
+            "bodies.B.boundaries={bonded: fixed}",
+        ],
+        &["bodies.B.geometry.covered_roller.cover_thickness", "positive"],
+    );
+}
+
+#[test]
+fn a_ring_whose_rim_is_inside_its_bore_is_refused() {
+    assert_refused(
+        &[
+            "bodies.B.geometry={ring: {bore: 500, rim: 400}}",
+            "bodies.B.boundaries={rim: fixed}",
+        ],
+        &["bodies.B.geometry.ring.rim", "must exceed bore"],
+    );
+}
+
+#[test]
+fn an_unknown_family_or_key_is_refused() {
+    assert_refused(
+        &["bodies.A.geometry={disc: {radius: 150}}"],
+        &["bodies.A", "geometry: unknown variant `disc`", "roller"],
+    );
+    assert_refused(
+        &["bodies.A.geometry={roller: {radius: 150, shaft: 15, width: 3}}"],
+        &["bodies.A", "geometry: unknown field `width`"],
+    );
+}
+
+#[test]
+fn an_elastic_core_is_refused_for_want_of_a_two_region_bem() {
+    assert_refused(
+        &[
+            "bodies.B.geometry={covered_roller: {radius: 300, cover_thickness: 5, core: {material: steel_bj}}}",
+            "bodies.B.boundaries={}",
+        ],
+        &["bodies.B.geometry.covered_roller.core", "two-region BEM"],
+    );
+}
+
+#[test]
+fn a_group_the_family_lacks_is_refused() {
+    assert_refused(
+        &["bodies.A.boundaries={rim: fixed}"],
+        &["bodies.A.boundaries.rim", "a roller has no group `rim`"],
+    );
+}
+
+#[test]
+fn a_contact_segment_wider_than_the_body_is_refused() {
+    assert_refused(
+        &["load.normal.force=1e7"],
+        &["bodies.A.geometry", "wider than the roller allows"],
+    );
+}
+
+/// Lengths whose far field would take billions of elements are refused before anything is
+/// meshed (the generator would otherwise run out of memory or time before the memory estimate).
+#[test]
+fn a_cover_too_thin_or_a_block_too_deep_for_its_width_is_refused() {
+    assert_refused(
+        &[
+            "bodies.A.geometry={covered_roller: {radius: 150, cover_thickness: 1e-9}}",
+            "bodies.A.boundaries={}",
+        ],
+        &["bodies.A.geometry.covered_roller", "too thin"],
+    );
+    assert_refused(
+        &[
+            "bodies.A.geometry={block: {width: 1e-3, depth: 1e9}}",
+            "bodies.A.boundaries={}",
+        ],
+        &["bodies.A.geometry.block", "width and depth of similar size"],
+    );
+}
+
+/// A contact grid of 1e8 elements is refused before it is meshed.
+#[test]
+fn a_huge_generated_contact_segment_is_refused_before_it_is_built() {
+    assert_refused(
+        &["contact.grid.elements=100000000"],
+        &["contact.grid.elements", "at most 20000"],
+    );
+}
