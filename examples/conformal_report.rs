@@ -43,9 +43,10 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
 }
 
-/// Whether a case has a half-space body (its frame is the global axes whatever the key says).
+/// Whether a case has a half-space body, elastic or viscoelastic (its frame is the global axes
+/// whatever the key says).
 fn has_half_space(s: &Solved) -> bool {
-    s.scene.bodies.iter().any(|b| b.model_name() == "half_space")
+    s.scene.bodies.iter().any(|b| b.idealises_as_half_plane())
 }
 
 /// Two significant figures in exponent form with the docs' minus (−1.3e-2, +4.0e-6), `0` below
@@ -130,7 +131,7 @@ pub fn traction_axes_effect() -> Table {
     let zero = |v: f64| if v == 0.0 { "0".to_string() } else { format!("{v:.1e}") };
     t.push(vec![
         format!("the {half_space_cases} half-space cases"),
-        "half_space / half_space".into(),
+        "half-space models".into(),
         "–".into(),
         "–".into(),
         zero(half_space_change),

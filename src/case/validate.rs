@@ -2,6 +2,9 @@
 //! value (as CONTACT's input check does), so the user fixes a case in one pass.
 
 use super::schema::*;
+use viscoelastic::{rolling_speed_problems, viscoelastic_problems};
+
+mod viscoelastic;
 
 /// Magnitudes that a dimensional input (a length, force per length or stress) may take, in any
 /// consistent units: [1e-30, 1e30]. Derived quantities are products and quotients of a few of
@@ -643,89 +646,6 @@ pub fn radius_pair_problem(ra: f64, rb: f64) -> Option<String> {
             1.0 / ra + 1.0 / rb
         )
     })
-}
-
-/// What is wrong with a material's `viscoelastic` keys, as (key under `viscoelastic`, message).
-fn viscoelastic_problems(m: &MaterialSpec, v: &ViscoelasticSpec) -> Vec<(&'static str, String)> {
-    let mut out = Vec::new();
-    let glassy = match (m.young, m.shear, v.young_rubbery, v.shear_rubbery) {
-        (Some(e), None, Some(er), None) => Some((e, er, "E")),
-        (None, Some(g), None, Some(gr)) => Some((g, gr, "G")),
-        _ => {
-            out.push((
-                "E_rubbery",
-                "give the rubbery (long-term) modulus as the same kind as the glassy one: E_rubbery with E, \
-                 or G_rubbery with G (E/G is the glassy, instantaneous modulus)"
-                    .to_string(),
-            ));
-            None
-        }
-    };
-    if let Some((glassy, rubbery, kind)) = glassy {
-        let key = if kind == "E" { "E_rubbery" } else { "G_rubbery" };
-        if let Some(why) = positive_quantity(rubbery) {
-            out.push((key, format!("rubbery modulus {why}")));
-        } else if rubbery > glassy {
-            out.push((
-                key,
-                format!(
-                    "the rubbery (long-term) modulus {} exceeds the glassy (instantaneous) {kind} = {}: a standard \
-                     linear solid softens as it creeps, so give {key} <= {kind}",
-                    shown(rubbery),
-                    shown(glassy)
-                ),
-            ));
-        }
-    }
-    if !(v.creep_time >= 0.0 && v.creep_time.is_finite()) {
-        out.push((
-            "creep_time",
-            format!(
-                "creep time must be >= 0 and finite (value = {}); 0 gives the rubbery elastic material",
-                shown(v.creep_time)
-            ),
-        ));
-    }
-    out
-}
-
-/// Problems of `load.speed` and of viscoelastic materials on bodies that cannot take them.
-fn rolling_speed_problems(case: &Case) -> Vec<(String, String)> {
-    let mut out = Vec::new();
-    let creeping = |name: &str| {
-        case.materials
-            .get(name)
-            .and_then(|m| m.viscoelastic.as_ref())
-            .map(|v| v.creep_time)
-    };
-    let mut needs_speed = false;
-    for (side, body) in [("A", &case.bodies.a), ("B", &case.bodies.b)] {
-        match body {
-            BodySpec::HalfSpace { material, .. } => needs_speed |= creeping(material).is_some_and(|t| t > 0.0),
-            BodySpec::Bem { material, .. } if creeping(material).is_some() => out.push((
-                format!("bodies.{side}.material"),
-                format!(
-                    "material `{material}` is viscoelastic, which rollbem models on `half_space` bodies only \
-                     (the aged half-plane kernels); give this bem body an elastic material or model it as a half_space"
-                ),
-            )),
-            _ => {}
-        }
-    }
-    match case.load.speed {
-        Some(v) if !(v > 0.0 && v.is_finite()) => out.push((
-            "load.speed".into(),
-            format!("rolling speed must be > 0 and finite (value = {})", shown(v)),
-        )),
-        None if needs_speed => out.push((
-            "load.speed".into(),
-            "missing: a viscoelastic material with creep_time > 0 needs the rolling speed V [length/time] \
-             (the material's age in the contact is x/V)"
-                .into(),
-        )),
-        _ => {}
-    }
-    out
 }
 
 #[cfg(test)]
