@@ -322,7 +322,8 @@ def sweep(
         given, ``message`` (why a run failed, else ""), then ``converged``, ``iterations``,
         ``residual``, ``normal_force``, ``tangential_force``, ``load_ratio``, ``overlap``,
         ``creep``, ``contact_x_min``, ``contact_x_max``, ``contact_centre``, ``half_width``, ``max_pressure``,
-        ``slip_regime``, ``stick_zones``, ``slip_zones`` (counts), ``assembly_s``,
+        ``slip_regime``, ``stick_zones``, ``slip_zones`` (counts), ``pressure_centre`` (towards
+        the leading edge), ``rolling_resistance`` (F_r/P), ``assembly_s``,
         ``condense_s``, ``solve_s``, ``total_s`` (None for a failed run). Units as in
         :class:`Result`. :func:`sweep_frame` makes a pandas DataFrame of them.
 
