@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import rollbem
-from conftest import CASES, cli, read_contact_csv, read_summary
+from conftest import CASES, ROOT, cli, read_contact_csv, read_summary
 
 # Wall-clock values and the command line differ between any two runs.
 VARYING = {"timings", "command"}
@@ -137,3 +137,12 @@ def test_check_of_a_dict_case_and_to_pandas():
     assert isinstance(frame, pd.DataFrame)
     assert list(frame.columns) == [c for c in rollbem.CONTACT_COLUMNS if result.arrays[c] is not None]
     assert np.array_equal(frame["pressure"].to_numpy(), result.pressure)
+
+
+def test_rolling_resistance_attribute_is_the_summary_block():
+    """A viscoelastic run's rolling resistance: the attribute is summary.json's block, and the
+    pressure leans towards the leading edge (a positive resistance)."""
+    r = rollbem.run(str(ROOT / "cases" / "visc_cylindr_tc0009.yaml"))
+    assert r.rolling_resistance == r.summary["rolling_resistance"]
+    assert r.rolling_resistance["coefficient"] > 1e-3
+    assert r.rolling_resistance["dissipated_power"] == r.rolling_resistance["force"] * 1000.0

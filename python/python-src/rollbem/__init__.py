@@ -140,6 +140,10 @@ class Result:
     * ``stick_zones``, ``slip_zones``: lists of [x0, x1] [length]
     * ``regime``: the slip regime 1-4 of Gonzalez & Abascal (2000) section 5.2, 0 for none
     * ``error_estimate``: the estimated errors of an error-controlled grid (dict, else None)
+    * ``rolling_resistance``: dict ``leading_edge``, ``trailing_edge``, ``pressure_centre``
+      [length], ``moment`` [force*length/length], ``force`` F_r [force/length],
+      ``coefficient`` F_r/P [-], ``speed`` [length/time], ``dissipated_power`` (docs/outputs.md;
+      None when nothing is in contact)
     * ``timings``: dict of stage times [s]
     * ``case``: the case as resolved after the overrides (dict)
     * ``summary``: the whole summary.json content (dict)
@@ -167,6 +171,7 @@ class Result:
     slip_zones: List[List[float]]
     regime: int
     error_estimate: Optional[Dict[str, float]]
+    rolling_resistance: Optional[Dict[str, Optional[float]]]
     timings: Dict[str, float]
     case: Dict[str, Any]
     summary: Dict[str, Any]
@@ -201,6 +206,7 @@ class Result:
         self.slip_zones = s["slip_zones"]
         self.regime = s["slip_regime"]
         self.error_estimate = s["error_estimate"]
+        self.rolling_resistance = s["rolling_resistance"]
         self.timings = s["timings"]
         self.case = s["case"]
         self.output_dir = None if raw["output_dir"] is None else os.fspath(raw["output_dir"])
