@@ -81,6 +81,20 @@ impl BemOptions {
     }
 }
 
+/// Sets the 2 × 2 diagonal block of H in `rows` (rows 2i, 2i+1 of H then of G for collocation
+/// at node i of `n`, as [`BemModel::collocation_rows`] lays them out) from rigid-body
+/// translation: u = e_j gives zero traction, so Σ_k H_(i,k) = 0 for each j.
+pub(crate) fn rigid_body_diagonal(rows: &mut [f64], i: usize, n: usize) {
+    let m = 2 * n;
+    for ic in 0..2 {
+        for jc in 0..2 {
+            let row = &rows[ic * m..(ic + 1) * m];
+            let off: f64 = (0..n).filter(|&k| k != i).map(|k| row[2 * k + jc]).sum();
+            rows[ic * m + 2 * i + jc] = -off;
+        }
+    }
+}
+
 /// A point constraint: the displacement component `component` (0 = x, 1 = y) of field node
 /// `node` is prescribed to `value` [length]; its traction becomes an unknown. Used to remove
 /// the rigid-body motion of a body loaded by tractions only.
@@ -241,7 +255,12 @@ impl BemModel {
     }
 
     /// Rows 2i, 2i+1 of H then of G (4 × 2N values, row after row) for collocation at node i.
-    fn collocation_rows<K: FundamentalSolution>(&self, kernel: &K, i: usize, quadrature: &Quadrature) -> Vec<f64> {
+    pub(crate) fn collocation_rows<K: FundamentalSolution>(
+        &self,
+        kernel: &K,
+        i: usize,
+        quadrature: &Quadrature,
+    ) -> Vec<f64> {
         let d = &self.discretisation;
         let m = 2 * d.n_nodes();
         let mut rows = vec![0.0; 4 * m];
@@ -271,14 +290,7 @@ impl BemModel {
                 }
             }
         }
-        // Rigid-body translation u = e_j gives zero traction: Σ_k H_(i,k) = 0 for each j.
-        for ic in 0..2 {
-            for jc in 0..2 {
-                let row = &rows[ic * m..(ic + 1) * m];
-                let off: f64 = (0..d.n_nodes()).filter(|&k| k != i).map(|k| row[2 * k + jc]).sum();
-                rows[ic * m + 2 * i + jc] = -off;
-            }
-        }
+        rigid_body_diagonal(&mut rows, i, d.n_nodes());
         rows
     }
 

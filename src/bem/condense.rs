@@ -27,6 +27,7 @@
 
 use super::assemble::{BemModel, BemSolution};
 use super::hypersingular::{GradientEvaluator, GradientPoint};
+use super::reuse::{assemble_reusing, FarField};
 use super::{BemError, BoundaryCondition, Component};
 use faer::Mat;
 use rayon::prelude::*;
@@ -72,6 +73,17 @@ pub struct ContactFlexibility {
 /// Condenses `model` to the field nodes of its contact group `contact_group` (which must have
 /// the [`BoundaryCondition::Contact`] condition): one LU, one multi-column solve.
 pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibility, BemError> {
+    condense_reusing(model, contact_group, None)
+}
+
+/// [`condense()`] with H and G assembled by [`assemble_reusing`] when `far` (the unchanged part
+/// of the start mesh `model` was cut from) is given: the same matrices, the unchanged block
+/// taken from `far` instead of integrated again.
+pub fn condense_reusing(
+    model: &BemModel,
+    contact_group: &str,
+    far: Option<&FarField>,
+) -> Result<ContactFlexibility, BemError> {
     let g = model.mesh.group_index(contact_group)?;
     if !matches!(model.conditions[g], BoundaryCondition::Contact) {
         return Err(BemError::ContactGridMismatch {
@@ -87,7 +99,10 @@ pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibil
 
     let data = model.boundary_data(&[])?;
     let t_assembly = std::time::Instant::now();
-    let asm = model.assemble();
+    let asm = match far {
+        Some(far) => assemble_reusing(model, far),
+        None => model.assemble(),
+    };
     let assembly_s = t_assembly.elapsed().as_secs_f64();
     let t_condense = std::time::Instant::now();
     let (a, b0) = model.linear_system(&asm, &data);

@@ -85,6 +85,7 @@ pub fn setup_of(case: &LoadedCase, spec: &BodySpec) -> Result<Arc<dyn BodySetup>
                 conditions,
                 profile_radius: *radius,
                 start_mesh: None,
+                far_field: Default::default(),
             })
         }
     })
