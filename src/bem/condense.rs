@@ -201,9 +201,12 @@ pub fn surface_strain(model: &BemModel, nodes: &[usize], responses: &[BemSolutio
     Ok(&strain_rows * &fields)
 }
 
+/// One node's HBEM row: the coefficients of the nodal u, then of the nodal t (2N each).
+type StrainRow = (Vec<f64>, Vec<f64>);
+
 /// The HBEM rows of du_x/dx along the surface at the field nodes `nodes` ([`surface_strain`]):
 /// per node, the coefficients of the nodal u and of the nodal t (2N each).
-fn strain_rows(model: &BemModel, nodes: &[usize]) -> Result<Vec<(Vec<f64>, Vec<f64>)>, BemError> {
+fn strain_rows(model: &BemModel, nodes: &[usize]) -> Result<Vec<StrainRow>, BemError> {
     let d = &model.discretisation;
     let evaluator = GradientEvaluator::new(model);
     nodes
