@@ -116,6 +116,8 @@ pub fn condense_reusing(
             asm.g[(r, 2 * nodes[j] + comp)]
         }
     });
+    // H and G are not needed past the right-hand sides: their memory goes before the LU's.
+    drop(asm);
     model.solve_system(a, &mut rhs)?;
     // The unknowns at contact DOFs are the displacements themselves (unscaled).
     let matrix = Mat::from_fn(2 * m, 2 * m, |r, c| rhs[(2 * nodes[r / 2] + r % 2, 1 + c)]);
