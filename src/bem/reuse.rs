@@ -122,11 +122,11 @@ pub struct FarField {
     /// The kernel's length scale ℓ [length] and the material (E, ν) the blocks were integrated
     /// with, as bits.
     kernel_bits: [u64; 3],
-    /// H restricted to the unchanged nodes' rows and columns (2 N_f × 2 N_f) [-], the
-    /// rigid-body diagonal left out (it is summed per pass).
-    h: Mat<f64>,
-    /// G likewise [length/stress].
-    g: Mat<f64>,
+    /// Per unchanged node p, its rows 2p, 2p + 1 of H [-] then of G [length/stress] restricted to
+    /// the unchanged nodes' columns (4 × 2 N_f values, row after row; the rigid-body diagonal is
+    /// left out, it is summed per pass). Row by row, so that a pass copies them in the order
+    /// it lays out its own rows.
+    rows: Vec<Vec<f64>>,
     /// Wall time of the block's integration [s].
     pub assembly_s: f64,
 }
@@ -208,23 +208,20 @@ impl FarField {
                 rows
             })
             .collect();
-        let h = Mat::from_fn(nf, nf, |r, c| rows[r / 2][(r % 2) * nf + c]);
-        let g = Mat::from_fn(nf, nf, |r, c| rows[r / 2][(2 + r % 2) * nf + c]);
         Self {
             elements,
             start_carriers: carriers(d),
             start: d.clone(),
             index,
             kernel_bits: kernel_bits(start),
-            h,
-            g,
+            rows,
             assembly_s: t0.elapsed().as_secs_f64(),
         }
     }
 
     /// The number of unchanged field nodes.
     pub fn n_nodes(&self) -> usize {
-        self.h.nrows() / 2
+        self.rows.len()
     }
 
     /// For each field node of `model` (a cut of the start mesh), its index in the blocks if it
@@ -321,11 +318,11 @@ pub fn assemble_reusing(model: &BemModel, far: &FarField) -> Assembly {
                 return model.collocation_rows(kernel, i, &quadrature);
             };
             let mut rows = vec![0.0; 4 * m];
-            for &(l, q) in &fixed_columns {
-                for ic in 0..2 {
+            let (cached, nf) = (&far.rows[p], 2 * far.n_nodes());
+            for r in 0..4 {
+                for &(l, q) in &fixed_columns {
                     for jc in 0..2 {
-                        rows[ic * m + 2 * l + jc] = far.h[(2 * p + ic, 2 * q + jc)];
-                        rows[(2 + ic) * m + 2 * l + jc] = far.g[(2 * p + ic, 2 * q + jc)];
+                        rows[r * m + 2 * l + jc] = cached[r * nf + 2 * q + jc];
                     }
                 }
             }
