@@ -5,7 +5,8 @@
 //! bodies"). Each row's three runs (fixed, before, after) follow each other in one process, so
 //! the ratios share the machine's load; times are the library's whole solve
 //! (`app::solve_case`: case, scene, every pass, post-processing; nothing written), best of
-//! `--repeat N` (default 1). The before and after runs must give the same solution: the
+//! `--repeat N` (default 1), and the BEM assembly's share of it (both bodies, every pass:
+//! `timings.assembly_s`, the stage the reuse acts on). The before and after runs must give the same solution: the
 //! program checks the contact pressure and shear node by node (relative 1e-10 of their peak).
 //!
 //! Run: `cargo run --release --example bem_refinement_cost [-- --repeat 3]`.
@@ -18,13 +19,15 @@ use rollbem::bem::reuse::set_reuse_enabled;
 use std::time::Instant;
 
 /// The header of the table.
-pub const HEADER: [&str; 10] = [
+pub const HEADER: [&str; 12] = [
     "case",
     "tolerance",
     "elements",
     "fixed [s]",
     "before [s]",
     "after [s]",
+    "assembly before [s]",
+    "assembly after [s]",
     "before / fixed",
     "after / fixed",
     "target",
@@ -86,6 +89,8 @@ pub fn table(repeat: usize) -> Table {
             format!("{fixed:.2}"),
             format!("{before:.2}"),
             format!("{after:.2}"),
+            format!("{:.2}", old.timings.assembly_s),
+            format!("{:.2}", new.timings.assembly_s),
             format!("{:.1}", before / fixed),
             format!("{ratio:.1}"),
             format!("≤ {target:.0}"),
