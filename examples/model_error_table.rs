@@ -236,6 +236,7 @@ fn layer_solution(b: Option<f64>, p_total: f64, a: f64) -> ContactSolution {
             radius: layer.radius(),
             profile_radius: None,
             start_mesh: None,
+            far_field: Default::default(),
         });
         scene = Scene::new(c, bodies);
     }

@@ -24,6 +24,8 @@
 //! * [`condense`](mod@condense) — flexibility at the contact nodes (global axes), the HBEM
 //!   surface strain there, and the boundary solution under given contact tractions (the body
 //!   model built on it is `crate::body::bem`);
+//! * [`reuse`] — the far-field block of H and G integrated once and shared by the cut meshes of
+//!   an error-controlled grid's passes;
 //! * [`somigliana`] — interior displacement and stress from the boundary solution (kernels
 //!   U*, T*, D, S).
 //!
@@ -52,10 +54,11 @@ pub mod fundamental;
 pub mod hypersingular;
 pub mod integrate;
 pub mod kernel;
+pub mod reuse;
 pub mod somigliana;
 
 pub use assemble::{BemModel, BemOptions, BemSolution, Pin};
-pub use condense::{condense, ContactFlexibility};
+pub use condense::{condense, condense_reusing, ContactFlexibility};
 pub use discretise::{Discretisation, FieldNode};
 
 use crate::mesh::MeshError;

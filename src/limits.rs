@@ -74,11 +74,12 @@ pub struct ProblemSizes {
 pub const BYTES_PER_CONTACT_NODE_SQUARED: f64 = 180.0;
 
 /// Peak memory per squared boundary unknown n = 2 × field nodes of the largest `bem` body
-/// [bytes]: the BEM matrices H and G, the rows they are gathered from, the system matrix and its
-/// LU factors of one body (bodies are built one after the other, and only their condensed
-/// flexibility is kept). The peak RSS of rollers of 490–2090 nodes gives 40–57 bytes per n²,
-/// varying by 15 % from run to run at the largest size.
-pub const BYTES_PER_BEM_UNKNOWN_SQUARED: f64 = 64.0;
+/// [bytes]: the BEM matrices H and G and the rows they are gathered from, four n × n matrices of
+/// doubles at the assembly's end; the system matrix is then factored in place and H and G are
+/// freed before the LU (bodies are built one after the other, and only their condensed
+/// flexibility is kept). The peak RSS of rollers of 490–2090 nodes gives 25–40 bytes per n²
+/// (the calibration table of docs/reliability.md).
+pub const BYTES_PER_BEM_UNKNOWN_SQUARED: f64 = 48.0;
 
 /// Memory per interior point with VTK output [bytes]: the fields, the CSV rows and the arrays
 /// of interior_<body>.vtu (src/output/vtk.rs streams the file from them). Measured 215–230 bytes

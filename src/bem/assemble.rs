@@ -19,7 +19,6 @@ use super::{BemError, BoundaryCondition, Component};
 use crate::material::Elastic;
 use crate::mesh::{boundary_loops, validate_and_orient, BoundaryMesh};
 use crate::quadrature::{Quadrature, QuadratureOptions};
-use faer::linalg::solvers::Solve;
 use faer::Mat;
 use rayon::prelude::*;
 
@@ -77,6 +76,20 @@ impl BemOptions {
             max_depth: self.max_subdivision_depth,
             singular_points: self.singular_gauss_points,
             log_points: self.log_gauss_points,
+        }
+    }
+}
+
+/// Sets the 2 × 2 diagonal block of H in `rows` (rows 2i, 2i+1 of H then of G for collocation
+/// at node i of `n`, as [`BemModel::collocation_rows`] lays them out) from rigid-body
+/// translation: u = e_j gives zero traction, so Σ_k H_(i,k) = 0 for each j.
+pub(crate) fn rigid_body_diagonal(rows: &mut [f64], i: usize, n: usize) {
+    let m = 2 * n;
+    for ic in 0..2 {
+        for jc in 0..2 {
+            let row = &rows[ic * m..(ic + 1) * m];
+            let off: f64 = (0..n).filter(|&k| k != i).map(|k| row[2 * k + jc]).sum();
+            rows[ic * m + 2 * i + jc] = -off;
         }
     }
 }
@@ -241,7 +254,12 @@ impl BemModel {
     }
 
     /// Rows 2i, 2i+1 of H then of G (4 × 2N values, row after row) for collocation at node i.
-    fn collocation_rows<K: FundamentalSolution>(&self, kernel: &K, i: usize, quadrature: &Quadrature) -> Vec<f64> {
+    pub(crate) fn collocation_rows<K: FundamentalSolution>(
+        &self,
+        kernel: &K,
+        i: usize,
+        quadrature: &Quadrature,
+    ) -> Vec<f64> {
         let d = &self.discretisation;
         let m = 2 * d.n_nodes();
         let mut rows = vec![0.0; 4 * m];
@@ -271,14 +289,7 @@ impl BemModel {
                 }
             }
         }
-        // Rigid-body translation u = e_j gives zero traction: Σ_k H_(i,k) = 0 for each j.
-        for ic in 0..2 {
-            for jc in 0..2 {
-                let row = &rows[ic * m..(ic + 1) * m];
-                let off: f64 = (0..d.n_nodes()).filter(|&k| k != i).map(|k| row[2 * k + jc]).sum();
-                rows[ic * m + 2 * i + jc] = -off;
-            }
-        }
+        rigid_body_diagonal(&mut rows, i, d.n_nodes());
         rows
     }
 
@@ -405,25 +416,27 @@ impl BemModel {
     }
 
     /// Factorises A and solves A X = B in place (B may have several columns); fails when the
-    /// pivots reveal a singular system.
-    pub(crate) fn solve_system(&self, a: &Mat<f64>, b: &mut Mat<f64>) -> Result<(), BemError> {
-        let lu = a.partial_piv_lu();
-        let u = lu.U();
+    /// pivots reveal a singular system. A is factored where it lies
+    /// ([`crate::linalg::lu_solve_in_place`]): faer's `partial_piv_lu` would copy it and split
+    /// the copy into L and U, three more matrices of the system's size, each paid in page faults.
+    pub(crate) fn solve_system(&self, mut a: Mat<f64>, b: &mut Mat<f64>) -> Result<(), BemError> {
+        let mut ws = crate::linalg::LuWorkspace::new();
+        ws.solve_in_place(a.as_mut(), b.as_mut());
+        // The factored matrix holds U on and above its diagonal.
         let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
-        for k in 0..u.nrows() {
-            let p = u[(k, k)].abs();
+        for k in 0..a.nrows() {
+            let p = a[(k, k)].abs();
             lo = lo.min(p);
             hi = hi.max(p);
         }
         let ratio = if hi > 0.0 { lo / hi } else { 0.0 };
-        // NaN pivots (non-finite input) fail this test too.
+        // NaN pivots (non-finite input) fail this test too; B is then left unused.
         if ratio.is_nan() || ratio < self.options.min_pivot_ratio {
             return Err(BemError::SingularSystem {
                 path: self.mesh.source.clone(),
                 pivot_ratio: ratio,
             });
         }
-        lu.solve_in_place(b.as_mut());
         Ok(())
     }
 
@@ -442,7 +455,7 @@ impl BemModel {
     /// Solves with an existing assembly and explicit per-component data.
     pub fn solve_assembled(&self, asm: &Assembly, data: &[Component]) -> Result<BemSolution, BemError> {
         let (a, mut x) = self.linear_system(asm, data);
-        self.solve_system(&a, &mut x)?;
+        self.solve_system(a, &mut x)?;
         Ok(self.boundary_values(data, |k| x[(k, 0)]))
     }
 

@@ -27,6 +27,7 @@
 
 use super::assemble::{BemModel, BemSolution};
 use super::hypersingular::{GradientEvaluator, GradientPoint};
+use super::reuse::{assemble_reusing, FarField};
 use super::{BemError, BoundaryCondition, Component};
 use faer::Mat;
 use rayon::prelude::*;
@@ -72,6 +73,17 @@ pub struct ContactFlexibility {
 /// Condenses `model` to the field nodes of its contact group `contact_group` (which must have
 /// the [`BoundaryCondition::Contact`] condition): one LU, one multi-column solve.
 pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibility, BemError> {
+    condense_reusing(model, contact_group, None)
+}
+
+/// [`condense()`] with H and G assembled by [`assemble_reusing`] when `far` (the unchanged part
+/// of the start mesh `model` was cut from) is given: the same matrices, the unchanged block
+/// taken from `far` instead of integrated again.
+pub fn condense_reusing(
+    model: &BemModel,
+    contact_group: &str,
+    far: Option<&FarField>,
+) -> Result<ContactFlexibility, BemError> {
     let g = model.mesh.group_index(contact_group)?;
     if !matches!(model.conditions[g], BoundaryCondition::Contact) {
         return Err(BemError::ContactGridMismatch {
@@ -87,7 +99,10 @@ pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibil
 
     let data = model.boundary_data(&[])?;
     let t_assembly = std::time::Instant::now();
-    let asm = model.assemble();
+    let asm = match far {
+        Some(far) => assemble_reusing(model, far),
+        None => model.assemble(),
+    };
     let assembly_s = t_assembly.elapsed().as_secs_f64();
     let t_condense = std::time::Instant::now();
     let (a, b0) = model.linear_system(&asm, &data);
@@ -101,19 +116,15 @@ pub fn condense(model: &BemModel, contact_group: &str) -> Result<ContactFlexibil
             asm.g[(r, 2 * nodes[j] + comp)]
         }
     });
-    model.solve_system(&a, &mut rhs)?;
+    // H and G are not needed past the right-hand sides: their memory goes before the LU's.
+    drop(asm);
+    model.solve_system(a, &mut rhs)?;
     // The unknowns at contact DOFs are the displacements themselves (unscaled).
     let matrix = Mat::from_fn(2 * m, 2 * m, |r, c| rhs[(2 * nodes[r / 2] + r % 2, 1 + c)]);
     let offset = nodes.iter().map(|&k| [rhs[(2 * k, 0)], rhs[(2 * k + 1, 0)]]).collect();
     let condense_s = t_condense.elapsed().as_secs_f64();
     let t_strain = std::time::Instant::now();
-    let responses: Vec<BemSolution> = (0..2 * m)
-        .map(|c| {
-            let loaded = 2 * nodes[c / 2] + c % 2;
-            model.boundary_values(&unit_load_data(&data, loaded), |k| rhs[(k, 1 + c)])
-        })
-        .collect();
-    let surface_strain = surface_strain(model, &nodes, &responses)?;
+    let surface_strain = response_surface_strain(model, &nodes, &data, &rhs)?;
     let strain_s = t_strain.elapsed().as_secs_f64();
     Ok(ContactFlexibility {
         x: nodes.iter().map(|&k| field[k].position[0]).collect(),
@@ -155,6 +166,7 @@ impl ContactFlexibility {
 
 /// The data of the response to a unit value of the traction component `loaded`: every
 /// prescribed value zero (the other data enter the offset column only), the loaded component 1.
+#[cfg(test)]
 fn unit_load_data(data: &[Component], loaded: usize) -> Vec<Component> {
     data.iter()
         .enumerate()
@@ -171,19 +183,8 @@ fn unit_load_data(data: &[Component], loaded: usize) -> Vec<Component> {
 /// of a 4N-row matrix and the two multiplied (one dense product instead of m × responses dot
 /// products).
 pub fn surface_strain(model: &BemModel, nodes: &[usize], responses: &[BemSolution]) -> Result<Mat<f64>, BemError> {
-    let d = &model.discretisation;
-    let n_dof = 2 * d.n_nodes();
-    let evaluator = GradientEvaluator::new(model);
-    let rows: Vec<(Vec<f64>, Vec<f64>)> = nodes
-        .par_iter()
-        .map(|&k| {
-            let (element, local) = d.nodes[k].element;
-            let xi = d.interpolation[element].node_coordinates()[local];
-            let tangent = d.geometry[element].tangent(xi);
-            let rows = evaluator.rows(GradientPoint::Boundary { element, xi })?;
-            Ok(rows.directional(0, [1.0, tangent[1] / tangent[0]]))
-        })
-        .collect::<Result<_, BemError>>()?;
+    let n_dof = 2 * model.discretisation.n_nodes();
+    let rows = strain_rows(model, nodes)?;
     let strain_rows = Mat::from_fn(nodes.len(), 2 * n_dof, |i, c| {
         if c < n_dof {
             rows[i].0[c]
@@ -200,4 +201,98 @@ pub fn surface_strain(model: &BemModel, nodes: &[usize], responses: &[BemSolutio
         values[r / 2][r % 2]
     });
     Ok(&strain_rows * &fields)
+}
+
+/// One node's HBEM row: the coefficients of the nodal u, then of the nodal t (2N each).
+type StrainRow = (Vec<f64>, Vec<f64>);
+
+/// The HBEM rows of du_x/dx along the surface at the field nodes `nodes` ([`surface_strain`]):
+/// per node, the coefficients of the nodal u and of the nodal t (2N each).
+fn strain_rows(model: &BemModel, nodes: &[usize]) -> Result<Vec<StrainRow>, BemError> {
+    let d = &model.discretisation;
+    let evaluator = GradientEvaluator::new(model);
+    nodes
+        .par_iter()
+        .map(|&k| {
+            let (element, local) = d.nodes[k].element;
+            let xi = d.interpolation[element].node_coordinates()[local];
+            let tangent = d.geometry[element].tangent(xi);
+            let rows = evaluator.rows(GradientPoint::Boundary { element, xi })?;
+            Ok(rows.directional(0, [1.0, tangent[1] / tangent[0]]))
+        })
+        .collect()
+}
+
+/// [`surface_strain`] of the unit contact loads straight from the condensed `response`
+/// (columns 1 + c, [`ContactFlexibility::response`]) solved with `data`: the same numbers to
+/// round-off in half the product. Of each component's u and t one is the unknown of the
+/// response (a displacement where a traction is known, a traction scaled by G/L where a
+/// displacement is known) and the other the unit load's datum, zero but for the loaded contact
+/// traction component (1). So the m × 4N strain rows times the 4N × 2m boundary fields are the
+/// m × 2N rows of the unknowns (the scale folded in) times the response, 2 m · 2N · 2m flops
+/// instead of 2 m · 4N · 2m, plus each loaded component's traction coefficient.
+fn response_surface_strain(
+    model: &BemModel,
+    nodes: &[usize],
+    data: &[Component],
+    response: &Mat<f64>,
+) -> Result<Mat<f64>, BemError> {
+    let rows = strain_rows(model, nodes)?;
+    let s = model.traction_scale();
+    let n_dof = data.len();
+    let weights = Mat::from_fn(nodes.len(), n_dof, |i, k| match data[k] {
+        Component::Traction(_) => rows[i].0[k],
+        Component::Displacement(_) => rows[i].1[k] * s,
+    });
+    let unknowns = response.subcols(1, 2 * nodes.len());
+    let mut strain = &weights * unknowns;
+    for c in 0..2 * nodes.len() {
+        let loaded = 2 * nodes[c / 2] + c % 2;
+        for (i, row) in rows.iter().enumerate() {
+            strain[(i, c)] += row.1[loaded];
+        }
+    }
+    Ok(strain)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bem::BemOptions;
+    use crate::material::Elastic;
+
+    /// The strain condensed from the response is the strain of the unit loads' boundary
+    /// solutions ([`surface_strain`], the product over u and t both), to round-off, on the
+    /// aluminium roller of cases/fig14_true_geometry.yaml (a fixed shaft: both kinds of
+    /// unknown).
+    #[test]
+    fn strain_from_the_response_is_the_strain_of_the_boundary_solutions() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r150_shaft15_A.msh");
+        let (mesh, _) = crate::mesh::load(&path).unwrap();
+        let model = BemModel::new(
+            mesh,
+            Elastic::new(60_260.0, 0.31),
+            vec![
+                ("free".into(), BoundaryCondition::Free),
+                ("shaft".into(), BoundaryCondition::Fixed),
+                ("contact".into(), BoundaryCondition::Contact),
+            ],
+            BemOptions::default(),
+        )
+        .unwrap();
+        let c = condense(&model, "contact").unwrap();
+        let responses: Vec<BemSolution> = (0..2 * c.nodes.len())
+            .map(|col| {
+                let loaded = 2 * c.nodes[col / 2] + col % 2;
+                model.boundary_values(&unit_load_data(&c.data, loaded), |k| c.response[(k, 1 + col)])
+            })
+            .collect();
+        let want = surface_strain(&model, &c.nodes, &responses).unwrap();
+        let scale = want.norm_max();
+        let diff = (&c.surface_strain - &want).norm_max();
+        assert!(
+            scale > 0.0 && diff <= 1e-12 * scale,
+            "differs by {diff:.3e} of {scale:.3e}"
+        );
+    }
 }

@@ -22,8 +22,9 @@ use super::{
     BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery, InteriorResult, Side,
     StrainOperator,
 };
+use crate::bem::reuse::FarField;
 use crate::bem::somigliana::interior_fields;
-use crate::bem::{condense, BemError, BemModel, BemSolution, ContactFlexibility};
+use crate::bem::{condense_reusing, BemError, BemModel, BemSolution, ContactFlexibility};
 use crate::grid::{ContactGrid, ElementKind};
 use crate::interior::{InteriorOptions, InteriorSample};
 use faer::Mat;
@@ -131,13 +132,25 @@ impl BemBody {
     /// contact surface faces the other body (outward normal −y on A, +y on B, within
     /// [`MAX_CONTACT_ANGLE_DEG`]).
     pub fn new(model: BemModel, contact_group: &str, grid: &ContactGrid, side: Side) -> Result<Self, BemError> {
+        Self::new_reusing(model, contact_group, grid, side, None)
+    }
+
+    /// [`Self::new`] for a model cut from a start mesh whose unchanged part `far` holds
+    /// ([`crate::bem::reuse`]): the same body, its far-field block of H and G taken from `far`.
+    pub fn new_reusing(
+        model: BemModel,
+        contact_group: &str,
+        grid: &ContactGrid,
+        side: Side,
+        far: Option<&FarField>,
+    ) -> Result<Self, BemError> {
         Self::check_contact(&model, contact_group, grid, side)?;
         let facing = match side {
             Side::A => -1.0,
             Side::B => 1.0,
         };
         let g = model.mesh.group_index(contact_group)?;
-        let condensed = condense(&model, contact_group)?;
+        let condensed = condense_reusing(&model, contact_group, far)?;
         let extreme = contact_heights(&model, g)
             .into_iter()
             .map(|(_, y)| y * facing)

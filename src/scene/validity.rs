@@ -194,6 +194,7 @@ mod tests {
             radius: f64::INFINITY,
             profile_radius: None,
             start_mesh: None,
+            far_field: Default::default(),
         });
         let bodies: BodySetups = [Arc::new(RigidSetup { radius: 100.0 }), linear];
         let w = warnings(&bodies, &estimates(100.0, 0.01));

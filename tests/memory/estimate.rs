@@ -195,8 +195,8 @@ fn calibration_table() {
 /// An error-controlled grid on BEM rollers cuts their meshes as it refines: the estimate is
 /// that of the grid at `contact.grid.max_elements` (contact nodes and the meshes' added
 /// nodes), which bounds the run's peak, within a factor 2 when the limit is near the grid the
-/// run reaches (cases/carter_051_true.yaml at 1e-3 reaches 80 elements; 133 MB against 190 MB
-/// when measured). Before, the estimate ignored the tolerance: 55 MB promised for a run that
+/// run reaches (cases/carter_051_true.yaml at 1e-3 reaches 80 elements; a peak of 94 MB against
+/// an estimate of about 150 MB when measured). Before, the estimate ignored the tolerance: 55 MB promised for a run that
 /// peaked at 3.2 GB.
 #[cfg(target_os = "linux")]
 #[test]

@@ -318,6 +318,7 @@ fn bem_body(mut mesh: BoundaryMesh, groups: &[(&str, BoundaryCondition)], radius
         radius,
         profile_radius: None,
         start_mesh: None,
+        far_field: Default::default(),
     })
 }
 

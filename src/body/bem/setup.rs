@@ -3,6 +3,7 @@
 //! ([`crate::mesh::cuts`]).
 
 use super::BemBody;
+use crate::bem::reuse::FarFieldCache;
 use crate::bem::{BemModel, BemOptions, BoundaryCondition};
 use crate::body::setup::{BodySetup, BuildContext, BuildError, ContactMesh, SurfaceAt};
 use crate::body::transfer::Transferred;
@@ -42,6 +43,10 @@ pub struct BemSetup {
     pub profile_radius: Option<f64>,
     /// The start mesh a refined grid's cuts are made in (None: `mesh` is the start mesh).
     pub start_mesh: Option<Arc<LoadedMesh>>,
+    /// The start mesh's far-field block of H and G ([`crate::bem::reuse`]), integrated by the
+    /// first setup that follows a grid and shared by every setup that follows one from this one
+    /// (`Default::default()` when constructing a setup).
+    pub far_field: FarFieldCache,
 }
 
 impl BemSetup {
@@ -55,14 +60,35 @@ impl BemSetup {
         )?)
     }
 
-    /// The model of the body's mesh, condensed to its own contact nodes.
+    /// The model of the body's mesh, condensed to its own contact nodes. A setup that follows
+    /// a refined grid (`start_mesh` set) takes the unchanged part of H and G from the run's
+    /// [`FarFieldCache`], integrating it on first use: the same body, assembled once per run
+    /// where the cuts leave the mesh as it was.
     fn own_body(&self, side: Side) -> Result<BemBody, BuildError> {
-        Ok(BemBody::new(
+        let t0 = std::time::Instant::now();
+        let far = match &self.start_mesh {
+            Some(start) => self.far_field.get_or_build(|| {
+                BemModel::new(
+                    start.mesh.clone(),
+                    self.material,
+                    self.conditions.clone(),
+                    BemOptions::default(),
+                )
+                .ok()
+            }),
+            None => None,
+        };
+        let far_s = t0.elapsed().as_secs_f64();
+        let mut body = BemBody::new_reusing(
             self.bem_model()?,
             &self.contact,
             &self.mesh.contact_grid(),
             side,
-        )?)
+            far.as_deref(),
+        )?;
+        // The far field's integration (first pass only) is part of the assembly.
+        body.condensed.assembly_s += far_s;
+        Ok(body)
     }
 }
 
@@ -229,6 +255,7 @@ mod tests {
             ],
             profile_radius: None,
             start_mesh: None,
+            far_field: Default::default(),
         }
     }
 

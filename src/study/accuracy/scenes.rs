@@ -235,5 +235,6 @@ fn bem_body(
         radius,
         profile_radius,
         start_mesh: None,
+        far_field: Default::default(),
     })
 }
