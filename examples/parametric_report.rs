@@ -163,6 +163,7 @@ fn refined_body(
         conditions,
         profile_radius: *radius,
         start_mesh: None,
+        far_field: Default::default(),
     })
 }
 

@@ -97,6 +97,7 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
                 conditions,
                 profile_radius: *radius,
                 start_mesh: None,
+                far_field: Default::default(),
             })
         }
         BodySpec::Bem {
