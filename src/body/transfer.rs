@@ -174,6 +174,22 @@ impl Transferred {
     pub fn check(&self, grid: &ContactGrid) -> Result<(), TransferError> {
         operators(&self.own_grid, grid).map(|_| ())
     }
+
+    /// A closed-form flat model on `grid`: itself on a straight grid; on a grid of mapped
+    /// (curved) elements, which the closed-form element integrals do not cover, built on the
+    /// straight grid between the same edges and carried over.
+    pub fn flat_model_on(body: Box<dyn Body>, grid: &ContactGrid, side: Side) -> Result<Box<dyn Body>, TransferError> {
+        if grid.is_straight() {
+            return Ok(body);
+        }
+        let t = Transferred {
+            inner: body,
+            own_grid: grid.straightened(),
+            side,
+        };
+        t.check(grid)?;
+        Ok(Box::new(t))
+    }
 }
 
 #[cfg(test)]

@@ -27,3 +27,6 @@ mod solver;
 mod true_geometry;
 mod tyre;
 mod viscoelastic;
+#[allow(dead_code)]
+#[path = "../../examples/viscoelastic_report.rs"]
+mod viscoelastic_report;

@@ -3,6 +3,7 @@
 //! of the rolling direction. docs/viscoelastic.md reports the numbers.
 
 use crate::common::solve;
+use crate::viscoelastic_report::{exact_rows, solve_exact_row, RADIUS_SCALE};
 use rollbem::app::Solved;
 
 fn peak(s: &Solved) -> f64 {
@@ -271,48 +272,6 @@ fn energy_balance_convergence() {
     }
 }
 
-/// One row of tests/data/viscoelastic_reference.csv (the exact solution of Hunter 1961,
-/// re-derived and computed by tools/viscoelastic_reference.py, independent of rollbem).
-struct HunterRow {
-    f: f64,
-    e_g: f64,
-    load: f64,
-    v_tau: f64,
-    v_tau_over_a_r: f64,
-    x_lead: f64,
-    x_trail: f64,
-    p_max: f64,
-    x_p: f64,
-    fr_over_p: f64,
-}
-
-fn hunter_rows() -> Vec<HunterRow> {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/viscoelastic_reference.csv");
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
-    lines
-        .map(|l| l.split(',').collect::<Vec<_>>())
-        .filter(|v| v[col("group")] == "rigid_on_sls")
-        .map(|v| {
-            let x = |name: &str| v[col(name)].parse::<f64>().unwrap();
-            HunterRow {
-                f: x("f"),
-                e_g: x("E_g"),
-                load: x("P"),
-                v_tau: x("V_tau_c"),
-                v_tau_over_a_r: x("V_tau_c_over_a_r"),
-                x_lead: x("x_lead"),
-                x_trail: x("x_trail"),
-                p_max: x("p_max"),
-                x_p: x("x_p"),
-                fr_over_p: x("Fr_over_P"),
-            }
-        })
-        .collect()
-}
-
 /// Hunter (1961): a rigid cylinder rolling frictionlessly over an SLS half-plane, f = 1 and 9,
 /// Vτc/a_r from 0.01 to 100, against the exact solution (its own error below 1e-13 mm). At
 /// tolerance 1e-3 the error-controlled grid has to find the leading edge's boundary layer
@@ -324,39 +283,30 @@ fn hunter_rows() -> Vec<HunterRow> {
 /// peaks near Vτc ≈ a_r and vanishes at both ends: checked on the computed values.
 #[test]
 fn hunter_rigid_cylinder_on_a_standard_linear_solid() {
-    let rows = hunter_rows();
+    let rows = exact_rows();
     assert_eq!(rows.len(), 24, "12 speeds for f = 1 and 9");
     let a_r = 2.0;
     for f in [1.0, 9.0] {
         let mut coefficients = Vec::new();
         for row in rows.iter().filter(|r| r.f == f) {
-            let set = [
-                format!("materials.rubber.E={}", row.e_g),
-                format!("materials.rubber.viscoelastic.E_rubbery={}", row.e_g / (1.0 + row.f)),
-                format!("materials.rubber.viscoelastic.creep_time={}", row.v_tau),
-                // Hunter's parabola against rollbem's circle: R and P scaled by 1e4 the other
-                // way (a kept) make the profiles agree to 1e-12 instead of (a/2R)² ≈ 1e-4.
-                format!("load.normal.force={}", row.load / 1e4),
-                "bodies.A.radius=1e6".to_string(),
-                "contact.grid.tolerance=1e-3".to_string(),
-            ];
-            let set: Vec<&str> = set.iter().map(String::as_str).collect();
-            let s = solve("hunter_rigid_on_sls", &set);
+            // Hunter's parabola against rollbem's circle: R and P scaled the other way (a kept)
+            // make the profiles agree to 1e-12 instead of (a/2R)² ≈ 1e-4 (RADIUS_SCALE).
+            let s = solve_exact_row(row, &["contact.grid.tolerance=1e-3"]);
             let r = rollbem::output::summary::summary(&s).rolling_resistance.unwrap();
             let label = format!("f = {f}, Vτc/a_r = {}", row.v_tau_over_a_r);
             assert!(
-                (r.leading_edge - row.x_lead).abs() < 5e-3 * a_r,
+                (r.leading_edge - row.edges[0]).abs() < 5e-3 * a_r,
                 "{label}: leading edge {} vs {}",
                 r.leading_edge,
-                row.x_lead
+                row.edges[0]
             );
             assert!(
-                (r.trailing_edge - row.x_trail).abs() < 5e-3 * a_r,
+                (r.trailing_edge - row.edges[1]).abs() < 5e-3 * a_r,
                 "{label}: trailing edge {} vs {}",
                 r.trailing_edge,
-                row.x_trail
+                row.edges[1]
             );
-            let p_max = peak(&s) * 1e4;
+            let p_max = peak(&s) * RADIUS_SCALE;
             assert!(
                 (p_max / row.p_max - 1.0).abs() < 1e-3,
                 "{label}: p_max {p_max} vs {}",
@@ -368,7 +318,7 @@ fn hunter_rigid_cylinder_on_a_standard_linear_solid() {
                 r.pressure_centre,
                 row.x_p
             );
-            let coefficient = r.coefficient * 1e4;
+            let coefficient = r.coefficient * RADIUS_SCALE;
             assert!(
                 (coefficient - row.fr_over_p).abs() < 2e-6,
                 "{label}: F_r/P {coefficient} vs {}",

@@ -46,15 +46,6 @@ impl BodySetup for HalfSpaceSetup {
             material: self.material,
             radius: self.radius,
         };
-        if ctx.grid.is_straight() {
-            return Ok(Box::new(body));
-        }
-        let t = Transferred {
-            inner: Box::new(body),
-            own_grid: ctx.grid.straightened(),
-            side: ctx.side,
-        };
-        t.check(ctx.grid)?;
-        Ok(Box::new(t))
+        Ok(Transferred::flat_model_on(Box::new(body), ctx.grid, ctx.side)?)
     }
 }
