@@ -6,6 +6,10 @@
 //! Run one file's tests with its module name, e.g. `cargo test --release --test validation
 //! hertz_carter::`.
 
+// Each report is a program of its own and declares the shared examples/common/mod.rs itself;
+// compiled together here, that file is one module per report.
+#![allow(clippy::duplicate_mod)]
+
 #[path = "../common/mod.rs"]
 mod common;
 
