@@ -151,6 +151,17 @@ fn reversing_the_rolling_direction_mirrors_the_asymmetry() {
 /// docs/viscoelastic.md (this grid against one with half the spacings and twice the reach).
 #[test]
 fn rolling_resistance_power_equals_the_dissipation_inside_the_bodies() {
+    let (s, power) = energy_balance_run();
+    let dissipated = dissipation_inside(&s, 0.009, 1.0, 20.0);
+    assert!(
+        (dissipated / power - 1.0).abs() < 5e-3,
+        "dissipated inside {dissipated:.6e}, F_r·V = {power:.6e}"
+    );
+}
+
+/// The frictionless visc_cylindr run of the energy balance (τc = 0.009 s, 120 elements) and its
+/// power F_r·V.
+fn energy_balance_run() -> (Solved, f64) {
     let s = solve(
         "visc_cylindr_tc0009",
         &["load.tangential.ratio=0", "contact.grid.elements=120"],
@@ -160,11 +171,7 @@ fn rolling_resistance_power_equals_the_dissipation_inside_the_bodies() {
         .unwrap()
         .dissipated_power
         .unwrap();
-    let dissipated = dissipation_inside(&s, 0.009, 1.0, 20.0);
-    assert!(
-        (dissipated / power - 1.0).abs() < 5e-3,
-        "dissipated inside {dissipated:.6e}, F_r·V = {power:.6e}"
-    );
+    (s, power)
 }
 
 /// The power the two identical bodies of a visc_cylindr run dissipate (the energy-balance
@@ -254,15 +261,7 @@ fn dissipation_inside(s: &Solved, tc: f64, refine: f64, reach: f64) -> f64 {
 #[test]
 #[ignore = "measurement for the docs (about a minute)"]
 fn energy_balance_convergence() {
-    let s = solve(
-        "visc_cylindr_tc0009",
-        &["load.tangential.ratio=0", "contact.grid.elements=120"],
-    );
-    let power = rollbem::output::summary::summary(&s)
-        .rolling_resistance
-        .unwrap()
-        .dissipated_power
-        .unwrap();
+    let (s, power) = energy_balance_run();
     for (refine, reach) in [(1.0, 20.0), (2.0, 20.0), (1.0, 40.0), (2.0, 40.0)] {
         let d = dissipation_inside(&s, 0.009, refine, reach);
         println!(
