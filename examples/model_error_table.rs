@@ -237,6 +237,7 @@ fn layer_solution(b: Option<f64>, p_total: f64, a: f64) -> ContactSolution {
             profile_radius: None,
             start_mesh: None,
             far_field: Default::default(),
+            contact_circle: None,
         });
         scene = Scene::new(c, bodies);
     }

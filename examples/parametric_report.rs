@@ -164,6 +164,7 @@ fn refined_body(
         profile_radius: *radius,
         start_mesh: None,
         far_field: Default::default(),
+        contact_circle: None,
     })
 }
 

@@ -37,7 +37,56 @@ pub const SNAP_TOLERANCE: f64 = 1e-6;
 /// contact grid); a contact element that holds fewer than two of the grid's elements is kept
 /// as it is, its end nodes snapped onto the grid's edges.
 pub fn cut_along_grid(loaded: &LoadedMesh, grid: &ContactGrid, max_ratio: f64) -> BoundaryMesh {
+    cut_along_grid_on(loaded, grid, max_ratio, None)
+}
+
+/// A circle [length]: the exact contact surface of a generated body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Circle {
+    /// Centre (x, y).
+    pub centre: [f64; 2],
+    /// Radius > 0.
+    pub radius: f64,
+}
+
+impl Circle {
+    /// The circle through three points, None when they are (nearly) on a line.
+    pub fn through(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Self> {
+        let d = 2.0 * (a[0] * (b[1] - c[1]) + b[0] * (c[1] - a[1]) + c[0] * (a[1] - b[1]));
+        let scale = [a, b, c].iter().map(|p| p[0].abs().max(p[1].abs())).fold(0.0, f64::max).max(1e-300);
+        let span = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).max((c[0] - a[0]).powi(2) + (c[1] - a[1]).powi(2));
+        if d.abs() <= 1e-12 * span.max(scale * scale) {
+            return None;
+        }
+        let sq = |p: [f64; 2]| p[0] * p[0] + p[1] * p[1];
+        let ux = (sq(a) * (b[1] - c[1]) + sq(b) * (c[1] - a[1]) + sq(c) * (a[1] - b[1])) / d;
+        let uy = (sq(a) * (c[0] - b[0]) + sq(b) * (a[0] - c[0]) + sq(c) * (b[0] - a[0])) / d;
+        let radius = ((a[0] - ux).powi(2) + (a[1] - uy).powi(2)).sqrt();
+        Some(Self {
+            centre: [ux, uy],
+            radius,
+        })
+    }
+
+    /// The point of the circle at the abscissa of `p`, on the side of the centre that `p` is on
+    /// (`p` itself where the circle has no point at that abscissa).
+    pub fn at_abscissa_of(&self, p: [f64; 2]) -> [f64; 2] {
+        let dx = p[0] - self.centre[0];
+        let h2 = self.radius * self.radius - dx * dx;
+        if h2 <= 0.0 {
+            return p;
+        }
+        let side = if p[1] >= self.centre[1] { 1.0 } else { -1.0 };
+        [p[0], self.centre[1] + side * h2.sqrt()]
+    }
+}
+
+/// [`cut_along_grid`] with the new and moved contact nodes placed on `exact` (keeping their
+/// abscissae, which the grid fixes) instead of on each element's quadratic, when the body's
+/// contact surface is known exactly (a generated body).
+pub fn cut_along_grid_on(loaded: &LoadedMesh, grid: &ContactGrid, max_ratio: f64, exact: Option<&Circle>) -> BoundaryMesh {
     let mesh = &loaded.mesh;
+    let on_surface = |p: [f64; 2]| exact.map_or(p, |c| c.at_abscissa_of(p));
     let group = loaded.contact_group;
     let mut nodes = mesh.nodes.clone();
     let mut elements = Vec::with_capacity(mesh.elements.len());
@@ -79,6 +128,9 @@ pub fn cut_along_grid(loaded: &LoadedMesh, grid: &ContactGrid, max_ratio: f64) -
         let (xi_lo, xi_hi) = if increasing { (-1.0, 1.0) } else { (1.0, -1.0) };
         snap(&mut nodes, at_lo, &geom, x_lo, lo);
         snap(&mut nodes, at_hi, &geom, x_hi, hi);
+        for v in [at_lo, at_hi] {
+            nodes[v] = on_surface(nodes[v]);
+        }
         if inside.len() == 2 {
             elements.push(el.clone());
             continue;
@@ -88,7 +140,7 @@ pub fn cut_along_grid(loaded: &LoadedMesh, grid: &ContactGrid, max_ratio: f64) -
         let mut cuts = vec![(at_lo, xi_lo, inside[0])];
         for &x in &inside[1..inside.len() - 1] {
             let xi = parameter_at(&geom, x);
-            nodes.push(geom.point(xi));
+            nodes.push(on_surface(geom.point(xi)));
             cuts.push((nodes.len() - 1, xi, x));
         }
         cuts.push((at_hi, xi_hi, inside[inside.len() - 1]));
@@ -105,7 +157,7 @@ pub fn cut_along_grid(loaded: &LoadedMesh, grid: &ContactGrid, max_ratio: f64) -
                 } else {
                     parameter_at(&geom, 0.5 * (w[0].2 + w[1].2))
                 };
-                nodes.push(geom.point(mid));
+                nodes.push(on_surface(geom.point(mid)));
                 BoundaryElement {
                     nodes: vec![w[0].0, w[1].0, nodes.len() - 1],
                     group,

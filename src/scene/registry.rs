@@ -89,6 +89,7 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
                 .collect();
             conditions.sort_by(|a, b| a.0.cmp(&b.0));
             conditions.push((contact.clone(), BoundaryCondition::Contact));
+            let contact_circle = exact_circle(&loaded);
             Arc::new(BemSetup {
                 radius: radius.unwrap_or_else(|| loaded.contact_radius()),
                 mesh: loaded,
@@ -98,6 +99,7 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
                 profile_radius: *radius,
                 start_mesh: None,
                 far_field: Default::default(),
+                contact_circle,
             })
         }
         BodySpec::Bem {
@@ -144,9 +146,19 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
                 profile_radius: *radius,
                 start_mesh: None,
                 far_field: Default::default(),
+                contact_circle: None,
             })
         }
     })
+}
+
+/// The circle through a generated body's contact nodes, which lie on it exactly (None for a
+/// flat contact face).
+fn exact_circle(loaded: &LoadedMesh) -> Option<crate::mesh::cuts::Circle> {
+    let nodes: Vec<[f64; 2]> = loaded.contact_nodes().collect();
+    let (first, last) = (*nodes.first()?, *nodes.last()?);
+    let middle = nodes[nodes.len() / 2];
+    crate::mesh::cuts::Circle::through(first, middle, last)
 }
 
 /// The parametric shape of a body spec, if it is a `geometry:` body.

@@ -195,6 +195,7 @@ mod tests {
             profile_radius: None,
             start_mesh: None,
             far_field: Default::default(),
+            contact_circle: None,
         });
         let bodies: BodySetups = [Arc::new(RigidSetup { radius: 100.0 }), linear];
         let w = warnings(&bodies, &estimates(100.0, 0.01));

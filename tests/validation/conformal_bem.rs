@@ -319,6 +319,7 @@ fn bem_body(mut mesh: BoundaryMesh, groups: &[(&str, BoundaryCondition)], radius
         profile_radius: None,
         start_mesh: None,
         far_field: Default::default(),
+        contact_circle: None,
     })
 }
 

@@ -10,7 +10,7 @@ use crate::body::transfer::Transferred;
 use crate::body::{Body, Side, WithCircularProfile};
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
-use crate::mesh::cuts::cut_along_grid;
+use crate::mesh::cuts::{cut_along_grid_on, Circle};
 use crate::mesh::LoadedMesh;
 use std::sync::Arc;
 
@@ -47,6 +47,10 @@ pub struct BemSetup {
     /// first setup that follows a grid and shared by every setup that follows one from this one
     /// (`Default::default()` when constructing a setup).
     pub far_field: FarFieldCache,
+    /// The exact circle of the contact segment when the body was generated from its
+    /// geometry (`geometry:`): the cuts of [`BodySetup::follow_grid`] then place their new nodes
+    /// on it rather than on each element's quadratic. None for a mesh file.
+    pub contact_circle: Option<Circle>,
 }
 
 impl BemSetup {
@@ -210,11 +214,12 @@ impl BodySetup for BemSetup {
         })
     }
 
-    /// The start mesh with its contact elements cut along `grid` ([`cut_along_grid`]).
+    /// The start mesh with its contact elements cut along `grid`
+    /// ([`crate::mesh::cuts::cut_along_grid`]; on the exact circle of a generated body).
     fn follow_grid(&self, grid: &ContactGrid) -> Option<Arc<dyn BodySetup>> {
         let start = self.start_mesh.clone().unwrap_or_else(|| Arc::new(self.mesh.clone()));
         let mesh = LoadedMesh {
-            mesh: cut_along_grid(&start, grid, MAX_TRANSITION_RATIO),
+            mesh: cut_along_grid_on(&start, grid, MAX_TRANSITION_RATIO, self.contact_circle.as_ref()),
             ..(*start).clone()
         };
         Some(Arc::new(BemSetup {
@@ -256,6 +261,7 @@ mod tests {
             profile_radius: None,
             start_mesh: None,
             far_field: Default::default(),
+            contact_circle: None,
         }
     }
 

@@ -236,5 +236,6 @@ fn bem_body(
         profile_radius,
         start_mesh: None,
         far_field: Default::default(),
+        contact_circle: None,
     })
 }
