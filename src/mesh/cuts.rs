@@ -53,7 +53,11 @@ impl Circle {
     /// The circle through three points, None when they are (nearly) on a line.
     pub fn through(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Self> {
         let d = 2.0 * (a[0] * (b[1] - c[1]) + b[0] * (c[1] - a[1]) + c[0] * (a[1] - b[1]));
-        let scale = [a, b, c].iter().map(|p| p[0].abs().max(p[1].abs())).fold(0.0, f64::max).max(1e-300);
+        let scale = [a, b, c]
+            .iter()
+            .map(|p| p[0].abs().max(p[1].abs()))
+            .fold(0.0, f64::max)
+            .max(1e-300);
         let span = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).max((c[0] - a[0]).powi(2) + (c[1] - a[1]).powi(2));
         if d.abs() <= 1e-12 * span.max(scale * scale) {
             return None;
@@ -84,7 +88,12 @@ impl Circle {
 /// [`cut_along_grid`] with the new and moved contact nodes placed on `exact` (keeping their
 /// abscissae, which the grid fixes) instead of on each element's quadratic, when the body's
 /// contact surface is known exactly (a generated body).
-pub fn cut_along_grid_on(loaded: &LoadedMesh, grid: &ContactGrid, max_ratio: f64, exact: Option<&Circle>) -> BoundaryMesh {
+pub fn cut_along_grid_on(
+    loaded: &LoadedMesh,
+    grid: &ContactGrid,
+    max_ratio: f64,
+    exact: Option<&Circle>,
+) -> BoundaryMesh {
     let mesh = &loaded.mesh;
     let on_surface = |p: [f64; 2]| exact.map_or(p, |c| c.at_abscissa_of(p));
     let group = loaded.contact_group;
