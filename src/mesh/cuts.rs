@@ -50,28 +50,6 @@ pub struct Circle {
 }
 
 impl Circle {
-    /// The circle through three points, None when they are (nearly) on a line.
-    pub fn through(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Self> {
-        let d = 2.0 * (a[0] * (b[1] - c[1]) + b[0] * (c[1] - a[1]) + c[0] * (a[1] - b[1]));
-        let scale = [a, b, c]
-            .iter()
-            .map(|p| p[0].abs().max(p[1].abs()))
-            .fold(0.0, f64::max)
-            .max(1e-300);
-        let span = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).max((c[0] - a[0]).powi(2) + (c[1] - a[1]).powi(2));
-        if d.abs() <= 1e-12 * span.max(scale * scale) {
-            return None;
-        }
-        let sq = |p: [f64; 2]| p[0] * p[0] + p[1] * p[1];
-        let ux = (sq(a) * (b[1] - c[1]) + sq(b) * (c[1] - a[1]) + sq(c) * (a[1] - b[1])) / d;
-        let uy = (sq(a) * (c[0] - b[0]) + sq(b) * (a[0] - c[0]) + sq(c) * (b[0] - a[0])) / d;
-        let radius = ((a[0] - ux).powi(2) + (a[1] - uy).powi(2)).sqrt();
-        Some(Self {
-            centre: [ux, uy],
-            radius,
-        })
-    }
-
     /// The point of the circle at the abscissa of `p`, on the side of the centre that `p` is on
     /// (`p` itself where the circle has no point at that abscissa).
     pub fn at_abscissa_of(&self, p: [f64; 2]) -> [f64; 2] {

@@ -89,7 +89,7 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
                 .collect();
             conditions.sort_by(|a, b| a.0.cmp(&b.0));
             conditions.push((contact.clone(), BoundaryCondition::Contact));
-            let contact_circle = exact_circle(&loaded);
+            let contact_circle = exact_circle(&loaded, shape.profile_radius());
             Arc::new(BemSetup {
                 radius: radius.unwrap_or_else(|| loaded.contact_radius()),
                 mesh: loaded,
@@ -152,13 +152,38 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
     })
 }
 
-/// The circle through a generated body's contact nodes, which lie on it exactly (None for a
-/// flat contact face).
-fn exact_circle(loaded: &LoadedMesh) -> Option<crate::mesh::cuts::Circle> {
+/// The circle of radius |`radius`| (the generated shape's) through a generated body's
+/// outermost contact nodes, which lie on it exactly, on the side its other contact nodes bulge
+/// to (None for a flat contact face). Its centre from the radius: a circle through three
+/// points of a short arc would lose digits as ε/θ².
+fn exact_circle(loaded: &LoadedMesh, radius: f64) -> Option<crate::mesh::cuts::Circle> {
+    let r = radius.abs();
+    if !r.is_finite() {
+        return None;
+    }
     let nodes: Vec<[f64; 2]> = loaded.contact_nodes().collect();
-    let (first, last) = (*nodes.first()?, *nodes.last()?);
+    let p = *nodes.iter().min_by(|a, b| a[0].total_cmp(&b[0]))?;
+    let q = *nodes.iter().max_by(|a, b| a[0].total_cmp(&b[0]))?;
+    let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+    let d = (dx * dx + dy * dy).sqrt();
+    if d == 0.0 || d > 2.0 * r {
+        return None;
+    }
+    let h = (r * r - 0.25 * d * d).sqrt();
+    let (mx, my) = (0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]));
+    let (nx, ny) = (-dy / d, dx / d);
     let middle = nodes[nodes.len() / 2];
-    crate::mesh::cuts::Circle::through(first, middle, last)
+    [1.0, -1.0]
+        .map(|side| crate::mesh::cuts::Circle {
+            centre: [mx + side * h * nx, my + side * h * ny],
+            radius: r,
+        })
+        .into_iter()
+        .min_by(|a, b| {
+            let miss =
+                |c: &crate::mesh::cuts::Circle| ((middle[0] - c.centre[0]).hypot(middle[1] - c.centre[1]) - r).abs();
+            miss(a).total_cmp(&miss(b))
+        })
 }
 
 /// The parametric shape of a body spec, if it is a `geometry:` body.
