@@ -48,20 +48,9 @@ __all__ = [
     "CONTACT_COLUMNS",
 ]
 
-#: contact.csv's columns, in order: the arrays of a :class:`Result` have these names.
-CONTACT_COLUMNS = (
-    "x",
-    "pressure",
-    "shear",
-    "gap",
-    "slip",
-    "slip_hbem",
-    "state",
-    "u_n_A",
-    "u_t_A",
-    "u_n_B",
-    "u_t_B",
-)
+#: contact.csv's columns, in order: the arrays of a :class:`Result` have these names (the
+#: writer's own list, from the Rust library).
+CONTACT_COLUMNS = tuple(_rollbem.CONTACT_COLUMNS)
 
 #: The name a case given as a dict goes by in messages. Its folder is the current directory, so
 #: relative paths inside a dict case (meshes) are read from the current working directory.
