@@ -88,6 +88,18 @@ impl Flexibility {
         }
     }
 
+    /// A half-plane's blocks from its pressure block H_p and coupling block H_q: the same kernel
+    /// gives w from q (W_q = H_p), and w couples to p with the other sign (W_p = −H_q;
+    /// docs/references.md §3.1).
+    pub fn of_half_plane(hp: Mat<f64>, hq: Mat<f64>) -> Self {
+        Self {
+            wq: hp.clone(),
+            wp: -&hq,
+            hp,
+            hq,
+        }
+    }
+
     /// Normal displacement into the body h = H_p p + H_q q at the nodes [length].
     pub fn normal(&self, p: &[f64], q: &[f64]) -> Vec<f64> {
         mat_vec2(&self.hp, p, &self.hq, q)

@@ -399,19 +399,12 @@ impl BodyModel for HalfSpace {
             }
         }
         let mut hq = influence_matrix(grid, Kernel::Sign);
-        let mut wp = hq.clone();
         for j in 0..hq.ncols() {
-            for (h, w) in hq.col_mut(j).iter_mut().zip(wp.col_mut(j).iter_mut()) {
+            for h in hq.col_mut(j).iter_mut() {
                 *h *= sign * a_coef;
-                *w = -*h;
             }
         }
-        Flexibility {
-            wq: hp.clone(),
-            hp,
-            hq,
-            wp,
-        }
+        Flexibility::of_half_plane(hp, hq)
     }
 
     fn profile(&self, x: f64) -> f64 {

@@ -104,13 +104,7 @@ impl BodyModel for ViscoelasticHalfSpace {
             }
         }
         let hq = self.combined(grid, Kernel::Sign, sign * a_g, sign * a_c);
-        let wp = -&hq;
-        Flexibility {
-            wq: hp.clone(),
-            hp,
-            hq,
-            wp,
-        }
+        Flexibility::of_half_plane(hp, hq)
     }
 
     fn profile(&self, x: f64) -> f64 {

@@ -90,17 +90,14 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
             conditions.sort_by(|a, b| a.0.cmp(&b.0));
             conditions.push((contact.clone(), BoundaryCondition::Contact));
             let contact_circle = exact_circle(&loaded, shape.profile_radius());
-            Arc::new(BemSetup {
-                radius: radius.unwrap_or_else(|| loaded.contact_radius()),
-                mesh: loaded,
-                material: case.material(material),
-                contact: contact.clone(),
+            Arc::new(BemSetup::on_start_mesh(
+                loaded,
+                case.material(material),
+                contact.clone(),
                 conditions,
-                profile_radius: *radius,
-                start_mesh: None,
-                far_field: Default::default(),
+                *radius,
                 contact_circle,
-            })
+            ))
         }
         BodySpec::Bem {
             mesh,
@@ -137,17 +134,14 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
                 .map(|(g, b)| (g.clone(), boundary_condition(b)))
                 .collect();
             conditions.push((contact.clone(), BoundaryCondition::Contact));
-            Arc::new(BemSetup {
-                radius: radius.unwrap_or_else(|| loaded.contact_radius()),
-                mesh: loaded,
-                material: case.material(material),
-                contact: contact.clone(),
+            Arc::new(BemSetup::on_start_mesh(
+                loaded,
+                case.material(material),
+                contact.clone(),
                 conditions,
-                profile_radius: *radius,
-                start_mesh: None,
-                far_field: Default::default(),
-                contact_circle: None,
-            })
+                *radius,
+                None,
+            ))
         }
     })
 }

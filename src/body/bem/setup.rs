@@ -54,6 +54,29 @@ pub struct BemSetup {
 }
 
 impl BemSetup {
+    /// A body on its start mesh: the profile radius `profile_radius` when the case gives one,
+    /// else the mesh's own; nothing cut or cached yet.
+    pub fn on_start_mesh(
+        mesh: LoadedMesh,
+        material: Elastic,
+        contact: String,
+        conditions: Vec<(String, BoundaryCondition)>,
+        profile_radius: Option<f64>,
+        contact_circle: Option<Circle>,
+    ) -> Self {
+        Self {
+            radius: profile_radius.unwrap_or_else(|| mesh.contact_radius()),
+            mesh,
+            material,
+            contact,
+            conditions,
+            profile_radius,
+            start_mesh: None,
+            far_field: Default::default(),
+            contact_circle,
+        }
+    }
+
     /// The BEM model of the body's mesh (its discretisation; nothing assembled).
     fn bem_model(&self) -> Result<BemModel, BuildError> {
         Ok(BemModel::new(
