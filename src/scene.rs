@@ -54,6 +54,20 @@ pub struct Scene {
     pub friction: f64,
     /// The error control of `contact.grid.tolerance`; None for a fixed grid.
     pub grid_control: Option<GridControl>,
+    /// The fields post-processing computes besides the contact solution.
+    pub fields: FieldRequests,
+    /// The grid's half-length over the Hertz half-width, `contact.grid.extent` [-] (what a
+    /// contact cut off by the grid's ends is told to raise).
+    pub grid_extent: f64,
+}
+
+/// The fields a run computes after the contact is solved (`output.vtk`, `output.interior`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldRequests {
+    /// Boundary fields of both bodies for VTK.
+    pub vtk: bool,
+    /// The interior grid of one body, if asked for.
+    pub interior: Option<crate::case::InteriorSpec>,
 }
 
 /// What an error-controlled grid must reach, and its limit.
@@ -119,6 +133,11 @@ impl Scene {
             tolerance,
             max_elements: c.contact.grid.max_elements,
         });
+        let fields = FieldRequests {
+            vtk: c.output.vtk,
+            interior: c.output.interior.clone(),
+        };
+        let grid_extent = c.contact.grid.extent;
         Scene {
             case,
             bodies,
@@ -130,6 +149,8 @@ impl Scene {
             solver,
             friction,
             grid_control,
+            fields,
+            grid_extent,
         }
     }
 
