@@ -193,6 +193,29 @@ impl Scene {
         Scene::new(self.case.clone(), bodies)
     }
 
+    /// The scene for the passes of an error-controlled grid: each body that offers a cheaper
+    /// stand-in ([`BodySetup::pass_stand_in`], from the body on `levels[0]`, the start grid, and
+    /// `levels[1]`, its bisection) replaced by it, on the start grid; None when no body offers
+    /// one. The stand-ins have no mesh of their own: the pass grids are the scene's to choose
+    /// ([`Self::on_grid`]).
+    pub fn with_pass_stand_ins(&self, levels: [&ContactGrid; 2]) -> Result<Option<Scene>, Error> {
+        let mut bodies = self.bodies.clone();
+        let mut any = false;
+        for (k, side) in [Side::A, Side::B].into_iter().enumerate() {
+            if let Some(stand_in) = self.bodies[k].pass_stand_in(levels, side, self.rolling())? {
+                bodies[k] = stand_in;
+                any = true;
+            }
+        }
+        if !any || bodies.iter().any(|b| b.contact_mesh().is_some()) {
+            return Ok(None);
+        }
+        Ok(Some(Scene {
+            bodies,
+            ..self.clone()
+        }))
+    }
+
     /// How the contact moves over the bodies.
     pub fn rolling(&self) -> Rolling {
         Rolling {

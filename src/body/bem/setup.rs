@@ -5,7 +5,7 @@
 use super::BemBody;
 use crate::bem::reuse::FarFieldCache;
 use crate::bem::{BemModel, BemOptions, BoundaryCondition};
-use crate::body::setup::{BodySetup, BuildContext, BuildError, ContactMesh, SurfaceAt};
+use crate::body::setup::{BodySetup, BuildContext, BuildError, ContactMesh, Rolling, SurfaceAt};
 use crate::body::transfer::Transferred;
 use crate::body::{Body, Side, WithCircularProfile};
 use crate::grid::ContactGrid;
@@ -239,6 +239,18 @@ impl BodySetup for BemSetup {
 
     /// The start mesh with its contact elements cut along `grid`
     /// ([`crate::mesh::cuts::cut_along_grid`]; on the exact circle of a generated body).
+    fn pass_stand_in(
+        &self,
+        levels: [&ContactGrid; 2],
+        side: Side,
+        rolling: Rolling,
+    ) -> Result<Option<Arc<dyn BodySetup>>, BuildError> {
+        if !super::stand_in::stand_in_enabled() {
+            return Ok(None);
+        }
+        Ok(Some(Arc::new(super::stand_in::BemStandIn::of(self, levels, side, rolling)?)))
+    }
+
     fn follow_grid(&self, grid: &ContactGrid) -> Option<Arc<dyn BodySetup>> {
         let start = self.start_mesh.clone().unwrap_or_else(|| Arc::new(self.mesh.clone()));
         let mesh = LoadedMesh {
