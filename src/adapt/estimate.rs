@@ -75,6 +75,45 @@ pub struct Scales {
     pub creep_floor: f64,
 }
 
+/// The two solutions of one pass that an estimator compares: a grid's and its bisection's.
+#[derive(Debug, Clone, Copy)]
+pub struct Pass<'a> {
+    /// The pass's grid G.
+    pub coarse_grid: &'a ContactGrid,
+    /// The solution on G.
+    pub coarse: &'a State,
+    /// G with every element halved, H.
+    pub fine_grid: &'a ContactGrid,
+    /// The solution on H, the one whose error is estimated.
+    pub fine: &'a State,
+    /// The units of the errors.
+    pub scales: Scales,
+}
+
+/// An a-posteriori error estimator: from one pass's two solutions, the estimated errors of the
+/// bisected grid's solution and the local indicators the refinement marks by. The driver
+/// ([`crate::adapt::solve_with`]) reads nothing else of the solutions to decide whether the
+/// tolerance is met or which elements to refine, so another estimator can take this one's place.
+/// It is called once per pass, in the order of the passes (an estimator may keep what earlier
+/// passes showed).
+pub trait ErrorEstimator {
+    /// The estimate and indicators of the pass (the fields of [`Comparison`]: `detail` and `open`
+    /// one per element of `pass.coarse_grid`).
+    fn estimate(&mut self, pass: &Pass<'_>) -> Comparison;
+}
+
+/// The estimator of the module docs: the RMS difference of the two solutions times
+/// [`PRESSURE_ESTIMATE_FACTOR`] and [`SHEAR_ESTIMATE_FACTOR`], the creepage's difference itself,
+/// and the polynomial-fit indicators ([`compare`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct BisectionEstimator;
+
+impl ErrorEstimator for BisectionEstimator {
+    fn estimate(&mut self, pass: &Pass<'_>) -> Comparison {
+        compare(pass.coarse_grid, pass.coarse, pass.fine_grid, pass.fine, pass.scales)
+    }
+}
+
 /// Compares the solution `coarse` on `coarse_grid` with `fine` on its bisection `fine_grid`
 /// (module docs).
 pub fn compare(
