@@ -11,6 +11,7 @@
 
 pub mod common;
 
+use rollbem::adapt::estimate::CREEP_FLOOR;
 use rollbem::analytic::hertz_pressure;
 use rollbem::app::{self, Solved};
 use rollbem::post::norms::nodal_error_against;
@@ -115,8 +116,10 @@ pub fn true_errors(s: &Solved) -> [f64; 3] {
     .rms;
     let mu_p0 = c.friction * c.peak_pressure;
     let q = nodal_error_against(x, &s.solution.shear, |x| c.shear(x), c.half_width, mu_p0).rms;
+    // In the estimate's own measure: relative to |ξ|, or to the floor where ξ is smaller.
     let xi = c.creep(est.effective_radius);
-    [p, q, (s.solution.creep / xi - 1.0).abs()]
+    let floor = CREEP_FLOOR * c.friction * c.half_width / est.effective_radius.abs();
+    [p, q, (s.solution.creep - xi).abs() / xi.abs().max(floor)]
 }
 
 /// The effectivities est/true of p, q, ξ (None where the true error is 0: nothing to estimate).

@@ -203,11 +203,13 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         if !h.report.converged {
             return Ok(finished(h, timings, Some((tolerance, steps))));
         }
+        let singular = singular_points(&h.problem, &h.state);
         let cmp = estimator.estimate(&Pass {
             coarse_grid: &g.problem.grid,
             coarse: &g.state,
             fine_grid: &h.problem.grid,
             fine: &h.state,
+            singular: &singular,
             scales,
         });
         let e = cmp.estimate;
@@ -227,7 +229,6 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             e.shear_rms,
             e.creep_rel
         );
-        let singular = singular_points(&h.problem, &h.state);
         let half_width = hertz.half_width;
         if e.within(tolerance) && resolved(&h.problem.grid, &singular, tolerance, half_width) {
             return Ok(finished(h, timings, Some((tolerance, steps))));

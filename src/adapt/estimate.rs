@@ -86,6 +86,10 @@ pub struct Pass<'a> {
     pub fine_grid: &'a ContactGrid,
     /// The solution on H, the one whose error is estimated.
     pub fine: &'a State,
+    /// Where H's tractions have square-root points [length]: the contact edges, the ends of the
+    /// stick zones and the slip reversals (the driver marks by them too; [`BisectionEstimator`]
+    /// does not read them, an estimator that treats those elements apart may).
+    pub singular: &'a [f64],
     /// The units of the errors.
     pub scales: Scales,
 }
