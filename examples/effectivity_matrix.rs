@@ -12,8 +12,9 @@
 pub mod common;
 
 use rollbem::adapt::estimate::CREEP_FLOOR;
-use rollbem::analytic::hertz_pressure;
+use rollbem::analytic::{hertz_pressure, Carter};
 use rollbem::app::{self, Solved};
+use rollbem::contact::TangentialControl;
 use rollbem::post::norms::nodal_error_against;
 
 /// The header of the table.
@@ -39,14 +40,23 @@ pub type Variant = (&'static str, &'static str, &'static [&'static str]);
 pub const HERTZ: &[&str] = &["bodies.A.radius=10000", "bodies.B.radius=10000", "contact.friction=0"];
 
 /// The variants, each run at every one of [`TOLERANCES`].
-pub const VARIANTS: [Variant; 13] = [
+pub const VARIANTS: [Variant; 14] = [
     ("carter2d, Q/μP 0.64", "carter2d_contact", &[]),
     ("Q/μP 0.05", "carter2d_contact", &["load.tangential.ratio=0.05"]),
     ("Q/μP 0.5", "carter2d_contact", &["load.tangential.ratio=0.5"]),
     ("Q/μP 0.95", "carter2d_contact", &["load.tangential.ratio=0.95"]),
     ("Q/μP 0.99", "carter2d_contact", &["load.tangential.ratio=0.99"]),
-    ("braking, Q/μP −0.64", "carter2d_contact", &["load.tangential.ratio=-0.64"]),
+    (
+        "braking, Q/μP −0.64",
+        "carter2d_contact",
+        &["load.tangential.ratio=-0.64"],
+    ),
     ("rolling −x", "carter2d_contact", &["contact.rolling_direction=-x"]),
+    (
+        "creepage control, ξ 2.4e-4",
+        "carter2d_contact",
+        &["load.tangential={creep: 0.00024}"],
+    ),
     ("μ 0.02", "carter2d_contact", &["contact.friction=0.02"]),
     ("μ 0.8", "carter2d_contact", &["contact.friction=0.8"]),
     (
@@ -99,7 +109,8 @@ pub fn run(variant: &Variant, tolerance: f64) -> Run {
 /// |x| < a), relative creepage error against Carter's; 0 for q and ξ without friction.
 pub fn true_errors(s: &Solved) -> [f64; 3] {
     let est = &s.scene.estimates;
-    let Some(c) = s.scene.carter_reference().filter(|c| c.friction > 0.0) else {
+    let carter = s.scene.carter_reference().or_else(|| carter_of_creepage(s));
+    let Some(c) = carter.filter(|c| c.friction > 0.0) else {
         let (a, p0) = (est.hertz_half_width, est.hertz_peak_pressure);
         let x = &s.solution.x;
         let p = nodal_error_against(x, &s.solution.pressure, |x| hertz_pressure(x, a, p0), a, p0).rms;
@@ -117,9 +128,33 @@ pub fn true_errors(s: &Solved) -> [f64; 3] {
     let mu_p0 = c.friction * c.peak_pressure;
     let q = nodal_error_against(x, &s.solution.shear, |x| c.shear(x), c.half_width, mu_p0).rms;
     // In the estimate's own measure: relative to |ξ|, or to the floor where ξ is smaller.
+    if let TangentialControl::Creep(_) = s.scene.tangential {
+        // A prescribed creepage has no error (and the estimate none).
+        return [p, q, 0.0];
+    }
     let xi = c.creep(est.effective_radius);
     let floor = CREEP_FLOOR * c.friction * c.half_width / est.effective_radius.abs();
     [p, q, (s.solution.creep - xi).abs() / xi.abs().max(floor)]
+}
+
+/// Carter's solution under a prescribed creepage ξ (and prescribed force): the load ratio from
+/// ξ = sign·(μa/R*)(1 − √(1 − |Q|/(μP))) (docs/references.md §2).
+fn carter_of_creepage(s: &Solved) -> Option<Carter> {
+    let TangentialControl::Creep(xi) = s.scene.tangential else {
+        return None;
+    };
+    let est = &s.scene.estimates;
+    let mu = s.scene.friction();
+    let (a, r) = (est.hertz_half_width, est.effective_radius);
+    let root = 1.0 - xi.abs() * r / (mu * a);
+    let sign = xi.signum() * s.scene.leading_edge_sign();
+    (mu > 0.0 && root > 0.0).then(|| Carter {
+        half_width: a,
+        peak_pressure: est.hertz_peak_pressure,
+        friction: mu,
+        ratio: sign * (1.0 - root * root),
+        leading_edge_sign: s.scene.leading_edge_sign(),
+    })
 }
 
 /// The effectivities est/true of p, q, ξ (None where the true error is 0: nothing to estimate).
