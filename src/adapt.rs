@@ -9,8 +9,11 @@
 //! One pass on a grid G ([`cells::DyadicGrid`]: dyadic pieces of the case's uniform start grid):
 //!
 //! 1. solve on G (warm start from the previous pass's solution) and on its bisection H;
-//! 2. estimate the error of H's solution from the difference of the two ([`estimate`]), with
-//!    an indicator per element of G;
+//! 2. estimate the error of H's solution from the difference of the two, with an indicator per
+//!    element of G: an [`estimate::ErrorEstimator`] ([`estimate::BisectionEstimator`] unless
+//!    [`solve_with`] is given another): its [`estimate::Comparison`] is all that steps 3 and 4
+//!    read of the estimate (besides it they read only where H's solution has its square-root
+//!    points);
 //! 3. if the estimated RMS errors of p/p0 and q/(μp0) over the contact and the relative
 //!    creepage error are all ≤ the tolerance, H's solution is the result;
 //! 4. else refine G. Each element has a local indicator (how far H's solution over it departs
@@ -43,7 +46,7 @@ use crate::post::adaptation::{AdaptationStep, ErrorEstimate, GridAdaptation};
 use crate::post::{ContactSolution, NodeState, Timings};
 use crate::scene::{BodyModels, Scene};
 use cells::{Action, DyadicGrid};
-use estimate::{Comparison, Scales};
+use estimate::{Comparison, ErrorEstimator, Pass, Scales};
 use std::time::Instant;
 
 /// Fraction of the tolerance that the refinement aims at, so that the next pass usually meets
@@ -154,6 +157,12 @@ fn carried(pb: &ContactProblem, from: &ContactGrid, z: &State) -> State {
 /// estimated error meets the scene's tolerance (module docs). A solve that does not converge
 /// ends the loop: its solution comes back with `report.converged == false`.
 pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
+    solve_with(scene, &mut estimate::BisectionEstimator)
+}
+
+/// [`solve`] with another error estimator: the estimate that decides convergence and the
+/// indicators the refinement marks by come from `estimator` alone.
+pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<Adapted, Error> {
     // One solver workspace for every solve of the run: it grows to the largest grid's system.
     let mut ws = Workspace::new();
     let Some(control) = scene.grid_control else {
@@ -202,7 +211,15 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
         if !h.report.converged {
             return Ok(finished(h, timings, Some((tolerance, steps))));
         }
-        let cmp = estimate::compare(&g.problem.grid, &g.state, &h.problem.grid, &h.state, scales);
+        let singular = singular_points(&h.problem, &h.state);
+        let cmp = estimator.estimate(&Pass {
+            coarse_grid: &g.problem.grid,
+            coarse: &g.state,
+            fine_grid: &h.problem.grid,
+            fine: &h.state,
+            singular: &singular,
+            scales,
+        });
         let e = cmp.estimate;
         steps.push(AdaptationStep {
             elements: h.problem.grid.n_elements(),
@@ -220,7 +237,6 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
             e.shear_rms,
             e.creep_rel
         );
-        let singular = singular_points(&h.problem, &h.state);
         let half_width = hertz.half_width;
         if e.within(tolerance) && resolved(&h.problem.grid, &singular, tolerance, half_width) {
             if passes.is_none() {

@@ -17,6 +17,10 @@ mod adaptive;
 mod body_contract;
 mod conformal_bem;
 mod conformal_series;
+mod effectivity;
+#[allow(dead_code)]
+#[path = "../../examples/effectivity_matrix.rs"]
+mod effectivity_matrix;
 mod free_rolling_creepage;
 mod friction_limits;
 mod hertz_carter;
