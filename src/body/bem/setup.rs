@@ -253,15 +253,12 @@ impl BodySetup for BemSetup {
         // the full BEM in every pass.
         let span = levels[0].edges[levels[0].n_elements()] - levels[0].edges[0];
         let thin = self.layer_thickness().is_some_and(|b| b < 0.5 * span);
-        // The same element edges (a mapped grid's mid nodes may differ, as a bore's and its
-        // roller's arcs do between the same end nodes).
+        // Every edge of the start mesh's contact elements is an edge of the grid (a mapped
+        // grid's mid nodes may differ, as a bore's and its roller's arcs do between the same end
+        // nodes; the grid may be a bisection of the start grid).
         let start = self.start_mesh.as_deref().unwrap_or(&self.mesh).contact_grid();
-        let own_grid = start.edges.len() == levels[0].edges.len()
-            && start
-                .edges
-                .iter()
-                .zip(&levels[0].edges)
-                .all(|(a, b)| (a - b).abs() <= 1e-9 * span);
+        let on_grid = |x: &f64| levels[0].edges.iter().any(|e| (e - x).abs() <= 1e-9 * span);
+        let own_grid = start.edges.iter().all(on_grid);
         if !super::stand_in::stand_in_enabled() || thin || !own_grid {
             return Ok(None);
         }
