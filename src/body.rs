@@ -29,6 +29,7 @@
 pub mod bem;
 pub mod flamant;
 pub mod half_space;
+pub mod layer;
 pub mod rigid;
 pub mod setup;
 pub mod transfer;
