@@ -46,11 +46,13 @@ pub struct Layer {
 }
 
 impl Layer {
-    /// The half-plane part: the (viscoelastic) half-space of the same material and datum.
+    /// The half-plane part: the (viscoelastic) half-space of the same material, its datum
+    /// length ℓ = 2R'/e set to the thickness b by R' = e·b/2 (ℓ cancels between the two parts;
+    /// ℓ = b keeps their constants small whatever the profile radius, a flat cover's 1e12 too).
     fn half_plane(&self) -> ViscoelasticHalfSpace {
         ViscoelasticHalfSpace {
             material: self.material,
-            radius: self.radius,
+            radius: 0.5 * std::f64::consts::E * self.thickness,
             ageing: self.ageing,
         }
     }

@@ -81,6 +81,12 @@ impl BodySetup for LayerSetup {
         None
     }
 
+    /// The profile radius, or 20 b where that is smaller: a load's effect on a bonded layer
+    /// decays like e^(−c|x|/b), c ≈ 1.3–2 (for the half-plane estimate that sizes the grid).
+    fn datum_distance(&self) -> f64 {
+        self.radius.abs().min(20.0 * self.thickness)
+    }
+
     fn layer_thickness(&self) -> Option<f64> {
         Some(self.thickness)
     }
