@@ -25,7 +25,9 @@ pub mod setup;
 
 use super::viscoelastic::aged_kernels::Ageing;
 use super::viscoelastic::ViscoelasticHalfSpace;
-use super::{circle_profile, BodyFields, BodyModel, FieldError, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator};
+use super::{
+    circle_profile, BodyFields, BodyModel, FieldError, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator,
+};
 use crate::grid::ContactGrid;
 use crate::material::StandardLinearSolid;
 use faer::Mat;
@@ -184,7 +186,12 @@ mod tests {
                         direct[3] += weight * c.tt * cos;
                     }
                 }
-                for (name, model, d) in [("hp", hp[i], direct[0]), ("hq", hq[i], direct[1]), ("wp", wp[i], direct[2]), ("wq", wq[i], direct[3])] {
+                for (name, model, d) in [
+                    ("hp", hp[i], direct[0]),
+                    ("hq", hq[i], direct[1]),
+                    ("wp", wp[i], direct[2]),
+                    ("wq", wq[i], direct[3]),
+                ] {
                     assert!((model - d).abs() < 1e-5 * scale, "nu {nu} x {x} {name}: {model} vs {d}");
                 }
             }

@@ -202,9 +202,9 @@ impl BodySpec {
     /// The name of the body's material under `materials`, None for a body that has none (rigid).
     pub fn material_name(&self) -> Option<&str> {
         match self {
-            BodySpec::HalfSpace { material, .. } | BodySpec::Bem { material, .. } | BodySpec::Layer { material, .. } => {
-                Some(material)
-            }
+            BodySpec::HalfSpace { material, .. }
+            | BodySpec::Bem { material, .. }
+            | BodySpec::Layer { material, .. } => Some(material),
             BodySpec::Rigid { .. } => None,
         }
     }

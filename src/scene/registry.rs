@@ -414,7 +414,12 @@ pub fn describe(case: &LoadedCase, spec: &BodySpec, setup: &dyn BodySetup) -> St
                         sls.creep_time
                     )
                 }
-                None => format!("E = {:.6} {f}/{l}^2, G = {:.6} {f}/{l}^2, nu = {}", m.young, m.shear(), m.poisson),
+                None => format!(
+                    "E = {:.6} {f}/{l}^2, G = {:.6} {f}/{l}^2, nu = {}",
+                    m.young,
+                    m.shear(),
+                    m.poisson
+                ),
             };
             format!("layer, outer radius R = {radius} {l}, cover b = {thickness} {l} on a rigid core, material `{material}` ({kind})")
         }

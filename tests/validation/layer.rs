@@ -105,7 +105,10 @@ fn thin_layers_approach_the_leading_order_limits() {
                 } else {
                     6.0 * g / (45.0 * r * b.powi(3))
                 };
-                println!("nu {nu} b {b}: a = {a:.5}, P/P_thin = {:.5}, shape error {shape:.5}", p / p_thin);
+                println!(
+                    "nu {nu} b {b}: a = {a:.5}, P/P_thin = {:.5}, shape error {shape:.5}",
+                    p / p_thin
+                );
                 (b, (a - 1.0).abs(), (p / p_thin - 1.0).abs(), shape)
             })
             .collect();
@@ -115,7 +118,11 @@ fn thin_layers_approach_the_leading_order_limits() {
         assert!(last.2 < 2.0 * b, "nu {nu}: |P/P_thin − 1| = {}", last.2);
         assert!(last.3 < 4.0 * b, "nu {nu}: shape error {}", last.3);
         assert!(prev.3 / last.3 >= 1.7, "nu {nu}: shape error ratio {}", prev.3 / last.3);
-        assert!(prev.1 / last.1 >= 1.7, "nu {nu}: half-width error ratio {}", prev.1 / last.1);
+        assert!(
+            prev.1 / last.1 >= 1.7,
+            "nu {nu}: half-width error ratio {}",
+            prev.1 / last.1
+        );
     }
 }
 
@@ -145,15 +152,21 @@ fn the_layer_model_reproduces_the_bem_tyre() {
          {d_creep:e}, half-width {d_width:e} mm"
     );
     assert!(d_force < 6e-5, "P differs by {d_force:e}");
-    assert!(p_rms < 1e-3 && p_inner < 2.5e-3, "p differs by {p_rms:e} (rms), {p_inner:e} (inner) p0");
-    assert!(q_rms < 2e-4 && q_inner < 8e-3, "q differs by {q_rms:e} (rms), {q_inner:e} (inner) p0");
+    assert!(
+        p_rms < 1e-3 && p_inner < 2.5e-3,
+        "p differs by {p_rms:e} (rms), {p_inner:e} (inner) p0"
+    );
+    assert!(
+        q_rms < 2e-4 && q_inner < 8e-3,
+        "q differs by {q_rms:e} (rms), {q_inner:e} (inner) p0"
+    );
     assert!(d_creep < 3e-3, "creepage differs by {d_creep:e}");
     assert!(d_width < 1e-3, "half-width differs by {d_width:e} mm");
 }
 
 /// A layer much thicker than the contact is the half-space, up to a rigid shift: under force
 /// control the pressure of b = 100 mm (b/a = 100) agrees with the half-space's on the same grid
-/// within O((a/b)²·ln(b/a)) ≈ 5e-4 of p0; allowed 2e-3, measured below.
+/// within O((a/b)²·ln(b/a)) ≈ 5e-4 of p0, allowed; measured 4.7e-5.
 #[test]
 fn a_thick_layer_gives_the_half_space_pressure_under_force_control() {
     let common = [
@@ -174,5 +187,121 @@ fn a_thick_layer_gives_the_half_space_pressure_under_force_control() {
     let hs = solve("tyre_b05_layer", &half_space);
     let [dp, dp_inner, _, _] = traction_differences(&hs, &layer);
     println!("thick layer against the half-space: Δp {dp:e} p0 (rms), {dp_inner:e} p0 (inner max)");
-    assert!(dp < 2e-3 && dp_inner < 2e-3, "Δp {dp:e} p0 (rms), {dp_inner:e} p0 (inner max)");
+    assert!(
+        dp < 5e-4 && dp_inner < 5e-4,
+        "Δp {dp:e} p0 (rms), {dp_inner:e} p0 (inner max)"
+    );
+}
+
+/// Largest nodal difference of p and q between two runs on the same grid, over the first's
+/// peak pressure, and the relative creepage difference (0 when both are 0).
+fn same_grid_differences(a: &Solved, b: &Solved) -> (f64, f64, f64) {
+    assert_eq!(a.solution.x, b.solution.x, "the same grid");
+    let p0 = peak(a);
+    let max = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max) / p0;
+    let creep = if a.solution.creep == b.solution.creep {
+        0.0
+    } else {
+        (a.solution.creep / b.solution.creep - 1.0).abs()
+    };
+    (
+        max(&a.solution.pressure, &b.solution.pressure),
+        max(&a.solution.shear, &b.solution.shear),
+        creep,
+    )
+}
+
+const FRICTIONLESS: [&str; 3] = [
+    "contact.friction=0",
+    "load.tangential.ratio=null",
+    "load.tangential.creep=0",
+];
+
+/// The covered roller (SLS cover on a rigid core under a steel roller) in partial slip as
+/// shipped (Q/μP = 0.3) and frictionless, with extra overrides.
+fn covered_roller(frictionless: bool, extra: &[&str]) -> Solved {
+    let mut o: Vec<&str> = if frictionless { FRICTIONLESS.to_vec() } else { vec![] };
+    o.extend_from_slice(extra);
+    solve("covered_roller_v_peak", &o)
+}
+
+/// τc → 0: the viscoelastic cover is the elastic one of the rubbery modulus. At τc = 1e-12 s the
+/// creep length L = Vτc = 6e-10 mm, and the aged kernels differ from the elastic ones by
+/// O((L/h) ln(h/L)) ≈ 5e-8 (h = 0.25 mm); allowed 1e-8 of p0 in p and q and in the creepage,
+/// as for the viscoelastic half-space (tests/validation/viscoelastic.rs).
+#[test]
+fn a_vanishing_creep_time_gives_the_rubbery_elastic_layer() {
+    for frictionless in [false, true] {
+        let visco = covered_roller(frictionless, &["materials.rubber.viscoelastic.creep_time=1e-12"]);
+        let elastic = covered_roller(
+            frictionless,
+            &["materials.rubber.viscoelastic=null", "materials.rubber.E=10"],
+        );
+        let (dp, dq, dxi) = same_grid_differences(&visco, &elastic);
+        println!("tau_c -> 0, frictionless {frictionless}: dp {dp:e}, dq {dq:e}, dxi {dxi:e}");
+        assert!(dp < 1e-8 && dq < 1e-8 && dxi < 1e-8, "{dp:e} {dq:e} {dxi:e}");
+    }
+}
+
+/// τc → ∞: the cover has no time to creep, the glassy elastic layer. Unlike the half-space's,
+/// the layer's aged kernel tends to zero (K^L ∼ (1/L)∫K dt, the layer's kernel integrable), the
+/// half-plane part's ln L cancelling against the remainder's; at τc = 1e9 s
+/// (L = 6e11 mm) allowed 1e-8 of p0 and in the creepage.
+#[test]
+fn an_unbounded_creep_time_gives_the_glassy_elastic_layer() {
+    for frictionless in [false, true] {
+        let visco = covered_roller(frictionless, &["materials.rubber.viscoelastic.creep_time=1e9"]);
+        let elastic = covered_roller(frictionless, &["materials.rubber.viscoelastic=null"]);
+        let (dp, dq, dxi) = same_grid_differences(&visco, &elastic);
+        println!("tau_c -> inf, frictionless {frictionless}: dp {dp:e}, dq {dq:e}, dxi {dxi:e}");
+        assert!(dp < 1e-8 && dq < 1e-8 && dxi < 1e-8, "{dp:e} {dq:e} {dxi:e}");
+    }
+}
+
+/// b ≫ a, L: the viscoelastic layer is the viscoelastic half-space up to a rigid shift. The tyre
+/// case's cover made a standard linear solid (G 1 → 0.5, τc = 1 s, V = 1 mm/s: L = 1 mm ≈ a)
+/// under force control, against `half_space` of the same material on the same grid.
+/// Frictionless, p converges as O((a/b)²): from b = 100 to 400 mm its largest difference must fall
+/// at least 10-fold (measured 1.6e-3 → 1.0e-4 p0) to below 2e-4 p0. In partial slip the creepage
+/// converges only as O(a/b): the bonded base takes up, over the depth b, the lateral step
+/// −A·P·sgn x that a half-plane keeps to infinity, which leaves a uniform strain ∼ AP/b in the
+/// contact (S_nt'(0) ≠ 0), so from b = 100 to 400 its error must fall at least 3-fold (4 at
+/// first order; measured 2.9e-2 → 7.1e-3) and p's and q's too (4.5e-3 → 8.4e-4, 5.0e-4 →
+/// 1.1e-4 p0).
+#[test]
+fn a_thick_viscoelastic_layer_is_the_viscoelastic_half_space() {
+    let material = "materials.rubber={G: 1.0, nu: 0.3, viscoelastic: {G_rubbery: 0.5, creep_time: 1.0}}";
+    let run = |frictionless: bool, body: &str| {
+        let mut o = vec![
+            "load.normal.overlap=null",
+            "load.normal.force=0.02",
+            "load.speed=1.0",
+            "contact.grid.elements=60",
+            "contact.grid.half_length=1.6",
+            material,
+            body,
+        ];
+        if frictionless {
+            o.extend_from_slice(&FRICTIONLESS);
+        }
+        solve("tyre_b05_layer", &o)
+    };
+    let half_space = "bodies.B={model: half_space, material: rubber, radius: 1.0e12}";
+    let frictionless = run(true, half_space);
+    let dp: Vec<f64> = ["bodies.B.thickness=100", "bodies.B.thickness=400"]
+        .into_iter()
+        .map(|b| same_grid_differences(&frictionless, &run(true, b)).0)
+        .collect();
+    println!("thick viscoelastic layer, frictionless, b = 100, 400: dp {dp:?} p0");
+    assert!(dp[0] / dp[1] > 10.0 && dp[1] < 2e-4, "dp {dp:?} p0");
+    let reference = run(false, half_space);
+    let errors: Vec<(f64, f64, f64)> = ["bodies.B.thickness=100", "bodies.B.thickness=400"]
+        .into_iter()
+        .map(|b| same_grid_differences(&reference, &run(false, b)))
+        .collect();
+    println!("thick viscoelastic layer in partial slip, b = 100, 400: {errors:?}");
+    let (e100, e400) = (errors[0], errors[1]);
+    assert!(e100.2 / e400.2 > 3.0, "creepage errors {} -> {}", e100.2, e400.2);
+    assert!(e400.0 < e100.0 && e400.1 < e100.1, "{errors:?}");
+    assert!(e400.2 < 1e-2, "creepage error {} at b = 400", e400.2);
 }

@@ -173,11 +173,12 @@ mod tests {
         for c in 0..4 {
             let pivot = (c..4).max_by(|&a, &b| m[a][c].abs().total_cmp(&m[b][c].abs())).unwrap();
             m.swap(c, pivot);
-            for r in 0..4 {
+            let pivot_row = m[c];
+            for (r, row) in m.iter_mut().enumerate() {
                 if r != c {
-                    let f = m[r][c] / m[c][c];
-                    for k in c..5 {
-                        m[r][k] -= f * m[c][k];
+                    let f = row[c] / pivot_row[c];
+                    for (v, p) in row.iter_mut().zip(&pivot_row).skip(c) {
+                        *v -= f * p;
                     }
                 }
             }

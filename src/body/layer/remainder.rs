@@ -189,7 +189,10 @@ impl Integrand {
             .iter()
             .zip(&w)
             .map(|(&k, &w)| {
-                let (c, h) = (layer_compliance(k, thickness, 1.0, poisson), half_plane_compliance(k, 1.0, poisson));
+                let (c, h) = (
+                    layer_compliance(k, thickness, 1.0, poisson),
+                    half_plane_compliance(k, 1.0, poisson),
+                );
                 [k, w / PI * c.nn, w / PI * (c.nt - h.nt), w / PI * c.tt, w / PI * h.nn]
             })
             .collect();
@@ -262,12 +265,20 @@ mod tests {
             let scale = direct.at(0.0)[0].abs().max(b);
             for t in [-5.3, -0.51, -0.013, 0.0071, 0.27, 2.9, 5.97] {
                 let d = direct.at(t);
-                for (c, comp) in [Component::NormalNormal, Component::NormalTangential, Component::TangentialTangential]
-                    .into_iter()
-                    .enumerate()
+                for (c, comp) in [
+                    Component::NormalNormal,
+                    Component::NormalTangential,
+                    Component::TangentialTangential,
+                ]
+                .into_iter()
+                .enumerate()
                 {
                     let v = table.value(comp, t);
-                    assert!((v - d[c]).abs() < 1e-9 * scale, "nu {nu} t {t} {comp:?}: {v} vs {}", d[c]);
+                    assert!(
+                        (v - d[c]).abs() < 1e-9 * scale,
+                        "nu {nu} t {t} {comp:?}: {v} vs {}",
+                        d[c]
+                    );
                 }
             }
         }

@@ -94,6 +94,10 @@ impl BodySetup for LayerSetup {
     /// As the half-space: on a grid of curved elements built on the straightened grid and
     /// carried over.
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
-        Ok(Transferred::flat_model_on(Box::new(self.model(ctx)), ctx.grid, ctx.side)?)
+        Ok(Transferred::flat_model_on(
+            Box::new(self.model(ctx)),
+            ctx.grid,
+            ctx.side,
+        )?)
     }
 }

@@ -59,7 +59,9 @@ pub(super) fn rolling_speed_problems(case: &Case) -> Vec<(String, String)> {
     let mut needs_speed = false;
     for (side, body) in [("A", &case.bodies.a), ("B", &case.bodies.b)] {
         match body {
-            BodySpec::HalfSpace { material, .. } | BodySpec::Layer { material, .. } => needs_speed |= creeping(material).is_some_and(|t| t > 0.0),
+            BodySpec::HalfSpace { material, .. } | BodySpec::Layer { material, .. } => {
+                needs_speed |= creeping(material).is_some_and(|t| t > 0.0)
+            }
             BodySpec::Bem { material, .. } if creeping(material).is_some() => out.push((
                 format!("bodies.{side}.material"),
                 format!(
