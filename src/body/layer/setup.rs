@@ -87,9 +87,8 @@ impl BodySetup for LayerSetup {
         self.radius.abs().min(20.0 * self.thickness)
     }
 
-    fn layer_thickness(&self) -> Option<f64> {
-        Some(self.thickness)
-    }
+    // `layer_thickness` keeps its default None: the model advice it feeds estimates the error
+    // a half-space model makes on a layer, which this model does not make.
 
     /// As the half-space: on a grid of curved elements built on the straightened grid and
     /// carried over.
