@@ -47,6 +47,10 @@ const TABLE_STEP: f64 = 1.0 / 24.0;
 const MAX_TABLE: usize = 40_000;
 /// Points of the Gauss rule on each piece (no longer than b/2) of an element.
 const ELEMENT_POINTS: usize = 8;
+/// |t|/b beyond which an elastic layer's kernels have vanished (they decay like e^(−c|t|/b),
+/// c ≳ 1.3: the end modes of a bonded strip, Papkovich–Fadle), so that the remainder is minus
+/// the half-plane's kernel there, in closed form, and the table stops.
+const FAR_TAIL: f64 = 40.0;
 
 /// Which of the layer's kernels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -66,6 +70,9 @@ pub struct Remainder {
     origin: f64,
     step: f64,
     values: [Vec<f64>; 3],
+    /// Beyond |t| = this [length] (an elastic table only) S = −H in closed form: the
+    /// half-plane's datum ℓ and Poisson's ratio.
+    tail: Option<(f64, f64, f64)>,
 }
 
 /// The wavenumber rule: nodes and weights on [0, k₁], panels graded geometrically from 0.1/L
@@ -104,6 +111,10 @@ impl Remainder {
     /// `ageing` is given.
     pub fn tabulate(thickness: f64, poisson: f64, datum: f64, reach: f64, ageing: Option<&Ageing>) -> Self {
         use rayon::prelude::*;
+        // Unaged, the kernels vanish beyond FAR_TAIL·b and the closed form takes over; aged, the
+        // upstream tail lasts ∼ 40 L, and the table spans the grid.
+        let tail = (ageing.is_none() && reach > FAR_TAIL * thickness).then_some((FAR_TAIL * thickness, datum, poisson));
+        let reach = tail.map_or(reach, |(cut, _, _)| cut + 0.5 * thickness);
         let step = (TABLE_STEP * thickness).min(reach / 64.0).max(reach / MAX_TABLE as f64);
         // Three points beyond each end for the interpolation stencil.
         let half = (reach / step).ceil() as usize + 3;
@@ -119,11 +130,21 @@ impl Remainder {
             origin,
             step,
             values,
+            tail,
         }
     }
 
     /// S(t) of a component by quintic interpolation of the table [length/stress at unit G].
     pub fn value(&self, component: Component, t: f64) -> f64 {
+        if let Some((cut, datum, nu)) = self.tail {
+            if t.abs() > cut {
+                // −H: the half-plane's kernels at unit modulus, −B ln(|t|/ℓ) and A sgn t.
+                return match component {
+                    Component::NormalTangential => -(1.0 - 2.0 * nu) / 4.0 * t.signum(),
+                    _ => (1.0 - nu) / PI * (t.abs() / datum).ln(),
+                };
+            }
+        }
         let table = &self.values[component as usize];
         let x = (t - self.origin) / self.step;
         let first = (x.floor() as isize - 2).clamp(0, table.len() as isize - 6) as usize;
@@ -279,6 +300,32 @@ mod tests {
                         "nu {nu} t {t} {comp:?}: {v} vs {}",
                         d[c]
                     );
+                }
+            }
+        }
+    }
+
+    /// The closed-form tail beyond 40 b continues the table: an elastic layer's kernels have
+    /// vanished there (the sums and the table agree within 1e-10 from 30 b to 44 b).
+    #[test]
+    fn the_far_tail_continues_the_table() {
+        for nu in [0.3, 0.5] {
+            let (b, l) = (0.1, 3.0);
+            let direct = Integrand::new(b, nu, l, 4.5, None);
+            let tabled = Remainder::tabulate(b, nu, l, 40.0, None);
+            assert!(tabled.tail.is_some());
+            for t in [-4.3, -3.05, 3.0, 3.9, 4.1, 4.4] {
+                let d = direct.at(t);
+                for (c, comp) in [
+                    Component::NormalNormal,
+                    Component::NormalTangential,
+                    Component::TangentialTangential,
+                ]
+                .into_iter()
+                .enumerate()
+                {
+                    let v = tabled.value(comp, t);
+                    assert!((v - d[c]).abs() < 1e-10, "nu {nu} t {t} {comp:?}: {v} vs {}", d[c]);
                 }
             }
         }
