@@ -390,3 +390,50 @@ fn rolling_resistance_power_equals_the_dissipation_in_fourier_space() {
     println!("relative differences {errors:?}");
     assert!(errors[1] < errors[0] && errors[1] < 5e-4, "{errors:?}");
 }
+
+/// The pair convention on either side: the layer as body A (the other body as B, Q given with
+/// the other sign, since Q is the shear on A) is the same contact, mirrored: the same p, the
+/// opposite q and creepage, to round-off. Elastic (the tyre) and viscoelastic (the covered
+/// roller, whose ageing follows the one rolling direction on both sides).
+#[test]
+fn the_layer_on_either_side_gives_the_same_contact() {
+    for (case, a, b) in [
+        (
+            "tyre_b05_layer",
+            "bodies.A={model: layer, material: rubber, radius: 1.0e12, thickness: 0.5}",
+            "bodies.B={model: rigid, radius: 100.0}",
+        ),
+        (
+            "covered_roller_v_peak",
+            "bodies.A={model: layer, material: rubber, radius: 50.0, thickness: 5.0}",
+            "bodies.B={model: half_space, material: steel, radius: 50.0}",
+        ),
+    ] {
+        let below = solve(case, &[]);
+        let ratio = match below.scene.case.case.load.tangential() {
+            rollbem::case::TangentialSpec::Ratio(r) => r,
+            other => panic!("{other:?}"),
+        };
+        let flipped = format!("load.tangential.ratio={}", -ratio);
+        let above = solve(case, &[a, b, &flipped]);
+        let (x, y) = (&below.solution, &above.solution);
+        let p0 = peak(&below);
+        let dp = x
+            .pressure
+            .iter()
+            .zip(&y.pressure)
+            .map(|(u, v)| (u - v).abs())
+            .fold(0.0, f64::max)
+            / p0;
+        let dq = x
+            .shear
+            .iter()
+            .zip(&y.shear)
+            .map(|(u, v)| (u + v).abs())
+            .fold(0.0, f64::max)
+            / p0;
+        let dxi = (x.creep + y.creep).abs() / x.creep.abs();
+        println!("{case}: dp {dp:e}, dq {dq:e}, dxi {dxi:e}");
+        assert!(dp < 1e-10 && dq < 1e-10 && dxi < 1e-10, "{case}: {dp:e} {dq:e} {dxi:e}");
+    }
+}
