@@ -164,7 +164,8 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                     bad(
                         format!("bodies.{side}.thickness"),
                         format!(
-                            "the layer model takes the cover flat (thickness b << radius R); b = {} is not                              below R/2 = {}: model the body by `bem` with `geometry: {{covered_roller: ...}}`",
+                            "the layer model takes the cover flat (thickness b << radius R); b = {} is not below \
+                             R/2 = {}: model the body by `bem` with `geometry: {{covered_roller: ...}}`",
                             shown(*thickness),
                             shown(0.5 * radius.abs())
                         ),
