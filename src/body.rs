@@ -13,6 +13,7 @@
 //! | `half_space` | [`half_space`] | closed-form half-plane integrals | Flamant superposition ([`flamant`]) |
 //! | `bem` | [`bem`](mod@bem) | condensed BEM ([`crate::bem`]) | boundary solution, Somigliana |
 //! | `rigid` | [`rigid`] | zero | none |
+//! | `layer` | [`layer`] | half-plane integrals + the layer's Fourier remainder | none |
 //!
 //! plus two wrappers: [`transfer::Transferred`] (a body known on its own contact nodes, seen on
 //! the common grid) and [`WithCircularProfile`] (the profile replaced by a circle).
@@ -29,6 +30,7 @@
 pub mod bem;
 pub mod flamant;
 pub mod half_space;
+pub mod layer;
 pub mod rigid;
 pub mod setup;
 pub mod transfer;
@@ -217,6 +219,14 @@ pub enum FieldError {
     NoInteriorField {
         /// The model's name.
         model: &'static str,
+    },
+    /// The model gives its surface only (a layer on a rigid core).
+    #[error("the {model} model gives no interior field ({why}); ask for the other body, or model this one by `bem`")]
+    NoInteriorModel {
+        /// The model's name.
+        model: &'static str,
+        /// Why it has none.
+        why: &'static str,
     },
     /// The BEM body could not be evaluated.
     #[error(transparent)]

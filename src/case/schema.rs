@@ -146,6 +146,17 @@ pub enum BodySpec {
         /// Profile radius [length].
         radius: f64,
     },
+    /// A cover of thickness `thickness` bonded to a rigid core, its outer radius `radius` the
+    /// profile (flat-layer kernels, b ≪ R; docs/viscoelastic.md, "The layer"). An elastic or
+    /// viscoelastic material.
+    Layer {
+        /// Name of a material under `materials`.
+        material: String,
+        /// Outer radius of the cover [length] (the profile).
+        radius: f64,
+        /// Cover thickness b [length] over the rigid core.
+        thickness: f64,
+    },
     /// Rigid cylinder: its profile is a circle, given by `radius` or fitted to the contact
     /// segment of a Gmsh mesh (exactly one of the two).
     Rigid {
@@ -191,7 +202,9 @@ impl BodySpec {
     /// The name of the body's material under `materials`, None for a body that has none (rigid).
     pub fn material_name(&self) -> Option<&str> {
         match self {
-            BodySpec::HalfSpace { material, .. } | BodySpec::Bem { material, .. } => Some(material),
+            BodySpec::HalfSpace { material, .. }
+            | BodySpec::Bem { material, .. }
+            | BodySpec::Layer { material, .. } => Some(material),
             BodySpec::Rigid { .. } => None,
         }
     }

@@ -150,6 +150,30 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 given[k] = Some(*radius);
                 *radius
             }
+            BodySpec::Layer {
+                material,
+                radius,
+                thickness,
+            } => {
+                if let Some(v) = undefined_material(side, material) {
+                    bad(v.key, v.message);
+                }
+                if let Some(why) = positive_quantity(*thickness) {
+                    bad(format!("bodies.{side}.thickness"), format!("cover thickness {why}"));
+                } else if radius.is_finite() && *thickness >= 0.5 * radius.abs() {
+                    bad(
+                        format!("bodies.{side}.thickness"),
+                        format!(
+                            "the layer model takes the cover flat (thickness b << radius R); b = {} is not below \
+                             R/2 = {}: model the body by `bem` with `geometry: {{covered_roller: ...}}`",
+                            shown(*thickness),
+                            shown(0.5 * radius.abs())
+                        ),
+                    );
+                }
+                given[k] = Some(*radius);
+                *radius
+            }
             BodySpec::Rigid { radius, mesh, .. } => {
                 rigid += 1;
                 match (radius, mesh) {
@@ -477,6 +501,14 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 format!("must be A or B (value = {})", g.body),
             ),
             Some(BodySpec::HalfSpace { .. } | BodySpec::Bem { .. }) => {}
+            Some(BodySpec::Layer { .. }) => bad(
+                "output.interior.body".into(),
+                format!(
+                    "body {} is a layer, whose model gives its surface only; ask for the other body, or \
+                     model the cover by `bem` (geometry: covered_roller)",
+                    g.body
+                ),
+            ),
             Some(BodySpec::Rigid { .. }) => bad(
                 "output.interior.body".into(),
                 format!(

@@ -5,6 +5,7 @@
 use crate::bem::BoundaryCondition;
 use crate::body::bem::setup::BemSetup;
 use crate::body::half_space::setup::HalfSpaceSetup;
+use crate::body::layer::setup::LayerSetup;
 use crate::body::rigid::RigidSetup;
 use crate::body::viscoelastic::setup::ViscoelasticHalfSpaceSetup;
 use crate::body::BodySetup;
@@ -32,6 +33,18 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
                 radius: *radius,
             }),
         },
+        BodySpec::Layer {
+            material,
+            radius,
+            thickness,
+        } => Arc::new(match case.viscoelastic_material(material) {
+            Some(sls) => LayerSetup {
+                material: sls,
+                radius: *radius,
+                thickness: *thickness,
+            },
+            None => LayerSetup::elastic(case.material(material), *radius, *thickness),
+        }),
         BodySpec::Rigid { radius: Some(r), .. } => Arc::new(RigidSetup { radius: *r }),
         BodySpec::Rigid {
             radius: None,
@@ -383,6 +396,32 @@ pub fn describe(case: &LoadedCase, spec: &BodySpec, setup: &dyn BodySetup) -> St
                 m.shear(),
                 m.poisson
             )
+        }
+        BodySpec::Layer {
+            material,
+            radius,
+            thickness,
+        } => {
+            let m = case.material(material);
+            let kind = match case.viscoelastic_material(material) {
+                Some(sls) => {
+                    let t = &case.case.units.time;
+                    format!(
+                        "standard linear solid: G = {:.6} -> {:.6} {f}/{l}^2, nu = {}, creep time {} {t}",
+                        m.shear(),
+                        sls.rubbery().shear(),
+                        m.poisson,
+                        sls.creep_time
+                    )
+                }
+                None => format!(
+                    "E = {:.6} {f}/{l}^2, G = {:.6} {f}/{l}^2, nu = {}",
+                    m.young,
+                    m.shear(),
+                    m.poisson
+                ),
+            };
+            format!("layer, outer radius R = {radius} {l}, cover b = {thickness} {l} on a rigid core, material `{material}` ({kind})")
         }
         BodySpec::Rigid { radius: Some(r), .. } => format!("rigid, R = {r} {l}"),
         BodySpec::Rigid { mesh, contact, .. } => format!(

@@ -408,7 +408,7 @@ fn viscoelastic_keys_are_checked() {
     ]);
     assert_eq!(code, 1, "{stderr}");
     assert!(
-        stderr.contains("bodies.A.material") && stderr.contains("`half_space` bodies only"),
+        stderr.contains("bodies.A.material") && stderr.contains("`half_space` and `layer` bodies"),
         "{stderr}"
     );
     // Nor does the advice send a viscoelastic body to bem.
@@ -423,6 +423,40 @@ fn viscoelastic_keys_are_checked() {
         stdout.contains("bem is elastic") && stdout.contains("elastic only"),
         "{stdout}"
     );
+}
+
+/// A `layer` body's keys: a thickness that is not positive or not below half its radius, an
+/// undefined material, a viscoelastic cover without a rolling speed, and an interior grid asked
+/// of it are each refused by key; a valid one passes `check`.
+#[test]
+fn layer_keys_are_checked() {
+    let layer =
+        |thickness: &str| format!("bodies.B={{model: layer, material: steel, radius: 100.0, thickness: {thickness}}}");
+    assert_refused(&[&layer("0")], "bodies.B.thickness", &["must be positive"]);
+    assert_refused(&[&layer("60")], "bodies.B.thickness", &["below R/2", "covered_roller"]);
+    assert_refused(
+        &["bodies.B={model: layer, material: rubber, radius: 100.0, thickness: 2}"],
+        "bodies.B.material",
+        &["not defined"],
+    );
+    assert_refused(
+        &[
+            &layer("2"),
+            "materials.steel.viscoelastic={E_rubbery: 100000, creep_time: 1}",
+        ],
+        "load.speed",
+        &["missing"],
+    );
+    assert_refused(
+        &[
+            &layer("2"),
+            "output.interior={body: B, x: [-1, 1, 5], y: [-1, -0.1, 3]}",
+        ],
+        "output.interior.body",
+        &["surface only"],
+    );
+    let (code, stderr, _) = run_base("check", None, &[&layer("2")]);
+    assert_eq!(code, 0, "{stderr}");
 }
 
 /// Constant elements with a tolerance are refused up front with the reason (their estimate

@@ -20,8 +20,9 @@ use std::sync::Arc;
 /// Shipped cases that use every model between them: half-spaces, a rigid roller on a BEM
 /// layer, two BEM rollers on shafts, a BEM roller in a BEM ring's bore, two BEM rollers
 /// that rollbem meshed itself (`geometry:`), viscoelastic half-spaces (a pair, and under a
-/// rigid roller).
-const CASES: [&str; 7] = [
+/// rigid roller), an elastic layer under a rigid roller and a viscoelastic one under a
+/// half-space.
+const CASES: [&str; 9] = [
     "carter_051",
     "tyre_b05_compressible",
     "carter_051_true",
@@ -29,6 +30,8 @@ const CASES: [&str; 7] = [
     "fig14_geometry",
     "visc_cylindr_tc0009",
     "hunter_rigid_on_sls",
+    "tyre_b05_layer",
+    "covered_roller_v_peak",
 ];
 
 /// The body built on `grid` from `side`.

@@ -25,6 +25,7 @@ mod free_rolling_creepage;
 mod friction_limits;
 mod hertz_carter;
 mod internal_contact;
+mod layer;
 mod methods;
 mod parametric;
 #[allow(dead_code)]

@@ -59,12 +59,15 @@ pub(super) fn rolling_speed_problems(case: &Case) -> Vec<(String, String)> {
     let mut needs_speed = false;
     for (side, body) in [("A", &case.bodies.a), ("B", &case.bodies.b)] {
         match body {
-            BodySpec::HalfSpace { material, .. } => needs_speed |= creeping(material).is_some_and(|t| t > 0.0),
+            BodySpec::HalfSpace { material, .. } | BodySpec::Layer { material, .. } => {
+                needs_speed |= creeping(material).is_some_and(|t| t > 0.0)
+            }
             BodySpec::Bem { material, .. } if creeping(material).is_some() => out.push((
                 format!("bodies.{side}.material"),
                 format!(
-                    "material `{material}` is viscoelastic, which rollbem models on `half_space` bodies only \
-                     (the aged half-plane kernels); give this bem body an elastic material or model it as a half_space"
+                    "material `{material}` is viscoelastic, which rollbem models on `half_space` and `layer` bodies \
+                     only (the aged kernels); give this bem body an elastic material or model it as a half_space \
+                     (a cover on a rigid core: a layer)"
                 ),
             )),
             _ => {}

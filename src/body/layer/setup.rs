@@ -1,0 +1,102 @@
+//! The layer model's setup: a cover of given material, outer radius and thickness on a rigid
+//! core, built on any grid from the half-plane integrals and the layer's tabulated remainder.
+
+use super::Layer;
+use crate::body::setup::{BodySetup, BuildContext, BuildError, SurfaceAt};
+use crate::body::transfer::Transferred;
+use crate::body::viscoelastic::aged_kernels::Ageing;
+use crate::body::{Body, Side};
+use crate::material::{Elastic, StandardLinearSolid};
+
+/// A `layer` body of a scene (module docs of [`super`]).
+#[derive(Debug, Clone)]
+pub struct LayerSetup {
+    /// The cover's material (an elastic one: rubbery = glassy, creep time 0).
+    pub material: StandardLinearSolid,
+    /// Signed outer radius of the cover [length].
+    pub radius: f64,
+    /// Cover thickness b [length].
+    pub thickness: f64,
+}
+
+impl LayerSetup {
+    /// An elastic cover.
+    pub fn elastic(material: Elastic, radius: f64, thickness: f64) -> Self {
+        Self {
+            material: StandardLinearSolid {
+                glassy: material,
+                rubbery_young: material.young,
+                creep_time: 0.0,
+            },
+            radius,
+            thickness,
+        }
+    }
+
+    /// The model on the kinematics of `ctx`: aged with L = V τc when the material creeps
+    /// (the case's validation guarantees a speed whenever τc > 0).
+    pub fn model(&self, ctx: &BuildContext) -> Layer {
+        let length = self.material.creep_time * ctx.rolling.speed.unwrap_or(0.0);
+        let creeps = length > 0.0 && self.material.rubbery_young < self.material.glassy.young;
+        Layer {
+            material: self.material,
+            thickness: self.thickness,
+            radius: self.radius,
+            ageing: creeps.then_some(Ageing {
+                length,
+                direction: ctx.rolling.direction,
+            }),
+        }
+    }
+}
+
+impl BodySetup for LayerSetup {
+    fn model_name(&self) -> &'static str {
+        "layer"
+    }
+
+    fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// The rubbery constants (the elastic ones of an elastic cover): the softest, widest
+    /// contact, which the grid must cover.
+    fn hertz_material(&self) -> Option<Elastic> {
+        Some(self.material.rubbery())
+    }
+
+    /// The layer's own kernels are exact for a flat cover; the half-plane idealisation's
+    /// a/R error estimate does not apply.
+    fn idealises_as_half_plane(&self) -> bool {
+        false
+    }
+
+    /// A BEM model of an elastic cover exists (`geometry: covered_roller`), of a viscoelastic
+    /// one not.
+    fn has_true_geometry_model(&self) -> bool {
+        self.material.creep_time == 0.0
+    }
+
+    fn surface_at(&self, _x: f64, _side: Side) -> Option<SurfaceAt> {
+        None
+    }
+
+    /// The profile radius, or 20 b where that is smaller: a load's effect on a bonded layer
+    /// decays like e^(−c|x|/b), c ≈ 1.3–2 (for the half-plane estimate that sizes the grid).
+    fn datum_distance(&self) -> f64 {
+        self.radius.abs().min(20.0 * self.thickness)
+    }
+
+    // `layer_thickness` keeps its default None: the model advice it feeds estimates the error
+    // a half-space model makes on a layer, which this model does not make.
+
+    /// As the half-space: on a grid of curved elements built on the straightened grid and
+    /// carried over.
+    fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
+        Ok(Transferred::flat_model_on(
+            Box::new(self.model(ctx)),
+            ctx.grid,
+            ctx.side,
+        )?)
+    }
+}
