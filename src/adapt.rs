@@ -12,7 +12,8 @@
 //! 2. estimate the error of H's solution from the difference of the two ([`estimate`]), with
 //!    an indicator per element of G;
 //! 3. if the estimated RMS errors of p/p0 and q/(μp0) over the contact and the relative
-//!    creepage error are all ≤ the tolerance, H's solution is the result;
+//!    errors of the creepage and (where controlled) the overlap are all ≤ the tolerance, H's
+//!    solution is the result;
 //! 4. else refine G. Each element has a local indicator (how far H's solution over it departs
 //!    from one polynomial of the element's degree): large at the square-root points, small
 //!    where the solution is smooth, and blind to the smooth error those points spread, which
@@ -23,6 +24,12 @@
 //!    per halving), or halved once when it holds none; sibling pieces in the open region with
 //!    a negligible share are merged back; neighbours stay within a length ratio of 2.
 //!
+//! Once the grid meets the tolerance, the bodies' own meshes outside the contact (a BEM
+//! body's free boundary, shaft, rim) are checked too ([`body_mesh`]: the final grid solved
+//! once more with them bisected), and bisected while their estimate exceeds the tolerance.
+//! Under force control between bodies with a datum the overlap is controlled with the
+//! creepage ([`overlap`]).
+//!
 //! The result is H's solution; summary.json reports the estimate (`error_estimate`) and the
 //! grid's passes. With the estimate not reached within `contact.grid.max_elements` elements
 //! the run ends with exit code 2: the best solution comes back marked (`reached: false`), and
@@ -31,8 +38,10 @@
 //! A fixed grid (no `contact.grid.tolerance`) is the same loop stopped after its first solve:
 //! [`solve`] is the one driver of every run.
 
+pub mod body_mesh;
 pub mod cells;
 pub mod estimate;
+pub mod overlap;
 
 use crate::analytic::{hertz_half_width, hertz_peak_pressure};
 use crate::contact::residual::State;
@@ -194,7 +203,10 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
         if !h.report.converged {
             return Ok(finished(h, timings, Some((tolerance, steps))));
         }
-        let cmp = estimate::compare(&g.problem.grid, &g.state, &h.problem.grid, &h.state, scales);
+        let mut cmp = estimate::compare(&g.problem.grid, &g.state, &h.problem.grid, &h.state, scales);
+        if overlap::controlled(scene) {
+            cmp.estimate.overlap_rel = Some(overlap::relative_error(g.state.overlap, h.state.overlap));
+        }
         let e = cmp.estimate;
         steps.push(AdaptationStep {
             elements: h.problem.grid.n_elements(),
@@ -205,17 +217,28 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
         log::info!(
             target: crate::logging::PROGRESS,
             "error control, pass {}: {} elements, estimated error: pressure {:.2e} p0, shear {:.2e} mu p0, \
-             creepage {:.2e}",
+             creepage {:.2e}, overlap {}",
             steps.len(),
             h.problem.grid.n_elements(),
             e.pressure_rms,
             e.shear_rms,
-            e.creep_rel
+            e.creep_rel,
+            e.overlap_rel.map_or("not controlled".to_string(), |o| format!("{o:.2e}"))
         );
         let singular = singular_points(&h.problem, &h.state);
         let half_width = hertz.half_width;
         if e.within(tolerance) && resolved(&h.problem.grid, &singular, tolerance, half_width) {
-            return Ok(finished(h, timings, Some((tolerance, steps))));
+            // The grid meets the tolerance: now the bodies' meshes outside the contact.
+            let checked = body_mesh::check(h, scales, tolerance, &mut timings, &mut ws)?;
+            if let Some(last) = steps.last_mut() {
+                last.estimate.body_mesh = checked.estimate;
+            }
+            let mut done = finished(checked.solve, timings, Some((tolerance, steps)));
+            if let (Some(a), Some(bodies)) = (done.adaptation.as_mut(), checked.too_coarse) {
+                a.reached = false;
+                a.coarse_body_mesh = Some(bodies);
+            }
+            return Ok(done);
         }
         let next = coarse.refined(&actions(&coarse, &cmp, &singular, tolerance, half_width));
         log::debug!("singular points {singular:?}; next grid {} elements", next.len());
@@ -288,6 +311,7 @@ fn finished(mut s: Solve, mut timings: Timings, passes: Option<(f64, Vec<Adaptat
             refinements: steps.len().saturating_sub(1),
             steps,
             reached: true,
+            coarse_body_mesh: None,
         }),
         scene: s.scene,
         models: s.models,

@@ -10,6 +10,7 @@ use crate::body::transfer::Transferred;
 use crate::body::{Body, Side, WithCircularProfile};
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
+use crate::mesh::bisect::bisect_outside_group;
 use crate::mesh::cuts::{cut_along_grid_on, Circle};
 use crate::mesh::LoadedMesh;
 use std::sync::Arc;
@@ -250,6 +251,36 @@ impl BodySetup for BemSetup {
             start_mesh: Some(start),
             ..self.clone()
         }))
+    }
+
+    /// The mesh with its elements outside the contact group bisected on their own curves
+    /// ([`crate::mesh::bisect`]). Its far field differs from the start mesh's, so the bisected
+    /// body is assembled afresh: no start mesh, no shared cache.
+    fn with_free_boundary_bisected(&self) -> Option<Arc<dyn BodySetup>> {
+        let mesh = LoadedMesh {
+            mesh: bisect_outside_group(&self.mesh.mesh, self.mesh.contact_group),
+            ..self.mesh.clone()
+        };
+        Some(Arc::new(BemSetup {
+            mesh,
+            start_mesh: None,
+            far_field: Default::default(),
+            ..self.clone()
+        }))
+    }
+
+    /// The mesh's path (or label) and its groups other than the contact group.
+    fn free_boundary_label(&self) -> Option<String> {
+        let m = &self.mesh;
+        let groups: Vec<&str> = m
+            .mesh
+            .groups
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != m.contact_group)
+            .map(|(_, g)| g.name.as_str())
+            .collect();
+        Some(format!("{}, groups {}", m.path.display(), groups.join(", ")))
     }
 }
 
