@@ -33,6 +33,9 @@ pub const TOLERANCE: f64 = 1e-2;
 /// Elements of each half of the coarse roller's free circle.
 pub const HALF_CIRCLE_ELEMENTS: usize = 6;
 
+/// Elements of the coarse roller's shaft.
+pub const SHAFT_ELEMENTS: usize = 6;
+
 /// Growth of neighbouring element angles on the coarse roller's free circle, from the contact.
 pub const GROWTH: f64 = 3.0;
 
@@ -73,9 +76,14 @@ pub fn roller_mesh(edges: &[f64], r: f64, shaft: f64, n: usize, growth: f64, sha
 }
 
 /// Body A of the case's scene replaced by the roller of `2·half` elements on its free circle
-/// (and 6 on the shaft) meshed `fineness` times finer outside the contact, on the generated
-/// roller's contact elements.
-pub fn scene_with_roller(extra: &[&str], half: usize, fineness: usize) -> Scene {
+/// and `shaft` on its shaft, meshed `fineness` times finer outside the contact, on the
+/// generated roller's contact elements.
+pub fn scene_with_roller(extra: &[&str], half: usize, shaft: usize, fineness: usize) -> Scene {
+    scene_with_graded_roller(extra, half, GROWTH, shaft, fineness)
+}
+
+/// [`scene_with_roller`] with the free circle's element angles growing by `growth`.
+pub fn scene_with_graded_roller(extra: &[&str], half: usize, growth: f64, shaft: usize, fineness: usize) -> Scene {
     let case = app::load_case(&common::case_path("fig14_geometry"), &overrides(extra)).expect("the case loads");
     let generated = Scene::from_case(&case).expect("the scene builds");
     let edges = generated.bodies[0]
@@ -90,15 +98,22 @@ pub fn scene_with_roller(extra: &[&str], half: usize, fineness: usize) -> Scene 
         150.0,
         15.0,
         half * fineness,
-        GROWTH.powf(1.0 / k),
-        6 * fineness,
+        growth.powf(1.0 / k),
+        shaft * fineness,
     );
     let conditions = vec![
         ("free".to_string(), BoundaryCondition::Free),
         ("shaft".to_string(), BoundaryCondition::Fixed),
         ("contact".to_string(), BoundaryCondition::Contact),
     ];
-    let a = BemSetup::on_start_mesh(mesh, case.material("aluminium"), "contact".into(), conditions, None, None);
+    let a = BemSetup::on_start_mesh(
+        mesh,
+        case.material("aluminium"),
+        "contact".into(),
+        conditions,
+        None,
+        None,
+    );
     let bodies: [Arc<dyn BodySetup>; 2] = [Arc::new(a), generated.bodies[1].clone()];
     Scene::new(case, bodies)
 }
@@ -121,9 +136,12 @@ fn state(s: &Solved) -> State {
 /// final grid, in the estimate's norms.
 pub fn coarse_roller() -> (Solved, BodyMeshError) {
     let tol = format!("contact.grid.tolerance={TOLERANCE:e}");
-    let run = app::solve_scene(scene_with_roller(&[&tol], HALF_CIRCLE_ELEMENTS, 1), std::time::Instant::now())
-        .expect("the coarse roller's run meets the tolerance");
-    let fine = scene_with_roller(&[], HALF_CIRCLE_ELEMENTS, FINER);
+    let run = app::solve_scene(
+        scene_with_roller(&[&tol], HALF_CIRCLE_ELEMENTS, SHAFT_ELEMENTS, 1),
+        std::time::Instant::now(),
+    )
+    .expect("the coarse roller's run meets the tolerance");
+    let fine = scene_with_roller(&[], HALF_CIRCLE_ELEMENTS, SHAFT_ELEMENTS, FINER);
     let followed = fine.bodies[0]
         .follow_grid(&run.problem.grid)
         .expect("a bem body follows the grid");

@@ -95,12 +95,7 @@ pub(super) fn check(
             "error control: the bodies' meshes outside the contact bisected ({})",
             bisections + 1
         );
-        let fine = solve_on(
-            scene,
-            Some((&current.problem.grid, &current.state)),
-            timings,
-            ws,
-        )?;
+        let fine = solve_on(scene, Some((&current.problem.grid, &current.state)), timings, ws)?;
         if !fine.report.converged {
             return Ok(Checked {
                 solve: current,
@@ -171,7 +166,9 @@ pub fn compare(
         (sum / length).sqrt()
     };
     let pressure = rms(scales.peak_pressure, &|i| fine.pressure[i] - coarse.pressure[i]);
-    let shear = rms(scales.friction * scales.peak_pressure, &|i| fine.shear[i] - coarse.shear[i]);
+    let shear = rms(scales.friction * scales.peak_pressure, &|i| {
+        fine.shear[i] - coarse.shear[i]
+    });
     let creepage_rel = if scales.creep_prescribed || scales.friction == 0.0 || fine.creep == coarse.creep {
         0.0
     } else {

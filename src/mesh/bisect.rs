@@ -37,7 +37,10 @@ pub fn bisect_outside_group(mesh: &BoundaryMesh, keep: usize) -> BoundaryMesh {
                 nodes.push(geom.point(centre));
                 n.push(nodes.len() - 1);
             }
-            elements.push(BoundaryElement { nodes: n, group: el.group });
+            elements.push(BoundaryElement {
+                nodes: n,
+                group: el.group,
+            });
         }
     }
     BoundaryMesh::new(nodes, elements, mesh.groups.clone(), mesh.source.clone())
