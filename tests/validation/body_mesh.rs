@@ -55,8 +55,8 @@ fn a_fine_shipped_mesh_reports_a_body_mesh_error_below_its_tolerance() {
 }
 
 /// Above the tolerance the bodies' meshes are bisected outside the contact and the bisected
-/// ones adopted: the coarse roller (whose estimate at 1e-2 is 1.5e-3 in the creepage and the
-/// overlap) meets 1.2e-3 with its elements outside the contact bisected once, and the
+/// ones adopted: the coarse roller (whose estimate at 1e-2 is 1.5e-3 in the creepage and 1.8e-3
+/// in the overlap) meets 1.2e-3 with its elements outside the contact bisected once, and the
 /// result's body A has twice the elements there of the roller cut along the same grid.
 #[test]
 fn a_body_mesh_above_the_tolerance_is_bisected_until_it_meets_it() {
