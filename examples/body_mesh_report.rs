@@ -203,8 +203,13 @@ pub fn body_mesh() -> Table {
         ]);
     }
     let fig14 = common::solve("fig14_true_geometry", &["contact.grid.tolerance=1e-3"]);
+    let grid = fig14.adaptation.as_ref().and_then(|a| a.estimate);
     let e = body_mesh_estimate(&fig14);
-    for (q, est) in quantities(&e) {
+    let overlap = grid.and_then(|g| g.overlap_rel).unwrap_or(f64::NAN);
+    let rows = quantities(&e)
+        .into_iter()
+        .chain([("overlap, contact grid's estimate (relative)", overlap)]);
+    for (q, est) in rows {
         t.push(vec![
             "cases/fig14_true_geometry.yaml, tolerance 1e-3".into(),
             q.into(),
