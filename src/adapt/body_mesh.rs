@@ -97,6 +97,10 @@ pub(super) fn check(
         );
         let fine = solve_on(scene, Some((&current.problem.grid, &current.state)), timings, ws)?;
         if !fine.report.converged {
+            log::warn!(
+                "the solve with the bodies' meshes bisected outside the contact did not converge: \
+                 their error is not estimated"
+            );
             return Ok(Checked {
                 solve: current,
                 estimate: None,
