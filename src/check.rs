@@ -228,7 +228,7 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
 /// The estimated cost of the case as it stands and with the other model: BEM rollers on shafts
 /// in place of half-spaces, or half-spaces in place of `bem` bodies ([`cost`]).
 fn costs(scene: &Scene) -> (String, String) {
-    let output = &scene.case.case.output;
+    let output = &scene.fields;
     let sizes = cost::Sizes {
         contact_nodes: scene.grid.n_nodes(),
         bem_bodies: scene

@@ -98,7 +98,7 @@ pub fn process(
         DEFAULT_THRESHOLD_FRACTION,
         scene.estimates.hertz_half_width / scene.estimates.effective_radius.abs(),
     );
-    let output = &scene.case.case.output;
+    let output = &scene.fields;
     let boundary = if report.converged && output.vtk {
         fields::boundary_fields(models, &problem.grid, &problem.frame, &solution)?
     } else {
@@ -159,7 +159,7 @@ fn check_grid_contains_contact(scene: &Scene, sol: &ContactSolution) -> Result<(
                 case: scene.case.path.clone(),
                 end,
                 x: sol.x[i],
-                extent: scene.case.case.contact.grid.extent,
+                extent: scene.grid_extent,
                 advice: crate::scene::preflight::grid_too_short_advice(&scene.case, &scene.bodies),
             });
         }

@@ -54,6 +54,20 @@ pub struct Scene {
     pub friction: f64,
     /// The error control of `contact.grid.tolerance`; None for a fixed grid.
     pub grid_control: Option<GridControl>,
+    /// The fields post-processing computes besides the contact solution.
+    pub fields: FieldRequests,
+    /// The grid's half-length over the Hertz half-width, `contact.grid.extent` [-] (what a
+    /// contact cut off by the grid's ends is told to raise).
+    pub grid_extent: f64,
+}
+
+/// The fields a run computes after the contact is solved (`output.vtk`, `output.interior`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldRequests {
+    /// Boundary fields of both bodies for VTK.
+    pub vtk: bool,
+    /// The interior grid of one body, if asked for.
+    pub interior: Option<crate::case::InteriorSpec>,
 }
 
 /// What an error-controlled grid must reach, and its limit.
@@ -119,6 +133,11 @@ impl Scene {
             tolerance,
             max_elements: c.contact.grid.max_elements,
         });
+        let fields = FieldRequests {
+            vtk: c.output.vtk,
+            interior: c.output.interior.clone(),
+        };
+        let grid_extent = c.contact.grid.extent;
         Scene {
             case,
             bodies,
@@ -130,6 +149,8 @@ impl Scene {
             solver,
             friction,
             grid_control,
+            fields,
+            grid_extent,
         }
     }
 
@@ -170,6 +191,29 @@ impl Scene {
         }
         let bodies = self.bodies.clone().map(|b| b.follow_grid(&grid).unwrap_or(b));
         Scene::new(self.case.clone(), bodies)
+    }
+
+    /// The scene for the passes of an error-controlled grid: each body that offers a cheaper
+    /// stand-in ([`BodySetup::pass_stand_in`], from the body on `levels[0]`, the start grid, and
+    /// `levels[1]`, its bisection) replaced by it, on the start grid; None when no body offers
+    /// one. The stand-ins have no mesh of their own: the pass grids are the scene's to choose
+    /// ([`Self::on_grid`]).
+    pub fn with_pass_stand_ins(&self, levels: [&ContactGrid; 2]) -> Result<Option<Scene>, Error> {
+        let mut bodies = self.bodies.clone();
+        let mut any = false;
+        for (k, side) in [Side::A, Side::B].into_iter().enumerate() {
+            if let Some(stand_in) = self.bodies[k].pass_stand_in(levels, side, self.rolling())? {
+                bodies[k] = stand_in;
+                any = true;
+            }
+        }
+        if !any || bodies.iter().any(|b| b.contact_mesh().is_some()) {
+            return Ok(None);
+        }
+        Ok(Some(Scene {
+            bodies,
+            ..self.clone()
+        }))
     }
 
     /// How the contact moves over the bodies.

@@ -17,6 +17,7 @@
 //! convention the same way: p ↦ S_xy, q ↦ S_xx on either side.
 
 pub mod setup;
+pub mod stand_in;
 
 use super::{
     BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery, InteriorResult, Side,

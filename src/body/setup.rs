@@ -206,4 +206,18 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
     fn free_boundary_label(&self) -> Option<String> {
         None
     }
+
+    /// A cheaper model of the same body for the passes of an error-controlled grid, built from
+    /// the body on `levels[0]` (the start grid) and `levels[1]` (its bisection); the run's final
+    /// grid is solved with the body itself. None (the default) when the body is cheap already:
+    /// every pass then builds the body itself. A BEM body offers the half-plane plus its
+    /// smooth remainder ([`crate::body::bem::stand_in`]).
+    fn pass_stand_in(
+        &self,
+        _levels: [&ContactGrid; 2],
+        _side: Side,
+        _rolling: Rolling,
+    ) -> Result<Option<Arc<dyn BodySetup>>, BuildError> {
+        Ok(None)
+    }
 }

@@ -592,7 +592,7 @@ impl Penalty {
 /// model gives the fields (`half_space`: Flamant superposition; `bem`: Somigliana's identity);
 /// a rigid body has none. Points outside the body or within the boundary layer are flagged in
 /// the output's `status` and not evaluated.
-#[derive(Debug, Clone, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InteriorSpec {
     /// `A` or `B`.

@@ -27,6 +27,9 @@ mod common;
 #[path = "../../examples/conformal_report.rs"]
 mod conformal_report;
 #[allow(dead_code)]
+#[path = "../../examples/effectivity_matrix.rs"]
+mod effectivity_matrix;
+#[allow(dead_code)]
 #[path = "../../examples/error_vs_time.rs"]
 mod error_vs_time;
 #[allow(dead_code)]
@@ -317,6 +320,17 @@ fn assert_four_figures(constant: f64, measured: f64, what: &str) {
 #[test]
 fn validation_adaptive_table() {
     let t = adaptive_report::table();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("validation.md"), printed, Rows::All, &["time [s]"], (&[], 0.0));
+}
+
+/// docs/validation.md: the effectivity matrix of the error estimate, without the times.
+#[test]
+fn validation_effectivity_matrix_table() {
+    let t = effectivity_matrix::table();
     let printed = Printed {
         header: &t.header,
         rows: &t.rows,

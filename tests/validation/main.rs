@@ -21,6 +21,10 @@ mod body_mesh;
 mod body_mesh_report;
 mod conformal_bem;
 mod conformal_series;
+mod effectivity;
+#[allow(dead_code)]
+#[path = "../../examples/effectivity_matrix.rs"]
+mod effectivity_matrix;
 mod free_rolling_creepage;
 mod friction_limits;
 mod hertz_carter;
