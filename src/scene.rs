@@ -210,10 +210,7 @@ impl Scene {
         if !any || bodies.iter().any(|b| b.contact_mesh().is_some()) {
             return Ok(None);
         }
-        Ok(Some(Scene {
-            bodies,
-            ..self.clone()
-        }))
+        Ok(Some(Scene { bodies, ..self.clone() }))
     }
 
     /// How the contact moves over the bodies.

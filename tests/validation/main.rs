@@ -36,6 +36,7 @@ mod parametric;
 mod parametric_report;
 mod slip_end;
 mod solver;
+mod stand_in;
 mod true_geometry;
 mod tyre;
 mod viscoelastic;

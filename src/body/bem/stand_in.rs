@@ -5,7 +5,7 @@
 //! The flexibility of a body whose contact surface is smooth is the half-plane's logarithmic
 //! and step kernels (the local singular behaviour of every elastic body under a surface load)
 //! plus a remainder R(x, s) that is smooth along the contact: the curvature of the surface, the
-//! shaft, the rim and the datum of the approach (docs/theory.md, "Error control on BEM bodies").
+//! shaft, the rim and the datum of the approach (docs/theory.md, "Stand-ins for the passes").
 //! On a grid the remainder's entries are R(x_i, s_j)·w_j to the order of the element integrals,
 //! so a BEM condensed to one grid gives samples of R that serve every finer grid: each block is
 //! fitted by a tensor-product Chebyshev series of degree [`REMAINDER_DEGREE`] in x and in s
@@ -14,12 +14,17 @@
 //!
 //! - the half-plane's columns are scaled by 1/cos θ_j, θ the surface's slope at node j: the BEM
 //!   loads its element by the traction per unit arc, the half-plane per unit x, and the
-//!   difference, a logarithm times (1/cos θ − 1), is not smooth (measured: the fit of a bore's
-//!   remainder at a/R = 0.2 converges only as its degree without the scaling);
+//!   difference, a logarithm times (1/cos θ − 1), is not smooth (a bore's contact at
+//!   a/R = 0.2, where the surface turns by 0.2 rad, differed from the full BEM by 2.5e-3 p0
+//!   without the scaling and by 2e-5 with it);
 //! - the BEM's own discretisation error in the remainder falls as the contact grid's spacing
-//!   (first order, measured 2.1e-4, 9.9e-5, 4.8e-5 p0 on three successive bisections of
-//!   fig14_true_geometry's grid), so the two grids' fits are combined by Richardson's
-//!   extrapolation, 2·R_fine − R_coarse.
+//!   (first order: fitted on one grid alone, fig14_true_geometry's remainder left 2.1e-4, 9.9e-5
+//!   and 4.8e-5 p0 on the start grid and its first and second bisections), so the two grids'
+//!   fits are combined by Richardson's extrapolation, 2·R_fine − R_coarse.
+//!
+//! tests/validation/stand_in.rs compares the stand-in with the full BEM on a grid finer than
+//! both fitted grids (a roller on its shaft, a bore's conformal contact) and drops a wrong
+//! stand-in through the final check.
 //!
 //! The stand-in serves only the passes: the run's final grid is solved again with the full BEM
 //! body (its mesh cut along the grid, as without the stand-in), which gives the results and
@@ -87,7 +92,9 @@ impl SmoothRemainder {
         let t = chebyshev_rows(&grid.nodes, span[0], span[1], degree);
         // (TᵀT)⁻¹Tᵀ: the normal equations of a (degree + 1)-column basis, well conditioned on
         // the nodes of a grid that covers its interval.
-        let pinv = (t.transpose() * &t).try_inverse().unwrap_or_else(|| DMatrix::zeros(degree + 1, degree + 1))
+        let pinv = (t.transpose() * &t)
+            .try_inverse()
+            .unwrap_or_else(|| DMatrix::zeros(degree + 1, degree + 1))
             * t.transpose();
         let m = grid.n_nodes();
         let fit = |b: &Mat<f64>, h: &Mat<f64>| {
