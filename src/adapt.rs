@@ -15,7 +15,8 @@
 //!    read of the estimate (besides it they read only where H's solution has its square-root
 //!    points);
 //! 3. if the estimated RMS errors of p/p0 and q/(μp0) over the contact and the relative
-//!    creepage error are all ≤ the tolerance, H's solution is the result;
+//!    errors of the creepage and (where controlled) the overlap are all ≤ the tolerance, H's
+//!    solution is the result;
 //! 4. else refine G. Each element has a local indicator (how far H's solution over it departs
 //!    from one polynomial of the element's degree): large at the square-root points, small
 //!    where the solution is smooth, and blind to the smooth error those points spread, which
@@ -26,6 +27,12 @@
 //!    per halving), or halved once when it holds none; sibling pieces in the open region with
 //!    a negligible share are merged back; neighbours stay within a length ratio of 2.
 //!
+//! Once the grid meets the tolerance, the bodies' own meshes outside the contact (a BEM
+//! body's free boundary, shaft, rim) are checked too ([`body_mesh`]: the final grid solved
+//! once more with them bisected), and bisected while their estimate exceeds the tolerance.
+//! Under force control between bodies with a datum the overlap is controlled with the
+//! creepage ([`overlap`]).
+//!
 //! The result is H's solution; summary.json reports the estimate (`error_estimate`) and the
 //! grid's passes. With the estimate not reached within `contact.grid.max_elements` elements
 //! the run ends with exit code 2: the best solution comes back marked (`reached: false`), and
@@ -34,8 +41,10 @@
 //! A fixed grid (no `contact.grid.tolerance`) is the same loop stopped after its first solve:
 //! [`solve`] is the one driver of every run.
 
+pub mod body_mesh;
 pub mod cells;
 pub mod estimate;
+pub mod overlap;
 
 use crate::analytic::{hertz_half_width, hertz_peak_pressure};
 use crate::contact::residual::State;
@@ -212,7 +221,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             return Ok(finished(h, timings, Some((tolerance, steps))));
         }
         let singular = singular_points(&h.problem, &h.state);
-        let cmp = estimator.estimate(&Pass {
+        let mut cmp = estimator.estimate(&Pass {
             coarse_grid: &g.problem.grid,
             coarse: &g.state,
             fine_grid: &h.problem.grid,
@@ -220,6 +229,9 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             singular: &singular,
             scales,
         });
+        if overlap::controlled(scene) {
+            cmp.estimate.overlap_rel = Some(overlap::relative_error(g.state.overlap, h.state.overlap));
+        }
         let e = cmp.estimate;
         steps.push(AdaptationStep {
             elements: h.problem.grid.n_elements(),
@@ -230,17 +242,18 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         log::info!(
             target: crate::logging::PROGRESS,
             "error control, pass {}: {} elements, estimated error: pressure {:.2e} p0, shear {:.2e} mu p0, \
-             creepage {:.2e}",
+             creepage {:.2e}, overlap {}",
             steps.len(),
             h.problem.grid.n_elements(),
             e.pressure_rms,
             e.shear_rms,
-            e.creep_rel
+            e.creep_rel,
+            e.overlap_rel.map_or("not controlled".to_string(), |o| format!("{o:.2e}"))
         );
         let half_width = hertz.half_width;
         if e.within(tolerance) && resolved(&h.problem.grid, &singular, tolerance, half_width) {
             if passes.is_none() {
-                return Ok(finished(h, timings, Some((tolerance, steps))));
+                return with_body_meshes_checked(h, timings, tolerance, steps, scales, &mut ws);
             }
             let full = solve_on(
                 scene.on_grid(h.problem.grid.clone()),
@@ -258,6 +271,10 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
                 pressure_rms: e.pressure_rms + d.pressure_rms,
                 shear_rms: e.shear_rms + d.shear_rms,
                 creep_rel: e.creep_rel + d.creep_rel,
+                overlap_rel: e
+                    .overlap_rel
+                    .map(|o| o + overlap::relative_error(h.state.overlap, full.state.overlap)),
+                body_mesh: None,
             };
             log::info!(
                 target: crate::logging::PROGRESS,
@@ -272,7 +289,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
                 last.iterations += full.report.iterations;
             }
             if total.within(tolerance) {
-                return Ok(finished(full, timings, Some((tolerance, steps))));
+                return with_body_meshes_checked(full, timings, tolerance, steps, scales, &mut ws);
             }
             // Not close enough at this tolerance: the passes go on with the bodies themselves,
             // from this grid.
@@ -298,6 +315,29 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         warm = Some((h.problem.grid, h.state));
         coarse = next;
     }
+}
+
+/// The result of a grid that meets the tolerance, once the bodies' meshes outside the contact
+/// are checked ([`body_mesh::check`]): their estimate joins the last pass's, and a mesh still
+/// too coarse after the check's bisections marks the run as not reached, naming the body.
+fn with_body_meshes_checked(
+    s: Solve,
+    mut timings: Timings,
+    tolerance: f64,
+    mut steps: Vec<AdaptationStep>,
+    scales: Scales,
+    ws: &mut Workspace,
+) -> Result<Adapted, Error> {
+    let checked = body_mesh::check(s, scales, tolerance, &mut timings, ws)?;
+    if let Some(last) = steps.last_mut() {
+        last.estimate.body_mesh = checked.estimate;
+    }
+    let mut done = finished(checked.solve, timings, Some((tolerance, steps)));
+    if let (Some(a), Some(bodies)) = (done.adaptation.as_mut(), checked.too_coarse) {
+        a.reached = false;
+        a.coarse_body_mesh = Some(bodies);
+    }
+    Ok(done)
 }
 
 /// The coarser of the two grids the pass stand-ins are built from (their remainder's error falls
@@ -331,6 +371,8 @@ fn difference_on_one_grid(a: &Solve, b: &Solve, scales: Scales) -> ErrorEstimate
                 pressure_rms: 0.0,
                 shear_rms: 0.0,
                 creep_rel: 0.0,
+                overlap_rel: None,
+                body_mesh: None,
             }
         }
     };
@@ -352,6 +394,8 @@ fn difference_on_one_grid(a: &Solve, b: &Solve, scales: Scales) -> ErrorEstimate
         pressure_rms: rms(&za.pressure, &zb.pressure, scales.peak_pressure),
         shear_rms: rms(&za.shear, &zb.shear, scales.friction * scales.peak_pressure),
         creep_rel,
+        overlap_rel: None,
+        body_mesh: None,
     }
 }
 
@@ -411,6 +455,7 @@ fn finished(mut s: Solve, mut timings: Timings, passes: Option<(f64, Vec<Adaptat
             refinements: steps.len().saturating_sub(1),
             steps,
             reached: true,
+            coarse_body_mesh: None,
         }),
         scene: s.scene,
         models: s.models,

@@ -94,6 +94,17 @@ fn solve_scene_best(scene: Scene, start: Instant) -> Result<Solved, Error> {
 fn tolerance_not_reached(s: &Solved) -> Option<Error> {
     let a = s.adaptation.as_ref().filter(|a| !a.reached)?;
     let e = a.estimate?;
+    if let (Some(bodies), Some(b)) = (&a.coarse_body_mesh, e.body_mesh) {
+        return Some(Error::BodyMeshTooCoarse {
+            case: s.scene.case.path.clone(),
+            bodies: bodies.clone(),
+            tolerance: a.tolerance,
+            bisections: b.bisections,
+            pressure: b.pressure,
+            shear: b.shear,
+            creep: b.creepage_rel,
+        });
+    }
     Some(Error::ToleranceNotReached {
         case: s.scene.case.path.clone(),
         tolerance: a.tolerance,

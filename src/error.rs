@@ -103,6 +103,32 @@ pub enum Error {
         /// Its estimated relative creepage error.
         creep: f64,
     },
+    /// The contact grid met `contact.grid.tolerance`, but a body's own mesh outside the contact
+    /// (free boundary, shaft, rim) stayed too coarse for it after the error control's
+    /// bisections of it. Exit code 2 (like non-convergence); `rollbem run` writes the best
+    /// solution's summary.json (`converged: false`, with `error_estimate.body_mesh`).
+    #[error(
+        "{case}: the mesh of {bodies} is too coarse for contact.grid.tolerance = {tolerance:e}: with its \
+         elements outside the contact bisected {bisections} times the estimated error it adds is \
+         pressure {pressure:.2e} p0, shear {shear:.2e} mu p0, creepage {creep:.2e} (relative); mesh \
+         those groups finer (smaller element sizes away from the contact) or raise the tolerance"
+    )]
+    BodyMeshTooCoarse {
+        /// Case file.
+        case: PathBuf,
+        /// The bodies with their meshes and groups (`body A (path, groups free, shaft)`).
+        bodies: String,
+        /// The requested tolerance.
+        tolerance: f64,
+        /// How many times the error control bisected the meshes outside the contact.
+        bisections: usize,
+        /// The body meshes' estimated RMS pressure error [p0].
+        pressure: f64,
+        /// Their estimated RMS shear error [μp0].
+        shear: f64,
+        /// Their estimated relative creepage error.
+        creep: f64,
+    },
     /// An error-controlled grid cannot be built for the scene.
     #[error("{case}: contact.grid.tolerance: {message}")]
     GridControl {
@@ -154,7 +180,9 @@ impl Error {
     /// A solution that broke down (NaN) gives 2, as non-convergence does.
     pub fn exit_code(&self) -> i32 {
         match self {
-            Error::NotFinite { .. } | Error::ToleranceNotReached { .. } => EXIT_NOT_CONVERGED,
+            Error::NotFinite { .. } | Error::ToleranceNotReached { .. } | Error::BodyMeshTooCoarse { .. } => {
+                EXIT_NOT_CONVERGED
+            }
             _ => EXIT_BAD_INPUT,
         }
     }

@@ -17,6 +17,7 @@
 //! Gmsh's order: `line2` = [end0, end1], `line3` = [end0, end1, mid] (intrinsic coordinates
 //! ξ = −1, +1, 0).
 
+pub mod bisect;
 pub mod build;
 pub mod check;
 pub mod cuts;

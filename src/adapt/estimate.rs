@@ -233,6 +233,9 @@ pub fn compare(
             pressure_rms: PRESSURE_ESTIMATE_FACTOR * rms(&dp),
             shear_rms: SHEAR_ESTIMATE_FACTOR * rms(&dq),
             creep_rel,
+            // Set by the driver, which knows the controls and the bodies (`super::overlap`).
+            overlap_rel: None,
+            body_mesh: None,
         },
         detail,
         open,

@@ -191,6 +191,22 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         None
     }
 
+    /// The same body with every element of its own discretisation outside the contact (a BEM
+    /// body's free boundary, shaft, rim) bisected, its contact elements unchanged: what the
+    /// error control solves the final grid with once more to estimate the body mesh's error
+    /// (docs/theory.md, "Error-controlled grids"). None for a body without a mesh of its own
+    /// (closed-form models: half-space, rigid, viscoelastic).
+    fn with_free_boundary_bisected(&self) -> Option<Arc<dyn BodySetup>> {
+        None
+    }
+
+    /// The body's own mesh outside the contact, for messages: its file (or the label of a
+    /// generated mesh) and the groups [`Self::with_free_boundary_bisected`] refines; None for
+    /// a body without a mesh.
+    fn free_boundary_label(&self) -> Option<String> {
+        None
+    }
+
     /// A cheaper model of the same body for the passes of an error-controlled grid, built from
     /// the body on `levels[0]` (the start grid) and `levels[1]` (its bisection); the run's final
     /// grid is solved with the body itself. None (the default) when the body is cheap already:

@@ -145,10 +145,26 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
         line(
             "estimated error",
             format!(
-                "pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e} (relative); tolerance {tol:.0e}",
-                e.pressure_rms, e.shear_rms, e.creep_rel
+                "pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}{} (relative); tolerance {tol:.0e}",
+                e.pressure_rms,
+                e.shear_rms,
+                e.creep_rel,
+                e.overlap_rel.map_or(String::new(), |o| format!(", overlap {o:.2e}"))
             ),
         );
+        if let Some(b) = e.body_mesh {
+            line(
+                "body mesh error",
+                format!(
+                    "pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}{} (relative); {} bisections",
+                    b.pressure,
+                    b.shear,
+                    b.creepage_rel,
+                    b.overlap_rel.map_or(String::new(), |o| format!(", overlap {o:.2e}")),
+                    b.bisections
+                ),
+            );
+        }
     }
     if let Some(i) = &s.interior {
         let peak = |p: &Option<crate::interior::Peak>| {

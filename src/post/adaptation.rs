@@ -13,12 +13,56 @@ pub struct ErrorEstimate {
     pub shear_rms: f64,
     /// Relative error of the creepage ξ [-]; 0 when ξ is prescribed or μ = 0.
     pub creep_rel: f64,
+    /// Relative error of the overlap δ (the approach of the bodies' datums) [-], when it is
+    /// an output that a grid controls: under force control with neither body idealised as a
+    /// half-plane (whose approach is relative to a datum at a chosen depth, so that its
+    /// relative error says nothing of the solution). Absent when δ is prescribed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub overlap_rel: Option<f64>,
+    /// The error the bodies' own meshes outside the contact add (a BEM body's free boundary,
+    /// shaft, rim), estimated once the grid meets the tolerance; absent for bodies without a
+    /// mesh and in the passes' estimates.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body_mesh: Option<BodyMeshError>,
+}
+
+/// The error of the bodies' meshes outside the contact (summary.json
+/// `error_estimate.body_mesh`), in the norms of [`ErrorEstimate`], on the final contact grid.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BodyMeshError {
+    /// Relative error of the creepage ξ [-]; 0 when ξ is prescribed or μ = 0.
+    pub creepage_rel: f64,
+    /// Relative error of the overlap δ [-], when the grid's estimate controls it
+    /// ([`ErrorEstimate::overlap_rel`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub overlap_rel: Option<f64>,
+    /// RMS error of p over the contact [Hertz peak pressure p0].
+    pub pressure: f64,
+    /// RMS error of q over the contact [μp0].
+    pub shear: f64,
+    /// How many times the meshes' elements outside the contact were bisected before this
+    /// estimate (0: the meshes as given).
+    pub bisections: usize,
+}
+
+impl BodyMeshError {
+    /// The largest of the estimates.
+    pub fn largest(&self) -> f64 {
+        self.pressure
+            .max(self.shear)
+            .max(self.creepage_rel)
+            .max(self.overlap_rel.unwrap_or(0.0))
+    }
 }
 
 impl ErrorEstimate {
-    /// The largest of the three.
+    /// The largest of the contact grid's estimates (pressure, shear, creepage, and the
+    /// overlap where it is controlled); the body mesh's is tested on its own, after the grid.
     pub fn largest(&self) -> f64 {
-        self.pressure_rms.max(self.shear_rms).max(self.creep_rel)
+        self.pressure_rms
+            .max(self.shear_rms)
+            .max(self.creep_rel)
+            .max(self.overlap_rel.unwrap_or(0.0))
     }
 
     /// Whether every estimate is at most `tolerance`.
@@ -53,6 +97,12 @@ pub struct GridAdaptation {
     /// Every pass, the start grid's first.
     pub steps: Vec<AdaptationStep>,
     /// Whether the estimate met the tolerance (false: the grid reached
-    /// `contact.grid.max_elements` first, and the solution is the best one reached).
+    /// `contact.grid.max_elements` first, or a body's mesh stayed too coarse, and the solution
+    /// is the best one reached).
     pub reached: bool,
+    /// The body meshes whose error stayed above the tolerance after the most bisections the
+    /// error control makes of them (`body A (path, groups free, shaft)`), when that ended the
+    /// run; None otherwise.
+    #[serde(skip)]
+    pub coarse_body_mesh: Option<String>,
 }

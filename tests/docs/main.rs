@@ -18,6 +18,9 @@
 #[path = "../../examples/adaptive_report.rs"]
 mod adaptive_report;
 mod architecture;
+#[allow(dead_code)]
+#[path = "../../examples/body_mesh_report.rs"]
+mod body_mesh_report;
 #[path = "../common/mod.rs"]
 mod common;
 #[allow(dead_code)]
@@ -131,6 +134,18 @@ fn validation_methods_table() {
 #[test]
 fn validation_parametric_table() {
     let t = parametric_report::parametric();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(&page("validation.md"), printed, Rows::All, &[], (&[], 0.0));
+}
+
+/// docs/validation.md, "The body mesh's error": the coarse roller's estimate against the
+/// truth, and the shipped fig14 meshes' estimate.
+#[test]
+fn validation_body_mesh_table() {
+    let t = body_mesh_report::body_mesh();
     let printed = Printed {
         header: &t.header,
         rows: &t.rows,

@@ -15,6 +15,10 @@ mod common;
 
 mod adaptive;
 mod body_contract;
+mod body_mesh;
+#[allow(dead_code)]
+#[path = "../../examples/body_mesh_report.rs"]
+mod body_mesh_report;
 mod conformal_bem;
 mod conformal_series;
 mod effectivity;

@@ -1,0 +1,240 @@
+//! The error of the bodies' own meshes outside the contact (a BEM body's free boundary, shaft,
+//! rim), estimated once the contact grid meets the tolerance.
+//!
+//! The contact grid's estimate compares a grid with its bisection, each body's mesh cut along
+//! the grid; the rest of a BEM body's mesh stays as the user (or the generator) made it, and its
+//! error is invisible to that comparison. Here the final grid's solution M is compared with the
+//! solution M' on the same grid whose bodies have every element outside the contact bisected
+//! ([`crate::body::setup::BodySetup::with_free_boundary_bisected`]: new nodes on each
+//! element's own curve): the RMS differences of p/p0 and q/(μp0) over the contact, the
+//! relative differences of ξ and (where [`super::overlap::controlled`]) δ. With the body
+//! mesh's error falling as h^k under bisection, M's error is the difference times
+//! 2^k/(2^k − 1); the quadratic elements' boundary tractions converge at least at k = 2, so
+//! the factor [`BODY_MESH_ESTIMATE_FACTOR`] is 4/3 (7/6 of the factor 8/7 of k = 3).
+//!
+//! Above the tolerance, the bisected bodies are adopted (their solution is already at hand)
+//! and estimated in turn, at most [`MAX_BODY_MESH_BISECTIONS`] times; a body mesh still too
+//! coarse then ends the run with exit code 2 and a message naming the body, its mesh and its
+//! groups (`Error::BodyMeshTooCoarse`).
+
+use super::estimate::Scales;
+use super::{overlap, solve_on, Solve};
+use crate::contact::residual::State;
+use crate::contact::Workspace;
+use crate::error::Error;
+use crate::grid::ContactGrid;
+use crate::post::adaptation::BodyMeshError;
+use crate::post::norms::node_lengths;
+use crate::post::Timings;
+use crate::scene::Scene;
+
+/// The factor of the difference between the body meshes and their bisection (module docs).
+pub const BODY_MESH_ESTIMATE_FACTOR: f64 = 4.0 / 3.0;
+
+/// Most times the error control bisects the bodies' meshes outside the contact before it
+/// stops with exit code 2 (each bisection doubles their elements there).
+pub const MAX_BODY_MESH_BISECTIONS: usize = 2;
+
+/// What the body-mesh check made of the final grid's solve.
+pub(super) struct Checked {
+    /// The solve to report: the given one, or one on bisected bodies.
+    pub solve: Solve,
+    /// Its body meshes' estimate; None when no body has a mesh of its own (or a solve on the
+    /// bisected bodies did not converge: the given solve is kept, unestimated).
+    pub estimate: Option<BodyMeshError>,
+    /// The bodies whose meshes are too coarse when the estimate stayed above the tolerance
+    /// after [`MAX_BODY_MESH_BISECTIONS`] bisections.
+    pub too_coarse: Option<String>,
+}
+
+/// The scene with every body that has a mesh of its own bisected outside the contact, None
+/// when no body has one.
+fn bisected(scene: &Scene) -> Option<Scene> {
+    let mut any = false;
+    let bodies = scene.bodies.clone().map(|b| match b.with_free_boundary_bisected() {
+        Some(fine) => {
+            any = true;
+            fine
+        }
+        None => b,
+    });
+    any.then(|| Scene::new(scene.case.clone(), bodies))
+}
+
+/// The bodies with meshes of their own, for messages: `body A (path, groups free, shaft)`.
+fn meshed_bodies(scene: &Scene) -> String {
+    scene
+        .bodies
+        .iter()
+        .zip(["A", "B"])
+        .filter_map(|(b, name)| b.free_boundary_label().map(|l| format!("body {name} ({l})")))
+        .collect::<Vec<_>>()
+        .join(" and ")
+}
+
+/// Checks the body meshes of `solve` (the final grid's, its estimate within `tolerance`):
+/// module docs.
+pub(super) fn check(
+    solve: Solve,
+    scales: Scales,
+    tolerance: f64,
+    timings: &mut Timings,
+    ws: &mut Workspace,
+) -> Result<Checked, Error> {
+    let mut current = solve;
+    for bisections in 0..=MAX_BODY_MESH_BISECTIONS {
+        let Some(scene) = bisected(&current.scene) else {
+            return Ok(Checked {
+                solve: current,
+                estimate: None,
+                too_coarse: None,
+            });
+        };
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "error control: the bodies' meshes outside the contact bisected ({})",
+            bisections + 1
+        );
+        let fine = solve_on(scene, Some((&current.problem.grid, &current.state)), timings, ws)?;
+        if !fine.report.converged {
+            log::warn!(
+                "the solve with the bodies' meshes bisected outside the contact did not converge: \
+                 their error is not estimated"
+            );
+            return Ok(Checked {
+                solve: current,
+                estimate: None,
+                too_coarse: None,
+            });
+        }
+        let mut e = compare(
+            &current.problem.grid,
+            &current.state,
+            &fine.state,
+            scales,
+            overlap::controlled(&current.scene),
+        );
+        e.bisections = bisections;
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "error control, body meshes: estimated error: pressure {:.2e} p0, shear {:.2e} mu p0, \
+             creepage {:.2e}",
+            e.pressure,
+            e.shear,
+            e.creepage_rel
+        );
+        if e.largest() <= tolerance {
+            return Ok(Checked {
+                solve: current,
+                estimate: Some(e),
+                too_coarse: None,
+            });
+        }
+        if bisections == MAX_BODY_MESH_BISECTIONS {
+            let too_coarse = Some(meshed_bodies(&current.scene));
+            return Ok(Checked {
+                solve: current,
+                estimate: Some(e),
+                too_coarse,
+            });
+        }
+        current = fine;
+    }
+    unreachable!("the loop returns on its last bisection")
+}
+
+/// The estimate of the body meshes' error from the solution `coarse` and `fine` (the bodies
+/// bisected outside the contact) on the same `grid` (module docs).
+pub fn compare(
+    grid: &ContactGrid,
+    coarse: &State,
+    fine: &State,
+    scales: Scales,
+    overlap_controlled: bool,
+) -> BodyMeshError {
+    let x = &grid.nodes;
+    let w = node_lengths(x);
+    // The contact: from the first to the last node loaded in either solution.
+    let loaded = |i: &usize| fine.pressure[*i] > 0.0 || coarse.pressure[*i] > 0.0;
+    let first = (0..x.len()).find(loaded);
+    let last = (0..x.len()).rev().find(loaded);
+    let rms = |scale: f64, d: &dyn Fn(usize) -> f64| -> f64 {
+        let (Some(a), Some(b)) = (first, last) else {
+            return 0.0;
+        };
+        let length: f64 = (a..=b).map(|i| w[i]).sum();
+        if !(length > 0.0 && scale > 0.0) {
+            return 0.0;
+        }
+        let sum: f64 = (a..=b).map(|i| w[i] * (d(i) / scale).powi(2)).sum();
+        (sum / length).sqrt()
+    };
+    let pressure = rms(scales.peak_pressure, &|i| fine.pressure[i] - coarse.pressure[i]);
+    let shear = rms(scales.friction * scales.peak_pressure, &|i| {
+        fine.shear[i] - coarse.shear[i]
+    });
+    let creepage_rel = if scales.creep_prescribed || scales.friction == 0.0 || fine.creep == coarse.creep {
+        0.0
+    } else {
+        (fine.creep - coarse.creep).abs() / fine.creep.abs().max(scales.creep_floor).max(f64::MIN_POSITIVE)
+    };
+    let f = BODY_MESH_ESTIMATE_FACTOR;
+    BodyMeshError {
+        creepage_rel: f * creepage_rel,
+        overlap_rel: overlap_controlled.then(|| f * overlap::relative_error(coarse.overlap, fine.overlap)),
+        pressure: f * pressure,
+        shear: f * shear,
+        bisections: 0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::ElementKind;
+
+    fn state(grid: &ContactGrid, p: f64, q: f64, creep: f64, overlap: f64) -> State {
+        let m = grid.n_nodes();
+        State {
+            gap: vec![0.0; m],
+            slip: vec![0.0; m],
+            pressure: vec![p; m],
+            shear: vec![q; m],
+            overlap,
+            creep,
+        }
+    }
+
+    /// A known uniform difference gives the factor times its scaled size.
+    #[test]
+    fn a_known_difference_gives_the_factor_times_its_scaled_size() {
+        let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 5, -1.0, 1.0);
+        let scales = Scales {
+            peak_pressure: 2.0,
+            friction: 0.25,
+            creep_prescribed: false,
+            creep_floor: 0.0,
+        };
+        let e = compare(
+            &grid,
+            &state(&grid, 1.0, 0.1, 1e-3, 2e-2),
+            &state(&grid, 1.02, 0.105, 1.1e-3, 2.2e-2),
+            scales,
+            true,
+        );
+        let f = BODY_MESH_ESTIMATE_FACTOR;
+        assert!((e.pressure - f * 0.01).abs() < 1e-12, "{e:?}");
+        assert!((e.shear - f * 0.01).abs() < 1e-12, "{e:?}");
+        assert!((e.creepage_rel - f * 0.1 / 1.1).abs() < 1e-12, "{e:?}");
+        assert!((e.overlap_rel.unwrap() - f * 0.1 / 1.1).abs() < 1e-12, "{e:?}");
+        let e = compare(
+            &grid,
+            &state(&grid, 1.0, 0.1, 1e-3, 2e-2),
+            &state(&grid, 1.0, 0.1, 1e-3, 2.2e-2),
+            scales,
+            false,
+        );
+        assert_eq!(e.overlap_rel, None);
+        assert_eq!(e.largest(), 0.0);
+    }
+}
