@@ -105,7 +105,6 @@ impl LoadedMesh {
     /// nodes are the x of the BEM contact elements' field nodes however curved the arc
     /// ([`ContactGrid::from_mapped_edges`]).
     pub fn contact_grid(&self) -> ContactGrid {
-        let tol = 1e-9 * self.mesh.size();
         let mut pieces: Vec<[f64; 3]> = self
             .contact_elements()
             .map(|g| {
@@ -114,6 +113,11 @@ impl LoadedMesh {
                 [x0, x1, m[0]]
             })
             .collect();
+        // Ends closer than this are one edge: the mesh's round-off, but never as much as a
+        // share of its shortest contact element (an error-controlled grid grades elements
+        // below 1e-9 of the mesh's size, whose ends a size-relative distance would merge).
+        let shortest = pieces.iter().map(|p| p[1] - p[0]).fold(f64::INFINITY, f64::min);
+        let tol = (1e-9 * self.mesh.size()).min(1e-3 * shortest);
         pieces.sort_by(|p, q| p[0].total_cmp(&q[0]));
         let mut edges: Vec<f64> = pieces.iter().flat_map(|p| [p[0], p[1]]).collect();
         edges.sort_by(f64::total_cmp);
