@@ -266,23 +266,27 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             }
             // The bodies themselves differ from their stand-ins by this much on the final grid;
             // the estimate of their solution is the stand-in's plus the difference.
-            let d = difference_on_one_grid(&full, &h, scales);
+            let d = body_mesh::difference(
+                &full.problem.grid,
+                &h.state,
+                &full.state,
+                scales,
+                e.overlap_rel.is_some(),
+            );
             let total = ErrorEstimate {
-                pressure_rms: e.pressure_rms + d.pressure_rms,
-                shear_rms: e.shear_rms + d.shear_rms,
-                creep_rel: e.creep_rel + d.creep_rel,
-                overlap_rel: e
-                    .overlap_rel
-                    .map(|o| o + overlap::relative_error(h.state.overlap, full.state.overlap)),
+                pressure_rms: e.pressure_rms + d.pressure,
+                shear_rms: e.shear_rms + d.shear,
+                creep_rel: e.creep_rel + d.creepage_rel,
+                overlap_rel: e.overlap_rel.zip(d.overlap_rel).map(|(a, b)| a + b),
                 body_mesh: None,
             };
             log::info!(
                 target: crate::logging::PROGRESS,
                 "error control: the bodies themselves on the final grid differ from their pass stand-ins by \
                  pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}",
-                d.pressure_rms,
-                d.shear_rms,
-                d.creep_rel
+                d.pressure,
+                d.shear,
+                d.creepage_rel
             );
             if let Some(last) = steps.last_mut() {
                 last.estimate = total;
@@ -355,48 +359,6 @@ fn stand_in_level(start: &DyadicGrid, tolerance: f64) -> DyadicGrid {
         2
     };
     (0..bisections).fold(start.clone(), |g, _| g.bisected())
-}
-
-/// The RMS differences of two solutions on the same grid in the estimate's units (p0, μp0 over
-/// the contact of `a`; the creepage relative as in [`estimate::compare`]), without any factor:
-/// the difference itself.
-fn difference_on_one_grid(a: &Solve, b: &Solve, scales: Scales) -> ErrorEstimate {
-    let x = &a.problem.grid.nodes;
-    let w = crate::post::norms::node_lengths(x);
-    let loaded: Vec<usize> = (0..x.len()).filter(|&i| a.state.pressure[i] > 0.0).collect();
-    let contact = match (loaded.first(), loaded.last()) {
-        (Some(&i0), Some(&i1)) => i0..=i1,
-        _ => {
-            return ErrorEstimate {
-                pressure_rms: 0.0,
-                shear_rms: 0.0,
-                creep_rel: 0.0,
-                overlap_rel: None,
-                body_mesh: None,
-            }
-        }
-    };
-    let length: f64 = contact.clone().map(|i| w[i]).sum();
-    let rms = |u: &[f64], v: &[f64], scale: f64| {
-        if scale <= 0.0 || length <= 0.0 {
-            return 0.0;
-        }
-        let sum: f64 = contact.clone().map(|i| w[i] * (u[i] - v[i]).powi(2)).sum();
-        (sum / length).sqrt() / scale
-    };
-    let (za, zb) = (&a.state, &b.state);
-    let creep_rel = if scales.creep_prescribed || scales.friction == 0.0 {
-        0.0
-    } else {
-        (za.creep - zb.creep).abs() / za.creep.abs().max(scales.creep_floor).max(f64::MIN_POSITIVE)
-    };
-    ErrorEstimate {
-        pressure_rms: rms(&za.pressure, &zb.pressure, scales.peak_pressure),
-        shear_rms: rms(&za.shear, &zb.shear, scales.friction * scales.peak_pressure),
-        creep_rel,
-        overlap_rel: None,
-        body_mesh: None,
-    }
 }
 
 /// The Hertz contact that sets the units of the error estimate (p0) and the a-priori element

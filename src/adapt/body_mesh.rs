@@ -144,8 +144,31 @@ pub(super) fn check(
 }
 
 /// The estimate of the body meshes' error from the solution `coarse` and `fine` (the bodies
-/// bisected outside the contact) on the same `grid` (module docs).
+/// bisected outside the contact) on the same `grid` (module docs): the difference times
+/// [`BODY_MESH_ESTIMATE_FACTOR`].
 pub fn compare(
+    grid: &ContactGrid,
+    coarse: &State,
+    fine: &State,
+    scales: Scales,
+    overlap_controlled: bool,
+) -> BodyMeshError {
+    let d = difference(grid, coarse, fine, scales, overlap_controlled);
+    let f = BODY_MESH_ESTIMATE_FACTOR;
+    BodyMeshError {
+        creepage_rel: f * d.creepage_rel,
+        overlap_rel: d.overlap_rel.map(|o| f * o),
+        pressure: f * d.pressure,
+        shear: f * d.shear,
+        bisections: 0,
+    }
+}
+
+/// The differences of two solutions on the same `grid` in the estimate's norms, with no factor:
+/// the RMS of p/p0 and q/(μp0) over the contact (from the first to the last node loaded in
+/// either), the relative differences of ξ (of at least the creepage floor) and, where
+/// controlled, δ.
+pub fn difference(
     grid: &ContactGrid,
     coarse: &State,
     fine: &State,
@@ -178,12 +201,11 @@ pub fn compare(
     } else {
         (fine.creep - coarse.creep).abs() / fine.creep.abs().max(scales.creep_floor).max(f64::MIN_POSITIVE)
     };
-    let f = BODY_MESH_ESTIMATE_FACTOR;
     BodyMeshError {
-        creepage_rel: f * creepage_rel,
-        overlap_rel: overlap_controlled.then(|| f * overlap::relative_error(coarse.overlap, fine.overlap)),
-        pressure: f * pressure,
-        shear: f * shear,
+        creepage_rel,
+        overlap_rel: overlap_controlled.then(|| overlap::relative_error(coarse.overlap, fine.overlap)),
+        pressure,
+        shear,
         bisections: 0,
     }
 }
