@@ -18,6 +18,11 @@ use crate::advice::{self, HalfSpaceError};
 /// Largest p0/E of a deformable body taken as small strain [-].
 pub const MAX_PRESSURE_OVER_MODULUS: f64 = 0.05;
 
+/// Smallest share of the pair's compliance (1 − ν²)/E for which a half-plane body's
+/// idealisation error is warned about [-]: below it the other body's deformation sets the
+/// contact (a steel roller, 4e-6 of a 10 MPa rubber cover's compliance).
+pub const MIN_COMPLIANCE_SHARE: f64 = 0.01;
+
 /// Largest estimated half-space error (fraction of p0 in pressure, of μp0 in shear) that passes
 /// without a warning [-]: the default accuracy of `rollbem check`'s model advice.
 pub const MAX_HALF_SPACE_ERROR: f64 = 0.01;
@@ -91,10 +96,17 @@ pub fn warnings(bodies: &BodySetups, est: &Estimates) -> Vec<String> {
             }
         }
     }
+    // A half-plane body that carries a negligible share of the pair's compliance (a steel
+    // roller on a rubber cover) passes its idealisation's error on to the contact only at that
+    // share.
+    let total: f64 = bodies.iter().map(|b| b.compliance()).sum();
+    let matters = |b: &std::sync::Arc<dyn crate::body::BodySetup>| {
+        total > 0.0 && b.compliance() / total >= MIN_COMPLIANCE_SHARE
+    };
     if let Some(side) = ["A", "B"]
         .iter()
         .zip(bodies)
-        .find_map(|(side, b)| b.idealises_as_half_plane().then_some(side))
+        .find_map(|(side, b)| (b.idealises_as_half_plane() && matters(b)).then_some(side))
     {
         let e = half_space_error(bodies, est);
         let worst = e.shear.map_or(e.pressure, |q| q.max(e.pressure));

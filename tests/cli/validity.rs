@@ -92,6 +92,32 @@ fn runs_beyond_the_models_validity_are_warned() {
     assert_eq!(summary["warnings"].as_array().unwrap().len(), 0);
 }
 
+/// A steel half-space roller on a rubber cover carries 4e-5 of the pair's compliance: its a/R
+/// is not warned about (the cover sets the contact), while the cover's strain is.
+#[test]
+fn a_stiff_half_space_on_a_soft_cover_is_not_warned_about_its_radius() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_path("covered_roller_v_peak");
+    let (code, _, err) = rollbem(&["run", case.to_str().unwrap(), "--out", dir.path().to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("warning: body B: the Hertz peak pressure"), "{err}");
+    assert!(!err.contains("body A is a half-space"), "{err}");
+    // The same roller against a rigid cylinder carries all of the compliance: warned.
+    let rigid = dir.path().join("rigid");
+    let (code, _, err) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        "--set",
+        "bodies.B={model: rigid, radius: 50.0}",
+        "--set",
+        "load.normal.force=4.0e4",
+        "--out",
+        rigid.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("body A is a half-space"), "{err}");
+}
+
 /// What building a BEM body refuses, `check` refuses too, without assembling anything: a body
 /// whose boundary conditions leave it free to move as a rigid body.
 #[test]
