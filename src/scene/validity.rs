@@ -100,9 +100,8 @@ pub fn warnings(bodies: &BodySetups, est: &Estimates) -> Vec<String> {
     // roller on a rubber cover) passes its idealisation's error on to the contact only at that
     // share.
     let total: f64 = bodies.iter().map(|b| b.compliance()).sum();
-    let matters = |b: &std::sync::Arc<dyn crate::body::BodySetup>| {
-        total > 0.0 && b.compliance() / total >= MIN_COMPLIANCE_SHARE
-    };
+    let matters =
+        |b: &std::sync::Arc<dyn crate::body::BodySetup>| total > 0.0 && b.compliance() / total >= MIN_COMPLIANCE_SHARE;
     if let Some(side) = ["A", "B"]
         .iter()
         .zip(bodies)
