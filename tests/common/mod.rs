@@ -106,3 +106,29 @@ pub fn equivalent_load_controls(load: &Solved) -> Vec<(&'static str, Vec<String>
         ("δ0 and ξ", vec![no_force, overlap, no_ratio, creep, half]),
     ]
 }
+
+/// A frictionless run on a thin layer against docs/references.md §5's leading order: its
+/// contact half-width a, normal force P and the largest difference of its pressure from the
+/// thin-layer shape of the same a, P and centre — (3P/4a)(1 − x²/a²) compressible,
+/// (15P/16a)(1 − x²/a²)² incompressible (ν = ½) — over its peak pressure.
+pub fn thin_layer_fit(sol: &rollbem::post::ContactSolution, nu: f64) -> (f64, f64, f64) {
+    let [x0, x1] = sol.contact_extent().expect("contact");
+    let (a, centre, p_total) = (0.5 * (x1 - x0), 0.5 * (x0 + x1), sol.normal_force);
+    let thin = |x: f64| {
+        let t = (1.0 - ((x - centre) / a).powi(2)).max(0.0);
+        if nu < 0.5 {
+            0.75 * p_total / a * t
+        } else {
+            15.0 / 16.0 * p_total / a * t * t
+        }
+    };
+    let p_max = sol.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
+    let shape = sol
+        .x
+        .iter()
+        .zip(&sol.pressure)
+        .map(|(&x, &p)| (p - thin(x)).abs())
+        .fold(0.0_f64, f64::max)
+        / p_max;
+    (a, p_total, shape)
+}

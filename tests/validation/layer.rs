@@ -64,25 +64,7 @@ fn thin_layer_run(b: f64, nu: f64) -> (f64, f64, f64) {
             "contact.grid.elements=120",
         ],
     );
-    let sol = &s.solution;
-    let [x0, x1] = sol.contact_extent().expect("contact");
-    let (a, centre, p_total) = (0.5 * (x1 - x0), 0.5 * (x0 + x1), sol.normal_force);
-    let thin = |x: f64| {
-        let t = (1.0 - ((x - centre) / a).powi(2)).max(0.0);
-        if nu < 0.5 {
-            0.75 * p_total / a * t
-        } else {
-            15.0 / 16.0 * p_total / a * t * t
-        }
-    };
-    let shape = sol
-        .x
-        .iter()
-        .zip(&sol.pressure)
-        .map(|(&x, &p)| (p - thin(x)).abs())
-        .fold(0.0_f64, f64::max)
-        / peak(&s);
-    (a, p_total, shape)
+    crate::common::thin_layer_fit(&s.solution, nu)
 }
 
 /// Thin layers approach docs/references.md §5's leading order: compressible (ν = 0.3)

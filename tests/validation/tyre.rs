@@ -24,26 +24,7 @@ fn thin_layer_run(tag: &str, nu: f64) -> (f64, f64, f64) {
             "load.tangential.creep=0",
         ],
     );
-    let sol = &s.solution;
-    let [x0, x1] = sol.contact_extent().expect("contact");
-    let (a, centre, p_total) = (0.5 * (x1 - x0), 0.5 * (x0 + x1), sol.normal_force);
-    let thin = |x: f64| {
-        let t = (1.0 - ((x - centre) / a).powi(2)).max(0.0);
-        if nu < 0.5 {
-            0.75 * p_total / a * t
-        } else {
-            15.0 / 16.0 * p_total / a * t * t
-        }
-    };
-    let p_max = sol.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
-    let shape = sol
-        .x
-        .iter()
-        .zip(&sol.pressure)
-        .map(|(&x, &p)| (p - thin(x)).abs())
-        .fold(0.0_f64, f64::max)
-        / p_max;
-    (a, p_total, shape)
+    crate::common::thin_layer_fit(&s.solution, nu)
 }
 
 /// As b/a → 0 the half-width and the pressure shape approach the thin-layer limits (docs/references.md §5):
