@@ -174,34 +174,97 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
 pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<Adapted, Error> {
     // One solver workspace for every solve of the run: it grows to the largest grid's system.
     let mut ws = Workspace::new();
+    let mut timings = Timings::default();
     let Some(control) = scene.grid_control else {
-        let mut timings = Timings::default();
         let only = solve_on(scene.clone(), None, &mut timings, &mut ws)?;
         return Ok(finished(only, timings, None));
     };
+    let tolerance = control.tolerance;
+    let check_grid = body_mesh_check_grid(&DyadicGrid::new(&scene.grid), tolerance);
+    let mut steps: Vec<AdaptationStep> = Vec::new();
+    let mut scene = scene.clone();
+    for bisections in 0..=body_mesh::MAX_BODY_MESH_BISECTIONS {
+        let (met, scales) = match refine(&scene, estimator, &mut timings, &mut steps, &mut ws)? {
+            Refined::Met(met, scales) => (met, scales),
+            Refined::Ended(s, reached) => {
+                let mut best = finished(s, timings, Some((tolerance, steps)));
+                if let Some(a) = best.adaptation.as_mut() {
+                    a.reached = reached;
+                }
+                return Ok(best);
+            }
+        };
+        let warm = (&met.problem.grid, &met.state);
+        let Some(checked) = body_mesh::check_on(&scene, &check_grid, warm, scales, &mut timings, &mut ws)? else {
+            return Ok(finished(met, timings, Some((tolerance, steps))));
+        };
+        let mut e = checked.estimate;
+        e.bisections = bisections;
+        if let Some(last) = steps.last_mut() {
+            last.estimate.body_mesh = Some(e);
+        }
+        if e.largest() <= tolerance || bisections == body_mesh::MAX_BODY_MESH_BISECTIONS {
+            let too_coarse = (e.largest() > tolerance).then(|| body_mesh::meshed_bodies(&scene));
+            let mut done = finished(met, timings, Some((tolerance, steps)));
+            if let (Some(a), Some(bodies)) = (done.adaptation.as_mut(), too_coarse) {
+                a.reached = false;
+                a.coarse_body_mesh = Some(bodies);
+            }
+            return Ok(done);
+        }
+        // The bisected bodies are adopted: the contact grid is refined again on them (the
+        // passes are cheap next to the body's own assembly, and a finer body moves the
+        // square-root points only within the grid's tolerance).
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "error control: the bodies' meshes outside the contact are too coarse for the tolerance; \
+             solving again with them bisected"
+        );
+        scene = checked.bisected;
+    }
+    unreachable!("the loop returns on its last bisection")
+}
+
+/// How the refinement of the contact grid ended: on a grid that meets the tolerance (with the
+/// units of its estimate), or otherwise (a solve that did not converge, `reached` true; the
+/// element limit or the pass limit, `reached` false).
+enum Refined {
+    Met(Solve, Scales),
+    Ended(Solve, bool),
+}
+
+/// The loop of the module docs on `scene`'s bodies as they are: passes until the contact
+/// grid meets the tolerance (each pass appended to `steps`).
+fn refine(
+    scene: &Scene,
+    estimator: &mut dyn ErrorEstimator,
+    timings: &mut Timings,
+    steps: &mut Vec<AdaptationStep>,
+    ws: &mut Workspace,
+) -> Result<Refined, Error> {
+    let control = scene.grid_control.expect("an error-controlled grid");
     let (tolerance, max_elements) = (control.tolerance, control.max_elements);
-    let mut timings = Timings::default();
     let mut coarse = DyadicGrid::new(&scene.grid);
     // The passes' scene: bodies that offer a cheaper stand-in (a BEM body: the half-plane plus
     // its smooth remainder) are replaced by it; the final grid is solved with the bodies
-    // themselves (`checked_with_bodies`).
+    // themselves.
     let t = Instant::now();
     let level = stand_in_level(&coarse, tolerance);
     let mut passes = scene.with_pass_stand_ins([&level.grid(), &level.bisected().grid()])?;
     timings.assembly_s += t.elapsed().as_secs_f64();
     let mut warm: Option<(ContactGrid, State)> = None;
-    let mut steps: Vec<AdaptationStep> = Vec::new();
     let mut hertz: Option<HertzScales> = None;
+    let first_step = steps.len();
     loop {
         let pass_scene = passes.as_ref().unwrap_or(scene);
         let g = solve_on(
             pass_scene.on_grid(coarse.grid()),
             warm.as_ref().map(|(g, z)| (g, z)),
-            &mut timings,
-            &mut ws,
+            timings,
+            ws,
         )?;
         if !g.report.converged {
-            return Ok(finished(g, timings, Some((tolerance, steps))));
+            return Ok(Refined::Ended(g, true));
         }
         let hertz = *hertz.get_or_insert_with(|| HertzScales::of_run(scene, &g));
         let scales = Scales {
@@ -214,11 +277,11 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         let h = solve_on(
             pass_scene.on_grid(coarse.bisected().grid()),
             Some((&g.problem.grid, &g.state)),
-            &mut timings,
-            &mut ws,
+            timings,
+            ws,
         )?;
         if !h.report.converged {
-            return Ok(finished(h, timings, Some((tolerance, steps))));
+            return Ok(Refined::Ended(h, true));
         }
         let singular = singular_points(&h.problem, &h.state);
         let mut cmp = estimator.estimate(&Pass {
@@ -253,16 +316,16 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         let half_width = hertz.half_width;
         if e.within(tolerance) && resolved(&h.problem.grid, &singular, tolerance, half_width) {
             if passes.is_none() {
-                return with_body_meshes_checked(h, timings, tolerance, steps, scales, &mut ws);
+                return Ok(Refined::Met(h, scales));
             }
             let full = solve_on(
                 scene.on_grid(h.problem.grid.clone()),
                 Some((&h.problem.grid, &h.state)),
-                &mut timings,
-                &mut ws,
+                timings,
+                ws,
             )?;
             if !full.report.converged {
-                return Ok(finished(full, timings, Some((tolerance, steps))));
+                return Ok(Refined::Ended(full, true));
             }
             // The bodies themselves differ from their stand-ins by this much on the final grid;
             // the estimate of their solution is the stand-in's plus the difference.
@@ -293,7 +356,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
                 last.iterations += full.report.iterations;
             }
             if total.within(tolerance) {
-                return with_body_meshes_checked(full, timings, tolerance, steps, scales, &mut ws);
+                return Ok(Refined::Met(full, scales));
             }
             // Not close enough at this tolerance: the passes go on with the bodies themselves,
             // from this grid.
@@ -308,40 +371,22 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         }
         let next = coarse.refined(&actions(&coarse, &cmp, &singular, tolerance, half_width));
         log::debug!("singular points {singular:?}; next grid {} elements", next.len());
-        if 2 * next.len() > max_elements || steps.len() >= MAX_PASSES {
+        if 2 * next.len() > max_elements || steps.len() - first_step >= MAX_PASSES {
             // The best solution reached, marked: the driver reports it as not converged.
-            let mut best = finished(h, timings, Some((tolerance, steps)));
-            if let Some(a) = best.adaptation.as_mut() {
-                a.reached = false;
-            }
-            return Ok(best);
+            return Ok(Refined::Ended(h, false));
         }
         warm = Some((h.problem.grid, h.state));
         coarse = next;
     }
 }
 
-/// The result of a grid that meets the tolerance, once the bodies' meshes outside the contact
-/// are checked ([`body_mesh::check`]): their estimate joins the last pass's, and a mesh still
-/// too coarse after the check's bisections marks the run as not reached, naming the body.
-fn with_body_meshes_checked(
-    s: Solve,
-    mut timings: Timings,
-    tolerance: f64,
-    mut steps: Vec<AdaptationStep>,
-    scales: Scales,
-    ws: &mut Workspace,
-) -> Result<Adapted, Error> {
-    let checked = body_mesh::check(s, scales, tolerance, &mut timings, ws)?;
-    if let Some(last) = steps.last_mut() {
-        last.estimate.body_mesh = checked.estimate;
-    }
-    let mut done = finished(checked.solve, timings, Some((tolerance, steps)));
-    if let (Some(a), Some(bodies)) = (done.adaptation.as_mut(), checked.too_coarse) {
-        a.reached = false;
-        a.coarse_body_mesh = Some(bodies);
-    }
-    Ok(done)
+/// The grid the bodies' meshes are checked on ([`body_mesh::check_on`]): the finer of the
+/// stand-ins' two grids. Bisecting a body's mesh outside the contact changes its flexibility by
+/// a smooth remainder, like the true geometry's against the half-plane, and the solution's
+/// response to that change is set by the contact's size and zones, which this grid resolves
+/// to a few percent; the check costs two condensations on it instead of two on the final grid.
+fn body_mesh_check_grid(start: &DyadicGrid, tolerance: f64) -> ContactGrid {
+    stand_in_level(start, tolerance).bisected().grid()
 }
 
 /// The coarser of the two grids the pass stand-ins are built from (their remainder's error falls

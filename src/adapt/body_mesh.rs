@@ -18,7 +18,7 @@
 //! groups (`Error::BodyMeshTooCoarse`).
 
 use super::estimate::Scales;
-use super::{overlap, solve_on, Solve};
+use super::{overlap, solve_on};
 use crate::contact::residual::State;
 use crate::contact::Workspace;
 use crate::error::Error;
@@ -35,16 +35,13 @@ pub const BODY_MESH_ESTIMATE_FACTOR: f64 = 4.0 / 3.0;
 /// stops with exit code 2 (each bisection doubles their elements there).
 pub const MAX_BODY_MESH_BISECTIONS: usize = 2;
 
-/// What the body-mesh check made of the final grid's solve.
+/// What the body-mesh check found.
 pub(super) struct Checked {
-    /// The solve to report: the given one, or one on bisected bodies.
-    pub solve: Solve,
-    /// Its body meshes' estimate; None when no body has a mesh of its own (or a solve on the
-    /// bisected bodies did not converge: the given solve is kept, unestimated).
-    pub estimate: Option<BodyMeshError>,
-    /// The bodies whose meshes are too coarse when the estimate stayed above the tolerance
-    /// after [`MAX_BODY_MESH_BISECTIONS`] bisections.
-    pub too_coarse: Option<String>,
+    /// The estimate of the bodies' meshes' error ([`compare`]).
+    pub estimate: BodyMeshError,
+    /// The scene with its bodies bisected outside the contact, to adopt when the estimate
+    /// exceeds the tolerance.
+    pub bisected: Scene,
 }
 
 /// The scene with every body that has a mesh of its own bisected outside the contact, None
@@ -62,7 +59,7 @@ fn bisected(scene: &Scene) -> Option<Scene> {
 }
 
 /// The bodies with meshes of their own, for messages: `body A (path, groups free, shaft)`.
-fn meshed_bodies(scene: &Scene) -> String {
+pub(super) fn meshed_bodies(scene: &Scene) -> String {
     scene
         .bodies
         .iter()
@@ -72,75 +69,55 @@ fn meshed_bodies(scene: &Scene) -> String {
         .join(" and ")
 }
 
-/// Checks the body meshes of `solve` (the final grid's, its estimate within `tolerance`):
-/// module docs.
-pub(super) fn check(
-    solve: Solve,
+/// Checks the meshes of `scene`'s bodies (as given, before any cut along a grid) on `grid`:
+/// the scene and the scene with its bodies bisected outside the contact, each solved on `grid`
+/// from `warm` (the final grid's solution carried), compared by [`compare`]. None when no body
+/// has a mesh of its own, or when a solve does not converge (logged: the result stays
+/// unestimated).
+pub(super) fn check_on(
+    scene: &Scene,
+    grid: &ContactGrid,
+    warm: (&ContactGrid, &State),
     scales: Scales,
-    tolerance: f64,
     timings: &mut Timings,
     ws: &mut Workspace,
-) -> Result<Checked, Error> {
-    let mut current = solve;
-    for bisections in 0..=MAX_BODY_MESH_BISECTIONS {
-        let Some(scene) = bisected(&current.scene) else {
-            return Ok(Checked {
-                solve: current,
-                estimate: None,
-                too_coarse: None,
-            });
-        };
-        log::info!(
-            target: crate::logging::PROGRESS,
-            "error control: the bodies' meshes outside the contact bisected ({})",
-            bisections + 1
+) -> Result<Option<Checked>, Error> {
+    let Some(fine_scene) = bisected(scene) else {
+        return Ok(None);
+    };
+    log::info!(
+        target: crate::logging::PROGRESS,
+        "error control: the bodies' meshes checked on a grid of {} elements, as given and bisected \
+         outside the contact",
+        grid.n_elements()
+    );
+    let given = solve_on(scene.on_grid(grid.clone()), Some(warm), timings, ws)?;
+    let fine = solve_on(
+        fine_scene.on_grid(grid.clone()),
+        Some((&given.problem.grid, &given.state)),
+        timings,
+        ws,
+    )?;
+    if !(given.report.converged && fine.report.converged) {
+        log::warn!(
+            "a solve of the check of the bodies' meshes outside the contact did not converge: \
+             their error is not estimated"
         );
-        let fine = solve_on(scene, Some((&current.problem.grid, &current.state)), timings, ws)?;
-        if !fine.report.converged {
-            log::warn!(
-                "the solve with the bodies' meshes bisected outside the contact did not converge: \
-                 their error is not estimated"
-            );
-            return Ok(Checked {
-                solve: current,
-                estimate: None,
-                too_coarse: None,
-            });
-        }
-        let mut e = compare(
-            &current.problem.grid,
-            &current.state,
-            &fine.state,
-            scales,
-            overlap::controlled(&current.scene),
-        );
-        e.bisections = bisections;
-        log::info!(
-            target: crate::logging::PROGRESS,
-            "error control, body meshes: estimated error: pressure {:.2e} p0, shear {:.2e} mu p0, \
-             creepage {:.2e}",
-            e.pressure,
-            e.shear,
-            e.creepage_rel
-        );
-        if e.largest() <= tolerance {
-            return Ok(Checked {
-                solve: current,
-                estimate: Some(e),
-                too_coarse: None,
-            });
-        }
-        if bisections == MAX_BODY_MESH_BISECTIONS {
-            let too_coarse = Some(meshed_bodies(&current.scene));
-            return Ok(Checked {
-                solve: current,
-                estimate: Some(e),
-                too_coarse,
-            });
-        }
-        current = fine;
+        return Ok(None);
     }
-    unreachable!("the loop returns on its last bisection")
+    let estimate = compare(grid, &given.state, &fine.state, scales, overlap::controlled(scene));
+    log::info!(
+        target: crate::logging::PROGRESS,
+        "error control, body meshes: estimated error: pressure {:.2e} p0, shear {:.2e} mu p0, \
+         creepage {:.2e}",
+        estimate.pressure,
+        estimate.shear,
+        estimate.creepage_rel
+    );
+    Ok(Some(Checked {
+        estimate,
+        bisected: fine_scene,
+    }))
 }
 
 /// The estimate of the body meshes' error from the solution `coarse` and `fine` (the bodies

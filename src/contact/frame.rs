@@ -110,21 +110,26 @@ impl ContactFrame {
             return f;
         }
         let s = &self.arc_scale[Self::side(side)];
-        let psi = &self.normal_angle;
-        let m = psi.len();
+        let m = self.normal_angle.len();
+        // Per column j: s_j (cos ψ_j, sin ψ_j); per row i: tan ψ_i (hoisted: the transform is
+        // O(m²) and ran every trigonometric function m² times).
+        let (sc, ss): (Vec<f64>, Vec<f64>) = self
+            .normal_angle
+            .iter()
+            .zip(s)
+            .map(|(psi, s)| {
+                let (sn, c) = psi.sin_cos();
+                (s * c, s * sn)
+            })
+            .unzip();
+        let tan: Vec<f64> = self.normal_angle.iter().map(|psi| psi.tan()).collect();
         // Column transformation (p, q) → (P, Q) at node j, then h' = h − tan ψ_i w at row i.
-        let col = |a: &Mat<f64>, b: &Mat<f64>, i: usize, j: usize, normal: bool| {
-            let (sn, c) = psi[j].sin_cos();
-            if normal {
-                s[j] * (c * a[(i, j)] - sn * b[(i, j)])
-            } else {
-                s[j] * (sn * a[(i, j)] + c * b[(i, j)])
-            }
-        };
-        let wp = Mat::from_fn(m, m, |i, j| col(&f.wp, &f.wq, i, j, true));
-        let wq = Mat::from_fn(m, m, |i, j| col(&f.wp, &f.wq, i, j, false));
-        let hp = Mat::from_fn(m, m, |i, j| col(&f.hp, &f.hq, i, j, true) - psi[i].tan() * wp[(i, j)]);
-        let hq = Mat::from_fn(m, m, |i, j| col(&f.hp, &f.hq, i, j, false) - psi[i].tan() * wq[(i, j)]);
+        let normal_col = |a: &Mat<f64>, b: &Mat<f64>, i: usize, j: usize| sc[j] * a[(i, j)] - ss[j] * b[(i, j)];
+        let tangential_col = |a: &Mat<f64>, b: &Mat<f64>, i: usize, j: usize| ss[j] * a[(i, j)] + sc[j] * b[(i, j)];
+        let wp = Mat::from_fn(m, m, |i, j| normal_col(&f.wp, &f.wq, i, j));
+        let wq = Mat::from_fn(m, m, |i, j| tangential_col(&f.wp, &f.wq, i, j));
+        let hp = Mat::from_fn(m, m, |i, j| normal_col(&f.hp, &f.hq, i, j) - tan[i] * wp[(i, j)]);
+        let hq = Mat::from_fn(m, m, |i, j| tangential_col(&f.hp, &f.hq, i, j) - tan[i] * wq[(i, j)]);
         Flexibility { hp, hq, wp, wq }
     }
 

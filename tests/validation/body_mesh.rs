@@ -57,7 +57,7 @@ fn a_fine_shipped_mesh_reports_a_body_mesh_error_below_its_tolerance() {
 /// Above the tolerance the bodies' meshes are bisected outside the contact and the bisected
 /// ones adopted: the coarse roller (whose estimate at 1e-2 is 1.5e-3 in the creepage and 1.8e-3
 /// in the overlap) meets 1.2e-3 with its elements outside the contact bisected once, and the
-/// result's body A has twice the elements there of the roller cut along the same grid.
+/// result's body A is the roller so bisected, cut along the final grid.
 #[test]
 fn a_body_mesh_above_the_tolerance_is_bisected_until_it_meets_it() {
     let scene = scene_with_roller(
@@ -70,16 +70,21 @@ fn a_body_mesh_above_the_tolerance_is_bisected_until_it_meets_it() {
     let b = body_mesh_estimate(&s);
     assert_eq!(b.bisections, 1, "{b:?}");
     assert!(b.largest() <= 1.2e-3, "{b:?}");
-    // Twice the elements outside the contact of the roller cut along the same grid (its free
-    // circle, its shaft and the transitions the cuts grade next to the contact).
+    // The result's body A is the roller with every element outside its contact bisected (twice
+    // its free circle's and shaft's elements), cut along the final grid like the given roller.
     let outside = |b: &dyn rollbem::body::BodySetup| {
         let m = &b.contact_mesh().unwrap().mesh;
         m.mesh.elements.iter().filter(|e| e.group != m.contact_group).count()
     };
     let start = scene_with_roller(&[], HALF_CIRCLE_ELEMENTS, SHAFT_ELEMENTS, 1);
-    let cut = start.bodies[0].follow_grid(&s.problem.grid).unwrap();
-    assert!(outside(cut.as_ref()) >= 2 * HALF_CIRCLE_ELEMENTS + SHAFT_ELEMENTS);
-    assert_eq!(outside(s.scene.bodies[0].as_ref()), 2 * outside(cut.as_ref()));
+    let given = outside(start.bodies[0].as_ref());
+    assert!(given >= 2 * HALF_CIRCLE_ELEMENTS + SHAFT_ELEMENTS);
+    let bisected = start.bodies[0].with_free_boundary_bisected().unwrap();
+    assert_eq!(outside(bisected.as_ref()), 2 * given);
+    let expected = bisected.follow_grid(&s.problem.grid).unwrap();
+    assert_eq!(outside(s.scene.bodies[0].as_ref()), outside(expected.as_ref()));
+    let cut_given = start.bodies[0].follow_grid(&s.problem.grid).unwrap();
+    assert!(outside(s.scene.bodies[0].as_ref()) > outside(cut_given.as_ref()));
 }
 
 /// A roller of 6 elements on its free circle (angles growing by 36 from the contact: the last
