@@ -28,8 +28,9 @@
 //!    a negligible share are merged back; neighbours stay within a length ratio of 2.
 //!
 //! Once the grid meets the tolerance, the bodies' own meshes outside the contact (a BEM
-//! body's free boundary, shaft, rim) are checked too ([`body_mesh`]: the final grid solved
-//! once more with them bisected), and bisected while their estimate exceeds the tolerance.
+//! body's free boundary, shaft, rim) are checked too ([`body_mesh`]: the bodies solved on a
+//! coarser check grid as given and with them bisected), and bisected while their estimate
+//! exceeds the tolerance (the contact grid refined again on the bisected bodies).
 //! Under force control between bodies with a datum the overlap is controlled with the
 //! creepage ([`overlap`]).
 //!

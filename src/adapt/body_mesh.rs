@@ -3,8 +3,8 @@
 //!
 //! The contact grid's estimate compares a grid with its bisection, each body's mesh cut along
 //! the grid; the rest of a BEM body's mesh stays as the user (or the generator) made it, and its
-//! error is invisible to that comparison. Here the final grid's solution M is compared with the
-//! solution M' on the same grid whose bodies have every element outside the contact bisected
+//! error is invisible to that comparison. Here the solution M of the bodies as given is
+//! compared with the solution M' of the bodies with every element outside the contact bisected
 //! ([`crate::body::setup::BodySetup::with_free_boundary_bisected`]: new nodes on each
 //! element's own curve): the RMS differences of p/p0 and q/(μp0) over the contact, the
 //! relative differences of ξ and (where [`super::overlap::controlled`]) δ. With the body
@@ -12,8 +12,14 @@
 //! 2^k/(2^k − 1); the quadratic elements' boundary tractions converge at least at k = 2, so
 //! the factor [`BODY_MESH_ESTIMATE_FACTOR`] is 4/3 (7/6 of the factor 8/7 of k = 3).
 //!
-//! Above the tolerance, the bisected bodies are adopted (their solution is already at hand)
-//! and estimated in turn, at most [`MAX_BODY_MESH_BISECTIONS`] times; a body mesh still too
+//! Both are solved on a check grid coarser than the final one (src/adapt.rs chooses it: the
+//! finer of the grids the BEM's stand-ins are fitted on): the bisection changes a body's
+//! flexibility by a smooth remainder, and the solution's response to it needs the contact's
+//! size and zones resolved, not its square-root points (the coarse roller's estimate of
+//! docs/validation.md moves by under 2 % from the final grid to the check grid).
+//!
+//! Above the tolerance, the bisected bodies are adopted (src/adapt.rs refines the contact
+//! grid again on them) and estimated in turn, at most [`MAX_BODY_MESH_BISECTIONS`] times; a body mesh still too
 //! coarse then ends the run with exit code 2 and a message naming the body, its mesh and its
 //! groups (`Error::BodyMeshTooCoarse`).
 
