@@ -238,6 +238,7 @@ fn layer_solution(b: Option<f64>, p_total: f64, a: f64) -> ContactSolution {
             start_mesh: None,
             far_field: Default::default(),
             contact_circle: None,
+            kept: Default::default(),
         });
         scene = Scene::new(c, bodies);
     }

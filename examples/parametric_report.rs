@@ -165,6 +165,7 @@ fn refined_body(
         start_mesh: None,
         far_field: Default::default(),
         contact_circle: None,
+        kept: Default::default(),
     })
 }
 

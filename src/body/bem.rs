@@ -16,6 +16,7 @@
 //! The HBEM surface strain of [`crate::bem::condense`](mod@crate::bem::condense) enters the pair
 //! convention the same way: p ↦ S_xy, q ↦ S_xx on either side.
 
+pub mod kept;
 pub mod setup;
 pub mod stand_in;
 

@@ -207,6 +207,7 @@ mod tests {
             start_mesh: None,
             far_field: Default::default(),
             contact_circle: None,
+            kept: Default::default(),
         });
         let bodies: BodySetups = [Arc::new(RigidSetup { radius: 100.0 }), linear];
         let w = warnings(&bodies, &estimates(100.0, 0.01));

@@ -320,6 +320,7 @@ fn bem_body(mut mesh: BoundaryMesh, groups: &[(&str, BoundaryCondition)], radius
         start_mesh: None,
         far_field: Default::default(),
         contact_circle: None,
+        kept: Default::default(),
     })
 }
 

@@ -2,6 +2,7 @@
 //! condensed to the contact grid; on a refined grid its mesh is cut along the grid
 //! ([`crate::mesh::cuts`]).
 
+use super::kept::{Kept, KeptBody};
 use super::BemBody;
 use crate::bem::reuse::FarFieldCache;
 use crate::bem::{BemModel, BemOptions, BoundaryCondition};
@@ -52,6 +53,9 @@ pub struct BemSetup {
     /// geometry (`geometry:`): the cuts of [`BodySetup::follow_grid`] then place their new nodes
     /// on it rather than on each element's quadratic. None for a mesh file.
     pub contact_circle: Option<Circle>,
+    /// A condensation kept for a later build on the same grid ([`super::kept`]; shared by
+    /// every setup that follows a grid from this one).
+    pub kept: KeptBody,
 }
 
 impl BemSetup {
@@ -75,6 +79,7 @@ impl BemSetup {
             start_mesh: None,
             far_field: Default::default(),
             contact_circle,
+            kept: Default::default(),
         }
     }
 
@@ -117,6 +122,72 @@ impl BemSetup {
         // The far field's integration (first pass only) is part of the assembly.
         body.condensed.assembly_s += far_s;
         Ok(body)
+    }
+
+    /// The body on `ctx.grid`: condensed anew, or taken from [`KeptBody`] when this mesh was
+    /// condensed for the same side before; with `keep`, a new condensation is kept.
+    pub(super) fn build_keeping(&self, ctx: &BuildContext, keep: bool) -> Result<Box<dyn Body>, BuildError> {
+        let own = self.mesh.contact_grid();
+        let body: Box<dyn Body> = match self.kept.get(ctx.side, &own) {
+            Some(kept) => {
+                log::info!(
+                    target: crate::logging::PROGRESS,
+                    "body {:?}: BEM of {} boundary elements, condensed on this grid before",
+                    ctx.side,
+                    self.mesh.mesh.elements.len()
+                );
+                Box::new(Kept(kept))
+            }
+            None => {
+                log::info!(
+                    target: crate::logging::PROGRESS,
+                    "body {:?}: BEM of {} boundary elements ({} nodes), condensing to the contact nodes",
+                    ctx.side,
+                    self.mesh.mesh.elements.len(),
+                    self.mesh.mesh.nodes.len()
+                );
+                let body = self.own_body(ctx.side)?;
+                if keep {
+                    let body = Arc::new(body);
+                    self.kept.keep(ctx.side, &own, body.clone());
+                    Box::new(Kept(body))
+                } else {
+                    Box::new(body)
+                }
+            }
+        };
+        let on_grid: Box<dyn Body> = if own.coincides_with(ctx.grid) {
+            body
+        } else {
+            let t = Transferred {
+                inner: body,
+                own_grid: own,
+                side: ctx.side,
+            };
+            t.check(ctx.grid)?;
+            Box::new(t)
+        };
+        Ok(match self.profile_radius {
+            Some(r) => Box::new(WithCircularProfile {
+                inner: on_grid,
+                radius: r,
+            }),
+            None => on_grid,
+        })
+    }
+
+    /// The setup whose mesh is the start mesh cut along `grid` ([`BodySetup::follow_grid`]).
+    pub(super) fn followed(&self, grid: &ContactGrid) -> BemSetup {
+        let start = self.start_mesh.clone().unwrap_or_else(|| Arc::new(self.mesh.clone()));
+        let mesh = LoadedMesh {
+            mesh: cut_along_grid_on(&start, grid, MAX_TRANSITION_RATIO, self.contact_circle.as_ref()),
+            ..(*start).clone()
+        };
+        BemSetup {
+            mesh,
+            start_mesh: Some(start),
+            ..self.clone()
+        }
     }
 }
 
@@ -215,35 +286,8 @@ impl BodySetup for BemSetup {
     /// Condensed to its own contact nodes; if those differ from the grid's, its flexibility is
     /// carried over by [`Transferred`]. With `profile_radius`, the gap sees that circle.
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
-        log::info!(
-            target: crate::logging::PROGRESS,
-            "body {:?}: BEM of {} boundary elements ({} nodes), condensing to the contact nodes",
-            ctx.side,
-            self.mesh.mesh.elements.len(),
-            self.mesh.mesh.nodes.len()
-        );
-        let body = self.own_body(ctx.side)?;
-        let own = self.mesh.contact_grid();
-        let on_grid: Box<dyn Body> = if own.coincides_with(ctx.grid) {
-            Box::new(body)
-        } else {
-            let t = Transferred {
-                inner: Box::new(body),
-                own_grid: own,
-                side: ctx.side,
-            };
-            t.check(ctx.grid)?;
-            Box::new(t)
-        };
-        Ok(match self.profile_radius {
-            Some(r) => Box::new(WithCircularProfile {
-                inner: on_grid,
-                radius: r,
-            }),
-            None => on_grid,
-        })
+        self.build_keeping(ctx, false)
     }
-
     /// The start mesh with its contact elements cut along `grid`
     /// ([`crate::mesh::cuts::cut_along_grid`]; on the exact circle of a generated body).
     fn pass_stand_in(
@@ -275,16 +319,7 @@ impl BodySetup for BemSetup {
     }
 
     fn follow_grid(&self, grid: &ContactGrid) -> Option<Arc<dyn BodySetup>> {
-        let start = self.start_mesh.clone().unwrap_or_else(|| Arc::new(self.mesh.clone()));
-        let mesh = LoadedMesh {
-            mesh: cut_along_grid_on(&start, grid, MAX_TRANSITION_RATIO, self.contact_circle.as_ref()),
-            ..(*start).clone()
-        };
-        Some(Arc::new(BemSetup {
-            mesh,
-            start_mesh: Some(start),
-            ..self.clone()
-        }))
+        Some(Arc::new(self.followed(grid)))
     }
 
     /// The mesh with its elements outside the contact group bisected on their own curves
@@ -299,6 +334,7 @@ impl BodySetup for BemSetup {
             mesh,
             start_mesh: None,
             far_field: Default::default(),
+            kept: Default::default(),
             ..self.clone()
         }))
     }
@@ -350,6 +386,7 @@ mod tests {
             start_mesh: None,
             far_field: Default::default(),
             contact_circle: None,
+            kept: Default::default(),
         }
     }
 

@@ -195,9 +195,11 @@ impl BemStandIn {
         for (k, grid) in levels.into_iter().enumerate() {
             // The start grid is the mesh's own; a finer level cuts the mesh along it.
             let own = setup.mesh.contact_grid().coincides_with(grid);
-            let follows = if own { None } else { setup.follow_grid(grid) };
-            let level: &dyn BodySetup = follows.as_deref().unwrap_or(setup);
-            let body = level.build(&BuildContext { grid, side, rolling })?;
+            let follows = (!own).then(|| setup.followed(grid));
+            let level = follows.as_ref().unwrap_or(setup);
+            // The finer level's condensation is kept: the check of the body's mesh solves on
+            // the same grid (src/adapt.rs).
+            let body = level.build_keeping(&BuildContext { grid, side, rolling }, k == 1)?;
             if k == 0 {
                 profile_shift = body.model().profile(0.0);
             }

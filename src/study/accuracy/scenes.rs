@@ -237,5 +237,6 @@ fn bem_body(
         start_mesh: None,
         far_field: Default::default(),
         contact_circle: None,
+        kept: Default::default(),
     })
 }

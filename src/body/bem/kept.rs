@@ -1,0 +1,89 @@
+//! A BEM body condensed on one grid, kept for a later build on the same grid within the run.
+//!
+//! An error-controlled run condenses each BEM body on the finer of its stand-in's two grids
+//! ([`super::stand_in`]) and, once the contact grid meets the tolerance, solves the bodies on
+//! that same grid again to check their meshes (src/adapt/body_mesh.rs). The setup keeps the
+//! first condensation ([`KeptBody`], shared by every setup that follows a grid from the same
+//! body, like the far field of [`crate::bem::reuse`]) and the second build takes it: the same
+//! matrices, not a copy computed again.
+
+use super::BemBody;
+use crate::body::{
+    BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery, InteriorResult, Side,
+    StrainOperator,
+};
+use crate::grid::ContactGrid;
+use std::sync::{Arc, Mutex};
+
+/// The body kept: its side and the edges of its own contact grid, and the condensed body.
+type Entry = (Side, Vec<f64>, Arc<BemBody>);
+
+/// At most one condensed body, shared by the clones of a setup (cloning shares it).
+#[derive(Clone, Default)]
+pub struct KeptBody(Arc<Mutex<Option<Entry>>>);
+
+impl std::fmt::Debug for KeptBody {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let kept = self
+            .0
+            .lock()
+            .map(|e| e.as_ref().map(|(_, edges, _)| edges.len().saturating_sub(1)));
+        match kept {
+            Ok(Some(elements)) => write!(f, "KeptBody({elements} contact elements)"),
+            _ => write!(f, "KeptBody(empty)"),
+        }
+    }
+}
+
+impl KeptBody {
+    /// The body kept for `side` on a mesh whose own contact grid is `own`, if any.
+    pub fn get(&self, side: Side, own: &ContactGrid) -> Option<Arc<BemBody>> {
+        let kept = self.0.lock().ok()?;
+        let (s, edges, body) = kept.as_ref()?;
+        (*s == side && *edges == own.edges).then(|| body.clone())
+    }
+
+    /// Keeps `body`, built for `side` on the mesh whose own contact grid is `own` (replacing
+    /// what was kept).
+    pub fn keep(&self, side: Side, own: &ContactGrid, body: Arc<BemBody>) {
+        if let Ok(mut kept) = self.0.lock() {
+            *kept = Some((side, own.edges.clone(), body));
+        }
+    }
+}
+
+/// A kept body in a build of its own: the same model, its build time not counted again.
+pub struct Kept(pub Arc<BemBody>);
+
+impl BodyModel for Kept {
+    fn model_name(&self) -> &'static str {
+        self.0.model_name()
+    }
+
+    fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
+        self.0.flexibility(grid, side)
+    }
+
+    fn profile(&self, x: f64) -> f64 {
+        self.0.profile(x)
+    }
+
+    fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
+        self.0.strain_operator(grid, side)
+    }
+
+    /// Zero: the build that kept it counted its assembly and condensation.
+    fn stage_seconds(&self) -> (f64, f64) {
+        (0.0, 0.0)
+    }
+}
+
+impl BodyFields for Kept {
+    fn boundary_field(&self, load: &ContactLoad) -> Option<Result<BoundaryField, FieldError>> {
+        self.0.boundary_field(load)
+    }
+
+    fn interior(&self, query: &InteriorQuery) -> InteriorResult {
+        self.0.interior(query)
+    }
+}
