@@ -19,6 +19,9 @@
 mod adaptive_report;
 mod architecture;
 #[allow(dead_code)]
+#[path = "../../examples/bem_tolerance_matrix.rs"]
+mod bem_tolerance_matrix;
+#[allow(dead_code)]
 #[path = "../../examples/body_mesh_report.rs"]
 mod body_mesh_report;
 #[path = "../common/mod.rs"]
@@ -151,6 +154,28 @@ fn validation_body_mesh_table() {
         rows: &t.rows,
     };
     assert_table(&page("validation.md"), printed, Rows::All, &[], (&[], 0.0));
+}
+
+/// The rows of the BEM tolerance matrix that the tests repeat (the whole table takes half an
+/// hour: `cargo run --release --example bem_tolerance_matrix`); times are not compared.
+#[test]
+fn validation_bem_tolerance_table() {
+    let runs: Vec<(String, f64)> = bem_tolerance_matrix::TESTED
+        .iter()
+        .map(|(name, t)| (name.to_string(), *t))
+        .collect();
+    let t = bem_tolerance_matrix::table_of(&runs);
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table(
+        &page("validation.md"),
+        printed,
+        Rows::Printed { key: 2 },
+        &["time [s]"],
+        (&[], 0.0),
+    );
 }
 
 #[test]

@@ -14,6 +14,10 @@
 mod common;
 
 mod adaptive;
+#[allow(dead_code)]
+#[path = "../../examples/bem_tolerance_matrix.rs"]
+mod bem_tolerance_matrix;
+mod bem_tolerances;
 mod body_contract;
 mod body_mesh;
 #[allow(dead_code)]
