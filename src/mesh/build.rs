@@ -440,21 +440,25 @@ fn block(w: f64, h: f64, half_length: f64, n_contact: usize, faces: BlockFaces, 
 /// A flat layer of thickness `thickness` below y = 0 (body B), the procedural twin of
 /// `meshes/tyre_layer_strip.inc`: groups `contact` (|x| ≤ `half_length`, `n_contact` equal
 /// elements), `free` (the rest of the top face), `ends` (x = ±`half_width`) and `bonded`
-/// (y = −thickness). Far elements are about `far_size` long.
+/// (y = −thickness). Far elements are about `far_size` long; the bonded face under the contact
+/// segment has the contact's elements (a thin layer carries its load straight through to the
+/// core, whose traction varies there as fast as the contact's) and grades out like the top face.
 pub fn layer_strip(thickness: f64, half_width: f64, half_length: f64, n_contact: usize, far_size: f64) -> BoundaryMesh {
     let (n_free, g) = graded_run(
         half_width - half_length,
         2.0 * half_length / n_contact.max(1) as f64,
         far_size,
     );
-    let n_bonded = ((2.0 * half_width / far_size).ceil() as usize).max(2);
+    let (w, l, t) = (half_width, half_length, thickness);
     let mut b = MeshBuilder::new(true, "layer");
-    b.move_to([-half_width, 0.0])
-        .graded_line_to([-half_length, 0.0], n_free, 1.0 / g, "free")
-        .line_to([half_length, 0.0], n_contact, "contact")
-        .graded_line_to([half_width, 0.0], n_free, g, "free")
-        .line_to([half_width, -thickness], 2, "ends")
-        .line_to([-half_width, -thickness], n_bonded, "bonded")
+    b.move_to([-w, 0.0])
+        .graded_line_to([-l, 0.0], n_free, 1.0 / g, "free")
+        .line_to([l, 0.0], n_contact, "contact")
+        .graded_line_to([w, 0.0], n_free, g, "free")
+        .line_to([w, -t], 2, "ends")
+        .graded_line_to([l, -t], n_free, 1.0 / g, "bonded")
+        .line_to([-l, -t], n_contact, "bonded")
+        .graded_line_to([-w, -t], n_free, g, "bonded")
         .close(2, "ends");
     b.finish()
 }

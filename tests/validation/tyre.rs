@@ -10,15 +10,12 @@ use crate::common::solve;
 /// the thin-layer limit for a = 1 mm. Returns (a, P, max |p − p_thin| / p_max), p_thin the
 /// thin-layer pressure shape with the measured P, a and contact centre.
 fn thin_layer_run(tag: &str, nu: f64) -> (f64, f64, f64) {
-    let radius = 100.0;
-    // Sheet §5: δ = a²/(2R) (compressible, Winkler), a²/(6R) (incompressible).
-    let overlap = if nu < 0.5 { 0.5 / radius } else { 1.0 / (6.0 * radius) };
     let s = solve(
         "tyre_b01_incompressible",
         &[
             &format!("bodies.B.mesh=../meshes/tyre_layer_b{tag}.msh"),
             &format!("materials.rubber.nu={nu}"),
-            &format!("load.normal.overlap={overlap}"),
+            &thin_layer_overlap(nu),
             "contact.friction=0",
             "load.tangential.ratio=null",
             "load.tangential.creep=0",
@@ -27,16 +24,67 @@ fn thin_layer_run(tag: &str, nu: f64) -> (f64, f64, f64) {
     crate::common::thin_layer_fit(&s.solution, nu)
 }
 
+/// `load.normal.overlap=…` of the thin-layer limit for a = 1 mm under R = 100 mm (sheet §5:
+/// δ = a²/(2R) compressible, Winkler; a²/(6R) incompressible).
+fn thin_layer_overlap(nu: f64) -> String {
+    let radius = 100.0;
+    let overlap = if nu < 0.5 { 0.5 / radius } else { 1.0 / (6.0 * radius) };
+    format!("load.normal.overlap={overlap}")
+}
+
+/// The same contact on the exact layer model (`model: layer`, the plane-strain Fourier
+/// compliance of a layer bonded to a rigid base, docs/viscoelastic.md "The layer"), on the
+/// contact grid of the BEM strip's mesh (`elements` equal elements on |x| ≤ 1.3 mm):
+/// (a, P, shape error) as [`thin_layer_run`].
+fn exact_layer_run(b: f64, elements: usize, nu: f64) -> (f64, f64, f64) {
+    let s = solve(
+        "tyre_b05_layer",
+        &[
+            &format!("bodies.B.thickness={b}"),
+            &format!("materials.rubber.nu={nu}"),
+            &format!("contact.grid.elements={elements}"),
+            &thin_layer_overlap(nu),
+            "contact.friction=0",
+            "load.tangential.ratio=null",
+            "load.tangential.creep=0",
+        ],
+    );
+    crate::common::thin_layer_fit(&s.solution, nu)
+}
+
+/// The BEM strips of the tyre meshes against the exact layer model on the same grid, normal
+/// contact at b/a from 0.5 to 0.05, ν = 0.3 and 0.5: P within 1e-3 (measured at most 8e-5),
+/// the contact half-width within 2e-3 mm (a fifteenth of the node spacing: the edge lies between
+/// the same nodes; measured 2e-4) and the same pressure shape within 5e-3 of p_max (measured
+/// 6e-4). The strips' bonded face is as fine as the contact under it: with elements of
+/// 0.5 mm there (5 to 10 thicknesses, as the strips once had) P was 2 % low at b/a = 0.1 and 7 %
+/// low at 0.05 for ν = 0.5.
+#[test]
+fn the_bem_strips_reproduce_the_exact_layer() {
+    let tags = [("05", 0.5, 31), ("025", 0.25, 31), ("01", 0.1, 31), ("005", 0.05, 61)];
+    for nu in [0.3, 0.5] {
+        for (tag, b, elements) in tags {
+            let (a, p, shape) = thin_layer_run(tag, nu);
+            let (a_x, p_x, shape_x) = exact_layer_run(b, elements, nu);
+            println!("nu = {nu} b = {b}: BEM a {a:.4} P {p:.5} shape {shape:.4}; exact a {a_x:.4} P {p_x:.5} shape {shape_x:.4}");
+            assert!((p / p_x - 1.0).abs() < 1e-3, "nu = {nu} b = {b}: P {p} against {p_x}");
+            assert!((a - a_x).abs() < 2e-3, "nu = {nu} b = {b}: a {a} against {a_x}");
+            assert!((shape - shape_x).abs() < 5e-3, "nu = {nu} b = {b}: shape {shape} against {shape_x}");
+        }
+    }
+}
+
 /// As b/a → 0 the half-width and the pressure shape approach the thin-layer limits (docs/references.md §5):
 /// compressible p = (3P/4a)(1 − x²/a²) with a² = 2Rδ and P = 4G(1−ν)a³/(3(1−2ν)bR);
 /// incompressible p = (15P/16a)(1 − x²/a²)² with a² = 6Rδ. The leading correction is O(b/a)
 /// (edge zones of width ~b where the local operator fails), so halving b/a from 0.1 to 0.05
-/// must at least nearly halve the shape error (ratio ≥ 1.8; measured 2.3 and 2.9), and at
-/// b/a = 0.05 the error is a few per cent (limits 2.5 % and 5 %; measured 1.6 % and 3.5 %).
+/// must nearly halve the shape error (ratio ≥ 1.7; measured 2.6 for ν = 0.3 and 1.8 for
+/// ν = 0.5, whose next term is larger: the exact layer model above gives the same), and at
+/// b/a = 0.05 the error is a few per cent (limits 2.5 % and 9 %; measured 1.4 % and 7.4 %).
 #[test]
 fn thin_layer_limits_are_approached_as_the_layer_thins() {
     let tags = [("05", 0.5), ("025", 0.25), ("01", 0.1), ("005", 0.05)];
-    for (nu, final_shape, final_a) in [(0.3, 0.025, 0.01), (0.5, 0.05, 0.06)] {
+    for (nu, final_shape, final_a) in [(0.3, 0.025, 0.01), (0.5, 0.09, 0.08)] {
         let runs: Vec<(f64, f64, f64, f64)> = tags
             .iter()
             .map(|&(tag, b)| {
@@ -51,7 +99,7 @@ fn thin_layer_limits_are_approached_as_the_layer_thins() {
         }
         let (last, prev) = (runs[3], runs[2]);
         assert!(
-            prev.3 / last.3 >= 1.8,
+            prev.3 / last.3 >= 1.7,
             "nu = {nu}: shape error ratio {}",
             prev.3 / last.3
         );
