@@ -48,8 +48,8 @@ pub const LAYER_ERROR: [(f64, f64); 6] = [
     (2e0, 3.076e-1),
     (5e0, 9.311e-2),
     (1e1, 2.119e-2),
-    (2e1, 6.406e-3),
-    (5e1, 1.748e-3),
+    (2e1, 6.410e-3),
+    (5e1, 1.749e-3),
 ];
 
 /// Log–log interpolation of `table` (x increasing) at x; beyond the ends the end segments

@@ -112,9 +112,11 @@ fn thin_layers_approach_the_leading_order_limits() {
 /// control) by the layer model against the BEM strip, both on error-controlled grids. The
 /// BEM's contact discretisation is converged (between tolerances 1e-3 and 1e-4 its creepage
 /// moves by 1e-5 relative, P by 1e-6), the strip's own far mesh (elements of length b) and its
-/// ends at 20 b are not refined: measured against the layer, P 1.7e-5, p 3.3e-4 p0 (rms) and
-/// 8.1e-4 p0 (largest inside 0.9a), q 6.2e-5 and 2.6e-3 p0 (at the stick–slip point, where the
-/// two grids' nodes differ), creepage 9.2e-4, half-width 3.0e-4 mm. Allowed about 3 times that.
+/// ends at 20 b are not refined: measured against the layer, P 5.2e-7, creepage 4.0e-5,
+/// half-width 2.6e-4 mm (P 1.7e-5 and creepage 9.2e-4 when the strip's bonded face had
+/// elements of 0.5 mm under the contact, meshes/tyre_layer_strip.inc); P and the creepage are
+/// allowed about 10 times that, the tractions (where the two grids' nodes differ at the
+/// stick–slip point) and the half-width about 3 times what the coarser strip gave.
 #[test]
 fn the_layer_model_reproduces_the_bem_tyre() {
     let tol = "contact.grid.tolerance=1e-3";
@@ -133,7 +135,7 @@ fn the_layer_model_reproduces_the_bem_tyre() {
         "P {d_force:e}, p {p_rms:e} / {p_inner:e} p0, q {q_rms:e} / {q_inner:e} p0 (rms / inner max), creepage \
          {d_creep:e}, half-width {d_width:e} mm"
     );
-    assert!(d_force < 6e-5, "P differs by {d_force:e}");
+    assert!(d_force < 5e-6, "P differs by {d_force:e}");
     assert!(
         p_rms < 1e-3 && p_inner < 2.5e-3,
         "p differs by {p_rms:e} (rms), {p_inner:e} (inner) p0"
@@ -142,7 +144,7 @@ fn the_layer_model_reproduces_the_bem_tyre() {
         q_rms < 2e-4 && q_inner < 8e-3,
         "q differs by {q_rms:e} (rms), {q_inner:e} (inner) p0"
     );
-    assert!(d_creep < 3e-3, "creepage differs by {d_creep:e}");
+    assert!(d_creep < 4e-4, "creepage differs by {d_creep:e}");
     assert!(d_width < 1e-3, "half-width differs by {d_width:e} mm");
 }
 

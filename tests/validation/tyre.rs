@@ -69,7 +69,10 @@ fn the_bem_strips_reproduce_the_exact_layer() {
             println!("nu = {nu} b = {b}: BEM a {a:.4} P {p:.5} shape {shape:.4}; exact a {a_x:.4} P {p_x:.5} shape {shape_x:.4}");
             assert!((p / p_x - 1.0).abs() < 1e-3, "nu = {nu} b = {b}: P {p} against {p_x}");
             assert!((a - a_x).abs() < 2e-3, "nu = {nu} b = {b}: a {a} against {a_x}");
-            assert!((shape - shape_x).abs() < 5e-3, "nu = {nu} b = {b}: shape {shape} against {shape_x}");
+            assert!(
+                (shape - shape_x).abs() < 5e-3,
+                "nu = {nu} b = {b}: shape {shape} against {shape_x}"
+            );
         }
     }
 }
@@ -89,7 +92,10 @@ fn thin_layer_limits_are_approached_as_the_layer_thins() {
             .iter()
             .map(|&(tag, b)| {
                 let (a, p, shape) = thin_layer_run(tag, nu);
-                println!("nu = {nu} b/a = {b}: a = {a:.4}, P = {p:.5}, shape error {shape:.4}");
+                println!(
+                    "nu = {nu} b/a = {b}: a = {a:.4}, P = {p:.5}, shape error {:.1} %",
+                    100.0 * shape
+                );
                 (b, a, p, shape)
             })
             .collect();
