@@ -105,7 +105,7 @@ impl ContactFrame {
     }
 
     /// The global-axes flexibility of one body turned into this frame (module docs).
-    pub fn flexibility(&self, f: Flexibility, side: Side) -> Flexibility {
+    pub fn flexibility(&self, mut f: Flexibility, side: Side) -> Flexibility {
         if self.is_global() {
             return f;
         }
@@ -123,14 +123,21 @@ impl ContactFrame {
             })
             .unzip();
         let tan: Vec<f64> = self.normal_angle.iter().map(|psi| psi.tan()).collect();
-        // Column transformation (p, q) → (P, Q) at node j, then h' = h − tan ψ_i w at row i.
-        let normal_col = |a: &Mat<f64>, b: &Mat<f64>, i: usize, j: usize| sc[j] * a[(i, j)] - ss[j] * b[(i, j)];
-        let tangential_col = |a: &Mat<f64>, b: &Mat<f64>, i: usize, j: usize| ss[j] * a[(i, j)] + sc[j] * b[(i, j)];
-        let wp = Mat::from_fn(m, m, |i, j| normal_col(&f.wp, &f.wq, i, j));
-        let wq = Mat::from_fn(m, m, |i, j| tangential_col(&f.wp, &f.wq, i, j));
-        let hp = Mat::from_fn(m, m, |i, j| normal_col(&f.hp, &f.hq, i, j) - tan[i] * wp[(i, j)]);
-        let hq = Mat::from_fn(m, m, |i, j| tangential_col(&f.hp, &f.hq, i, j) - tan[i] * wq[(i, j)]);
-        Flexibility { hp, hq, wp, wq }
+        // In place, entry by entry (no new m × m matrices: each costs its page faults on every
+        // grid): the column transformation (p, q) → (P, Q) at node j of each pair of blocks,
+        // then h' = h − tan ψ_i w at row i with the transformed w.
+        for j in 0..m {
+            for i in 0..m {
+                let (wp, wq) = (f.wp[(i, j)], f.wq[(i, j)]);
+                let (wp, wq) = (sc[j] * wp - ss[j] * wq, ss[j] * wp + sc[j] * wq);
+                let (hp, hq) = (f.hp[(i, j)], f.hq[(i, j)]);
+                f.hp[(i, j)] = (sc[j] * hp - ss[j] * hq) - tan[i] * wp;
+                f.hq[(i, j)] = (ss[j] * hp + sc[j] * hq) - tan[i] * wq;
+                f.wp[(i, j)] = wp;
+                f.wq[(i, j)] = wq;
+            }
+        }
+        f
     }
 
     /// The global-axes surface-strain operator of one body turned into this frame (columns
