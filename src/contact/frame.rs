@@ -127,12 +127,12 @@ impl ContactFrame {
         // grid): the column transformation (p, q) → (P, Q) at node j of each pair of blocks,
         // then h' = h − tan ψ_i w at row i with the transformed w.
         for j in 0..m {
-            for i in 0..m {
+            for (i, &t) in tan.iter().enumerate() {
                 let (wp, wq) = (f.wp[(i, j)], f.wq[(i, j)]);
                 let (wp, wq) = (sc[j] * wp - ss[j] * wq, ss[j] * wp + sc[j] * wq);
                 let (hp, hq) = (f.hp[(i, j)], f.hq[(i, j)]);
-                f.hp[(i, j)] = (sc[j] * hp - ss[j] * hq) - tan[i] * wp;
-                f.hq[(i, j)] = (ss[j] * hp + sc[j] * hq) - tan[i] * wq;
+                f.hp[(i, j)] = (sc[j] * hp - ss[j] * hq) - t * wp;
+                f.hq[(i, j)] = (ss[j] * hp + sc[j] * hq) - t * wq;
                 f.wp[(i, j)] = wp;
                 f.wq[(i, j)] = wq;
             }
