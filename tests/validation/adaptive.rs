@@ -182,7 +182,7 @@ fn tractions_at(from: &Solved, x: &[f64]) -> (Vec<f64>, Vec<f64>) {
 /// RMS p/p0 and q/(μp0) over |x| < a of `run` against `reference` at the run's own nodes (the
 /// reference interpolated by its shape functions), and the relative creepage difference; a
 /// and p0 of the reference's Hertz estimates.
-fn errors_against(reference: &Solved, run: &Solved) -> (f64, f64, f64) {
+pub(crate) fn errors_against(reference: &Solved, run: &Solved) -> (f64, f64, f64) {
     let est = &reference.scene.estimates;
     let (a, p0, mu) = (
         est.hertz_half_width,
@@ -197,7 +197,7 @@ fn errors_against(reference: &Solved, run: &Solved) -> (f64, f64, f64) {
 }
 
 /// Asserts that the true errors (p, q, ξ) of a run all meet its tolerance.
-fn assert_true_errors_within(label: &str, tolerance: f64, (p, q, xi): (f64, f64, f64)) {
+pub(crate) fn assert_true_errors_within(label: &str, tolerance: f64, (p, q, xi): (f64, f64, f64)) {
     assert!(
         p <= tolerance && q <= tolerance && xi <= tolerance,
         "{label}: true errors p {p:.3e}, q {q:.3e}, ξ {xi:.3e} above {tolerance:e}"

@@ -13,7 +13,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
-mod adaptive;
+pub(crate) mod adaptive;
 #[allow(dead_code)]
 #[path = "../../examples/bem_tolerance_matrix.rs"]
 mod bem_tolerance_matrix;
