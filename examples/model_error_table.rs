@@ -223,22 +223,16 @@ fn layer_solution(b: Option<f64>, p_total: f64, a: f64) -> ContactSolution {
             ("free", BoundaryCondition::Free),
             ("contact", BoundaryCondition::Contact),
         ];
+        let mesh = LoadedMesh {
+            path: PathBuf::from("<procedural layer>"),
+            mesh,
+            notices,
+            contact_group,
+        };
+        let conditions = conditions.iter().map(|(g, c)| (g.to_string(), c.clone())).collect();
         bodies[1] = Arc::new(BemSetup {
-            mesh: LoadedMesh {
-                path: PathBuf::from("<procedural layer>"),
-                mesh,
-                notices,
-                contact_group,
-            },
-            material,
-            contact: "contact".into(),
-            conditions: conditions.iter().map(|(g, c)| (g.to_string(), c.clone())).collect(),
             radius: layer.radius(),
-            profile_radius: None,
-            start_mesh: None,
-            far_field: Default::default(),
-            contact_circle: None,
-            kept: Default::default(),
+            ..BemSetup::on_start_mesh(mesh, material, "contact".into(), conditions, None, None)
         });
         scene = Scene::new(c, bodies);
     }

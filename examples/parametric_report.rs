@@ -155,18 +155,14 @@ fn refined_body(
         .collect();
     conditions.sort_by(|a, b| a.0.cmp(&b.0));
     conditions.push(("contact".into(), BoundaryCondition::Contact));
-    Arc::new(BemSetup {
-        radius: radius.unwrap_or_else(|| loaded.contact_radius()),
-        mesh: loaded,
-        material: case.material(material),
-        contact: "contact".into(),
+    Arc::new(BemSetup::on_start_mesh(
+        loaded,
+        case.material(material),
+        "contact".into(),
         conditions,
-        profile_radius: *radius,
-        start_mesh: None,
-        far_field: Default::default(),
-        contact_circle: None,
-        kept: Default::default(),
-    })
+        *radius,
+        None,
+    ))
 }
 
 /// The generated scene of `twin` with its far field `fineness` times finer (1: as `run`

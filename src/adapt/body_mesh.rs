@@ -19,9 +19,9 @@
 //! docs/validation.md moves by under 2 % from the final grid to the check grid).
 //!
 //! Above the tolerance, the bisected bodies are adopted (src/adapt.rs refines the contact
-//! grid again on them) and estimated in turn, at most [`MAX_BODY_MESH_BISECTIONS`] times; a body mesh still too
-//! coarse then ends the run with exit code 2 and a message naming the body, its mesh and its
-//! groups (`Error::BodyMeshTooCoarse`).
+//! grid again on them) and estimated in turn, at most [`MAX_BODY_MESH_BISECTIONS`] times; a
+//! body mesh still too coarse then ends the run with exit code 2 and a message naming the body,
+//! its mesh and its groups (`Error::BodyMeshTooCoarse`).
 
 use super::estimate::Scales;
 use super::{overlap, solve_on};

@@ -192,22 +192,23 @@ mod tests {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/msh/square_linear.msh");
         let (mesh, notices) = crate::mesh::load(&path).unwrap();
         let contact_group = mesh.group_index("bottom").unwrap();
+        let mesh = LoadedMesh {
+            path,
+            mesh,
+            notices,
+            contact_group,
+        };
+        let conditions = vec![("bottom".into(), BoundaryCondition::Contact)];
         let linear: Arc<dyn crate::body::BodySetup> = Arc::new(BemSetup {
-            mesh: LoadedMesh {
-                path,
-                mesh,
-                notices,
-                contact_group,
-            },
-            material: Elastic::new(210_000.0, 0.3),
-            contact: "bottom".into(),
-            conditions: vec![("bottom".into(), BoundaryCondition::Contact)],
             radius: f64::INFINITY,
-            profile_radius: None,
-            start_mesh: None,
-            far_field: Default::default(),
-            contact_circle: None,
-            kept: Default::default(),
+            ..BemSetup::on_start_mesh(
+                mesh,
+                Elastic::new(210_000.0, 0.3),
+                "bottom".into(),
+                conditions,
+                None,
+                None,
+            )
         });
         let bodies: BodySetups = [Arc::new(RigidSetup { radius: 100.0 }), linear];
         let w = warnings(&bodies, &estimates(100.0, 0.01));

@@ -305,22 +305,15 @@ fn bem_body(mut mesh: BoundaryMesh, groups: &[(&str, BoundaryCondition)], radius
     let mut conditions: Vec<(String, BoundaryCondition)> =
         groups.iter().map(|(g, c)| (g.to_string(), c.clone())).collect();
     conditions.push(("contact".to_string(), BoundaryCondition::Contact));
+    let mesh = LoadedMesh {
+        path: PathBuf::from("<procedural>"),
+        mesh,
+        notices,
+        contact_group,
+    };
     Arc::new(BemSetup {
-        mesh: LoadedMesh {
-            path: PathBuf::from("<procedural>"),
-            mesh,
-            notices,
-            contact_group,
-        },
-        material: steel(),
-        contact: "contact".to_string(),
-        conditions,
         radius,
-        profile_radius: None,
-        start_mesh: None,
-        far_field: Default::default(),
-        contact_circle: None,
-        kept: Default::default(),
+        ..BemSetup::on_start_mesh(mesh, steel(), "contact".to_string(), conditions, None, None)
     })
 }
 

@@ -10,18 +10,12 @@ use crate::common::solve;
 /// the thin-layer limit for a = 1 mm. Returns (a, P, max |p − p_thin| / p_max), p_thin the
 /// thin-layer pressure shape with the measured P, a and contact centre.
 fn thin_layer_run(tag: &str, nu: f64) -> (f64, f64, f64) {
-    let s = solve(
+    frictionless_thin_layer(
         "tyre_b01_incompressible",
-        &[
-            &format!("bodies.B.mesh=../meshes/tyre_layer_b{tag}.msh"),
-            &format!("materials.rubber.nu={nu}"),
-            &thin_layer_overlap(nu),
-            "contact.friction=0",
-            "load.tangential.ratio=null",
-            "load.tangential.creep=0",
-        ],
-    );
-    crate::common::thin_layer_fit(&s.solution, nu)
+        nu,
+        &format!("bodies.B.mesh=../meshes/tyre_layer_b{tag}.msh"),
+        None,
+    )
 }
 
 /// `load.normal.overlap=…` of the thin-layer limit for a = 1 mm under R = 100 mm (sheet §5:
@@ -37,18 +31,29 @@ fn thin_layer_overlap(nu: f64) -> String {
 /// contact grid of the BEM strip's mesh (`elements` equal elements on |x| ≤ 1.3 mm):
 /// (a, P, shape error) as [`thin_layer_run`].
 fn exact_layer_run(b: f64, elements: usize, nu: f64) -> (f64, f64, f64) {
-    let s = solve(
+    frictionless_thin_layer(
         "tyre_b05_layer",
-        &[
-            &format!("bodies.B.thickness={b}"),
-            &format!("materials.rubber.nu={nu}"),
-            &format!("contact.grid.elements={elements}"),
-            &thin_layer_overlap(nu),
-            "contact.friction=0",
-            "load.tangential.ratio=null",
-            "load.tangential.creep=0",
-        ],
-    );
+        nu,
+        &format!("bodies.B.thickness={b}"),
+        Some(&format!("contact.grid.elements={elements}")),
+    )
+}
+
+/// Frictionless normal contact (μ = 0, ξ = 0) of `case` with `layer` (its mesh or thickness),
+/// Poisson's ratio ν, the thin-layer overlap for a = 1 mm and `grid` if given, fitted by
+/// [`crate::common::thin_layer_fit`].
+fn frictionless_thin_layer(case: &str, nu: f64, layer: &str, grid: Option<&str>) -> (f64, f64, f64) {
+    let (nu_set, overlap) = (format!("materials.rubber.nu={nu}"), thin_layer_overlap(nu));
+    let mut set = vec![
+        layer,
+        nu_set.as_str(),
+        overlap.as_str(),
+        "contact.friction=0",
+        "load.tangential.ratio=null",
+        "load.tangential.creep=0",
+    ];
+    set.extend(grid);
+    let s = solve(case, &set);
     crate::common::thin_layer_fit(&s.solution, nu)
 }
 

@@ -372,22 +372,19 @@ mod tests {
             notices,
             contact_group,
         };
-        BemSetup {
-            radius: mesh.contact_radius(),
+        let conditions = vec![
+            ("free".into(), BoundaryCondition::Free),
+            ("shaft".into(), BoundaryCondition::Fixed),
+            ("contact".into(), BoundaryCondition::Contact),
+        ];
+        BemSetup::on_start_mesh(
             mesh,
-            material: Elastic::new(210_000.0, 0.3),
-            contact: "contact".into(),
-            conditions: vec![
-                ("free".into(), BoundaryCondition::Free),
-                ("shaft".into(), BoundaryCondition::Fixed),
-                ("contact".into(), BoundaryCondition::Contact),
-            ],
-            profile_radius: None,
-            start_mesh: None,
-            far_field: Default::default(),
-            contact_circle: None,
-            kept: Default::default(),
-        }
+            Elastic::new(210_000.0, 0.3),
+            "contact".into(),
+            conditions,
+            None,
+            None,
+        )
     }
 
     /// A grid graded 12 times towards both ends of the contact (elements of 1/4096 of the

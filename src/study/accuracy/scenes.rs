@@ -222,21 +222,14 @@ fn bem_body(
     let mut conditions: Vec<(String, BoundaryCondition)> =
         groups.iter().map(|(g, c)| (g.to_string(), c.clone())).collect();
     conditions.push(("contact".to_string(), BoundaryCondition::Contact));
+    let mesh = LoadedMesh {
+        path: PathBuf::from(format!("<procedural {}>", model.name())),
+        mesh,
+        notices,
+        contact_group,
+    };
     Ok(BemSetup {
-        mesh: LoadedMesh {
-            path: PathBuf::from(format!("<procedural {}>", model.name())),
-            mesh,
-            notices,
-            contact_group,
-        },
-        material,
-        contact: "contact".to_string(),
-        conditions,
         radius,
-        profile_radius,
-        start_mesh: None,
-        far_field: Default::default(),
-        contact_circle: None,
-        kept: Default::default(),
+        ..BemSetup::on_start_mesh(mesh, material, "contact".to_string(), conditions, profile_radius, None)
     })
 }
