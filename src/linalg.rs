@@ -41,9 +41,12 @@ pub fn mat_vec2(a: &Mat<f64>, x: &[f64], b: &Mat<f64>, z: &[f64]) -> Vec<f64> {
 }
 
 /// Order from which [`lu_solve_in_place`] factors with faer's threads: below it one thread is
-/// faster on the two-core machine (an error-controlled carter2d run at tolerance 1e-4, whose
-/// largest Newton system is 573: 0.07 s against 0.09 s).
-pub const PARALLEL_LU_MIN: usize = 1024;
+/// faster on the two-core machine, in wall time as well as in CPU time (an error-controlled
+/// carter2d run at tolerance 1e-4, largest Newton system 573: 0.07 s against 0.09 s; carter_051
+/// at 1e-5, largest system 1267, and on 321 elements, systems of 1259–1928: 6–12 % less wall
+/// time and 10–30 % less CPU with one thread), while on 481 elements (systems of 1884–2888) the
+/// threads save 8–13 % of the wall time (docs/performance.md).
+pub const PARALLEL_LU_MIN: usize = 1536;
 
 /// The memory of [`LuWorkspace::solve_in_place`] besides the matrix: the row permutation and
 /// its inverse, and faer's scratch space. Kept across solves, it grows to the largest order met
