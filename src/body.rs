@@ -31,6 +31,7 @@ pub mod bem;
 pub mod flamant;
 pub mod half_space;
 pub mod layer;
+pub mod pair_influence;
 pub mod rigid;
 pub mod setup;
 pub mod transfer;

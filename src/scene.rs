@@ -16,6 +16,7 @@ pub mod validity;
 use crate::analytic::Carter;
 pub use crate::body::bem::setup::BemSetup;
 pub use crate::body::half_space::setup::HalfSpaceSetup;
+use crate::body::pair_influence::PairInfluence;
 pub use crate::body::rigid::RigidSetup;
 pub use crate::body::BodySetup;
 use crate::body::{Body, BuildContext, Rolling, Side};
@@ -26,6 +27,7 @@ use crate::grid::ContactGrid;
 pub use crate::mesh::LoadedMesh;
 pub use estimates::{aligned_half_length, Estimates};
 pub use registry::BodySetups;
+use std::sync::Arc;
 
 /// The built body models of A and B.
 pub type BodyModels = [Box<dyn Body>; 2];
@@ -94,6 +96,7 @@ impl Scene {
                 grid: &scene.grid,
                 side,
                 rolling: scene.rolling(),
+                pair: None,
             };
             scene.bodies[k].preflight(&ctx)?;
         }
@@ -226,13 +229,16 @@ impl Scene {
         self.bodies.iter().flat_map(|b| b.notices().to_vec()).collect()
     }
 
-    /// Builds both body models on the contact grid.
+    /// Builds both body models on the contact grid, as a pair that computes the influence
+    /// matrices both need once ([`PairInfluence`]).
     pub fn body_models(&self) -> Result<BodyModels, Error> {
+        let pair = Arc::new(PairInfluence::new());
         let build = |k: usize, side: Side| -> Result<Box<dyn Body>, Error> {
             let ctx = BuildContext {
                 grid: &self.grid,
                 side,
                 rolling: self.rolling(),
+                pair: Some(&pair),
             };
             Ok(self.bodies[k].build(&ctx)?)
         };

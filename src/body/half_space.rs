@@ -27,11 +27,13 @@
 pub mod setup;
 
 use super::flamant::halfplane_interior;
+use super::pair_influence::{shared_or_computed, Family, InfluenceKey, PairInfluence};
 use super::{circle_profile, BodyFields, BodyModel, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator};
 use crate::grid::{ContactGrid, ElementKind};
 use crate::material::Elastic;
 use crate::quadrature::gauss_legendre;
 use faer::Mat;
+use std::sync::Arc;
 
 /// Distance (in element lengths) from the field point to an element's centre beyond which the
 /// element integrals use Gauss quadrature instead of the closed form.
@@ -370,9 +372,40 @@ pub struct HalfSpace {
     /// Signed radius of the cylinder's profile [length]: positive for a convex body, negative
     /// for a concave one (a ring's bore); sets the undeformed gap and (through |R|) the datum.
     pub radius: f64,
+    /// The pair's shared influence matrices, when the body was built as one of a pair
+    /// ([`PairInfluence`]); None computes them alone.
+    pub pair: Option<Arc<PairInfluence>>,
 }
 
 impl HalfSpace {
+    /// The body of `material` and signed profile radius `radius` on its own (no pair store).
+    pub fn new(material: Elastic, radius: f64) -> Self {
+        Self {
+            material,
+            radius,
+            pair: None,
+        }
+    }
+
+    /// The body as one of a pair that shares the half-plane's influence matrices through
+    /// `pair` (joined here), or on its own when `pair` is None.
+    pub fn in_pair(mut self, pair: Option<&Arc<PairInfluence>>) -> Self {
+        if let Some(p) = pair {
+            p.join(Family::HalfPlane);
+        }
+        self.pair = pair.cloned();
+        self
+    }
+
+    /// The influence matrix of `kernel` on `grid`, from the pair's store when the body has one.
+    fn half_plane_matrix(&self, grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
+        let key = InfluenceKey {
+            family: Family::HalfPlane,
+            kernel,
+        };
+        shared_or_computed(self.pair.as_deref(), key, grid, || influence_matrix(grid, kernel))
+    }
+
     /// Datum length ℓ = 2|R|/e [length] of the logarithmic displacement (see the module docs;
     /// a concave body takes its radius's magnitude: the datum only shifts the overlap δ0).
     pub fn datum_length(&self) -> f64 {
@@ -392,13 +425,13 @@ impl BodyModel for HalfSpace {
         let ln_datum = self.datum_length().ln();
         // ∫ N_j ln(|x−s|/ℓ) ds = ∫ N_j ln|x−s| ds − w_j ln ℓ; the blocks are made in place, since
         // a graded grid's m² matrices are large and each new one costs its page faults.
-        let mut hp = influence_matrix(grid, Kernel::Log);
+        let mut hp = self.half_plane_matrix(grid, Kernel::Log);
         for (j, &w) in grid.weights.iter().enumerate() {
             for v in hp.col_mut(j).iter_mut() {
                 *v = -b_coef * (*v - w * ln_datum);
             }
         }
-        let mut hq = influence_matrix(grid, Kernel::Sign);
+        let mut hq = self.half_plane_matrix(grid, Kernel::Sign);
         for j in 0..hq.ncols() {
             for h in hq.col_mut(j).iter_mut() {
                 *h *= sign * a_coef;
@@ -416,7 +449,7 @@ impl BodyModel for HalfSpace {
         let a_coef = self.material.halfplane_sgn_coefficient();
         let b_coef = self.material.halfplane_log_coefficient();
         let m = grid.n_nodes();
-        let mut q = influence_matrix(grid, Kernel::Cauchy);
+        let mut q = self.half_plane_matrix(grid, Kernel::Cauchy);
         for j in 0..m {
             for v in q.col_mut(j).iter_mut() {
                 *v *= -b_coef;
@@ -618,10 +651,7 @@ mod tests {
         use crate::body::ContactLoad;
         use crate::interior::{InteriorOptions, InteriorSample};
         let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 21, -1.3, 1.3);
-        let hs = HalfSpace {
-            material: Elastic::new(210_000.0, 0.3),
-            radius: 100.0,
-        };
+        let hs = HalfSpace::new(Elastic::new(210_000.0, 0.3), 100.0);
         let p: Vec<f64> = grid
             .nodes
             .iter()

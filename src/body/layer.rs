@@ -56,6 +56,7 @@ impl Layer {
             material: self.material,
             radius: 0.5 * std::f64::consts::E * self.thickness,
             ageing: self.ageing,
+            pair: None,
         }
     }
 

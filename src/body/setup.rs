@@ -17,6 +17,7 @@
 //!   the grid, a closed-form model has nothing to change.
 
 use super::{circle_profile, circle_profile_slope, Body, Side};
+use crate::body::pair_influence::PairInfluence;
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
 use crate::mesh::LoadedMesh;
@@ -42,6 +43,9 @@ pub struct BuildContext<'a> {
     pub side: Side,
     /// The rolling kinematics.
     pub rolling: Rolling,
+    /// The store of influence matrices the pair's bodies share on this grid, if the caller
+    /// builds a pair ([`PairInfluence`]: a half-plane body joins it and takes from it).
+    pub pair: Option<&'a Arc<PairInfluence>>,
 }
 
 /// A body's contact group on its own mesh: a body that has one sets the contact grid (its

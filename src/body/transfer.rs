@@ -237,10 +237,7 @@ mod tests {
     use crate::material::Elastic;
 
     fn body() -> HalfSpace {
-        HalfSpace {
-            material: Elastic::new(210_000.0, 0.3),
-            radius: 100.0,
-        }
+        HalfSpace::new(Elastic::new(210_000.0, 0.3), 100.0)
     }
 
     /// The sparse product D·F·T equals the dense one of the interpolation matrices.

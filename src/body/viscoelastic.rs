@@ -25,6 +25,7 @@ pub mod setup;
 
 use super::flamant::halfplane_interior;
 use super::half_space::{influence_matrix, influence_matrix_of, Kernel};
+use super::pair_influence::{shared_or_computed, Family, InfluenceKey, PairInfluence};
 use super::{circle_profile, BodyFields, BodyModel, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator};
 use crate::grid::ContactGrid;
 use crate::interior::{InteriorSample, InteriorValue};
@@ -32,6 +33,7 @@ use crate::material::StandardLinearSolid;
 use crate::quadrature::gauss_legendre;
 use aged_kernels::Ageing;
 use faer::Mat;
+use std::sync::Arc;
 
 /// A viscoelastic half-plane standing in for a cylinder of radius `radius`, rolling steadily.
 #[derive(Debug, Clone)]
@@ -43,6 +45,10 @@ pub struct ViscoelasticHalfSpace {
     /// The ageing of the material through the contact; None when τc = 0 (the rubbery elastic
     /// half-space).
     pub ageing: Option<Ageing>,
+    /// The pair's shared influence matrices, when the body was built as one of a pair
+    /// ([`PairInfluence`]: a twin body of the same L and direction takes the aged matrices this
+    /// one computed, and any half-plane body the elastic ones); None computes them alone.
+    pub pair: Option<Arc<PairInfluence>>,
 }
 
 impl ViscoelasticHalfSpace {
@@ -65,14 +71,38 @@ impl ViscoelasticHalfSpace {
         }
     }
 
+    /// The body as one of a pair that shares influence matrices through `pair` (joined here
+    /// for the elastic kernels and, when it ages, for its aged ones), or on its own when `pair`
+    /// is None.
+    pub fn in_pair(mut self, pair: Option<&Arc<PairInfluence>>) -> Self {
+        if let Some(p) = pair {
+            p.join(Family::HalfPlane);
+            if let Some(ageing) = self.ageing {
+                p.join(aged_family(&ageing));
+            }
+        }
+        self.pair = pair.cloned();
+        self
+    }
+
     /// K_ij of the aged kernel on the grid.
     fn aged_matrix(&self, grid: &ContactGrid, kernel: Kernel, ageing: &Ageing) -> Mat<f64> {
-        influence_matrix_of(grid, |s1, s2, x| ageing.element_integrals(grid.kind, kernel, s1, s2, x))
+        let key = InfluenceKey {
+            family: aged_family(ageing),
+            kernel,
+        };
+        shared_or_computed(self.pair.as_deref(), key, grid, || {
+            influence_matrix_of(grid, |s1, s2, x| ageing.element_integrals(grid.kind, kernel, s1, s2, x))
+        })
     }
 
     /// elastic·c_elastic + aged·c_aged, entry by entry (the aged matrix only where there is creep).
     fn combined(&self, grid: &ContactGrid, kernel: Kernel, elastic_coef: f64, creep_coef: f64) -> Mat<f64> {
-        let mut k = influence_matrix(grid, kernel);
+        let key = InfluenceKey {
+            family: Family::HalfPlane,
+            kernel,
+        };
+        let mut k = shared_or_computed(self.pair.as_deref(), key, grid, || influence_matrix(grid, kernel));
         for j in 0..k.ncols() {
             for v in k.col_mut(j).iter_mut() {
                 *v *= elastic_coef;
@@ -82,6 +112,14 @@ impl ViscoelasticHalfSpace {
             k += self.aged_matrix(grid, kernel, &ageing) * faer::Scale(creep_coef);
         }
         k
+    }
+}
+
+/// The family of the aged kernels of `ageing` (its length and direction, bit for bit).
+fn aged_family(ageing: &Ageing) -> Family {
+    Family::Aged {
+        length: ageing.length.to_bits(),
+        direction: ageing.direction.to_bits(),
     }
 }
 

@@ -104,7 +104,7 @@ fn compare(side: Side) -> ([f64; 4], [f64; 4]) {
     let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, N_CONTACT, -C, C);
     let body = bem_body(side, material, &grid);
     let bem: Flexibility = body.flexibility(&grid, side);
-    let hs = HalfSpace { material, radius: 1e4 }.flexibility(&grid, side);
+    let hs = HalfSpace::new(material, 1e4).flexibility(&grid, side);
     let pairs = [
         (&bem.hp, &hs.hp),
         (&bem.wq, &hs.wq),

@@ -395,10 +395,7 @@ fn assert_mcewen(label: &str, side: Side, mu: f64, found: [Peak; 2], value_tol: 
 #[test]
 fn hertz_maxima_from_the_half_space_and_from_a_block_with_half_plane_data() {
     let (_, grid) = shipped_block(Side::A);
-    let half_space = HalfSpace {
-        material: Elastic::new(210_000.0, 0.3),
-        radius: 100.0,
-    };
+    let half_space = HalfSpace::new(Elastic::new(210_000.0, 0.3), 100.0);
     for mu in [0.0, 0.2] {
         for side in [Side::A, Side::B] {
             let hs = peaks(&half_space, &grid, side, mu);
@@ -448,10 +445,7 @@ fn hertz_maxima_from_the_half_space_and_from_a_block_with_half_plane_data() {
 /// * both shipped bodies (A above, B below) give the same maxima, mirrored in x on B.
 #[test]
 fn hertz_maxima_of_the_shipped_block_differ_from_the_half_plane_by_its_finite_size() {
-    let half_space = HalfSpace {
-        material: Elastic::new(210_000.0, 0.3),
-        radius: 100.0,
-    };
+    let half_space = HalfSpace::new(Elastic::new(210_000.0, 0.3), 100.0);
     for mu in [0.0, 0.2] {
         let (shipped_a, grid) = shipped_block(Side::A);
         let (shipped_b, _) = shipped_block(Side::B);

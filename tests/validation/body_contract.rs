@@ -40,6 +40,7 @@ fn build(setup: &Arc<dyn BodySetup>, grid: &ContactGrid, side: Side, scene: &Sce
         grid,
         side,
         rolling: scene.rolling(),
+        pair: None,
     };
     setup
         .build(&ctx)

@@ -421,6 +421,7 @@ mod tests {
                 direction: 1.0,
                 speed: None,
             },
+            pair: None,
         };
         followed.build(&ctx).expect("the body builds on the grid it followed");
     }

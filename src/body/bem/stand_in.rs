@@ -184,10 +184,7 @@ impl BemStandIn {
     /// or one of its bisections) and to `levels[1]` (the bisection of `levels[0]`), the mesh cut
     /// along each.
     pub fn of(setup: &BemSetup, levels: [&ContactGrid; 2], side: Side, rolling: Rolling) -> Result<Self, BuildError> {
-        let half = HalfSpace {
-            material: setup.material,
-            radius: setup.radius,
-        };
+        let half = HalfSpace::new(setup.material, setup.radius);
         let slope = |x: f64| setup.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
         let span = [levels[0].edges[0], levels[0].edges[levels[0].n_elements()]];
         let mut fits = Vec::with_capacity(2);
@@ -199,7 +196,13 @@ impl BemStandIn {
             let level = follows.as_ref().unwrap_or(setup);
             // The finer level's condensation is kept: the check of the body's mesh solves on
             // the same grid (src/adapt.rs).
-            let body = level.build_keeping(&BuildContext { grid, side, rolling }, k == 1)?;
+            let ctx = BuildContext {
+                grid,
+                side,
+                rolling,
+                pair: None,
+            };
+            let body = level.build_keeping(&ctx, k == 1)?;
             if k == 0 {
                 profile_shift = body.model().profile(0.0);
             }
@@ -251,7 +254,7 @@ impl BodySetup for BemStandIn {
 
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
         Ok(Box::new(StandInBody {
-            flat: Transferred::flat_model_on(Box::new(self.half.clone()), ctx.grid, ctx.side)?,
+            flat: Transferred::flat_model_on(Box::new(self.half.clone().in_pair(ctx.pair)), ctx.grid, ctx.side)?,
             setup: self.clone(),
             side: ctx.side,
         }))

@@ -42,10 +42,7 @@ impl BodySetup for HalfSpaceSetup {
     /// cover, the body is built on the straight grid between the same edges and carried over
     /// by [`Transferred`].
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
-        let body = HalfSpace {
-            material: self.material,
-            radius: self.radius,
-        };
+        let body = HalfSpace::new(self.material, self.radius).in_pair(ctx.pair);
         Ok(Transferred::flat_model_on(Box::new(body), ctx.grid, ctx.side)?)
     }
 }

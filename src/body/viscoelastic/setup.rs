@@ -29,6 +29,7 @@ impl ViscoelasticHalfSpaceSetup {
                 length,
                 direction: ctx.rolling.direction,
             }),
+            pair: None,
         }
     }
 }
@@ -64,7 +65,7 @@ impl BodySetup for ViscoelasticHalfSpaceSetup {
     /// As the elastic half-space: on a grid of curved elements built on the straightened grid
     /// and carried over.
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
-        let body = self.model(ctx);
+        let body = self.model(ctx).in_pair(ctx.pair);
         Ok(Transferred::flat_model_on(Box::new(body), ctx.grid, ctx.side)?)
     }
 }
