@@ -401,7 +401,7 @@ impl HalfSpace {
     fn half_plane_matrix(&self, grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
         let key = InfluenceKey {
             family: Family::HalfPlane,
-            kernel,
+            kernel: kernel as u8,
         };
         shared_or_computed(self.pair.as_deref(), key, grid, || influence_matrix(grid, kernel))
     }

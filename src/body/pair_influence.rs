@@ -15,7 +15,6 @@
 //! the pair. A matrix is a function of its [`InfluenceKey`] and the grid alone, so a body gets
 //! the same bits whether it computes the matrix or takes it.
 
-use crate::body::half_space::Kernel;
 use crate::grid::{ContactGrid, ElementKind};
 use faer::Mat;
 use std::sync::Mutex;
@@ -40,8 +39,9 @@ pub enum Family {
 pub struct InfluenceKey {
     /// The kernel integral's family.
     pub family: Family,
-    /// The kernel.
-    pub kernel: Kernel,
+    /// The kernel within the family: the index of a half-plane kernel
+    /// (`crate::body::half_space::Kernel as u8`).
+    pub kernel: u8,
 }
 
 /// A matrix kept for the second body, with the grid it was computed on.
@@ -137,7 +137,7 @@ mod tests {
         let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 2, -1.0, 1.0);
         let key = InfluenceKey {
             family: Family::HalfPlane,
-            kernel: Kernel::Log,
+            kernel: 0,
         };
         let pair = PairInfluence::new();
         pair.join(Family::HalfPlane);
@@ -151,10 +151,7 @@ mod tests {
         // Another kernel, another grid or a family one body joined: computed, not taken.
         let other = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 3, -1.0, 1.0);
         let _ = pair.matrix(key, &other, || counting(&mut calls, 3.0));
-        let sign = InfluenceKey {
-            kernel: Kernel::Sign,
-            ..key
-        };
+        let sign = InfluenceKey { kernel: 1, ..key };
         let s = pair.matrix(sign, &grid, || counting(&mut calls, 4.0));
         assert_eq!(s[(0, 0)], 4.0);
         let aged = Family::Aged {

@@ -89,7 +89,7 @@ impl ViscoelasticHalfSpace {
     fn aged_matrix(&self, grid: &ContactGrid, kernel: Kernel, ageing: &Ageing) -> Mat<f64> {
         let key = InfluenceKey {
             family: aged_family(ageing),
-            kernel,
+            kernel: kernel as u8,
         };
         shared_or_computed(self.pair.as_deref(), key, grid, || {
             influence_matrix_of(grid, |s1, s2, x| ageing.element_integrals(grid.kind, kernel, s1, s2, x))
@@ -100,7 +100,7 @@ impl ViscoelasticHalfSpace {
     fn combined(&self, grid: &ContactGrid, kernel: Kernel, elastic_coef: f64, creep_coef: f64) -> Mat<f64> {
         let key = InfluenceKey {
             family: Family::HalfPlane,
-            kernel,
+            kernel: kernel as u8,
         };
         let mut k = shared_or_computed(self.pair.as_deref(), key, grid, || influence_matrix(grid, kernel));
         for j in 0..k.ncols() {
