@@ -251,3 +251,67 @@ fn scale_displacements(samples: Vec<InteriorSample>, factor: f64) -> Vec<Interio
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::half_space::HalfSpace;
+    use crate::grid::ElementKind;
+    use crate::material::Elastic;
+
+    fn same(a: &Flexibility, b: &Flexibility) -> bool {
+        a.hp == b.hp && a.hq == b.hq && a.wp == b.wp && a.wq == b.wq
+    }
+
+    /// Bodies built as a pair take the influence matrices the first computed and get the same
+    /// bits as bodies on their own; a matrix only one of them needs (a half-space next to a
+    /// viscoelastic body: the aged ones) is not kept.
+    #[test]
+    fn a_pair_shares_its_influence_matrices_and_gets_the_same_flexibilities() {
+        let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 12, -1.3, 1.3);
+        let material = StandardLinearSolid {
+            glassy: Elastic::new(3000.0, 0.4),
+            rubbery_young: 1500.0,
+            creep_time: 0.01,
+        };
+        let ageing = Some(Ageing {
+            length: 0.7,
+            direction: 1.0,
+        });
+        let alone = |radius: f64| ViscoelasticHalfSpace {
+            material,
+            radius,
+            ageing,
+            pair: None,
+        };
+        // Two viscoelastic bodies (different radii, one ageing): everything is shared.
+        let pair = Arc::new(PairInfluence::new());
+        let a = alone(50.0).in_pair(Some(&pair));
+        let b = alone(80.0).in_pair(Some(&pair));
+        let fa = a.flexibility(&grid, Side::A);
+        assert!(pair.kept() > 0, "the first body keeps what the second needs");
+        let fb = b.flexibility(&grid, Side::B);
+        assert_eq!(pair.kept(), 0, "the second body took every kept matrix");
+        assert!(same(&fa, &alone(50.0).flexibility(&grid, Side::A)));
+        assert!(same(&fb, &alone(80.0).flexibility(&grid, Side::B)));
+        let (sa, sb) = (a.strain_operator(&grid, Side::A), b.strain_operator(&grid, Side::B));
+        assert_eq!(pair.kept(), 0);
+        let own = alone(80.0).strain_operator(&grid, Side::B).unwrap();
+        let sb = sb.unwrap();
+        assert!(sa.is_some() && sb.p == own.p && sb.q == own.q);
+
+        // A half-space and a viscoelastic body share the elastic kernels only.
+        let pair = Arc::new(PairInfluence::new());
+        let h = HalfSpace::new(Elastic::new(210_000.0, 0.3), 100.0).in_pair(Some(&pair));
+        let v = alone(50.0).in_pair(Some(&pair));
+        let fh = h.flexibility(&grid, Side::A);
+        assert_eq!(pair.kept(), 2, "ln and sgn wait for the second body");
+        let fv = v.flexibility(&grid, Side::B);
+        assert_eq!(pair.kept(), 0, "the aged matrices were not kept for anyone");
+        assert!(same(
+            &fh,
+            &HalfSpace::new(Elastic::new(210_000.0, 0.3), 100.0).flexibility(&grid, Side::A)
+        ));
+        assert!(same(&fv, &alone(50.0).flexibility(&grid, Side::B)));
+    }
+}
