@@ -281,12 +281,7 @@ impl BemModel {
                 position,
             );
             for (a, &col) in ids.iter().enumerate() {
-                for ic in 0..2 {
-                    for jc in 0..2 {
-                        rows[ic * m + 2 * col + jc] += ints.h[a][ic][jc];
-                        rows[(2 + ic) * m + 2 * col + jc] += ints.g[a][ic][jc];
-                    }
-                }
+                ints.add_node_to_rows(a, &mut rows, m, col);
             }
         }
         rigid_body_diagonal(&mut rows, i, d.n_nodes());

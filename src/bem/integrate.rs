@@ -47,6 +47,21 @@ pub struct ElementIntegrals {
     pub g: [[[f64; 2]; 2]; 3],
 }
 
+impl ElementIntegrals {
+    /// Adds local node `a`'s 2 × 2 blocks to the collocation rows of one source point:
+    /// `rows` holds the two rows of H then the two of G, each `stride` long, and the node's
+    /// components are the columns 2·`column` and 2·`column` + 1.
+    #[inline]
+    pub fn add_node_to_rows(&self, a: usize, rows: &mut [f64], stride: usize, column: usize) {
+        for ic in 0..2 {
+            for jc in 0..2 {
+                rows[ic * stride + 2 * column + jc] += self.h[a][ic][jc];
+                rows[(2 + ic) * stride + 2 * column + jc] += self.g[a][ic][jc];
+            }
+        }
+    }
+}
+
 /// Where the source point lies relative to the element.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SourcePosition {

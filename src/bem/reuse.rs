@@ -197,12 +197,7 @@ impl FarField {
                         // A node shared with a changed element is a changed column: integrated
                         // per pass.
                         let Some(q) = index[col] else { continue };
-                        for ic in 0..2 {
-                            for jc in 0..2 {
-                                rows[ic * nf + 2 * q + jc] += ints.h[a][ic][jc];
-                                rows[(2 + ic) * nf + 2 * q + jc] += ints.g[a][ic][jc];
-                            }
-                        }
+                        ints.add_node_to_rows(a, &mut rows, nf, q);
                     }
                 }
                 rows
@@ -337,14 +332,8 @@ pub fn assemble_reusing(model: &BemModel, far: &FarField) -> Assembly {
                     source_position(d, e, i),
                 );
                 for (a, &col) in d.element_nodes[e].iter().enumerate() {
-                    if map[col].is_some() {
-                        continue;
-                    }
-                    for ic in 0..2 {
-                        for jc in 0..2 {
-                            rows[ic * m + 2 * col + jc] += ints.h[a][ic][jc];
-                            rows[(2 + ic) * m + 2 * col + jc] += ints.g[a][ic][jc];
-                        }
+                    if map[col].is_none() {
+                        ints.add_node_to_rows(a, &mut rows, m, col);
                     }
                 }
             }
