@@ -27,7 +27,7 @@
 pub mod setup;
 
 use super::flamant::halfplane_interior;
-use super::pair_influence::{shared_or_computed, Family, InfluenceKey, PairInfluence};
+use super::pair_influence::{joined, shared_or_computed, Family, InfluenceKey, PairInfluence};
 use super::{circle_profile, BodyFields, BodyModel, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator};
 use crate::grid::{ContactGrid, ElementKind};
 use crate::material::Elastic;
@@ -165,6 +165,16 @@ pub fn influence_matrix(grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
             element_integrals_exact(grid.kind, kernel, s1, s2, x)
         }
     })
+}
+
+/// [`influence_matrix`] from a pair's store when the body has one ([`PairInfluence`]: the
+/// other body of the pair computed it on this grid), else computed.
+pub fn shared_influence_matrix(pair: Option<&PairInfluence>, grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
+    let key = InfluenceKey {
+        family: Family::HalfPlane,
+        kernel: kernel as u8,
+    };
+    shared_or_computed(pair, key, grid, || influence_matrix(grid, kernel))
 }
 
 /// [`influence_matrix_of`] on a uniform grid of elements that do not share nodes: an entry
@@ -390,20 +400,8 @@ impl HalfSpace {
     /// The body as one of a pair that shares the half-plane's influence matrices through
     /// `pair` (joined here), or on its own when `pair` is None.
     pub fn in_pair(mut self, pair: Option<&Arc<PairInfluence>>) -> Self {
-        if let Some(p) = pair {
-            p.join(Family::HalfPlane);
-        }
-        self.pair = pair.cloned();
+        self.pair = joined(pair, &[Family::HalfPlane]);
         self
-    }
-
-    /// The influence matrix of `kernel` on `grid`, from the pair's store when the body has one.
-    fn half_plane_matrix(&self, grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
-        let key = InfluenceKey {
-            family: Family::HalfPlane,
-            kernel: kernel as u8,
-        };
-        shared_or_computed(self.pair.as_deref(), key, grid, || influence_matrix(grid, kernel))
     }
 
     /// Datum length ℓ = 2|R|/e [length] of the logarithmic displacement (see the module docs;
@@ -425,13 +423,13 @@ impl BodyModel for HalfSpace {
         let ln_datum = self.datum_length().ln();
         // ∫ N_j ln(|x−s|/ℓ) ds = ∫ N_j ln|x−s| ds − w_j ln ℓ; the blocks are made in place, since
         // a graded grid's m² matrices are large and each new one costs its page faults.
-        let mut hp = self.half_plane_matrix(grid, Kernel::Log);
+        let mut hp = shared_influence_matrix(self.pair.as_deref(), grid, Kernel::Log);
         for (j, &w) in grid.weights.iter().enumerate() {
             for v in hp.col_mut(j).iter_mut() {
                 *v = -b_coef * (*v - w * ln_datum);
             }
         }
-        let mut hq = self.half_plane_matrix(grid, Kernel::Sign);
+        let mut hq = shared_influence_matrix(self.pair.as_deref(), grid, Kernel::Sign);
         for j in 0..hq.ncols() {
             for h in hq.col_mut(j).iter_mut() {
                 *h *= sign * a_coef;
@@ -449,7 +447,7 @@ impl BodyModel for HalfSpace {
         let a_coef = self.material.halfplane_sgn_coefficient();
         let b_coef = self.material.halfplane_log_coefficient();
         let m = grid.n_nodes();
-        let mut q = self.half_plane_matrix(grid, Kernel::Cauchy);
+        let mut q = shared_influence_matrix(self.pair.as_deref(), grid, Kernel::Cauchy);
         for j in 0..m {
             for v in q.col_mut(j).iter_mut() {
                 *v *= -b_coef;

@@ -17,7 +17,7 @@
 
 use crate::grid::{ContactGrid, ElementKind};
 use faer::Mat;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 /// A family of influence matrices: a kernel integral and the parameters it depends on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -107,6 +107,16 @@ impl PairInfluence {
     pub fn kept(&self) -> usize {
         self.kept.lock().expect("pair store").len()
     }
+}
+
+/// The store a body built with `pair` keeps, having joined it for `families` (None: the body
+/// is on its own).
+pub fn joined(pair: Option<&Arc<PairInfluence>>, families: &[Family]) -> Option<Arc<PairInfluence>> {
+    let pair = pair?;
+    for &f in families {
+        pair.join(f);
+    }
+    Some(pair.clone())
 }
 
 /// A matrix of a pair's store when the body has one, else `compute()`'s.

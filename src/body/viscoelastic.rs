@@ -24,8 +24,8 @@ pub mod exponential_integrals;
 pub mod setup;
 
 use super::flamant::halfplane_interior;
-use super::half_space::{influence_matrix, influence_matrix_of, Kernel};
-use super::pair_influence::{shared_or_computed, Family, InfluenceKey, PairInfluence};
+use super::half_space::{influence_matrix_of, shared_influence_matrix, Kernel};
+use super::pair_influence::{joined, shared_or_computed, Family, InfluenceKey, PairInfluence};
 use super::{circle_profile, BodyFields, BodyModel, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator};
 use crate::grid::ContactGrid;
 use crate::interior::{InteriorSample, InteriorValue};
@@ -75,13 +75,9 @@ impl ViscoelasticHalfSpace {
     /// for the elastic kernels and, when it ages, for its aged ones), or on its own when `pair`
     /// is None.
     pub fn in_pair(mut self, pair: Option<&Arc<PairInfluence>>) -> Self {
-        if let Some(p) = pair {
-            p.join(Family::HalfPlane);
-            if let Some(ageing) = self.ageing {
-                p.join(aged_family(&ageing));
-            }
-        }
-        self.pair = pair.cloned();
+        let aged = self.ageing.as_ref().map(aged_family);
+        let families: Vec<Family> = std::iter::once(Family::HalfPlane).chain(aged).collect();
+        self.pair = joined(pair, &families);
         self
     }
 
@@ -98,11 +94,7 @@ impl ViscoelasticHalfSpace {
 
     /// elastic·c_elastic + aged·c_aged, entry by entry (the aged matrix only where there is creep).
     fn combined(&self, grid: &ContactGrid, kernel: Kernel, elastic_coef: f64, creep_coef: f64) -> Mat<f64> {
-        let key = InfluenceKey {
-            family: Family::HalfPlane,
-            kernel: kernel as u8,
-        };
-        let mut k = shared_or_computed(self.pair.as_deref(), key, grid, || influence_matrix(grid, kernel));
+        let mut k = shared_influence_matrix(self.pair.as_deref(), grid, kernel);
         for j in 0..k.ncols() {
             for v in k.col_mut(j).iter_mut() {
                 *v *= elastic_coef;
