@@ -52,7 +52,7 @@ use crate::contact::residual::State;
 use crate::contact::{methods, ContactProblem, NormalControl, SolveReport, TangentialControl, Workspace};
 use crate::error::Error;
 use crate::grid::ContactGrid;
-use crate::post::adaptation::{AdaptationStep, ErrorEstimate, GridAdaptation};
+use crate::post::adaptation::{AdaptationStep, GridAdaptation};
 use crate::post::{ContactSolution, NodeState, Timings};
 use crate::scene::{BodyModels, Scene};
 use cells::{Action, DyadicGrid};
@@ -98,6 +98,8 @@ pub struct Adapted {
 
 /// One grid assembled and solved.
 struct Solve {
+    /// Whether its bodies are the BEM bodies' stand-ins.
+    from_stand_ins: bool,
     scene: Scene,
     models: BodyModels,
     problem: ContactProblem,
@@ -130,6 +132,7 @@ fn solve_on(
     let (state, report) = methods::solve_from_in(&problem, &scene.solver, warm, ws);
     timings.solve_s += t.elapsed().as_secs_f64();
     Ok(Solve {
+        from_stand_ins: false,
         scene,
         models,
         problem,
@@ -250,8 +253,14 @@ fn refine(
     // its smooth remainder) are replaced by it; the final grid is solved with the bodies
     // themselves.
     let t = Instant::now();
-    let level = stand_in_level(&coarse, tolerance);
-    let mut passes = scene.with_pass_stand_ins([&level.grid(), &level.bisected().grid()])?;
+    let levels = stand_in_levels(&coarse, tolerance);
+    let level_refs: Vec<&ContactGrid> = levels.iter().collect();
+    let stand_ins = scene.with_pass_stand_ins(&level_refs)?;
+    let check_factor = stand_in_check_factor(levels.len());
+    let (mut passes, mut check) = match stand_ins {
+        Some(s) => (Some(s.passes), s.check),
+        None => (None, None),
+    };
     timings.assembly_s += t.elapsed().as_secs_f64();
     let mut warm: Option<(ContactGrid, State)> = None;
     let mut hertz: Option<HertzScales> = None;
@@ -319,6 +328,48 @@ fn refine(
             if passes.is_none() {
                 return Ok(Refined::Met(h, scales));
             }
+            // The stand-ins give the results when their own error, estimated by the check's
+            // solution, leaves the total within the tolerance (src/body/bem/stand_in.rs).
+            if let Some(check_scene) = check.as_ref().filter(|_| !asks_interior_fields(scene)) {
+                let c = solve_on(
+                    check_scene.on_grid(h.problem.grid.clone()),
+                    Some((&h.problem.grid, &h.state)),
+                    timings,
+                    ws,
+                )?;
+                if c.report.converged {
+                    let d = body_mesh::difference(&h.problem.grid, &c.state, &h.state, scales, e.overlap_rel.is_some());
+                    let total = e.plus(&d, check_factor);
+                    log::info!(
+                        target: crate::logging::PROGRESS,
+                        "error control: the stand-ins' own estimated error on the final grid: pressure {:.2e} p0, \
+                         shear {:.2e} mu p0, creepage {:.2e}",
+                        check_factor * d.pressure,
+                        check_factor * d.shear,
+                        check_factor * d.creepage_rel
+                    );
+                    if total.within(tolerance) {
+                        if let Some(last) = steps.last_mut() {
+                            last.estimate = total;
+                            last.iterations += c.report.iterations;
+                        }
+                        // The scene of the bodies themselves on the final grid (their notices,
+                        // validity and summary); the models stay the stand-ins.
+                        let bodies = scene.on_grid(h.problem.grid.clone());
+                        return Ok(Refined::Met(
+                            Solve {
+                                from_stand_ins: true,
+                                scene: bodies,
+                                ..h
+                            },
+                            scales,
+                        ));
+                    }
+                }
+                // The stand-ins are not known well enough for this tolerance: the final grid
+                // is solved with the bodies themselves.
+                check = None;
+            }
             let full = solve_on(
                 scene.on_grid(h.problem.grid.clone()),
                 Some((&h.problem.grid, &h.state)),
@@ -337,13 +388,7 @@ fn refine(
                 scales,
                 e.overlap_rel.is_some(),
             );
-            let total = ErrorEstimate {
-                pressure_rms: e.pressure_rms + d.pressure,
-                shear_rms: e.shear_rms + d.shear,
-                creep_rel: e.creep_rel + d.creepage_rel,
-                overlap_rel: e.overlap_rel.zip(d.overlap_rel).map(|(a, b)| a + b),
-                body_mesh: None,
-            };
+            let total = e.plus(&d, 1.0);
             log::info!(
                 target: crate::logging::PROGRESS,
                 "error control: the bodies themselves on the final grid differ from their pass stand-ins by \
@@ -392,21 +437,59 @@ fn body_mesh_check_grid(start: &DyadicGrid, tolerance: f64) -> ContactGrid {
     stand_in_level(start, tolerance).bisected().grid()
 }
 
-/// The coarser of the two grids the pass stand-ins are built from (their remainder's error falls
-/// as the grid's spacing, and Richardson's extrapolation from a grid and its bisection removes
-/// most of it): the start grid for tolerances down to 3e-4, bisected once down to 3e-5, twice
-/// below (measured on fig14_true_geometry, whose remainder converges slowest of the shipped
-/// cases: from the start grid its solution differs from the full BEM's by up to 1.1e-4, from the
-/// first bisection by 1e-5).
+/// The coarser of the two grids the pass stand-ins' result is extrapolated from (their
+/// remainder's error falls as the grid's spacing, and Richardson's extrapolation from a grid
+/// and its bisection removes most of it): the start grid for tolerances down to 3e-4, bisected
+/// once down to 3e-5, twice below (measured on fig14_true_geometry, whose remainder converges
+/// slowest of the shipped cases: from the start grid its solution differs from the full BEM's
+/// by up to 1.1e-4, from the first bisection by 1e-5).
 fn stand_in_level(start: &DyadicGrid, tolerance: f64) -> DyadicGrid {
-    let bisections = if tolerance >= 3e-4 {
+    bisected_times(start, stand_in_bisections(tolerance))
+}
+
+/// How often [`stand_in_level`] bisects the start grid.
+fn stand_in_bisections(tolerance: f64) -> usize {
+    if tolerance >= 3e-4 {
         0
     } else if tolerance >= 3e-5 {
         1
     } else {
         2
-    };
-    (0..bisections).fold(start.clone(), |g, _| g.bisected())
+    }
+}
+
+/// `start` bisected `times` times.
+fn bisected_times(start: &DyadicGrid, times: usize) -> DyadicGrid {
+    (0..times).fold(start.clone(), |g, _| g.bisected())
+}
+
+/// The grids the stand-ins are fitted on, coarsest first: [`stand_in_level`] and its bisection,
+/// preceded by the level before when there is one (the start grid cannot be coarsened), which
+/// the check of the stand-ins' own error extrapolates from (src/body/bem/stand_in.rs).
+fn stand_in_levels(start: &DyadicGrid, tolerance: f64) -> Vec<ContactGrid> {
+    let k = stand_in_bisections(tolerance);
+    (k.saturating_sub(1)..=k + 1)
+        .map(|times| bisected_times(start, times).grid())
+        .collect()
+}
+
+/// The factor of the difference between the stand-ins' solution and their check's on the
+/// final grid that estimates the stand-ins' error (src/body/bem/stand_in.rs): fitted on three
+/// levels, the check is the Richardson remainder of the two coarser, whose error is 3–4.5 times
+/// the result's (measured), so the result's is at most half the difference; fitted on two, the
+/// check is the finer level's remainder alone, with the first-order error the extrapolation
+/// removes, and the whole difference bounds the result's.
+fn stand_in_check_factor(levels: usize) -> f64 {
+    if levels == 3 {
+        0.5
+    } else {
+        1.0
+    }
+}
+
+/// Whether the case asks for interior fields, which only the bodies themselves give.
+fn asks_interior_fields(scene: &Scene) -> bool {
+    scene.case.case.output.interior.is_some()
 }
 
 /// The Hertz contact that sets the units of the error estimate (p0) and the a-priori element
@@ -466,6 +549,7 @@ fn finished(mut s: Solve, mut timings: Timings, passes: Option<(f64, Vec<Adaptat
             steps,
             reached: true,
             coarse_body_mesh: None,
+            results_from_stand_ins: s.from_stand_ins,
         }),
         scene: s.scene,
         models: s.models,

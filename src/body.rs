@@ -42,7 +42,7 @@ use crate::interior::{InteriorOptions, InteriorSample};
 use crate::linalg::mat_vec2;
 use faer::Mat;
 use serde::Serialize;
-pub use setup::{BodySetup, BuildContext, BuildError, ContactMesh, Rolling, SurfaceAt};
+pub use setup::{BodySetup, BuildContext, BuildError, ContactMesh, PassStandIn, Rolling, SurfaceAt};
 
 /// Which body of the pair: A is the upper body (y > 0), B the lower one.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

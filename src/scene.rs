@@ -32,6 +32,17 @@ use std::sync::Arc;
 /// The built body models of A and B.
 pub type BodyModels = [Box<dyn Body>; 2];
 
+/// The scenes of an error-controlled grid's passes ([`Scene::with_pass_stand_ins`]).
+#[derive(Debug, Clone)]
+pub struct PassScenes {
+    /// The bodies' stand-ins, which the passes solve with.
+    pub passes: Scene,
+    /// The stand-ins with the part they know least well known less well, to estimate the
+    /// passes' stand-ins' error on the final grid; None when a stand-in cannot give the final
+    /// grid's results.
+    pub check: Option<Scene>,
+}
+
 /// A case resolved for solving.
 #[derive(Debug, Clone)]
 pub struct Scene {
@@ -196,24 +207,31 @@ impl Scene {
         Scene::new(self.case.clone(), bodies)
     }
 
-    /// The scene for the passes of an error-controlled grid: each body that offers a cheaper
-    /// stand-in ([`BodySetup::pass_stand_in`], from the body on `levels[0]`, the start grid, and
-    /// `levels[1]`, its bisection) replaced by it, on the start grid; None when no body offers
-    /// one. The stand-ins have no mesh of their own: the pass grids are the scene's to choose
-    /// ([`Self::on_grid`]).
-    pub fn with_pass_stand_ins(&self, levels: [&ContactGrid; 2]) -> Result<Option<Scene>, Error> {
+    /// The scenes for the passes of an error-controlled grid: each body that offers a cheaper
+    /// stand-in ([`BodySetup::pass_stand_in`], fitted on `levels`, two or three grids, coarsest
+    /// first) replaced by it, on the start grid; None when no body offers one. The stand-ins
+    /// have no mesh of their own: the pass grids are the scene's to choose ([`Self::on_grid`]).
+    pub fn with_pass_stand_ins(&self, levels: &[&ContactGrid]) -> Result<Option<PassScenes>, Error> {
         let mut bodies = self.bodies.clone();
+        let mut checks = Some(self.bodies.clone());
         let mut any = false;
         for (k, side) in [Side::A, Side::B].into_iter().enumerate() {
             if let Some(stand_in) = self.bodies[k].pass_stand_in(levels, side, self.rolling())? {
-                bodies[k] = stand_in;
+                bodies[k] = stand_in.body;
+                match (stand_in.check, checks.as_mut()) {
+                    (Some(check), Some(c)) => c[k] = check,
+                    _ => checks = None,
+                }
                 any = true;
             }
         }
         if !any || bodies.iter().any(|b| b.contact_mesh().is_some()) {
             return Ok(None);
         }
-        Ok(Some(Scene { bodies, ..self.clone() }))
+        Ok(Some(PassScenes {
+            passes: Scene { bodies, ..self.clone() },
+            check: checks.map(|bodies| Scene { bodies, ..self.clone() }),
+        }))
     }
 
     /// How the contact moves over the bodies.

@@ -103,6 +103,18 @@ pub enum BuildError {
     Transfer(#[from] super::transfer::TransferError),
 }
 
+/// A body's stand-in for the passes of an error-controlled grid ([`BodySetup::pass_stand_in`]).
+#[derive(Debug, Clone)]
+pub struct PassStandIn {
+    /// The stand-in the passes solve with.
+    pub body: Arc<dyn BodySetup>,
+    /// The same stand-in with a part known less well, whose solution on the final grid,
+    /// compared with `body`'s, estimates `body`'s error there; None when `body` cannot give
+    /// the final grid's results (its strain or its fields), and the final grid is solved with
+    /// the body itself.
+    pub check: Option<Arc<dyn BodySetup>>,
+}
+
 /// One body of a scene, ready to build its model on a contact grid (module docs).
 pub trait BodySetup: std::fmt::Debug + Send + Sync {
     /// The model's name in outputs (`half_space`, `rigid`, `bem`, …).
@@ -212,16 +224,16 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
     }
 
     /// A cheaper model of the same body for the passes of an error-controlled grid, built from
-    /// the body on `levels[0]` (the start grid) and `levels[1]` (its bisection); the run's final
-    /// grid is solved with the body itself. None (the default) when the body is cheap already:
-    /// every pass then builds the body itself. A BEM body offers the half-plane plus its
-    /// smooth remainder ([`crate::body::bem::stand_in`]).
+    /// the body on each of `levels` (two or three grids, coarsest first, each the bisection of
+    /// the one before). None (the default) when the body is cheap already: every pass then
+    /// builds the body itself. A BEM body offers the half-plane plus its smooth remainder
+    /// ([`crate::body::bem::stand_in`]).
     fn pass_stand_in(
         &self,
-        _levels: [&ContactGrid; 2],
+        _levels: &[&ContactGrid],
         _side: Side,
         _rolling: Rolling,
-    ) -> Result<Option<Arc<dyn BodySetup>>, BuildError> {
+    ) -> Result<Option<PassStandIn>, BuildError> {
         Ok(None)
     }
 }

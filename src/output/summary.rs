@@ -43,6 +43,10 @@ pub struct GridSummary {
     pub refinements: usize,
     /// `contact.grid.tolerance` of an error-controlled grid (null for a fixed grid).
     pub tolerance: Option<f64>,
+    /// Whether the results on the final grid are the BEM bodies' stand-ins' (the half-plane
+    /// plus the smooth remainder fitted on coarser grids, their own error included in
+    /// `error_estimate`) rather than the full BEM bodies cut along the grid.
+    pub results_from_stand_ins: bool,
     /// Slip derivative scheme.
     pub slip_derivative: crate::contact::SlipDerivative,
 }
@@ -230,6 +234,7 @@ pub fn summary(s: &Solved) -> Summary {
             max_spacing: pb.grid.nodes.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max),
             refinements: s.adaptation.as_ref().map_or(0, |a| a.refinements),
             tolerance: s.adaptation.as_ref().map(|a| a.tolerance),
+            results_from_stand_ins: s.adaptation.as_ref().is_some_and(|a| a.results_from_stand_ins),
             slip_derivative: pb.slip_operator.scheme,
         },
         solver: SolverSummary {

@@ -145,11 +145,16 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
         line(
             "estimated error",
             format!(
-                "pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}{} (relative); tolerance {tol:.0e}",
+                "pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}{} (relative); tolerance {tol:.0e}{}",
                 e.pressure_rms,
                 e.shear_rms,
                 e.creep_rel,
-                e.overlap_rel.map_or(String::new(), |o| format!(", overlap {o:.2e}"))
+                e.overlap_rel.map_or(String::new(), |o| format!(", overlap {o:.2e}")),
+                if s.grid.results_from_stand_ins {
+                    "; results from the BEM bodies' stand-ins"
+                } else {
+                    ""
+                }
             ),
         );
         if let Some(b) = e.body_mesh {

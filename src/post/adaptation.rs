@@ -56,6 +56,19 @@ impl BodyMeshError {
 }
 
 impl ErrorEstimate {
+    /// The estimate plus `factor` times a difference between two solutions on the same grid
+    /// (a part of the error the grid's comparison does not see: the stand-ins' own); the
+    /// overlap's only where both control it.
+    pub fn plus(&self, d: &BodyMeshError, factor: f64) -> Self {
+        Self {
+            pressure_rms: self.pressure_rms + factor * d.pressure,
+            shear_rms: self.shear_rms + factor * d.shear,
+            creep_rel: self.creep_rel + factor * d.creepage_rel,
+            overlap_rel: self.overlap_rel.zip(d.overlap_rel).map(|(a, b)| a + factor * b),
+            body_mesh: None,
+        }
+    }
+
     /// The largest of the contact grid's estimates (pressure, shear, creepage, and the
     /// overlap where it is controlled); the body mesh's is tested on its own, after the grid.
     pub fn largest(&self) -> f64 {
@@ -105,4 +118,8 @@ pub struct GridAdaptation {
     /// run; None otherwise.
     #[serde(skip)]
     pub coarse_body_mesh: Option<String>,
+    /// Whether the results on the final grid are the BEM bodies' stand-ins' (the half-plane
+    /// plus the smooth remainder fitted on coarser grids, their own error estimated and
+    /// included in `estimate`) rather than the full BEM bodies cut along that grid.
+    pub results_from_stand_ins: bool,
 }

@@ -6,7 +6,7 @@ use super::kept::{Kept, KeptBody};
 use super::BemBody;
 use crate::bem::reuse::FarFieldCache;
 use crate::bem::{BemModel, BemOptions, BoundaryCondition};
-use crate::body::setup::{BodySetup, BuildContext, BuildError, ContactMesh, Rolling, SurfaceAt};
+use crate::body::setup::{BodySetup, BuildContext, BuildError, ContactMesh, PassStandIn, Rolling, SurfaceAt};
 use crate::body::transfer::Transferred;
 use crate::body::{Body, Side, WithCircularProfile};
 use crate::grid::ContactGrid;
@@ -292,10 +292,10 @@ impl BodySetup for BemSetup {
     /// ([`crate::mesh::cuts::cut_along_grid`]; on the exact circle of a generated body).
     fn pass_stand_in(
         &self,
-        levels: [&ContactGrid; 2],
+        levels: &[&ContactGrid],
         side: Side,
         rolling: Rolling,
-    ) -> Result<Option<Arc<dyn BodySetup>>, BuildError> {
+    ) -> Result<Option<PassStandIn>, BuildError> {
         // A cover thinner than half the grid's span has a remainder that varies on the scale of
         // its thickness, which the series cannot follow (the shipped tyre layers differ from
         // their stand-ins by more than p0; a bore's 15 mm rim under a 19 mm grid by 2e-5); a
@@ -313,9 +313,14 @@ impl BodySetup for BemSetup {
         if !super::stand_in::stand_in_enabled() || thin || !own_grid {
             return Ok(None);
         }
-        Ok(Some(Arc::new(super::stand_in::BemStandIn::of(
-            self, levels, side, rolling,
-        )?)))
+        let stand_in = super::stand_in::BemStandIn::of(self, levels, side, rolling)?;
+        let check = stand_in
+            .gives_results()
+            .then(|| Arc::new(stand_in.checking()) as Arc<dyn BodySetup>);
+        Ok(Some(PassStandIn {
+            body: Arc::new(stand_in),
+            check,
+        }))
     }
 
     fn follow_grid(&self, grid: &ContactGrid) -> Option<Arc<dyn BodySetup>> {

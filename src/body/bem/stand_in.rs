@@ -26,18 +26,35 @@
 //! both fitted grids (a roller on its shaft, a bore's conformal contact) and drops a wrong
 //! stand-in through the final check.
 //!
-//! The stand-in serves only the passes: the run's final grid is solved again with the full BEM
-//! body (its mesh cut along the grid, as without the stand-in), which gives the results and
-//! every field, and the difference between the two solutions on that grid is added to the
-//! estimate (src/adapt.rs).
+//! **The final grid.** The stand-in can also give the run's results on the final grid, where
+//! the full BEM would be assembled on the finest grid of the run: its surface strain is the
+//! derivative along x of its own tangential displacement, the half-plane's strain (exact on any
+//! grid) plus ∂R/∂x of the remainder's w blocks, as the BEM's HBEM strain is the derivative of
+//! the BEM's displacement. (A remainder fitted to the BEM's strain instead missed the part of
+//! the strain local to each node, ∝ p(x), that a series in R(x, s)·w_j cannot carry from the
+//! fitted grids' weights to the final grid's: 8 % of the creepage in the HBEM slip of
+//! fig14_true_geometry's stick zone, against 2e-4 now.) Its boundary field is the full
+//! BEM body's on the finest fitted grid (condensed for the fit already) under the final
+//! tractions projected onto that grid element by element
+//! ([`crate::grid::ContactGrid::projected_onto`], which keeps each element's force). Whether
+//! its results are accurate enough is measured by a second stand-in whose remainder is known
+//! less well ([`BemStandIn::checking`]): fitted on three grids, the result extrapolates the two
+//! finest and the check the two coarsest, and the Richardson remainders' errors fall by 3–4.5
+//! per bisection (measured on fig14_true_geometry: 1.1e-4, 2.4e-5 and 5.8e-6 of the creepage
+//! at the three pairs of levels), so half the difference of their solutions bounds the result's
+//! error; fitted on two grids, the check is the finer fit alone, whose error is the first-order
+//! one that the extrapolation removes (3.5–6.5 times the result's). src/adapt.rs adds that
+//! estimate to the grid's and solves the final grid with the full BEM only when the sum
+//! exceeds the tolerance, or when the run asks for interior fields (the stand-in has none).
 
 use super::setup::BemSetup;
+use super::BemBody;
 use crate::body::half_space::HalfSpace;
 use crate::body::setup::{BodySetup, BuildContext, BuildError, Rolling, SurfaceAt};
 use crate::body::transfer::Transferred;
 use crate::body::{
-    circle_profile, Body, BodyFields, BodyModel, FieldError, Flexibility, InteriorQuery, InteriorResult, Side,
-    StrainOperator,
+    circle_profile, Body, BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery,
+    InteriorResult, Side, StrainOperator,
 };
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
@@ -75,20 +92,42 @@ fn chebyshev_rows(x: &[f64], lo: f64, hi: f64, degree: usize) -> DMatrix<f64> {
     })
 }
 
-/// The smooth remainder R(x, s) of a body's four flexibility blocks as Chebyshev series.
+/// d/dx of the Chebyshev polynomials T_0..T_d at `x`, mapped from [lo, hi] to [−1, 1]:
+/// T_k'(t) = k U_{k−1}(t) (U the second kind, by its recurrence), times dt/dx = 2/(hi − lo).
+fn chebyshev_derivative_rows(x: &[f64], lo: f64, hi: f64, degree: usize) -> DMatrix<f64> {
+    let dt_dx = 2.0 / (hi - lo);
+    DMatrix::from_fn(x.len(), degree + 1, |i, k| {
+        let t = ((2.0 * x[i] - lo - hi) / (hi - lo)).clamp(-1.0, 1.0);
+        let (mut u_prev, mut u) = (0.0, 1.0); // U_{-1}, U_0
+        for _ in 1..k {
+            let next = 2.0 * t * u - u_prev;
+            u_prev = u;
+            u = next;
+        }
+        if k == 0 {
+            0.0
+        } else {
+            k as f64 * u * dt_dx
+        }
+    })
+}
+
+/// The smooth remainder R(x, s) of a body's operator blocks (the four flexibility blocks, or
+/// the two of the surface strain) as Chebyshev series.
 #[derive(Debug, Clone)]
 pub struct SmoothRemainder {
     /// The interval the series map to [−1, 1] (the start grid's span) [length].
     span: [f64; 2],
     /// Degree in each variable.
     degree: usize,
-    /// Coefficients of hp, hq, wp, wq [length/force per length²].
-    coefficients: [DMatrix<f64>; 4],
+    /// Coefficients of each block [the block's unit per length].
+    coefficients: Vec<DMatrix<f64>>,
 }
 
 impl SmoothRemainder {
-    /// The least-squares series of (F_bem − F_half)_ij / w_j over the nodes of `grid`.
-    fn fitted(bem: &Flexibility, half: &Flexibility, grid: &ContactGrid, span: [f64; 2], degree: usize) -> Self {
+    /// The least-squares series of (B − H)_ij / w_j over the nodes of `grid`, for each pair
+    /// (B, H) of a body's block and the half-plane's.
+    fn fitted(blocks: &[(&Mat<f64>, &Mat<f64>)], grid: &ContactGrid, span: [f64; 2], degree: usize) -> Self {
         let t = chebyshev_rows(&grid.nodes, span[0], span[1], degree);
         // (TᵀT)⁻¹Tᵀ: the normal equations of a (degree + 1)-column basis, well conditioned on
         // the nodes of a grid that covers its interval.
@@ -104,39 +143,56 @@ impl SmoothRemainder {
         Self {
             span,
             degree,
-            coefficients: [
-                fit(&bem.hp, &half.hp),
-                fit(&bem.hq, &half.hq),
-                fit(&bem.wp, &half.wp),
-                fit(&bem.wq, &half.wq),
-            ],
+            coefficients: blocks.iter().map(|(b, h)| fit(b, h)).collect(),
         }
     }
 
     /// Richardson's extrapolation of a first-order error: 2·fine − coarse.
     fn extrapolated(coarse: &Self, fine: &Self) -> Self {
-        let c = |k: usize| 2.0 * &fine.coefficients[k] - &coarse.coefficients[k];
         Self {
             span: fine.span,
             degree: fine.degree,
-            coefficients: [c(0), c(1), c(2), c(3)],
+            coefficients: coarse
+                .coefficients
+                .iter()
+                .zip(&fine.coefficients)
+                .map(|(c, f)| 2.0 * f - c)
+                .collect(),
         }
     }
 
     /// The remainder's blocks on `grid`: R(x_i, s_j)·w_j.
-    pub fn on(&self, grid: &ContactGrid) -> Flexibility {
+    pub fn blocks_on(&self, grid: &ContactGrid) -> Vec<Mat<f64>> {
         let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
         let m = grid.n_nodes();
-        let block = |c: &DMatrix<f64>| {
-            let r = &t * c * t.transpose();
+        self.coefficients
+            .iter()
+            .map(|c| {
+                let r = &t * c * t.transpose();
+                Mat::from_fn(m, m, |i, j| r[(i, j)] * grid.weights[j])
+            })
+            .collect()
+    }
+
+    /// ∂R/∂x of the w blocks (wp, wq) on `grid`: ∂R(x_i, s_j)/∂x·w_j, the surface strain of the
+    /// remainder's tangential displacement.
+    fn w_derivatives_on(&self, grid: &ContactGrid) -> [Mat<f64>; 2] {
+        let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
+        let dt = chebyshev_derivative_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
+        let m = grid.n_nodes();
+        [2, 3].map(|k| {
+            let r = &dt * &self.coefficients[k] * t.transpose();
             Mat::from_fn(m, m, |i, j| r[(i, j)] * grid.weights[j])
-        };
-        Flexibility {
-            hp: block(&self.coefficients[0]),
-            hq: block(&self.coefficients[1]),
-            wp: block(&self.coefficients[2]),
-            wq: block(&self.coefficients[3]),
-        }
+        })
+    }
+
+    /// The remainder of a flexibility on `grid` (blocks hp, hq, wp, wq).
+    pub fn on(&self, grid: &ContactGrid) -> Flexibility {
+        let [hp, hq, wp, wq]: [Mat<f64>; 4] = self
+            .blocks_on(grid)
+            .try_into()
+            .expect("a flexibility remainder has four blocks");
+        Flexibility { hp, hq, wp, wq }
     }
 }
 
@@ -154,71 +210,172 @@ fn arc_half_plane(
 
 /// A flexibility's columns divided by cos θ_j (a load per unit arc).
 fn arc_scaled(mut f: Flexibility, grid: &ContactGrid, slope: &dyn Fn(f64) -> f64) -> Flexibility {
-    for (j, &x) in grid.nodes.iter().enumerate() {
-        let scale = 1.0 / slope(x).cos();
-        for block in [&mut f.hp, &mut f.hq, &mut f.wp, &mut f.wq] {
+    scale_columns([&mut f.hp, &mut f.hq, &mut f.wp, &mut f.wq], grid, slope);
+    f
+}
+
+/// The columns of `blocks` divided by cos θ_j at the grid's node j.
+fn scale_columns<const N: usize>(blocks: [&mut Mat<f64>; N], grid: &ContactGrid, slope: &dyn Fn(f64) -> f64) {
+    let scales: Vec<f64> = grid.nodes.iter().map(|&x| 1.0 / slope(x).cos()).collect();
+    for block in blocks {
+        for (j, &scale) in scales.iter().enumerate() {
             for v in block.col_mut(j).iter_mut() {
                 *v *= scale;
             }
         }
     }
-    f
 }
 
-/// A BEM body's stand-in: its setup, its half-plane and its smooth remainder.
+/// The half-plane's surface strain on `grid`, its columns scaled to a load per unit arc like
+/// [`arc_half_plane`]'s; None when the half-plane has none there.
+fn arc_half_plane_strain(
+    half: &HalfSpace,
+    grid: &ContactGrid,
+    side: Side,
+    slope: &dyn Fn(f64) -> f64,
+) -> Result<Option<StrainOperator>, BuildError> {
+    let body = Transferred::flat_model_on(Box::new(half.clone()), grid, side)?;
+    Ok(body.model().strain_operator(grid, side).map(|mut s| {
+        scale_columns([&mut s.p, &mut s.q], grid, slope);
+        s
+    }))
+}
+
+/// What the fits on the levels give: the remainders and the finest level's body.
+#[derive(Debug)]
+struct Fitted {
+    /// The flexibility's remainder the stand-in solves with (extrapolated from the two finest
+    /// levels).
+    result: SmoothRemainder,
+    /// The flexibility's remainder of the check ([`BemStandIn::checking`]).
+    check: SmoothRemainder,
+    /// Whether the half-plane gives a surface strain on these grids.
+    has_strain: bool,
+    /// The finest level's full BEM body and its own contact grid (the level's, or the same
+    /// elements mapped by its own mesh), for the boundary field.
+    finest: Option<(ContactGrid, Arc<BemBody>)>,
+}
+
+/// Which remainder a stand-in solves with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Use {
+    /// The best one: the result.
+    Result,
+    /// The one known less well, to estimate the result's error.
+    Check,
+}
+
+/// A BEM body's stand-in: its setup, its half-plane and its smooth remainders.
 #[derive(Debug, Clone)]
 pub struct BemStandIn {
     /// The body it stands in for (its surface, constants and profile).
     inner: Arc<BemSetup>,
     /// The half-plane of its material and profile radius.
     half: HalfSpace,
-    /// The remainder, shared by every pass.
-    remainder: Arc<SmoothRemainder>,
+    /// The remainders and the finest level's body, shared by every pass.
+    fitted: Arc<Fitted>,
+    /// Which flexibility remainder this stand-in solves with.
+    used: Use,
     /// The BEM body's profile at x = 0 (its touching point's height over the mesh's surface at
     /// x = 0, which [`BodySetup::surface_at`] measures from) [length].
     profile_shift: f64,
 }
 
 impl BemStandIn {
-    /// The stand-in of `setup` on `side` from its BEM condensed to `levels[0]` (the start grid
-    /// or one of its bisections) and to `levels[1]` (the bisection of `levels[0]`), the mesh cut
-    /// along each.
-    pub fn of(setup: &BemSetup, levels: [&ContactGrid; 2], side: Side, rolling: Rolling) -> Result<Self, BuildError> {
+    /// The stand-in of `setup` on `side` from its BEM condensed to each of `levels` (two or
+    /// three grids, each the bisection of the one before; the first the start grid or one of
+    /// its bisections), the mesh cut along each. The finest level's condensation is kept: the
+    /// check of the body's mesh solves on the same grid (src/adapt.rs), and the stand-in's
+    /// boundary field comes from it.
+    pub fn of(setup: &BemSetup, levels: &[&ContactGrid], side: Side, rolling: Rolling) -> Result<Self, BuildError> {
+        assert!(
+            levels.len() == 2 || levels.len() == 3,
+            "a stand-in is fitted on two or three levels"
+        );
         let half = HalfSpace::new(setup.material, setup.radius);
         let slope = |x: f64| setup.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
         let span = [levels[0].edges[0], levels[0].edges[levels[0].n_elements()]];
-        let mut fits = Vec::with_capacity(2);
+        let mut fits = Vec::with_capacity(levels.len());
+        let mut has_strain = false;
         let mut profile_shift = 0.0;
-        for (k, grid) in levels.into_iter().enumerate() {
+        let mut finest = None;
+        for (k, &grid) in levels.iter().enumerate() {
+            let last = k + 1 == levels.len();
             // The start grid is the mesh's own; a finer level cuts the mesh along it.
             let own = setup.mesh.contact_grid().coincides_with(grid);
             let follows = (!own).then(|| setup.followed(grid));
             let level = follows.as_ref().unwrap_or(setup);
-            // The finer level's condensation is kept: the check of the body's mesh solves on
-            // the same grid (src/adapt.rs).
             let ctx = BuildContext {
                 grid,
                 side,
                 rolling,
                 pair: None,
             };
-            let body = level.build_keeping(&ctx, k == 1)?;
+            let body = level.build_keeping(&ctx, last)?;
             if k == 0 {
                 profile_shift = body.model().profile(0.0);
+            }
+            if last {
+                // On its own contact grid: the other body's mesh may map the elements between
+                // the same ends differently.
+                let own = level.mesh.contact_grid();
+                finest = level.kept.get(side, &own).map(|b| (own, b));
             }
             let bem = body.model().flexibility(grid, side);
             let flat = arc_half_plane(&half, grid, side, &slope)?;
             // Fewer nodes than twice the series' terms would fit the BEM's element pattern,
             // not the remainder.
             let degree = REMAINDER_DEGREE.min((grid.n_nodes() / 2).saturating_sub(1)).max(1);
-            fits.push(SmoothRemainder::fitted(&bem, &flat, grid, span, degree));
+            fits.push(SmoothRemainder::fitted(
+                &[
+                    (&bem.hp, &flat.hp),
+                    (&bem.hq, &flat.hq),
+                    (&bem.wp, &flat.wp),
+                    (&bem.wq, &flat.wq),
+                ],
+                grid,
+                span,
+                degree,
+            ));
+            if last {
+                has_strain = arc_half_plane_strain(&half, grid, side, &slope)?.is_some();
+            }
         }
+        let n = fits.len();
+        let result = SmoothRemainder::extrapolated(&fits[n - 2], &fits[n - 1]);
+        let check = if n == 3 {
+            SmoothRemainder::extrapolated(&fits[0], &fits[1])
+        } else {
+            fits[1].clone()
+        };
         Ok(Self {
             inner: Arc::new(setup.clone()),
             half,
-            remainder: Arc::new(SmoothRemainder::extrapolated(&fits[0], &fits[1])),
+            fitted: Arc::new(Fitted {
+                result,
+                check,
+                has_strain,
+                finest,
+            }),
+            used: Use::Result,
             profile_shift,
         })
+    }
+
+    /// The same stand-in solving with the remainder known less well (module docs): the
+    /// difference of the two solutions on the final grid, scaled as src/adapt.rs does by the
+    /// number of levels, estimates the error of this one's.
+    pub fn checking(&self) -> Self {
+        Self {
+            used: Use::Check,
+            ..self.clone()
+        }
+    }
+
+    /// Whether the stand-in can give the final grid's results: a surface strain and a boundary
+    /// field.
+    pub fn gives_results(&self) -> bool {
+        self.fitted.has_strain && self.fitted.finest.is_some()
     }
 
     /// The profile of the BEM body: the mesh's surface from its touching point, or the case's
@@ -261,6 +418,17 @@ impl BodySetup for BemStandIn {
     }
 }
 
+impl StandInBody {
+    /// The flexibility remainder this stand-in solves with.
+    fn remainder(&self) -> &SmoothRemainder {
+        let fitted = &self.setup.fitted;
+        match self.setup.used {
+            Use::Result => &fitted.result,
+            Use::Check => &fitted.check,
+        }
+    }
+}
+
 /// The stand-in on one grid.
 struct StandInBody {
     /// The half-plane on the grid (carried over from the straightened grid on a curved one).
@@ -278,7 +446,7 @@ impl BodyModel for StandInBody {
         let inner = &self.setup.inner;
         let slope = |x: f64| inner.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
         let mut f = arc_scaled(self.flat.model().flexibility(grid, side), grid, &slope);
-        let r = self.setup.remainder.on(grid);
+        let r = self.remainder().on(grid);
         f.hp += &r.hp;
         f.hq += &r.hq;
         f.wp += &r.wp;
@@ -290,14 +458,34 @@ impl BodyModel for StandInBody {
         self.setup.profile(x, self.side)
     }
 
-    /// None: the passes need no strain (the final grid's full BEM gives it).
-    fn strain_operator(&self, _grid: &ContactGrid, _side: Side) -> Option<StrainOperator> {
-        None
+    /// The derivative along x of the stand-in's own tangential displacement (module docs): the
+    /// half-plane's strain plus ∂R/∂x of the remainder's w blocks.
+    fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
+        let inner = &self.setup.inner;
+        let slope = |x: f64| inner.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
+        let mut s = self.flat.model().strain_operator(grid, side)?;
+        scale_columns([&mut s.p, &mut s.q], grid, &slope);
+        let [wp, wq] = self.remainder().w_derivatives_on(grid);
+        s.p += &wp;
+        s.q += &wq;
+        Some(s)
     }
 }
 
 impl BodyFields for StandInBody {
-    /// None: only the final grid's full BEM body is post-processed.
+    /// The full BEM body's boundary on the finest fitted grid under the load projected onto
+    /// that grid (module docs).
+    fn boundary_field(&self, load: &ContactLoad) -> Option<Result<BoundaryField, FieldError>> {
+        let (grid, body) = self.setup.fitted.finest.as_ref()?;
+        let pressure = load.grid.projected_onto(load.pressure, grid);
+        let shear = load.grid.projected_onto(load.shear, grid);
+        Some(
+            body.boundary_solution(grid, &pressure, &shear)
+                .map_err(FieldError::from),
+        )
+    }
+
+    /// None: a run that asks for interior fields solves its final grid with the full BEM body.
     fn interior(&self, _query: &InteriorQuery) -> InteriorResult {
         Err(FieldError::NoInteriorField { model: "bem stand-in" })
     }
