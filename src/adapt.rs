@@ -98,7 +98,8 @@ pub struct Adapted {
 
 /// One grid assembled and solved.
 struct Solve {
-    /// Whether its bodies are the BEM bodies' stand-ins.
+    /// Whether its bodies are the BEM bodies' stand-ins (post-processing then takes the scene
+    /// of the bodies themselves, [`finished`]).
     from_stand_ins: bool,
     scene: Scene,
     models: BodyModels,
@@ -181,7 +182,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
     let mut timings = Timings::default();
     let Some(control) = scene.grid_control else {
         let only = solve_on(scene.clone(), None, &mut timings, &mut ws)?;
-        return Ok(finished(only, timings, None));
+        return Ok(finished(only, scene, timings, None));
     };
     let tolerance = control.tolerance;
     let check_grid = body_mesh_check_grid(&DyadicGrid::new(&scene.grid), tolerance);
@@ -191,7 +192,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         let (met, scales) = match refine(&scene, estimator, &mut timings, &mut steps, &mut ws)? {
             Refined::Met(met, scales) => (met, scales),
             Refined::Ended(s, reached) => {
-                let mut best = finished(s, timings, Some((tolerance, steps)));
+                let mut best = finished(s, &scene, timings, Some((tolerance, steps)));
                 if let Some(a) = best.adaptation.as_mut() {
                     a.reached = reached;
                 }
@@ -199,8 +200,9 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             }
         };
         let warm = (&met.problem.grid, &met.state);
-        let Some(checked) = body_mesh::check_on(&scene, &check_grid, warm, scales, &mut timings, &mut ws)? else {
-            return Ok(finished(met, timings, Some((tolerance, steps))));
+        let checked = body_mesh::check_on(&scene, &check_grid, warm, scales, &mut timings, &mut ws)?;
+        let Some(checked) = checked else {
+            return Ok(finished(met, &scene, timings, Some((tolerance, steps))));
         };
         let mut e = checked.estimate;
         e.bisections = bisections;
@@ -209,7 +211,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         }
         if e.largest() <= tolerance || bisections == body_mesh::MAX_BODY_MESH_BISECTIONS {
             let too_coarse = (e.largest() > tolerance).then(|| body_mesh::meshed_bodies(&scene));
-            let mut done = finished(met, timings, Some((tolerance, steps)));
+            let mut done = finished(met, &scene, timings, Some((tolerance, steps)));
             if let (Some(a), Some(bodies)) = (done.adaptation.as_mut(), too_coarse) {
                 a.reached = false;
                 a.coarse_body_mesh = Some(bodies);
@@ -267,12 +269,14 @@ fn refine(
     let first_step = steps.len();
     loop {
         let pass_scene = passes.as_ref().unwrap_or(scene);
-        let g = solve_on(
+        let stand_ins = passes.is_some();
+        let mut g = solve_on(
             pass_scene.on_grid(coarse.grid()),
             warm.as_ref().map(|(g, z)| (g, z)),
             timings,
             ws,
         )?;
+        g.from_stand_ins = stand_ins;
         if !g.report.converged {
             return Ok(Refined::Ended(g, true));
         }
@@ -284,12 +288,13 @@ fn refine(
             creep_floor: estimate::CREEP_FLOOR * scene.friction() * hertz.half_width
                 / scene.estimates.effective_radius.abs(),
         };
-        let h = solve_on(
+        let mut h = solve_on(
             pass_scene.on_grid(coarse.bisected().grid()),
             Some((&g.problem.grid, &g.state)),
             timings,
             ws,
         )?;
+        h.from_stand_ins = stand_ins;
         if !h.report.converged {
             return Ok(Refined::Ended(h, true));
         }
@@ -353,17 +358,7 @@ fn refine(
                             last.estimate = total;
                             last.iterations += c.report.iterations;
                         }
-                        // The scene of the bodies themselves on the final grid (their notices,
-                        // validity and summary); the models stay the stand-ins.
-                        let bodies = scene.on_grid(h.problem.grid.clone());
-                        return Ok(Refined::Met(
-                            Solve {
-                                from_stand_ins: true,
-                                scene: bodies,
-                                ..h
-                            },
-                            scales,
-                        ));
+                        return Ok(Refined::Met(h, scales));
                     }
                 }
                 // The stand-ins are not known well enough for this tolerance: the final grid
@@ -474,14 +469,16 @@ fn stand_in_levels(start: &DyadicGrid, tolerance: f64) -> Vec<ContactGrid> {
 }
 
 /// The factor of the difference between the stand-ins' solution and their check's on the
-/// final grid that estimates the stand-ins' error (src/body/bem/stand_in.rs): fitted on three
-/// levels, the check is the Richardson remainder of the two coarser, whose error is 3–4.5 times
-/// the result's (measured), so the result's is at most half the difference; fitted on two, the
-/// check is the finer level's remainder alone, with the first-order error the extrapolation
-/// removes, and the whole difference bounds the result's.
+/// final grid that estimates the stand-ins' error (src/body/bem/stand_in.rs). Fitted on three
+/// levels, the check is the Richardson remainder of the two coarser: with the remainder's error
+/// c₁h + c₂h², Richardson leaves c₂h²/2 from the two coarser levels and a quarter of that from
+/// the two finer, so the finer's is the difference / 3 (Richardson's own error estimate for a
+/// second-order term; measured on fig14_true_geometry at 1e-4 and 1e-5: effectivities 0.7–1.2).
+/// Fitted on two, the check is the finer level's remainder alone, with the first-order error the
+/// extrapolation removes, and the whole difference stands for the result's.
 fn stand_in_check_factor(levels: usize) -> f64 {
     if levels == 3 {
-        0.5
+        1.0 / 3.0
     } else {
         1.0
     }
@@ -530,9 +527,13 @@ impl HertzScales {
 }
 
 /// The result of the loop: the last solve with the tolerance and the passes so far (None for a
-/// fixed grid).
-fn finished(mut s: Solve, mut timings: Timings, passes: Option<(f64, Vec<AdaptationStep>)>) -> Adapted {
+/// fixed grid). A solve of the stand-ins keeps their models and takes the scene of `bodies`
+/// (the bodies themselves) on its grid, for their notices, validity and summary.
+fn finished(mut s: Solve, bodies: &Scene, mut timings: Timings, passes: Option<(f64, Vec<AdaptationStep>)>) -> Adapted {
     let t = Instant::now();
+    if s.from_stand_ins {
+        s.scene = bodies.on_grid(s.problem.grid.clone());
+    }
     s.problem.strain = ContactProblem::strain_of(
         &s.problem.grid,
         s.models[0].model(),

@@ -176,6 +176,23 @@ impl BemSetup {
         })
     }
 
+    /// The mesh with its elements outside the contact group bisected on their own curves
+    /// ([`crate::mesh::bisect`]). Its far field differs from the start mesh's, so the bisected
+    /// body is assembled afresh: no start mesh, no shared cache.
+    pub(super) fn free_boundary_bisected(&self) -> BemSetup {
+        let mesh = LoadedMesh {
+            mesh: bisect_outside_group(&self.mesh.mesh, self.mesh.contact_group),
+            ..self.mesh.clone()
+        };
+        BemSetup {
+            mesh,
+            start_mesh: None,
+            far_field: Default::default(),
+            kept: Default::default(),
+            ..self.clone()
+        }
+    }
+
     /// The setup whose mesh is the start mesh cut along `grid` ([`BodySetup::follow_grid`]).
     pub(super) fn followed(&self, grid: &ContactGrid) -> BemSetup {
         let start = self.start_mesh.clone().unwrap_or_else(|| Arc::new(self.mesh.clone()));
@@ -331,17 +348,7 @@ impl BodySetup for BemSetup {
     /// ([`crate::mesh::bisect`]). Its far field differs from the start mesh's, so the bisected
     /// body is assembled afresh: no start mesh, no shared cache.
     fn with_free_boundary_bisected(&self) -> Option<Arc<dyn BodySetup>> {
-        let mesh = LoadedMesh {
-            mesh: bisect_outside_group(&self.mesh.mesh, self.mesh.contact_group),
-            ..self.mesh.clone()
-        };
-        Some(Arc::new(BemSetup {
-            mesh,
-            start_mesh: None,
-            far_field: Default::default(),
-            kept: Default::default(),
-            ..self.clone()
-        }))
+        Some(Arc::new(self.free_boundary_bisected()))
     }
 
     /// The mesh's path (or label) and its groups other than the contact group.

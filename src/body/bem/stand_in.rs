@@ -39,11 +39,12 @@
 //! ([`crate::grid::ContactGrid::projected_onto`], which keeps each element's force). Whether
 //! its results are accurate enough is measured by a second stand-in whose remainder is known
 //! less well ([`BemStandIn::checking`]): fitted on three grids, the result extrapolates the two
-//! finest and the check the two coarsest, and the Richardson remainders' errors fall by 3–4.5
-//! per bisection (measured on fig14_true_geometry: 1.1e-4, 2.4e-5 and 5.8e-6 of the creepage
-//! at the three pairs of levels), so half the difference of their solutions bounds the result's
-//! error; fitted on two grids, the check is the finer fit alone, whose error is the first-order
-//! one that the extrapolation removes (3.5–6.5 times the result's). src/adapt.rs adds that
+//! finest and the check the two coarsest, and the Richardson remainders' errors fall by about
+//! 4 per bisection, as a second-order term does (measured on fig14_true_geometry: 1.1e-4,
+//! 2.4e-5 and 5.8e-6 of the creepage at the three pairs of levels), so a third of the
+//! difference of their solutions estimates the result's error (Richardson's estimate);
+//! fitted on two grids, the check is the finer fit alone, whose error is the first-order one
+//! that the extrapolation removes (3.5–6.5 times the result's). src/adapt.rs adds that
 //! estimate to the grid's and solves the final grid with the full BEM only when the sum
 //! exceeds the tolerance, or when the run asks for interior fields (the stand-in has none).
 
@@ -241,6 +242,70 @@ fn arc_half_plane_strain(
     }))
 }
 
+/// Where a stand-in's body sits: its side, the rolling, and the span its series map.
+#[derive(Debug, Clone, Copy)]
+struct Placement {
+    side: Side,
+    rolling: Rolling,
+    span: [f64; 2],
+}
+
+/// The remainder of `setup`'s BEM condensed on `grid` (the mesh cut along it unless the grid is
+/// the mesh's own), the body built there, and with `keep` the condensed BEM body kept with its
+/// own contact grid (the grid's elements as the body's mesh maps them).
+fn level_fit(
+    setup: &BemSetup,
+    half: &HalfSpace,
+    grid: &ContactGrid,
+    place: &Placement,
+    keep: bool,
+) -> Result<LevelFit, BuildError> {
+    let side = place.side;
+    let own = setup.mesh.contact_grid().coincides_with(grid);
+    let follows = (!own).then(|| setup.followed(grid));
+    let level = follows.as_ref().unwrap_or(setup);
+    let ctx = BuildContext {
+        grid,
+        side,
+        rolling: place.rolling,
+        pair: None,
+    };
+    let body = level.build_keeping(&ctx, keep)?;
+    let bem = body.model().flexibility(grid, side);
+    let slope = |x: f64| setup.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
+    let flat = arc_half_plane(half, grid, side, &slope)?;
+    // Fewer nodes than twice the series' terms would fit the BEM's element pattern, not the
+    // remainder.
+    let degree = REMAINDER_DEGREE.min((grid.n_nodes() / 2).saturating_sub(1)).max(1);
+    let fit = SmoothRemainder::fitted(
+        &[
+            (&bem.hp, &flat.hp),
+            (&bem.hq, &flat.hq),
+            (&bem.wp, &flat.wp),
+            (&bem.wq, &flat.wq),
+        ],
+        grid,
+        place.span,
+        degree,
+    );
+    let kept = keep.then(|| {
+        let own = level.mesh.contact_grid();
+        level.kept.get(side, &own).map(|b| (own, b))
+    });
+    Ok(LevelFit {
+        fit,
+        body,
+        kept: kept.flatten(),
+    })
+}
+
+/// What [`level_fit`] gives.
+struct LevelFit {
+    fit: SmoothRemainder,
+    body: Box<dyn Body>,
+    kept: Option<(ContactGrid, Arc<BemBody>)>,
+}
+
 /// What the fits on the levels give: the remainders and the finest level's body.
 #[derive(Debug)]
 struct Fitted {
@@ -293,54 +358,27 @@ impl BemStandIn {
             "a stand-in is fitted on two or three levels"
         );
         let half = HalfSpace::new(setup.material, setup.radius);
-        let slope = |x: f64| setup.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
         let span = [levels[0].edges[0], levels[0].edges[levels[0].n_elements()]];
+        let place = Placement { side, rolling, span };
         let mut fits = Vec::with_capacity(levels.len());
-        let mut has_strain = false;
         let mut profile_shift = 0.0;
         let mut finest = None;
         for (k, &grid) in levels.iter().enumerate() {
             let last = k + 1 == levels.len();
-            // The start grid is the mesh's own; a finer level cuts the mesh along it.
-            let own = setup.mesh.contact_grid().coincides_with(grid);
-            let follows = (!own).then(|| setup.followed(grid));
-            let level = follows.as_ref().unwrap_or(setup);
-            let ctx = BuildContext {
-                grid,
-                side,
-                rolling,
-                pair: None,
-            };
-            let body = level.build_keeping(&ctx, last)?;
+            let level = level_fit(setup, &half, grid, &place, last)?;
+            fits.push(level.fit);
             if k == 0 {
-                profile_shift = body.model().profile(0.0);
+                profile_shift = level.body.model().profile(0.0);
             }
             if last {
                 // On its own contact grid: the other body's mesh may map the elements between
                 // the same ends differently.
-                let own = level.mesh.contact_grid();
-                finest = level.kept.get(side, &own).map(|b| (own, b));
-            }
-            let bem = body.model().flexibility(grid, side);
-            let flat = arc_half_plane(&half, grid, side, &slope)?;
-            // Fewer nodes than twice the series' terms would fit the BEM's element pattern,
-            // not the remainder.
-            let degree = REMAINDER_DEGREE.min((grid.n_nodes() / 2).saturating_sub(1)).max(1);
-            fits.push(SmoothRemainder::fitted(
-                &[
-                    (&bem.hp, &flat.hp),
-                    (&bem.hq, &flat.hq),
-                    (&bem.wp, &flat.wp),
-                    (&bem.wq, &flat.wq),
-                ],
-                grid,
-                span,
-                degree,
-            ));
-            if last {
-                has_strain = arc_half_plane_strain(&half, grid, side, &slope)?.is_some();
+                finest = level.kept;
             }
         }
+        let slope = |x: f64| setup.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
+        let finest_grid = levels[levels.len() - 1];
+        let has_strain = arc_half_plane_strain(&half, finest_grid, side, &slope)?.is_some();
         let n = fits.len();
         let result = SmoothRemainder::extrapolated(&fits[n - 2], &fits[n - 1]);
         let check = if n == 3 {
