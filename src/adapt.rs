@@ -259,11 +259,12 @@ fn refine(
     let level_refs: Vec<&ContactGrid> = levels.iter().collect();
     let stand_ins = scene.with_pass_stand_ins(&level_refs)?;
     let check_factor = stand_in_check_factor(levels.len());
-    let (mut passes, mut check) = match stand_ins {
-        Some(s) => (Some(s.passes), s.check),
-        None => (None, None),
+    let (mut passes, mut check, condense_s) = match stand_ins {
+        Some(s) => (Some(s.passes), s.check, s.condense_s),
+        None => (None, None, 0.0),
     };
-    timings.assembly_s += t.elapsed().as_secs_f64();
+    timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
+    timings.condense_s += condense_s;
     let mut warm: Option<(ContactGrid, State)> = None;
     let mut hertz: Option<HertzScales> = None;
     let first_step = steps.len();

@@ -41,6 +41,8 @@ pub struct PassScenes {
     /// passes' stand-ins' error on the final grid; None when a stand-in cannot give the final
     /// grid's results.
     pub check: Option<Scene>,
+    /// Wall time [s] the stand-ins' builds spent condensing the bodies.
+    pub condense_s: f64,
 }
 
 /// A case resolved for solving.
@@ -215,9 +217,11 @@ impl Scene {
         let mut bodies = self.bodies.clone();
         let mut checks = Some(self.bodies.clone());
         let mut any = false;
+        let mut condense_s = 0.0;
         for (k, side) in [Side::A, Side::B].into_iter().enumerate() {
             if let Some(stand_in) = self.bodies[k].pass_stand_in(levels, side, self.rolling())? {
                 bodies[k] = stand_in.body;
+                condense_s += stand_in.condense_s;
                 match (stand_in.check, checks.as_mut()) {
                     (Some(check), Some(c)) => c[k] = check,
                     _ => checks = None,
@@ -231,6 +235,7 @@ impl Scene {
         Ok(Some(PassScenes {
             passes: Scene { bodies, ..self.clone() },
             check: checks.map(|bodies| Scene { bodies, ..self.clone() }),
+            condense_s,
         }))
     }
 

@@ -113,6 +113,9 @@ pub struct PassStandIn {
     /// the final grid's results (its strain or its fields), and the final grid is solved with
     /// the body itself.
     pub check: Option<Arc<dyn BodySetup>>,
+    /// Wall time [s] the stand-in's build spent condensing the body (part of its build time;
+    /// the run reports it as condensation).
+    pub condense_s: f64,
 }
 
 /// One body of a scene, ready to build its model on a contact grid (module docs).

@@ -125,6 +125,7 @@ impl rollbem::scene::BodySetup for OffersAWrongStandIn {
         Ok(Some(rollbem::body::PassStandIn {
             body: stiffer(1.05),
             check: self.1.then(|| stiffer(1.10)),
+            condense_s: 0.0,
         }))
     }
 }

@@ -335,6 +335,7 @@ impl BodySetup for BemSetup {
             .gives_results()
             .then(|| Arc::new(stand_in.checking()) as Arc<dyn BodySetup>);
         Ok(Some(PassStandIn {
+            condense_s: stand_in.condense_seconds(),
             body: Arc::new(stand_in),
             check,
         }))

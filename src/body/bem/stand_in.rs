@@ -292,10 +292,17 @@ fn level_fit(
         let own = level.mesh.contact_grid();
         level.kept.get(side, &own).map(|b| (own, b))
     });
+    let kept = kept.flatten();
+    // A kept body's build reports no time of its own: the condensed body holds it.
+    let (_, condense_s) = match &kept {
+        Some((_, b)) => b.stage_seconds(),
+        None => body.model().stage_seconds(),
+    };
     Ok(LevelFit {
         fit,
         body,
-        kept: kept.flatten(),
+        kept,
+        condense_s,
     })
 }
 
@@ -304,6 +311,8 @@ struct LevelFit {
     fit: SmoothRemainder,
     body: Box<dyn Body>,
     kept: Option<(ContactGrid, Arc<BemBody>)>,
+    /// Wall time [s] of the condensation.
+    condense_s: f64,
 }
 
 /// What the fits on the levels give: the remainders and the finest level's body.
@@ -316,6 +325,8 @@ struct Fitted {
     check: SmoothRemainder,
     /// Whether the half-plane gives a surface strain on these grids.
     has_strain: bool,
+    /// Wall time [s] the levels' condensations took.
+    condense_s: f64,
     /// The finest level's full BEM body and its own contact grid (the level's, or the same
     /// elements mapped by its own mesh), for the boundary field.
     finest: Option<(ContactGrid, Arc<BemBody>)>,
@@ -363,9 +374,11 @@ impl BemStandIn {
         let mut fits = Vec::with_capacity(levels.len());
         let mut profile_shift = 0.0;
         let mut finest = None;
+        let mut condense_s = 0.0;
         for (k, &grid) in levels.iter().enumerate() {
             let last = k + 1 == levels.len();
             let level = level_fit(setup, &half, grid, &place, last)?;
+            condense_s += level.condense_s;
             fits.push(level.fit);
             if k == 0 {
                 profile_shift = level.body.model().profile(0.0);
@@ -394,6 +407,7 @@ impl BemStandIn {
                 check,
                 has_strain,
                 finest,
+                condense_s,
             }),
             used: Use::Result,
             profile_shift,
@@ -408,6 +422,11 @@ impl BemStandIn {
             used: Use::Check,
             ..self.clone()
         }
+    }
+
+    /// Wall time [s] the fitted levels' condensations took.
+    pub fn condense_seconds(&self) -> f64 {
+        self.fitted.condense_s
     }
 
     /// Whether the stand-in can give the final grid's results: a surface strain and a boundary
