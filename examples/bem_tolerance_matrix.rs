@@ -25,9 +25,10 @@ pub const MAX_ELEMENTS: usize = 600;
 /// How a run ended.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Outcome {
-    /// The estimate met the tolerance: elements, the estimate's largest relative quantity and
-    /// the body meshes' (None without an estimate of theirs).
-    Met(usize, f64, Option<f64>),
+    /// The estimate met the tolerance: elements, the estimate's largest relative quantity, the
+    /// body meshes' (None without an estimate of theirs), and whether the results are the BEM
+    /// bodies' stand-ins' (`grid.results_from_stand_ins`).
+    Met(usize, f64, Option<f64>, bool),
     /// The grid reached the cap first (exit code 2): elements, the last estimate's largest.
     Capped(usize, f64),
     /// The contact grid met the tolerance, but a body's mesh outside the contact stayed too
@@ -63,7 +64,12 @@ fn outcome_of(s: &Solved) -> Outcome {
         return Outcome::Failed(format!("the solver did not converge on {elements} elements"));
     }
     if a.reached {
-        Outcome::Met(elements, e.largest(), e.body_mesh.map(|b| b.largest()))
+        Outcome::Met(
+            elements,
+            e.largest(),
+            e.body_mesh.map(|b| b.largest()),
+            a.results_from_stand_ins,
+        )
     } else {
         Outcome::Capped(elements, e.largest())
     }
@@ -105,13 +111,14 @@ pub const TESTED: [(&str, f64); 4] = [
 ];
 
 /// The header of the table.
-pub const HEADER: [&str; 7] = [
+pub const HEADER: [&str; 8] = [
     "case",
     "tolerance",
     "outcome",
     "elements",
     "estimate (largest)",
     "body mesh (largest)",
+    "results from",
     "time [s]",
 ];
 
@@ -120,10 +127,16 @@ pub fn row(name: &str, tolerance: f64) -> Vec<String> {
     let (outcome, seconds) = run(name, tolerance);
     eprintln!("{name} {tolerance:e}: {outcome:?} in {seconds:.1} s");
     let e = |v: f64| format!("{v:.1e}");
-    let (what, elements, estimate, body) = match &outcome {
-        Outcome::Met(n, x, b) => ("met", n.to_string(), e(*x), b.map_or("-".to_string(), e)),
-        Outcome::Capped(n, x) => ("max_elements (exit 2)", n.to_string(), e(*x), "-".to_string()),
-        Outcome::BodyMeshTooCoarse(b) => ("body mesh too coarse (exit 2)", "-".into(), "-".into(), e(*b)),
+    let (what, elements, estimate, body, from) = match &outcome {
+        Outcome::Met(n, x, b, stand_ins) => (
+            "met",
+            n.to_string(),
+            e(*x),
+            b.map_or("-".to_string(), e),
+            if *stand_ins { "stand-ins" } else { "bodies" },
+        ),
+        Outcome::Capped(n, x) => ("max_elements (exit 2)", n.to_string(), e(*x), "-".to_string(), "-"),
+        Outcome::BodyMeshTooCoarse(b) => ("body mesh too coarse (exit 2)", "-".into(), "-".into(), e(*b), "-"),
         Outcome::Failed(message) => panic!("{name} at {tolerance:e}: {message}"),
     };
     let row = vec![
@@ -133,6 +146,7 @@ pub fn row(name: &str, tolerance: f64) -> Vec<String> {
         elements,
         estimate,
         body,
+        from.to_string(),
         format!("{seconds:.1}"),
     ];
     eprintln!("| {} |", row.join(" | "));
