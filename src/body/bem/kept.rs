@@ -53,7 +53,7 @@ impl KeptBody {
 }
 
 /// A kept body in a build of its own: the same model, its build time not counted again.
-pub struct Kept(pub Arc<BemBody>);
+pub struct Kept(pub Arc<BemBody>, pub bool);
 
 impl BodyModel for Kept {
     fn model_name(&self) -> &'static str {
@@ -72,9 +72,14 @@ impl BodyModel for Kept {
         self.0.strain_operator(grid, side)
     }
 
-    /// Zero: the build that kept it counted its assembly and condensation.
+    /// The body's own times in the build that condensed it (the flag), zero in a later
+    /// build: that build counted them.
     fn stage_seconds(&self) -> (f64, f64) {
-        (0.0, 0.0)
+        if self.1 {
+            self.0.stage_seconds()
+        } else {
+            (0.0, 0.0)
+        }
     }
 }
 

@@ -56,6 +56,10 @@ pub struct BemSetup {
     /// A condensation kept for a later build on the same grid ([`super::kept`]; shared by
     /// every setup that follows a grid from this one).
     pub kept: KeptBody,
+    /// Whether [`BodySetup::build`] keeps its condensation in `kept`: set on the body bisected
+    /// outside the contact, whose check builds it on the finest grid its stand-in would be
+    /// fitted on, should the run adopt it (src/adapt/body_mesh.rs).
+    pub keep_builds: bool,
 }
 
 impl BemSetup {
@@ -80,6 +84,7 @@ impl BemSetup {
             far_field: Default::default(),
             contact_circle,
             kept: Default::default(),
+            keep_builds: false,
         }
     }
 
@@ -136,7 +141,7 @@ impl BemSetup {
                     ctx.side,
                     self.mesh.mesh.elements.len()
                 );
-                Box::new(Kept(kept))
+                Box::new(Kept(kept, false))
             }
             None => {
                 log::info!(
@@ -150,7 +155,7 @@ impl BemSetup {
                 if keep {
                     let body = Arc::new(body);
                     self.kept.keep(ctx.side, &own, body.clone());
-                    Box::new(Kept(body))
+                    Box::new(Kept(body, true))
                 } else {
                     Box::new(body)
                 }
@@ -189,6 +194,7 @@ impl BemSetup {
             start_mesh: None,
             far_field: Default::default(),
             kept: Default::default(),
+            keep_builds: true,
             ..self.clone()
         }
     }
@@ -303,7 +309,7 @@ impl BodySetup for BemSetup {
     /// Condensed to its own contact nodes; if those differ from the grid's, its flexibility is
     /// carried over by [`Transferred`]. With `profile_radius`, the gap sees that circle.
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
-        self.build_keeping(ctx, false)
+        self.build_keeping(ctx, self.keep_builds)
     }
     /// The start mesh with its contact elements cut along `grid`
     /// ([`crate::mesh::cuts::cut_along_grid`]; on the exact circle of a generated body).

@@ -251,8 +251,9 @@ struct Placement {
 }
 
 /// The remainder of `setup`'s BEM condensed on `grid` (the mesh cut along it unless the grid is
-/// the mesh's own), the body built there, and with `keep` the condensed BEM body kept with its
-/// own contact grid (the grid's elements as the body's mesh maps them).
+/// the mesh's own; a condensation kept on that grid before is taken), the body built there, and
+/// with `keep` the condensed BEM body kept with its own contact grid (the grid's elements as the
+/// body's mesh maps them).
 fn level_fit(
     setup: &BemSetup,
     half: &HalfSpace,
@@ -293,11 +294,8 @@ fn level_fit(
         level.kept.get(side, &own).map(|b| (own, b))
     });
     let kept = kept.flatten();
-    // A kept body's build reports no time of its own: the condensed body holds it.
-    let (_, condense_s) = match &kept {
-        Some((_, b)) => b.stage_seconds(),
-        None => body.model().stage_seconds(),
-    };
+    // Zero for a body condensed on this grid before (that build counted it).
+    let (_, condense_s) = body.model().stage_seconds();
     Ok(LevelFit {
         fit,
         body,
