@@ -52,7 +52,8 @@ impl KeptBody {
     }
 }
 
-/// A kept body in a build of its own: the same model, its build time not counted again.
+/// A kept body in a build: the same model, and whether this build condensed it (then it
+/// reports the body's times; a later build takes it without counting them again).
 pub struct Kept(pub Arc<BemBody>, pub bool);
 
 impl BodyModel for Kept {
