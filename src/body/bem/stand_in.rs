@@ -227,21 +227,6 @@ fn scale_columns<const N: usize>(blocks: [&mut Mat<f64>; N], grid: &ContactGrid,
     }
 }
 
-/// The half-plane's surface strain on `grid`, its columns scaled to a load per unit arc like
-/// [`arc_half_plane`]'s; None when the half-plane has none there.
-fn arc_half_plane_strain(
-    half: &HalfSpace,
-    grid: &ContactGrid,
-    side: Side,
-    slope: &dyn Fn(f64) -> f64,
-) -> Result<Option<StrainOperator>, BuildError> {
-    let body = Transferred::flat_model_on(Box::new(half.clone()), grid, side)?;
-    Ok(body.model().strain_operator(grid, side).map(|mut s| {
-        scale_columns([&mut s.p, &mut s.q], grid, slope);
-        s
-    }))
-}
-
 /// Where a stand-in's body sits: its side, the rolling, and the span its series map.
 #[derive(Debug, Clone, Copy)]
 struct Placement {
@@ -321,8 +306,6 @@ struct Fitted {
     result: SmoothRemainder,
     /// The flexibility's remainder of the check ([`BemStandIn::checking`]).
     check: SmoothRemainder,
-    /// Whether the half-plane gives a surface strain on these grids.
-    has_strain: bool,
     /// Wall time [s] the levels' condensations took.
     condense_s: f64,
     /// The finest level's full BEM body and its own contact grid (the level's, or the same
@@ -387,9 +370,6 @@ impl BemStandIn {
                 finest = level.kept;
             }
         }
-        let slope = |x: f64| setup.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
-        let finest_grid = levels[levels.len() - 1];
-        let has_strain = arc_half_plane_strain(&half, finest_grid, side, &slope)?.is_some();
         let n = fits.len();
         let result = SmoothRemainder::extrapolated(&fits[n - 2], &fits[n - 1]);
         let check = if n == 3 {
@@ -403,7 +383,6 @@ impl BemStandIn {
             fitted: Arc::new(Fitted {
                 result,
                 check,
-                has_strain,
                 finest,
                 condense_s,
             }),
@@ -427,10 +406,10 @@ impl BemStandIn {
         self.fitted.condense_s
     }
 
-    /// Whether the stand-in can give the final grid's results: a surface strain and a boundary
-    /// field.
+    /// Whether the stand-in can give the final grid's results: its boundary field needs the
+    /// finest level's BEM body kept (its strain, the half-plane's plus the series', it always has).
     pub fn gives_results(&self) -> bool {
-        self.fitted.has_strain && self.fitted.finest.is_some()
+        self.fitted.finest.is_some()
     }
 
     /// The profile of the BEM body: the mesh's surface from its touching point, or the case's
