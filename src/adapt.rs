@@ -200,7 +200,17 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             }
         };
         let warm = (&met.problem.grid, &met.state);
-        let checked = body_mesh::check_on(&scene, &check_grid, warm, scales, &mut timings, &mut ws)?;
+        let first = bisections == 0;
+        let checked = body_mesh::check_on(
+            &scene,
+            &check_grid,
+            warm,
+            scales,
+            tolerance,
+            first,
+            &mut timings,
+            &mut ws,
+        )?;
         let Some(checked) = checked else {
             return Ok(finished(met, &scene, timings, Some((tolerance, steps))));
         };
@@ -209,7 +219,8 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         if let Some(last) = steps.last_mut() {
             last.estimate.body_mesh = Some(e);
         }
-        if e.largest() <= tolerance || bisections == body_mesh::MAX_BODY_MESH_BISECTIONS {
+        let adopt = checked.bisected.filter(|_| e.largest() > tolerance);
+        let Some(bisected) = adopt.filter(|_| bisections < body_mesh::MAX_BODY_MESH_BISECTIONS) else {
             let too_coarse = (e.largest() > tolerance).then(|| body_mesh::meshed_bodies(&scene));
             let mut done = finished(met, &scene, timings, Some((tolerance, steps)));
             if let (Some(a), Some(bodies)) = (done.adaptation.as_mut(), too_coarse) {
@@ -217,7 +228,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
                 a.coarse_body_mesh = Some(bodies);
             }
             return Ok(done);
-        }
+        };
         // The bisected bodies are adopted: the contact grid is refined again on them (the
         // passes are cheap next to the body's own assembly, and a finer body moves the
         // square-root points only within the grid's tolerance).
@@ -226,7 +237,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             "error control: the bodies' meshes outside the contact are too coarse for the tolerance; \
              solving again with them bisected"
         );
-        scene = checked.bisected;
+        scene = bisected;
     }
     unreachable!("the loop returns on its last bisection")
 }

@@ -20,6 +20,7 @@
 pub mod bisect;
 pub mod build;
 pub mod check;
+pub mod coarsen;
 pub mod cuts;
 pub mod geometry;
 pub mod loaded;

@@ -219,6 +219,14 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         None
     }
 
+    /// The same body with the elements of its own discretisation outside the contact merged in
+    /// pairs, its contact elements unchanged: the cheaper comparison the error control tries
+    /// first to bound the body mesh's error (docs/theory.md, "Error-controlled grids"). None
+    /// for a body without a mesh of its own, or without two neighbouring elements to merge.
+    fn with_free_boundary_coarsened(&self) -> Option<Arc<dyn BodySetup>> {
+        None
+    }
+
     /// The body's own mesh outside the contact, for messages: its file (or the label of a
     /// generated mesh) and the groups [`Self::with_free_boundary_bisected`] refines; None for
     /// a body without a mesh.

@@ -107,6 +107,31 @@ impl ElementGeometry {
         x.iter().zip(&w).map(|(&s, &wk)| wk * self.jacobian(s)).sum()
     }
 
+    /// Arc length [length] from the start (ξ = −1) to ξ (16-point Gauss on J over [−1, ξ]).
+    pub fn length_to(&self, xi: f64) -> f64 {
+        let (x, w) = gauss_legendre(16);
+        let half = 0.5 * (xi + 1.0);
+        x.iter()
+            .zip(&w)
+            .map(|(&s, &wk)| wk * half * self.jacobian(-1.0 + half * (s + 1.0)))
+            .sum()
+    }
+
+    /// The ξ at arc length `s` [length] from the start (bisection on [`Self::length_to`]; `s`
+    /// clamped to the element).
+    pub fn parameter_at_length(&self, s: f64) -> f64 {
+        let (mut lo, mut hi) = (-1.0_f64, 1.0_f64);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if self.length_to(mid) < s {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
     fn combine(&self, n: [f64; 3]) -> [f64; 2] {
         let mut p = [0.0; 2];
         for (a, node) in self.nodes.iter().enumerate() {

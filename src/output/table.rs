@@ -161,12 +161,14 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
             line(
                 "body mesh error",
                 format!(
-                    "pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}{} (relative); {} bisections",
+                    "pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}{} (relative); {} bisections; \
+                     against the meshes {} outside the contact",
                     b.pressure,
                     b.shear,
                     b.creepage_rel,
                     b.overlap_rel.map_or(String::new(), |o| format!(", overlap {o:.2e}")),
-                    b.bisections
+                    b.bisections,
+                    b.compared_with.as_str()
                 ),
             );
         }

@@ -43,6 +43,30 @@ pub struct BodyMeshError {
     /// How many times the meshes' elements outside the contact were bisected before this
     /// estimate (0: the meshes as given).
     pub bisections: usize,
+    /// What the meshes were compared with for this estimate.
+    pub compared_with: BodyMeshComparison,
+}
+
+/// What the bodies' meshes are compared with to estimate their error (summary.json
+/// `error_estimate.body_mesh.compared_with`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BodyMeshComparison {
+    /// Their elements outside the contact bisected: the estimate is 4/3 of the difference.
+    Bisected,
+    /// Their elements outside the contact merged in pairs: the estimate is 1/3 of the
+    /// difference, taken only when it lies five times below the tolerance.
+    Coarsened,
+}
+
+impl BodyMeshComparison {
+    /// The word for the console: `bisected` or `coarsened`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Self::Bisected => "bisected",
+            Self::Coarsened => "coarsened",
+        }
+    }
 }
 
 impl BodyMeshError {

@@ -6,28 +6,27 @@
 //! docs/validation.md quotes the same runs (examples/body_mesh_report.rs).
 
 use crate::body_mesh_report::{
-    body_mesh_estimate, coarse_roller, scene_with_graded_roller, scene_with_roller, HALF_CIRCLE_ELEMENTS,
+    body_mesh_estimate, coarse_roller, scene_with_graded_roller, scene_with_roller, CoarseRoller, HALF_CIRCLE_ELEMENTS,
     SHAFT_ELEMENTS,
 };
 use crate::common::solve;
+use rollbem::adapt::body_mesh::COARSENED_MARGIN;
 use rollbem::app;
 use rollbem::error::Error;
+use rollbem::post::adaptation::{BodyMeshComparison, BodyMeshError};
 
 /// The coarse roller (12 elements on its free circle): each of the four estimates is within a
 /// factor 3 of the true error, which is far above round-off (the mesh is coarse enough to
 /// matter), and the run reports the mesh as given (no bisection adopted at its tolerance).
 #[test]
 fn a_coarse_rollers_body_mesh_estimate_is_within_3_of_the_truth() {
-    let (run, truth) = coarse_roller();
+    let CoarseRoller { run, truth, coarsened } = coarse_roller();
     let e = body_mesh_estimate(&run);
     assert_eq!(e.bisections, 0, "{e:?}");
-    let pairs = [
-        ("pressure", e.pressure, truth.pressure),
-        ("shear", e.shear, truth.shear),
-        ("creepage", e.creepage_rel, truth.creepage_rel),
-        ("overlap", e.overlap_rel.unwrap(), truth.overlap_rel.unwrap()),
-    ];
-    for (what, est, tr) in pairs {
+    // Its coarsened comparison lies less than five times below the tolerance: the bisection
+    // decides.
+    assert_eq!(e.compared_with, BodyMeshComparison::Bisected, "{e:?}");
+    for (what, est, tr) in estimate_and_truth(&e, &truth) {
         assert!(
             tr > 1e-5,
             "{what}: true error {tr:.2e} is too small to test the estimate"
@@ -38,10 +37,31 @@ fn a_coarse_rollers_body_mesh_estimate_is_within_3_of_the_truth() {
             "{what}: estimate {est:.3e}, true error {tr:.3e}, effectivity {ratio:.2}"
         );
     }
+    // The coarsened comparison on the same roller: at most 3 times the true error, and the
+    // margin it must lie below the tolerance by covers its under-estimates (the creepage's
+    // effectivity is 0.34): margin × estimate is above the true error.
+    for (what, est, tr) in estimate_and_truth(&coarsened, &truth) {
+        let ratio = est / tr;
+        assert!(
+            ratio <= 3.0 && COARSENED_MARGIN * ratio >= 1.0,
+            "{what}: coarsened estimate {est:.3e}, true error {tr:.3e}, effectivity {ratio:.2}"
+        );
+    }
+}
+
+/// (quantity, estimate, true error) for the four quantities.
+fn estimate_and_truth(e: &BodyMeshError, truth: &BodyMeshError) -> [(&'static str, f64, f64); 4] {
+    [
+        ("pressure", e.pressure, truth.pressure),
+        ("shear", e.shear, truth.shear),
+        ("creepage", e.creepage_rel, truth.creepage_rel),
+        ("overlap", e.overlap_rel.unwrap(), truth.overlap_rel.unwrap()),
+    ]
 }
 
 /// The shipped Gmsh meshes of cases/fig14_true_geometry.yaml (48 elements on a circle, graded
-/// from the contact): their estimate lies far below the tolerance, and the run keeps them. The
+/// from the contact): their estimate, from the coarsened comparison, lies far below the
+/// tolerance, and the run keeps them. The
 /// overlap is controlled (force control, rollers on shafts) and reported by both estimates.
 #[test]
 fn a_fine_shipped_mesh_reports_a_body_mesh_error_below_its_tolerance() {
@@ -50,6 +70,9 @@ fn a_fine_shipped_mesh_reports_a_body_mesh_error_below_its_tolerance() {
     let b = e.body_mesh.expect("bem bodies have a body-mesh estimate");
     assert!(b.largest() < 1e-3, "{b:?}");
     assert_eq!(b.bisections, 0);
+    // Five times below the tolerance, the coarsened comparison is the estimate.
+    assert_eq!(b.compared_with, BodyMeshComparison::Coarsened, "{b:?}");
+    assert!(b.largest() * COARSENED_MARGIN <= 1e-3, "{b:?}");
     assert!(e.overlap_rel.is_some() && b.overlap_rel.is_some(), "{e:?}");
     assert!(e.largest() <= 1e-3, "{e:?}");
 }

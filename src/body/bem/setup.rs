@@ -12,6 +12,7 @@ use crate::body::{Body, Side, WithCircularProfile};
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
 use crate::mesh::bisect::bisect_outside_group;
+use crate::mesh::coarsen::coarsen_outside_group;
 use crate::mesh::cuts::{cut_along_grid_on, Circle};
 use crate::mesh::LoadedMesh;
 use std::sync::Arc;
@@ -199,6 +200,24 @@ impl BemSetup {
         }
     }
 
+    /// The mesh with its elements outside the contact group merged in pairs
+    /// ([`crate::mesh::coarsen`]), None when there are none to merge. Assembled afresh, as
+    /// [`Self::free_boundary_bisected`], and nothing of it kept: it is solved once.
+    pub(super) fn free_boundary_coarsened(&self) -> Option<BemSetup> {
+        let mesh = LoadedMesh {
+            mesh: coarsen_outside_group(&self.mesh.mesh, self.mesh.contact_group)?,
+            ..self.mesh.clone()
+        };
+        Some(BemSetup {
+            mesh,
+            start_mesh: None,
+            far_field: Default::default(),
+            kept: Default::default(),
+            keep_builds: false,
+            ..self.clone()
+        })
+    }
+
     /// The setup whose mesh is the start mesh cut along `grid` ([`BodySetup::follow_grid`]).
     pub(super) fn followed(&self, grid: &ContactGrid) -> BemSetup {
         let start = self.start_mesh.clone().unwrap_or_else(|| Arc::new(self.mesh.clone()));
@@ -356,6 +375,13 @@ impl BodySetup for BemSetup {
     /// body is assembled afresh: no start mesh, no shared cache.
     fn with_free_boundary_bisected(&self) -> Option<Arc<dyn BodySetup>> {
         Some(Arc::new(self.free_boundary_bisected()))
+    }
+
+    /// The mesh with its elements outside the contact group merged in pairs
+    /// ([`crate::mesh::coarsen`]).
+    fn with_free_boundary_coarsened(&self) -> Option<Arc<dyn BodySetup>> {
+        self.free_boundary_coarsened()
+            .map(|s| Arc::new(s) as Arc<dyn BodySetup>)
     }
 
     /// The mesh's path (or label) and its groups other than the contact group.
