@@ -373,7 +373,7 @@ impl BodyModel for BemBody {
     fn stage_seconds(&self) -> (f64, f64) {
         (
             self.condensed.assembly_s,
-            self.condensed.condense_s + self.condensed.strain_s,
+            self.condensed.condense_s + self.condensed.strain_s(),
         )
     }
 
@@ -384,7 +384,15 @@ impl BodyModel for BemBody {
     fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
         self.assert_same_grid(grid, side);
         let m = grid.n_nodes();
-        let s = &self.condensed.surface_strain;
+        // The condensation checked the strain's points, so this cannot fail but for an
+        // internal error, which leaves the run without the HBEM slip check (logged).
+        let s = match self.condensed.surface_strain(&self.model) {
+            Ok(s) => s,
+            Err(e) => {
+                log::error!("body {side:?}: the HBEM surface strain failed: {e}");
+                return None;
+            }
+        };
         Some(StrainOperator {
             p: Mat::from_fn(m, m, |i, j| s[(i, 2 * j + 1)]),
             q: Mat::from_fn(m, m, |i, j| s[(i, 2 * j)]),

@@ -7,6 +7,14 @@
 
 use super::{BoundaryElement, BoundaryMesh};
 use crate::quadrature::gauss_legendre;
+use std::sync::OnceLock;
+
+/// The 16-point Gauss–Legendre rule of the arc lengths, computed once (a bisection for the
+/// parameter at a given length evaluates it 60 times).
+fn arc_length_rule() -> &'static (Vec<f64>, Vec<f64>) {
+    static RULE: OnceLock<(Vec<f64>, Vec<f64>)> = OnceLock::new();
+    RULE.get_or_init(|| gauss_legendre(16))
+}
 
 /// Geometry of one element: x(ξ) on ξ ∈ [−1, 1], see the module docs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -103,16 +111,16 @@ impl ElementGeometry {
     /// Arc length [length] (16-point Gauss on J: round-off for straight elements, ~1e-12
     /// relative for a parabola through a 90° arc).
     pub fn length(&self) -> f64 {
-        let (x, w) = gauss_legendre(16);
-        x.iter().zip(&w).map(|(&s, &wk)| wk * self.jacobian(s)).sum()
+        let (x, w) = arc_length_rule();
+        x.iter().zip(w).map(|(&s, &wk)| wk * self.jacobian(s)).sum()
     }
 
     /// Arc length [length] from the start (ξ = −1) to ξ (16-point Gauss on J over [−1, ξ]).
     pub fn length_to(&self, xi: f64) -> f64 {
-        let (x, w) = gauss_legendre(16);
+        let (x, w) = arc_length_rule();
         let half = 0.5 * (xi + 1.0);
         x.iter()
-            .zip(&w)
+            .zip(w)
             .map(|(&s, &wk)| wk * half * self.jacobian(-1.0 + half * (s + 1.0)))
             .sum()
     }
