@@ -16,7 +16,7 @@
 mod common;
 
 use common::Table;
-use rollbem::adapt::body_mesh::{compare, compare_coarsened, BODY_MESH_ESTIMATE_FACTOR};
+use rollbem::adapt::body_mesh::{difference, estimate};
 use rollbem::adapt::estimate::{Scales, CREEP_FLOOR};
 use rollbem::app::{self, Solved};
 use rollbem::bem::BoundaryCondition;
@@ -24,6 +24,7 @@ use rollbem::body::BodySetup;
 use rollbem::contact::residual::State;
 use rollbem::mesh::build::MeshBuilder;
 use rollbem::mesh::{validate_and_orient, LoadedMesh};
+use rollbem::post::adaptation::BodyMeshComparison;
 use rollbem::post::adaptation::BodyMeshError;
 use rollbem::scene::{BemSetup, Scene};
 use std::sync::Arc;
@@ -186,14 +187,16 @@ pub fn coarse_roller() -> CoarseRoller {
         creep_floor: CREEP_FLOOR * mu * est.hertz_half_width / est.effective_radius.abs(),
     };
     let grid = &run.problem.grid;
-    let mut truth = compare(grid, &state(&given), &state(&reference), scales, true);
     // The plain difference: the reference stands for the exact body.
-    let f = 1.0 / BODY_MESH_ESTIMATE_FACTOR;
-    truth.pressure *= f;
-    truth.shear *= f;
-    truth.creepage_rel *= f;
-    truth.overlap_rel = truth.overlap_rel.map(|o| o * f);
-    let coarsened = compare_coarsened(grid, &state(&coarse), &state(&given), scales, true);
+    let truth = difference(grid, &state(&given), &state(&reference), scales, true);
+    let coarsened = estimate(
+        BodyMeshComparison::Coarsened,
+        grid,
+        &state(&given),
+        &state(&coarse),
+        scales,
+        true,
+    );
     CoarseRoller { run, truth, coarsened }
 }
 

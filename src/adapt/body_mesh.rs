@@ -68,8 +68,8 @@ pub const MAX_BODY_MESH_BISECTIONS: usize = 2;
 
 /// What the body-mesh check found.
 pub(super) struct Checked {
-    /// The estimate of the bodies' meshes' error ([`compare`], or [`compare_coarsened`] when
-    /// the coarsened comparison bounded it below the tolerance).
+    /// The estimate of the bodies' meshes' error ([`estimate`]: against the bisected meshes,
+    /// or the coarsened ones when that comparison bounded it below the tolerance).
     pub estimate: BodyMeshError,
     /// The scene with its bodies bisected outside the contact, to adopt when the estimate
     /// exceeds the tolerance; None when the coarsened comparison sufficed.
@@ -116,8 +116,8 @@ pub(super) fn meshed_bodies(scene: &Scene) -> String {
 /// Checks the meshes of `scene`'s bodies (as given, before any cut along a grid) on `grid`,
 /// each solve from `warm` (the final grid's solution carried): first, with `try_coarsened`,
 /// the scene against the scene with its bodies coarsened outside the contact
-/// ([`compare_coarsened`]), which is cheap and, when it lies [`COARSENED_MARGIN`] times below
-/// `tolerance`, the estimate; else against the bodies bisected there ([`compare`]). None when
+/// ([`estimate`]), which is cheap and, when it lies [`COARSENED_MARGIN`] times below
+/// `tolerance`, the estimate; else against the bodies bisected there. None when
 /// no body has a mesh of its own, or when a solve does not converge (logged: the result stays
 /// unestimated).
 ///
@@ -155,7 +155,14 @@ pub(super) fn check_on(
         // (a pair spanning more than a half circle): the bisected comparison still applies.
         match solve_on(coarse_scene.on_grid(grid.clone()), Some(warm), timings, ws) {
             Ok(coarse) if coarse.report.converged => {
-                let estimate = compare_coarsened(grid, &coarse.state, &given.state, scales, controlled);
+                let estimate = estimate(
+                    BodyMeshComparison::Coarsened,
+                    grid,
+                    &given.state,
+                    &coarse.state,
+                    scales,
+                    controlled,
+                );
                 log_estimate("coarsened", &estimate);
                 if estimate.largest() * COARSENED_MARGIN <= tolerance {
                     return Ok(Some(Checked {
@@ -184,7 +191,14 @@ pub(super) fn check_on(
     if !fine.report.converged {
         return Ok(unestimated());
     }
-    let estimate = compare(grid, &given.state, &fine.state, scales, controlled);
+    let estimate = estimate(
+        BodyMeshComparison::Bisected,
+        grid,
+        &given.state,
+        &fine.state,
+        scales,
+        controlled,
+    );
     log_estimate("bisected", &estimate);
     Ok(Some(Checked {
         estimate,
@@ -212,25 +226,6 @@ fn log_estimate(against: &str, e: &BodyMeshError) {
     );
 }
 
-/// The estimate of the body meshes' error from the solutions `coarse` (the bodies coarsened
-/// outside the contact) and `given` on the same `grid` (module docs): the difference times
-/// [`COARSENED_ESTIMATE_FACTOR`].
-pub fn compare_coarsened(
-    grid: &ContactGrid,
-    coarse: &State,
-    given: &State,
-    scales: Scales,
-    overlap_controlled: bool,
-) -> BodyMeshError {
-    BodyMeshError {
-        compared_with: BodyMeshComparison::Coarsened,
-        ..scaled(
-            difference(grid, coarse, given, scales, overlap_controlled),
-            COARSENED_ESTIMATE_FACTOR,
-        )
-    }
-}
-
 /// `d` times `f`.
 fn scaled(d: BodyMeshError, f: f64) -> BodyMeshError {
     BodyMeshError {
@@ -242,20 +237,32 @@ fn scaled(d: BodyMeshError, f: f64) -> BodyMeshError {
     }
 }
 
-/// The estimate of the body meshes' error from the solution `coarse` and `fine` (the bodies
-/// bisected outside the contact) on the same `grid` (module docs): the difference times
-/// [`BODY_MESH_ESTIMATE_FACTOR`].
-pub fn compare(
+/// The estimate of the body meshes' error from the solution `given` (the bodies as given) and
+/// `other` on the same `grid` (module docs): `other` has the bodies bisected outside the contact
+/// (the difference times [`BODY_MESH_ESTIMATE_FACTOR`]) or coarsened there (times
+/// [`COARSENED_ESTIMATE_FACTOR`]), as `against` says.
+pub fn estimate(
+    against: BodyMeshComparison,
     grid: &ContactGrid,
-    coarse: &State,
-    fine: &State,
+    given: &State,
+    other: &State,
     scales: Scales,
     overlap_controlled: bool,
 ) -> BodyMeshError {
-    scaled(
-        difference(grid, coarse, fine, scales, overlap_controlled),
-        BODY_MESH_ESTIMATE_FACTOR,
-    )
+    let (d, factor) = match against {
+        BodyMeshComparison::Bisected => (
+            difference(grid, given, other, scales, overlap_controlled),
+            BODY_MESH_ESTIMATE_FACTOR,
+        ),
+        BodyMeshComparison::Coarsened => (
+            difference(grid, other, given, scales, overlap_controlled),
+            COARSENED_ESTIMATE_FACTOR,
+        ),
+    };
+    BodyMeshError {
+        compared_with: against,
+        ..scaled(d, factor)
+    }
 }
 
 /// The differences of two solutions on the same `grid` in the estimate's norms, with no factor:
@@ -332,21 +339,28 @@ mod tests {
             creep_prescribed: false,
             creep_floor: 0.0,
         };
-        let e = compare(
-            &grid,
-            &state(&grid, 1.0, 0.1, 1e-3, 2e-2),
-            &state(&grid, 1.02, 0.105, 1.1e-3, 2.2e-2),
-            scales,
-            true,
+        let (given, other) = (
+            state(&grid, 1.0, 0.1, 1e-3, 2e-2),
+            state(&grid, 1.02, 0.105, 1.1e-3, 2.2e-2),
         );
+        let e = estimate(BodyMeshComparison::Bisected, &grid, &given, &other, scales, true);
         let f = BODY_MESH_ESTIMATE_FACTOR;
         assert!((e.pressure - f * 0.01).abs() < 1e-12, "{e:?}");
         assert!((e.shear - f * 0.01).abs() < 1e-12, "{e:?}");
         assert!((e.creepage_rel - f * 0.1 / 1.1).abs() < 1e-12, "{e:?}");
         assert!((e.overlap_rel.unwrap() - f * 0.1 / 1.1).abs() < 1e-12, "{e:?}");
-        let e = compare(
+        assert_eq!(e.compared_with, BodyMeshComparison::Bisected);
+        // Against the coarsened meshes the given solution is the finer one: the creepage is
+        // relative to its own.
+        let e = estimate(BodyMeshComparison::Coarsened, &grid, &given, &other, scales, true);
+        let f = COARSENED_ESTIMATE_FACTOR;
+        assert!((e.pressure - f * 0.01).abs() < 1e-12, "{e:?}");
+        assert!((e.creepage_rel - f * 0.1).abs() < 1e-12, "{e:?}");
+        assert_eq!(e.compared_with, BodyMeshComparison::Coarsened);
+        let e = estimate(
+            BodyMeshComparison::Bisected,
             &grid,
-            &state(&grid, 1.0, 0.1, 1e-3, 2e-2),
+            &given,
             &state(&grid, 1.0, 0.1, 1e-3, 2.2e-2),
             scales,
             false,
