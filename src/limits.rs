@@ -131,6 +131,20 @@ impl MemoryEstimate {
     }
 }
 
+/// Whether two bodies of `nodes` boundary nodes each (None: a closed-form model, no BEM
+/// matrices) may be built side by side, on a thread each: unless both are BEM bodies whose
+/// matrices together would take more than a quarter of the memory available. The estimate
+/// ([`MemoryEstimate`]) counts the larger body only, as one after the other; a side-by-side
+/// build stays far below the memory it is checked against.
+pub fn bem_builds_fit_side_by_side(nodes: [Option<usize>; 2]) -> bool {
+    let [Some(a), Some(b)] = nodes else {
+        return true;
+    };
+    let bytes = |n: usize| BYTES_PER_BEM_UNKNOWN_SQUARED * (2.0 * n as f64).powi(2);
+    let available = available_memory().unwrap_or(FALLBACK_AVAILABLE_BYTES);
+    bytes(a) + bytes(b) <= 0.25 * available
+}
+
 /// Memory the run may use [bytes]: `MemAvailable` of /proc/meminfo, lowered to what the control
 /// group (a container, a batch job) still allows. `None` where neither can be read.
 pub fn available_memory() -> Option<f64> {
@@ -195,4 +209,19 @@ pub struct MemoryError {
     pub breakdown: String,
     /// The key (or mesh) to change, and to what.
     pub advice: String,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A closed-form body never holds the other's build back; two small BEM bodies go side by
+    /// side; two of a million nodes (1.9e14 bytes of matrices together) never do.
+    #[test]
+    fn bem_builds_go_side_by_side_only_when_both_fit_in_a_quarter_of_the_memory() {
+        assert!(bem_builds_fit_side_by_side([None, Some(1_000_000)]));
+        assert!(bem_builds_fit_side_by_side([None, None]));
+        assert!(bem_builds_fit_side_by_side([Some(400), Some(500)]));
+        assert!(!bem_builds_fit_side_by_side([Some(1_000_000), Some(1_000_000)]));
+    }
 }

@@ -28,6 +28,7 @@ pub use crate::mesh::LoadedMesh;
 pub use estimates::{aligned_half_length, Estimates};
 pub use registry::BodySetups;
 use std::sync::Arc;
+use std::time::Instant;
 
 /// The built body models of A and B.
 pub type BodyModels = [Box<dyn Body>; 2];
@@ -217,17 +218,34 @@ impl Scene {
         let mut bodies = self.bodies.clone();
         let mut checks = Some(self.bodies.clone());
         let mut any = false;
-        let mut condense_s = 0.0;
-        for (k, side) in [Side::A, Side::B].into_iter().enumerate() {
-            if let Some(stand_in) = self.bodies[k].pass_stand_in(levels, side, self.rolling())? {
-                bodies[k] = stand_in.body;
-                condense_s += stand_in.condense_s;
-                match (stand_in.check, checks.as_mut()) {
-                    (Some(check), Some(c)) => c[k] = check,
-                    _ => checks = None,
-                }
-                any = true;
+        // The two bodies' levels are condensed side by side where memory allows: each
+        // condensation is mostly one thread's work, so the second core would idle.
+        let build = |k: usize, side: Side| {
+            let t = Instant::now();
+            let stand_in = self.bodies[k].pass_stand_in(levels, side, self.rolling());
+            (stand_in, t.elapsed().as_secs_f64())
+        };
+        let t = Instant::now();
+        let finest = levels.last().map(|g| g.n_elements());
+        let (a, b) = self.side_by_side(finest, || build(0, Side::A), || build(1, Side::B));
+        let wall = t.elapsed().as_secs_f64();
+        let busy = a.1 + b.1;
+        let (mut condensing, mut built) = (0.0, Vec::new());
+        for (k, (stand_in, _)) in [a, b].into_iter().enumerate() {
+            if let Some(s) = stand_in? {
+                condensing += s.condense_s;
+                built.push((k, s));
             }
+        }
+        // The builds overlap: the condensation's share of their wall time.
+        let condense_s = if busy > 0.0 { wall * condensing / busy } else { 0.0 };
+        for (k, stand_in) in built {
+            bodies[k] = stand_in.body;
+            match (stand_in.check, checks.as_mut()) {
+                (Some(check), Some(c)) => c[k] = check,
+                _ => checks = None,
+            }
+            any = true;
         }
         if !any || bodies.iter().any(|b| b.contact_mesh().is_some()) {
             return Ok(None);
@@ -265,7 +283,31 @@ impl Scene {
             };
             Ok(self.bodies[k].build(&ctx)?)
         };
-        Ok([build(0, Side::A)?, build(1, Side::B)?])
+        // Side by side where memory allows: a BEM body's condensation is mostly one thread's
+        // work. (The bodies only join the pair's store here; they take its matrices when asked
+        // for their flexibility.)
+        let (a, b) = self.side_by_side(None, || build(0, Side::A), || build(1, Side::B));
+        Ok([a?, b?])
+    }
+
+    /// `a()` and `b()`, the builds of bodies A and B: on a thread each
+    /// ([`crate::limits::bem_builds_fit_side_by_side`] for the bodies' meshes as they are, or
+    /// cut along a grid of `contact_elements`), else one after the other.
+    fn side_by_side<T: Send>(
+        &self,
+        contact_elements: Option<usize>,
+        a: impl FnOnce() -> T + Send,
+        b: impl FnOnce() -> T + Send,
+    ) -> (T, T) {
+        let nodes = |k: usize| match contact_elements {
+            Some(n) => self.bodies[k].discretisation_nodes_on(n),
+            None => self.bodies[k].discretisation_nodes(),
+        };
+        if crate::limits::bem_builds_fit_side_by_side([nodes(0), nodes(1)]) {
+            rayon::join(a, b)
+        } else {
+            (a(), b())
+        }
     }
 
     /// Builds the body models and assembles the contact problem.
@@ -282,16 +324,9 @@ impl Scene {
         pb
     }
 
-    /// Builds the body models and assembles the contact problem without its strain operator
-    /// (an error-controlled run's intermediate grids; [`ContactProblem::strain_of`] adds it).
-    pub fn assemble_without_strain(&self) -> Result<(BodyModels, ContactProblem), Error> {
-        let models = self.body_models()?;
-        let problem = self.contact_problem_without_strain(&models);
-        Ok((models, problem))
-    }
-
-    /// [`Self::contact_problem`] without the strain operator.
-    fn contact_problem_without_strain(&self, models: &BodyModels) -> ContactProblem {
+    /// [`Self::contact_problem`] without the strain operator (an error-controlled run's
+    /// intermediate grids; [`ContactProblem::strain_of`] adds it).
+    pub fn contact_problem_without_strain(&self, models: &BodyModels) -> ContactProblem {
         let c = &self.case.case.contact;
         log::info!(
             target: crate::logging::PROGRESS,
