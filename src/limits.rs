@@ -76,8 +76,9 @@ pub const BYTES_PER_CONTACT_NODE_SQUARED: f64 = 180.0;
 /// Peak memory per squared boundary unknown n = 2 × field nodes of the largest `bem` body
 /// [bytes]: the BEM matrices H and G and the rows they are gathered from, four n × n matrices of
 /// doubles at the assembly's end; the system matrix is then factored in place and H and G are
-/// freed before the LU (bodies are built one after the other, and only their condensed
-/// flexibility is kept). The peak RSS of rollers of 490–2090 nodes gives 25–40 bytes per n²
+/// freed before the LU (only a body's condensed flexibility is kept; two bodies are built
+/// side by side only when both fit in a quarter of the memory, [`bem_builds_fit_side_by_side`],
+/// else one after the other). The peak RSS of rollers of 490–2090 nodes gives 25–40 bytes per n²
 /// (the calibration table of docs/reliability.md).
 pub const BYTES_PER_BEM_UNKNOWN_SQUARED: f64 = 48.0;
 
