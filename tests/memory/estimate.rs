@@ -241,10 +241,10 @@ fn controlled_run(name: &str, max_elements: usize) -> ControlledRun {
 /// 55 MB promised for a run that peaked at 3.2 GB.
 ///
 /// A ring with a bore (cases/bore_a020_tractive.yaml, which reaches 152 elements) makes the
-/// bisected check, and the estimate lies within a factor 2 of its peak (400 MB against 268 MB
+/// bisected check, and the estimate lies within a factor 2 of its peak (400 MB against 249 MB
 /// when measured). The rollers of cases/carter_051_true.yaml (80 elements) pass the cheaper
 /// comparison with their meshes coarsened, so the bisected solve the estimate allows for is not
-/// made: the estimate is only checked to bound the peak (341 MB against 67 MB when measured).
+/// made: the estimate is only checked to bound the peak (341 MB against 73 MB when measured).
 #[cfg(target_os = "linux")]
 #[test]
 fn the_estimate_of_an_error_controlled_bem_run_bounds_its_peak() {
