@@ -43,6 +43,19 @@ pub struct Timings {
     pub total_s: f64,
 }
 
+impl Timings {
+    /// The part [s] of `wall` [s] that went to a stage taking `part` [s] of `whole` [s] of
+    /// work done side by side (two bodies built on a thread each): the stage's share of the
+    /// wall time, so that the stages still add up to it. Zero when nothing was timed.
+    pub fn share_of_wall(wall: f64, part: f64, whole: f64) -> f64 {
+        if whole > 0.0 {
+            (wall * part / whole).min(part)
+        } else {
+            0.0
+        }
+    }
+}
+
 /// A solved scene with everything post-processing derived from it, before anything is written.
 #[derive(Debug, Clone)]
 pub struct Solved {
@@ -165,4 +178,18 @@ fn check_grid_contains_contact(scene: &Scene, sol: &ContactSolution) -> Result<(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Timings;
+
+    /// Two builds of 1.5 s of work, 0.6 s of it condensation, overlapped in 1 s of wall time:
+    /// 0.4 s is condensation. Never more than the stage's own time, zero with nothing timed.
+    #[test]
+    fn a_stage_of_overlapped_work_takes_its_share_of_the_wall_time() {
+        assert!((Timings::share_of_wall(1.0, 0.6, 1.5) - 0.4).abs() < 1e-15);
+        assert_eq!(Timings::share_of_wall(2.0, 0.5, 1.0), 0.5);
+        assert_eq!(Timings::share_of_wall(1.0, 0.0, 0.0), 0.0);
+    }
 }

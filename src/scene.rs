@@ -42,8 +42,11 @@ pub struct PassScenes {
     /// passes' stand-ins' error on the final grid; None when a stand-in cannot give the final
     /// grid's results.
     pub check: Option<Scene>,
-    /// Wall time [s] the stand-ins' builds spent condensing the bodies.
+    /// Time [s] the stand-ins' builds spent condensing the bodies, summed over both.
     pub condense_s: f64,
+    /// The builds' own times [s], summed over both (they may have run side by side: the
+    /// condensation's share of the wall time is `condense_s / build_s`).
+    pub build_s: f64,
 }
 
 /// A case resolved for solving.
@@ -225,20 +228,16 @@ impl Scene {
             let stand_in = self.bodies[k].pass_stand_in(levels, side, self.rolling());
             (stand_in, t.elapsed().as_secs_f64())
         };
-        let t = Instant::now();
         let finest = levels.last().map(|g| g.n_elements());
         let (a, b) = self.side_by_side(finest, || build(0, Side::A), || build(1, Side::B));
-        let wall = t.elapsed().as_secs_f64();
-        let busy = a.1 + b.1;
-        let (mut condensing, mut built) = (0.0, Vec::new());
+        let build_s = a.1 + b.1;
+        let (mut condense_s, mut built) = (0.0, Vec::new());
         for (k, (stand_in, _)) in [a, b].into_iter().enumerate() {
             if let Some(s) = stand_in? {
-                condensing += s.condense_s;
+                condense_s += s.condense_s;
                 built.push((k, s));
             }
         }
-        // The builds overlap: the condensation's share of their wall time.
-        let condense_s = if busy > 0.0 { wall * condensing / busy } else { 0.0 };
         for (k, stand_in) in built {
             bodies[k] = stand_in.body;
             match (stand_in.check, checks.as_mut()) {
@@ -254,6 +253,7 @@ impl Scene {
             passes: Scene { bodies, ..self.clone() },
             check: checks.map(|bodies| Scene { bodies, ..self.clone() }),
             condense_s,
+            build_s,
         }))
     }
 

@@ -26,7 +26,7 @@
 //! [`ContactFlexibility::surface_strain`].
 
 use super::assemble::{BemModel, BemSolution};
-use super::hypersingular::{GradientEvaluator, GradientPoint};
+use super::hypersingular::{check_boundary_point, GradientEvaluator, GradientPoint};
 use super::reuse::{assemble_reusing, FarField};
 use super::{BemError, BoundaryCondition, Component};
 use faer::Mat;
@@ -241,23 +241,14 @@ fn strain_rows(model: &BemModel, nodes: &[usize]) -> Result<Vec<StrainRow>, BemE
         .collect()
 }
 
-/// Fails as [`strain_rows`] would: a contact node at an element's end (ξ = ±1), where the
-/// HBEM boundary strain is not defined.
+/// Fails as [`strain_rows`] would ([`check_boundary_point`]): a contact node at an element's
+/// end (ξ = ±1), where the HBEM boundary strain is not defined.
 fn check_strain_points(model: &BemModel, nodes: &[usize]) -> Result<(), BemError> {
     let d = &model.discretisation;
-    for &k in nodes {
+    nodes.iter().try_for_each(|&k| {
         let (element, local) = d.nodes[k].element;
-        let xi = d.interpolation[element].node_coordinates()[local];
-        if !(xi > -1.0 && xi < 1.0) {
-            return Err(BemError::BadGradientPoint {
-                path: model.mesh.source.clone(),
-                element,
-                xi,
-                count: d.geometry.len(),
-            });
-        }
-    }
-    Ok(())
+        check_boundary_point(model, element, d.interpolation[element].node_coordinates()[local])
+    })
 }
 
 /// [`surface_strain`] of the unit contact loads straight from the condensed `response`
@@ -302,11 +293,10 @@ mod tests {
     /// solutions ([`surface_strain`], the product over u and t both), to round-off, on the
     /// aluminium roller of cases/fig14_true_geometry.yaml (a fixed shaft: both kinds of
     /// unknown).
-    #[test]
-    fn strain_from_the_response_is_the_strain_of_the_boundary_solutions() {
+    fn fig14_roller() -> BemModel {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r150_shaft15_A.msh");
         let (mesh, _) = crate::mesh::load(&path).unwrap();
-        let model = BemModel::new(
+        BemModel::new(
             mesh,
             Elastic::new(60_260.0, 0.31),
             vec![
@@ -316,8 +306,14 @@ mod tests {
             ],
             BemOptions::default(),
         )
-        .unwrap();
+        .unwrap()
+    }
+
+    #[test]
+    fn strain_from_the_response_is_the_strain_of_the_boundary_solutions() {
+        let model = fig14_roller();
         let c = condense(&model, "contact").unwrap();
+        assert_eq!(c.strain_s(), 0.0, "not computed before it is asked for");
         let responses: Vec<BemSolution> = (0..2 * c.nodes.len())
             .map(|col| {
                 let loaded = 2 * c.nodes[col / 2] + col % 2;
@@ -331,5 +327,26 @@ mod tests {
             scale > 0.0 && diff <= 1e-12 * scale,
             "differs by {diff:.3e} of {scale:.3e}"
         );
+        // Kept: the second call returns the same matrix.
+        let first: *const Mat<f64> = c.surface_strain(&model).unwrap();
+        assert!(std::ptr::eq(first, c.surface_strain(&model).unwrap()));
+    }
+
+    /// The strain's points are checked at the condensation: a contact node must lie strictly
+    /// inside its element (a continuous element's end node would not), and the element exist.
+    #[test]
+    fn the_strains_points_must_lie_inside_existing_elements() {
+        let model = fig14_roller();
+        let count = model.discretisation.geometry.len();
+        assert!(check_boundary_point(&model, 0, 0.5).is_ok());
+        for (element, xi) in [(0, 1.0), (0, -1.0), (count, 0.0), (0, f64::NAN)] {
+            assert!(
+                matches!(
+                    check_boundary_point(&model, element, xi),
+                    Err(BemError::BadGradientPoint { .. })
+                ),
+                "element {element}, xi {xi}"
+            );
+        }
     }
 }

@@ -340,6 +340,20 @@ pub struct GradientEvaluator<'a> {
     singular_points: usize,
 }
 
+/// Fails unless the boundary point (`element`, `xi`) of `model` is one where the HBEM gradient
+/// is defined: an existing element, strictly inside it (ξ in (−1, 1)).
+pub fn check_boundary_point(model: &BemModel, element: usize, xi: f64) -> Result<(), BemError> {
+    let count = model.discretisation.geometry.len();
+    if element >= count || !(xi > -1.0 && xi < 1.0) {
+        return Err(BemError::BadGradientPoint {
+            path: model.mesh.source.clone(),
+            element,
+            xi,
+            count,
+        });
+    }
+    Ok(())
+}
 impl<'a> GradientEvaluator<'a> {
     /// An evaluator with the model's quadrature options; the remainder on the element
     /// containing X uses the model's `singular_gauss_points` on each side of X.
@@ -360,14 +374,7 @@ impl<'a> GradientEvaluator<'a> {
         let (source, own, free_term) = match point {
             GradientPoint::Interior(p) => (p, None, 1.0),
             GradientPoint::Boundary { element, xi } => {
-                if element >= d.geometry.len() || !(xi > -1.0 && xi < 1.0) {
-                    return Err(BemError::BadGradientPoint {
-                        path: self.model.mesh.source.clone(),
-                        element,
-                        xi,
-                        count: d.geometry.len(),
-                    });
-                }
+                check_boundary_point(self.model, element, xi)?;
                 (d.geometry[element].point(xi), Some((element, xi)), 0.5)
             }
         };
