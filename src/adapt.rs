@@ -363,16 +363,20 @@ fn refine(
                 return Ok(Refined::Met(h, scales));
             }
             // The stand-ins give the results when their own error, estimated by the check's
-            // solution, leaves the total within the tolerance (src/body/bem/stand_in.rs).
+            // solution, leaves the total within the tolerance (src/body/bem/stand_in.rs). The
+            // check is solved on G, not H: the two stand-ins differ by a smooth remainder, and
+            // the solution's response to it is set by the contact's zones, which G resolves as
+            // well as H to within the tolerance (docs/validation.md, "The stand-ins' own
+            // error"), at an eighth of H's cost per Newton step.
             if let Some(check_scene) = check.as_ref().filter(|_| !asks_interior_fields(scene)) {
                 let c = solve_on(
-                    check_scene.on_grid(h.problem.grid.clone()),
-                    Some((&h.problem.grid, &h.state)),
+                    check_scene.on_grid(g.problem.grid.clone()),
+                    Some((&g.problem.grid, &g.state)),
                     timings,
                     ws,
                 )?;
                 if c.report.converged {
-                    let d = body_mesh::difference(&h.problem.grid, &c.state, &h.state, scales, e.overlap_rel.is_some());
+                    let d = body_mesh::difference(&g.problem.grid, &c.state, &g.state, scales, e.overlap_rel.is_some());
                     let total = e.plus(&d, check_factor);
                     log::info!(
                         target: crate::logging::PROGRESS,
@@ -497,8 +501,9 @@ fn stand_in_levels(start: &DyadicGrid, tolerance: f64) -> Vec<ContactGrid> {
         .collect()
 }
 
-/// The factor of the difference between the stand-ins' solution and their check's on the
-/// final grid that estimates the stand-ins' error (src/body/bem/stand_in.rs). Fitted on three
+/// The factor of the difference between the stand-ins' solution and their check's (on the
+/// last pass's coarser grid) that estimates the stand-ins' error on the final grid
+/// (src/body/bem/stand_in.rs). Fitted on three
 /// levels, the check is the Richardson remainder of the two coarser: with the remainder's error
 /// c₁h + c₂h², Richardson leaves c₂h²/2 from the two coarser levels and a quarter of that from
 /// the two finer, so the finer's is the difference / 3 (Richardson's own error estimate for a

@@ -61,6 +61,33 @@ pub struct BemSetup {
     /// outside the contact, whose check builds it on the finest grid its stand-in would be
     /// fitted on, should the run adopt it (src/adapt/body_mesh.rs).
     pub keep_builds: bool,
+    /// What [`BodySetup::surface_at`] reads of `mesh`'s contact group, computed with the mesh
+    /// (every constructor here sets it from the mesh it sets).
+    pub shape: ContactShape,
+}
+
+/// The contact group's x-range, touching height and fitted radius: read at every node of
+/// every grid ([`BodySetup::surface_at`]: the contact frame, the stand-ins' slopes and
+/// profiles), so computed once per mesh rather than per call.
+#[derive(Debug, Clone, Copy)]
+pub struct ContactShape {
+    /// x-range of the contact group [length].
+    pub range: [f64; 2],
+    /// Height y of the contact surface at x = 0 [length], if the group reaches it.
+    pub touch: Option<f64>,
+    /// Signed radius of the circle fitted to the group ([`LoadedMesh::contact_radius`]) [length].
+    pub radius: f64,
+}
+
+impl ContactShape {
+    /// The shape of `mesh`'s contact group.
+    pub fn of(mesh: &LoadedMesh) -> Self {
+        Self {
+            range: mesh.contact_range(),
+            touch: mesh.surface_at(0.0).map(|(y, _)| y),
+            radius: mesh.contact_radius(),
+        }
+    }
 }
 
 impl BemSetup {
@@ -76,6 +103,7 @@ impl BemSetup {
     ) -> Self {
         Self {
             radius: profile_radius.unwrap_or_else(|| mesh.contact_radius()),
+            shape: ContactShape::of(&mesh),
             mesh,
             material,
             contact,
@@ -191,6 +219,7 @@ impl BemSetup {
             ..self.mesh.clone()
         };
         BemSetup {
+            shape: ContactShape::of(&mesh),
             mesh,
             start_mesh: None,
             far_field: Default::default(),
@@ -209,6 +238,7 @@ impl BemSetup {
             ..self.mesh.clone()
         };
         Some(BemSetup {
+            shape: ContactShape::of(&mesh),
             mesh,
             start_mesh: None,
             far_field: Default::default(),
@@ -226,6 +256,7 @@ impl BemSetup {
             ..(*start).clone()
         };
         BemSetup {
+            shape: ContactShape::of(&mesh),
             mesh,
             start_mesh: Some(start),
             ..self.clone()
@@ -256,14 +287,13 @@ impl BodySetup for BemSetup {
     /// The mesh's contact surface (clamped to the contact group's x-range), its profile from
     /// its touching point at x = 0, turning about the contact group's fitted circle.
     fn surface_at(&self, x: f64, side: Side) -> Option<SurfaceAt> {
-        let mesh = &self.mesh;
-        let [x0, x1] = mesh.contact_range();
-        let (y, slope) = mesh.surface_at(x.clamp(x0, x1))?;
-        let touch = mesh.surface_at(0.0).map_or(y, |(y0, _)| y0);
+        let [x0, x1] = self.shape.range;
+        let (y, slope) = self.mesh.surface_at(x.clamp(x0, x1))?;
+        let touch = self.shape.touch.unwrap_or(y);
         Some(SurfaceAt {
             slope_angle: slope.atan(),
             profile: (y - touch) * side.sign(),
-            radius: mesh.contact_radius(),
+            radius: self.shape.radius,
         })
     }
 
@@ -469,5 +499,38 @@ mod tests {
             pair: None,
         };
         followed.build(&ctx).expect("the body builds on the grid it followed");
+    }
+
+    /// The surface the contact frame reads is each mesh's own: the cached shape of a setup that
+    /// followed a grid, or whose mesh was bisected or coarsened outside the contact, is that of
+    /// its new mesh (the cut adds nodes to the contact group, which moves its fitted circle in
+    /// the last bits), not a copy of the start mesh's; and `surface_at` gives what the mesh
+    /// itself gives at x, to the bit.
+    #[test]
+    fn each_setup_reads_its_own_meshs_contact_surface() {
+        let setup = fig14_roller();
+        let grid = DyadicGrid::new(&setup.mesh.contact_grid()).bisected().grid();
+        let changed = [
+            setup.followed(&grid),
+            setup.free_boundary_bisected(),
+            setup.free_boundary_coarsened().expect("the roller coarsens"),
+        ];
+        for s in std::iter::once(&setup).chain(&changed) {
+            let mesh = &s.mesh;
+            assert_eq!(s.shape.radius.to_bits(), mesh.contact_radius().to_bits());
+            assert_eq!(s.shape.range, mesh.contact_range());
+            let touch = mesh.surface_at(0.0).unwrap().0;
+            for x in [-1.0, -0.3, 0.0, 0.7] {
+                let (y, slope) = mesh.surface_at(x).unwrap();
+                let at = s.surface_at(x, Side::A).unwrap();
+                assert_eq!(at.profile.to_bits(), ((y - touch) * Side::A.sign()).to_bits());
+                assert_eq!(at.slope_angle.to_bits(), slope.atan().to_bits());
+            }
+        }
+        assert_ne!(
+            changed[0].shape.radius.to_bits(),
+            setup.shape.radius.to_bits(),
+            "the cut mesh's circle differs in its last bits, so the test can tell a stale copy"
+        );
     }
 }
