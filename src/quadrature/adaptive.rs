@@ -58,17 +58,28 @@ pub struct Quadrature {
     log: (Vec<f64>, Vec<f64>),
     /// ln(1/tolerance).
     pub(super) log_inv_tolerance: f64,
+    /// The radius |ξ| beyond which every singularity leaves the adaptive rule at
+    /// [`QuadratureOptions::min_points`] on the whole element ([`Self::off_element_points`]).
+    min_points_radius: f64,
 }
 
 impl Quadrature {
     /// Builds the rules for `options`.
     pub fn new(options: QuadratureOptions) -> Self {
         let top = options.max_points.max(options.singular_points).max(1);
+        let log_inv_tolerance = (1.0 / options.tolerance).ln();
+        // n points need ρ ≥ exp(ln(1/tol)/(2(n − 1))) (the inverse of `points_for`), and no
+        // subdivision ρ ≥ min_ellipse; a point at |s| = R has ρ ≥ R + √(R² − 1), whose inverse
+        // is R = (ρ + 1/ρ)/2. The margin keeps the adaptive rule's own rounding of ρ clear of
+        // the threshold, so that both choose the same points.
+        let n = options.min_points.max(2) as f64;
+        let rho = (log_inv_tolerance / (2.0 * (n - 1.0))).exp().max(options.min_ellipse) * (1.0 + 1e-6);
         Self {
             options,
             legendre: (1..=top).map(gauss_legendre).collect(),
             log: log_gauss(options.log_points.max(1)),
-            log_inv_tolerance: (1.0 / options.tolerance).ln(),
+            log_inv_tolerance,
+            min_points_radius: 0.5 * (rho + 1.0 / rho),
         }
     }
 
@@ -96,6 +107,36 @@ impl Quadrature {
     /// for an interior grid); the subdivision depth is capped at [`MAX_DEPTH`], below which
     /// intervals are finer than the resolution of ξ in double precision.
     pub fn off_element_points(&self, nodes: &QuadraticNodes, source: [f64; 2], mut visit: impl FnMut(f64, f64)) {
+        if self.far_enough_for_fewest_points(nodes, source) {
+            // What the adaptive rule would choose too: no subdivision, the fewest points.
+            let (x, w) = self.legendre(self.options.min_points);
+            for (&s, &wk) in x.iter().zip(w) {
+                visit(s, wk);
+            }
+            return;
+        }
+        self.adaptive_points(nodes, source, visit);
+    }
+
+    /// Whether every singularity of the element's integrand lies so far from the element, by
+    /// the lower bound of [`super::SingularityBound`] (no root finding: most source–element
+    /// pairs of an assembly are far apart), that the adaptive rule neither subdivides nor takes
+    /// more than [`QuadratureOptions::min_points`]: the roots of r² have
+    /// |ξ| ≥ 2D/(|b| + √(|b|² + 4|c|D)) (D the source's distance from the mid node, x(ξ) =
+    /// x_m + bξ + cξ²), those of the Jacobian |ξ| = |b|/(2|c|).
+    #[inline]
+    fn far_enough_for_fewest_points(&self, nodes: &QuadraticNodes, source: [f64; 2]) -> bool {
+        let [p0, p1, pm] = *nodes;
+        let norm = |x: f64, y: f64| (x * x + y * y).sqrt();
+        let b = norm(0.5 * (p1[0] - p0[0]), 0.5 * (p1[1] - p0[1]));
+        let c = norm(0.5 * (p0[0] + p1[0]) - pm[0], 0.5 * (p0[1] + p1[1]) - pm[1]);
+        let d = norm(source[0] - pm[0], source[1] - pm[1]);
+        let r = self.min_points_radius;
+        2.0 * d >= r * (b + (b * b + 4.0 * c * d).sqrt()) && b >= 2.0 * c * r
+    }
+
+    /// [`Self::off_element_points`] by the roots: the adaptive rule itself.
+    fn adaptive_points(&self, nodes: &QuadraticNodes, source: [f64; 2], mut visit: impl FnMut(f64, f64)) {
         let o = &self.options;
         let poles = complex_singularities(nodes, source);
         let max_depth = o.max_depth.min(MAX_DEPTH);
@@ -154,4 +195,58 @@ pub fn bernstein_parameter(poles: &[Complex<f64>], lo: f64, hi: f64) -> f64 {
             a + (a * a - 1.0).max(0.0).sqrt()
         })
         .fold(f64::INFINITY, f64::min)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The points of a rule, as bits.
+    fn points(q: &Quadrature, nodes: &QuadraticNodes, source: [f64; 2], adaptive: bool) -> Vec<(u64, u64)> {
+        let mut out = Vec::new();
+        let visit = |x: f64, w: f64| out.push((x.to_bits(), w.to_bits()));
+        if adaptive {
+            q.adaptive_points(nodes, source, visit);
+        } else {
+            q.off_element_points(nodes, source, visit);
+        }
+        out
+    }
+
+    /// Over sources from a thousandth of an element to ten thousand elements away, around
+    /// straight and strongly bowed elements: wherever the shortcut applies, the adaptive rule
+    /// takes the same points to the bit; it applies to every distant source of a nearly straight
+    /// element (a boundary element on a circle bows by |c|/|b| ≈ h/(8R)) and to no near one.
+    #[test]
+    fn the_shortcut_takes_the_adaptive_rules_points() {
+        let q = Quadrature::new(QuadratureOptions::default());
+        let (mut taken, mut far) = (0, 0);
+        for bow in [0.0, 1e-9, 1e-3, 0.1, 0.3] {
+            let nodes: QuadraticNodes = [[-1.0, 0.0], [1.0, 0.0], [0.0, bow]];
+            for k in 0..400 {
+                let distance = 10f64.powf(-3.0 + 7.0 * (k as f64) / 400.0);
+                let angle = 0.37 * k as f64;
+                let source = [distance * angle.cos(), bow + distance * angle.sin()];
+                let fast = q.far_enough_for_fewest_points(&nodes, source);
+                let exact = points(&q, &nodes, source, true);
+                if fast {
+                    taken += 1;
+                    assert_eq!(points(&q, &nodes, source, false), exact, "bow {bow}, source {source:?}");
+                    assert_eq!(exact.len(), q.options.min_points, "one interval, fewest points");
+                } else {
+                    assert_eq!(points(&q, &nodes, source, false), exact);
+                }
+                if distance < 10.0 {
+                    assert!(!fast, "a near source ({distance}) takes the adaptive rule");
+                }
+                // A bow above 1 % of the half-chord puts the Jacobian's zeros within reach of
+                // any source (|ξ| = |b|/(2|c|)): the adaptive rule then takes more points.
+                if distance > 1e3 && bow <= 1e-3 {
+                    far += 1;
+                    assert!(fast, "a distant source ({distance}) takes the shortcut, bow {bow}");
+                }
+            }
+        }
+        assert!(taken > far / 2 && far > 0, "{taken} shortcuts, {far} distant sources");
+    }
 }
