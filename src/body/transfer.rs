@@ -97,24 +97,25 @@ fn carried(d: &SparseRows, f: &Mat<f64>, t: &SparseRows, k: usize) -> Mat<f64> {
         }
     }
     let mut out = Mat::<f64>::zeros(d.rows.len(), k);
-    let columns: Vec<Vec<f64>> = by_column
-        .par_iter()
-        .map(|entries| {
-            let mut ft = vec![0.0; n];
+    out.par_col_iter_mut().zip(by_column.par_iter()).for_each_init(
+        || vec![0.0; n],
+        |ft, (column, entries)| {
+            ft.fill(0.0);
             for &(l, v) in entries {
                 for (a, &b) in ft.iter_mut().zip(f.col_as_slice(l)) {
                     *a += v * b;
                 }
             }
-            d.rows
-                .iter()
-                .map(|row| row.iter().map(|&(r, v)| v * ft[r]).sum())
-                .collect()
-        })
-        .collect();
-    for (j, column) in columns.iter().enumerate() {
-        out.col_as_slice_mut(j).copy_from_slice(column);
-    }
+            // A column of a freshly allocated matrix is contiguous.
+            let column = column
+                .try_as_col_major_mut()
+                .expect("a contiguous column")
+                .as_slice_mut();
+            for (o, row) in column.iter_mut().zip(&d.rows) {
+                *o = row.iter().map(|&(r, v)| v * ft[r]).sum();
+            }
+        },
+    );
     out
 }
 
@@ -129,12 +130,31 @@ pub fn transfer_flexibility(
     }
     let (d, t) = operators(body, grid)?;
     let carry = |f: &Mat<f64>| carried(&d, f, &t, grid.n_nodes());
+    // A half-plane's W blocks are its H blocks (W_q = H_p, W_p = −H_q:
+    // `Flexibility::of_half_plane`): carried once, they are the same numbers to the bit (the
+    // carry is linear, and a sign change rounds symmetrically), at half the cost.
+    if same_entries(&flex.wq, &flex.hp, 1.0) && same_entries(&flex.wp, &flex.hq, -1.0) {
+        let (hp, hq) = (carry(&flex.hp), carry(&flex.hq));
+        return Ok(Flexibility::of_half_plane(hp, hq));
+    }
     Ok(Flexibility {
         hp: carry(&flex.hp),
         hq: carry(&flex.hq),
         wp: carry(&flex.wp),
         wq: carry(&flex.wq),
     })
+}
+
+/// Whether a = sign·b entry for entry, exactly.
+fn same_entries(a: &Mat<f64>, b: &Mat<f64>, sign: f64) -> bool {
+    a.nrows() == b.nrows()
+        && a.ncols() == b.ncols()
+        && (0..a.ncols()).all(|j| {
+            a.col_as_slice(j)
+                .iter()
+                .zip(b.col_as_slice(j))
+                .all(|(&x, &y)| x == sign * y)
+        })
 }
 
 /// The body's surface-strain operator carried to the contact grid, like the flexibility.
@@ -296,6 +316,31 @@ mod tests {
             .collect();
         let dense_x = crate::linalg::mat_vec(&interpolation_matrix(&grid, &body), &x);
         assert_eq!(SparseRows::interpolation(&grid, &body).times(&x), dense_x);
+    }
+
+    /// A half-plane's flexibility carried by its two H blocks is, to the bit, the four
+    /// blocks carried one by one; a flexibility of another shape carries all four.
+    #[test]
+    fn a_half_plane_is_carried_by_its_two_kernels_to_the_bit() {
+        let own = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 8, -1.4, 1.4);
+        let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 5, -1.2, 1.1);
+        let f = body().flexibility(&own, Side::B);
+        let (d, t) = operators(&own, &grid).unwrap();
+        let carry = |m: &Mat<f64>| carried(&d, m, &t, grid.n_nodes());
+        let shortcut = transfer_flexibility(&f, &own, &grid).unwrap();
+        for (a, b) in [
+            (&shortcut.hp, carry(&f.hp)),
+            (&shortcut.hq, carry(&f.hq)),
+            (&shortcut.wp, carry(&f.wp)),
+            (&shortcut.wq, carry(&f.wq)),
+        ] {
+            assert!(*a == b, "the shortcut differs from the block's own carry");
+        }
+        let mut other = f.clone();
+        let mid = own.n_nodes() / 2;
+        other.wq[(mid, mid)] *= 1.0 + 1e-9;
+        let carried_all = transfer_flexibility(&other, &own, &grid).unwrap();
+        assert!(carried_all.wq == carry(&other.wq) && carried_all.wq != shortcut.wq);
     }
 
     #[test]

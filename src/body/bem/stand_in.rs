@@ -164,17 +164,21 @@ impl SmoothRemainder {
         }
     }
 
-    /// The remainder's blocks on `grid`: R(x_i, s_j)·w_j.
-    pub fn blocks_on(&self, grid: &ContactGrid) -> Vec<Mat<f64>> {
+    /// Adds the remainder's blocks on `grid`, R(x_i, s_j)·w_j, to `targets` (one per block, in
+    /// the order of the coefficients): in place, where a flexibility on a large grid would
+    /// otherwise take four more matrices of its size per body and pass.
+    pub fn add_to<'a>(&self, grid: &ContactGrid, targets: impl Iterator<Item = &'a mut Mat<f64>>) {
         let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
         let m = grid.n_nodes();
-        self.coefficients
-            .iter()
-            .map(|c| {
-                let r = &t * c * t.transpose();
-                Mat::from_fn(m, m, |i, j| r[(i, j)] * grid.weights[j])
-            })
-            .collect()
+        for (c, target) in self.coefficients.iter().zip(targets) {
+            let r = &t * c * t.transpose();
+            for (j, &w) in grid.weights.iter().enumerate() {
+                let column = &r.as_slice()[j * m..(j + 1) * m];
+                for (a, &b) in target.col_as_slice_mut(j).iter_mut().zip(column) {
+                    *a += b * w;
+                }
+            }
+        }
     }
 
     /// ∂R/∂x of the w blocks (wp, wq) on `grid`: ∂R(x_i, s_j)/∂x·w_j, the surface strain of the
@@ -187,15 +191,6 @@ impl SmoothRemainder {
             let r = &dt * &self.coefficients[k] * t.transpose();
             Mat::from_fn(m, m, |i, j| r[(i, j)] * grid.weights[j])
         })
-    }
-
-    /// The remainder of a flexibility on `grid` (blocks hp, hq, wp, wq).
-    pub fn on(&self, grid: &ContactGrid) -> Flexibility {
-        let [hp, hq, wp, wq]: [Mat<f64>; 4] = self
-            .blocks_on(grid)
-            .try_into()
-            .expect("a flexibility remainder has four blocks");
-        Flexibility { hp, hq, wp, wq }
     }
 }
 
@@ -482,11 +477,8 @@ impl BodyModel for StandInBody {
         let inner = &self.setup.inner;
         let slope = |x: f64| inner.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
         let mut f = arc_scaled(self.flat.model().flexibility(grid, side), grid, &slope);
-        let r = self.remainder().on(grid);
-        f.hp += &r.hp;
-        f.hq += &r.hq;
-        f.wp += &r.wp;
-        f.wq += &r.wq;
+        self.remainder()
+            .add_to(grid, [&mut f.hp, &mut f.hq, &mut f.wp, &mut f.wq].into_iter());
         f
     }
 
