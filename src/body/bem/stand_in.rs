@@ -42,9 +42,7 @@
 //! finest and the check the two coarsest, and the Richardson remainders' errors fall by about
 //! 4 per bisection, as a second-order term does (measured on fig14_true_geometry: 1.1e-4,
 //! 2.4e-5 and 5.8e-6 of the creepage at the three pairs of levels), so a third of the
-//! difference of their solutions (on the last pass's coarser grid, which resolves the effect
-//! of a smooth remainder as well as the final grid does) estimates the result's error
-//! (Richardson's estimate);
+//! difference of their solutions estimates the result's error (Richardson's estimate);
 //! fitted on two grids, the check is the finer fit alone, whose error is the first-order one
 //! that the extrapolation removes (3.5–6.5 times the result's). src/adapt.rs adds that
 //! estimate to the grid's and solves the final grid with the full BEM only when the sum
@@ -389,8 +387,8 @@ impl BemStandIn {
     }
 
     /// The same stand-in solving with the remainder known less well (module docs): the
-    /// difference of the two solutions (on the last pass's coarser grid), scaled as
-    /// src/adapt.rs does by the number of levels, estimates the error of this one's.
+    /// difference of the two solutions on the final grid, scaled as src/adapt.rs does by the
+    /// number of levels, estimates the error of this one's.
     pub fn checking(&self) -> Self {
         Self {
             used: Use::Check,
