@@ -46,6 +46,7 @@ pub mod body_mesh;
 pub mod cells;
 pub mod estimate;
 pub mod overlap;
+mod stand_ins;
 
 use crate::analytic::{hertz_half_width, hertz_peak_pressure};
 use crate::contact::residual::State;
@@ -179,28 +180,6 @@ fn carried(pb: &ContactProblem, from: &ContactGrid, z: &State) -> State {
     }
 }
 
-/// `z` (a solution on `pb`'s grid) moved by the change from `from` to `to` (two solutions on the
-/// grid `coarse`), carried to `pb`'s grid: the warm start of a solve whose solution differs
-/// from `z` as `to` from `from`. Pressure and gap stay ≥ 0.
-fn moved_by(pb: &ContactProblem, z: &State, coarse: &ContactGrid, from: &State, to: &State) -> State {
-    let (a, b) = (carried(pb, coarse, to), carried(pb, coarse, from));
-    let shift = |z: &[f64], a: &[f64], b: &[f64], floor: f64| -> Vec<f64> {
-        z.iter()
-            .zip(a)
-            .zip(b)
-            .map(|((z, a), b)| (z + (a - b)).max(floor))
-            .collect()
-    };
-    State {
-        gap: shift(&z.gap, &a.gap, &b.gap, 0.0),
-        slip: shift(&z.slip, &a.slip, &b.slip, f64::NEG_INFINITY),
-        pressure: shift(&z.pressure, &a.pressure, &b.pressure, 0.0),
-        shear: shift(&z.shear, &a.shear, &b.shear, f64::NEG_INFINITY),
-        overlap: z.overlap + (to.overlap - from.overlap),
-        creep: z.creep + (to.creep - from.creep),
-    }
-}
-
 /// Solves the scene: on its grid when the grid is fixed, else on a grid refined until the
 /// estimated error meets the scene's tolerance (module docs). A solve that does not converge
 /// ends the loop: its solution comes back with `report.converged == false`.
@@ -300,10 +279,10 @@ fn refine(
     // its smooth remainder) are replaced by it; the final grid is solved with the bodies
     // themselves.
     let t = Instant::now();
-    let levels = stand_in_levels(&coarse, tolerance);
+    let levels = stand_ins::levels(&coarse, tolerance);
     let level_refs: Vec<&ContactGrid> = levels.iter().collect();
     let stand_ins = scene.with_pass_stand_ins(&level_refs)?;
-    let check_factor = stand_in_check_factor(levels.len());
+    let check_factor = stand_ins::check_factor(levels.len());
     let (mut passes, mut check, condense_s) = match stand_ins {
         // The two bodies' builds may have overlapped: the condensation's share of the wall time.
         Some(s) => (
@@ -387,28 +366,9 @@ fn refine(
             // The stand-ins give the results when their own error, estimated by the check's
             // solution, leaves the total within the tolerance (src/body/bem/stand_in.rs).
             if let Some(check_scene) = check.as_ref().filter(|_| !asks_interior_fields(scene)) {
-                // Its warm start: H's solution moved by the check's change on G, solved first
-                // (an eighth of a Newton step on H): where the two stand-ins' active sets differ,
-                // H's solution alone cost up to seven Newton steps on H (bore_a020_braking at
-                // 1e-3), the moved one two.
-                let cg = solve_on(
-                    check_scene.on_grid(g.problem.grid.clone()),
-                    Some((&g.problem.grid, &g.state)),
-                    timings,
-                    ws,
-                )?;
-                let warm_check = cg
-                    .report
-                    .converged
-                    .then(|| moved_by(&h.problem, &h.state, &g.problem.grid, &g.state, &cg.state));
-                let c = solve_on(
-                    check_scene.on_grid(h.problem.grid.clone()),
-                    Some((&h.problem.grid, warm_check.as_ref().unwrap_or(&h.state))),
-                    timings,
-                    ws,
-                )?;
-                if c.report.converged {
-                    let d = body_mesh::difference(&h.problem.grid, &c.state, &h.state, scales, e.overlap_rel.is_some());
+                let checked =
+                    stand_ins::check_difference(check_scene, &g, &h, scales, e.overlap_rel.is_some(), timings, ws)?;
+                if let Some((d, iterations)) = checked {
                     let total = e.plus(&d, check_factor);
                     log::info!(
                         target: crate::logging::PROGRESS,
@@ -421,7 +381,7 @@ fn refine(
                     if total.within(tolerance) {
                         if let Some(last) = steps.last_mut() {
                             last.estimate = total;
-                            last.iterations += c.report.iterations;
+                            last.iterations += iterations;
                         }
                         return Ok(Refined::Met(h, scales));
                     }
@@ -494,59 +454,7 @@ fn refine(
 /// (The coarser stand-in grid is too coarse: on the coarse roller of docs/validation.md the
 /// creepage's estimate fell to 2 % of its true error there.)
 fn body_mesh_check_grid(start: &DyadicGrid, tolerance: f64) -> ContactGrid {
-    stand_in_level(start, tolerance).bisected().grid()
-}
-
-/// The coarser of the two grids the pass stand-ins' result is extrapolated from (their
-/// remainder's error falls as the grid's spacing, and Richardson's extrapolation from a grid
-/// and its bisection removes most of it): the start grid for tolerances down to 3e-4, bisected
-/// once down to 3e-5, twice below (measured on fig14_true_geometry, whose remainder converges
-/// slowest of the shipped cases: from the start grid its solution differs from the full BEM's
-/// by up to 1.1e-4, from the first bisection by 1e-5).
-fn stand_in_level(start: &DyadicGrid, tolerance: f64) -> DyadicGrid {
-    bisected_times(start, stand_in_bisections(tolerance))
-}
-
-/// How often [`stand_in_level`] bisects the start grid.
-fn stand_in_bisections(tolerance: f64) -> usize {
-    if tolerance >= 3e-4 {
-        0
-    } else if tolerance >= 3e-5 {
-        1
-    } else {
-        2
-    }
-}
-
-/// `start` bisected `times` times.
-fn bisected_times(start: &DyadicGrid, times: usize) -> DyadicGrid {
-    (0..times).fold(start.clone(), |g, _| g.bisected())
-}
-
-/// The grids the stand-ins are fitted on, coarsest first: [`stand_in_level`] and its bisection,
-/// preceded by the level before when there is one (the start grid cannot be coarsened), which
-/// the check of the stand-ins' own error extrapolates from (src/body/bem/stand_in.rs).
-fn stand_in_levels(start: &DyadicGrid, tolerance: f64) -> Vec<ContactGrid> {
-    let k = stand_in_bisections(tolerance);
-    (k.saturating_sub(1)..=k + 1)
-        .map(|times| bisected_times(start, times).grid())
-        .collect()
-}
-
-/// The factor of the difference between the stand-ins' solution and their check's on the
-/// final grid that estimates the stand-ins' error (src/body/bem/stand_in.rs). Fitted on three
-/// levels, the check is the Richardson remainder of the two coarser: with the remainder's error
-/// c₁h + c₂h², Richardson leaves c₂h²/2 from the two coarser levels and a quarter of that from
-/// the two finer, so the finer's is the difference / 3 (Richardson's own error estimate for a
-/// second-order term; measured on fig14_true_geometry at 1e-4 and 1e-5: effectivities 0.7–1.2).
-/// Fitted on two, the check is the finer level's remainder alone, with the first-order error the
-/// extrapolation removes, and the whole difference stands for the result's.
-fn stand_in_check_factor(levels: usize) -> f64 {
-    if levels == 3 {
-        1.0 / 3.0
-    } else {
-        1.0
-    }
+    stand_ins::level(start, tolerance).bisected().grid()
 }
 
 /// Whether the case asks for interior fields, which only the bodies themselves give.
