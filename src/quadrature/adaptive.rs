@@ -10,7 +10,7 @@
 //! of the element length from it (nearly singular integrals of thin bodies).
 
 use super::complex_roots::complex_singularities;
-use super::{gauss_legendre, log_gauss, QuadraticNodes};
+use super::{gauss_legendre, log_gauss, QuadraticNodes, SingularityBound};
 use nalgebra::Complex;
 
 /// Accuracy controls of the adaptive rule and of the rules for an element that holds the source.
@@ -58,9 +58,9 @@ pub struct Quadrature {
     log: (Vec<f64>, Vec<f64>),
     /// ln(1/tolerance).
     pub(super) log_inv_tolerance: f64,
-    /// The radius |ξ| beyond which every singularity leaves the adaptive rule at
+    /// The Bernstein-ellipse parameter ρ from which the adaptive rule takes
     /// [`QuadratureOptions::min_points`] on the whole element ([`Self::off_element_points`]).
-    min_points_radius: f64,
+    min_points_rho: f64,
 }
 
 impl Quadrature {
@@ -69,9 +69,8 @@ impl Quadrature {
         let top = options.max_points.max(options.singular_points).max(1);
         let log_inv_tolerance = (1.0 / options.tolerance).ln();
         // n points need ρ ≥ exp(ln(1/tol)/(2(n − 1))) (the inverse of `points_for`), and no
-        // subdivision ρ ≥ min_ellipse; a point at |s| = R has ρ ≥ R + √(R² − 1), whose inverse
-        // is R = (ρ + 1/ρ)/2. The margin keeps the adaptive rule's own rounding of ρ clear of
-        // the threshold, so that both choose the same points.
+        // subdivision ρ ≥ min_ellipse. The margin keeps the adaptive rule's own rounding of ρ
+        // clear of the threshold, so that both choose the same points.
         let n = options.min_points.max(2) as f64;
         let rho = (log_inv_tolerance / (2.0 * (n - 1.0))).exp().max(options.min_ellipse) * (1.0 + 1e-6);
         Self {
@@ -79,7 +78,7 @@ impl Quadrature {
             legendre: (1..=top).map(gauss_legendre).collect(),
             log: log_gauss(options.log_points.max(1)),
             log_inv_tolerance,
-            min_points_radius: 0.5 * (rho + 1.0 / rho),
+            min_points_rho: rho,
         }
     }
 
@@ -119,20 +118,12 @@ impl Quadrature {
     }
 
     /// Whether every singularity of the element's integrand lies so far from the element, by
-    /// the lower bound of [`super::SingularityBound`] (no root finding: most source–element
-    /// pairs of an assembly are far apart), that the adaptive rule neither subdivides nor takes
-    /// more than [`QuadratureOptions::min_points`]: the roots of r² have
-    /// |ξ| ≥ 2D/(|b| + √(|b|² + 4|c|D)) (D the source's distance from the mid node, x(ξ) =
-    /// x_m + bξ + cξ²), those of the Jacobian |ξ| = |b|/(2|c|).
+    /// the lower bound of [`SingularityBound`] (no root finding: most source–element pairs of an
+    /// assembly are far apart), that the adaptive rule neither subdivides nor takes more than
+    /// [`QuadratureOptions::min_points`].
     #[inline]
     fn far_enough_for_fewest_points(&self, nodes: &QuadraticNodes, source: [f64; 2]) -> bool {
-        let [p0, p1, pm] = *nodes;
-        let norm = |x: f64, y: f64| (x * x + y * y).sqrt();
-        let b = norm(0.5 * (p1[0] - p0[0]), 0.5 * (p1[1] - p0[1]));
-        let c = norm(0.5 * (p0[0] + p1[0]) - pm[0], 0.5 * (p0[1] + p1[1]) - pm[1]);
-        let d = norm(source[0] - pm[0], source[1] - pm[1]);
-        let r = self.min_points_radius;
-        2.0 * d >= r * (b + (b * b + 4.0 * c * d).sqrt()) && b >= 2.0 * c * r
+        SingularityBound::new(nodes).rho_lower_bound(source) >= self.min_points_rho
     }
 
     /// [`Self::off_element_points`] by the roots: the adaptive rule itself.

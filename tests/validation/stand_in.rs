@@ -30,6 +30,16 @@ fn rms(a: &ContactSolution, b: &[f64], of: impl Fn(&ContactSolution) -> &[f64]) 
     (sum / length).sqrt()
 }
 
+/// `other`'s differences from `reference` in the estimate's norms: RMS of p/p0 and q/(μ p0) over
+/// `reference`'s contact, and the creepage's relative to `reference`'s.
+fn relative_differences(reference: &ContactSolution, other: &ContactSolution, p0: f64, mu: f64) -> [f64; 3] {
+    [
+        rms(reference, &other.pressure, |s| &s.pressure) / p0,
+        rms(reference, &other.shear, |s| &s.shear) / (mu * p0),
+        ((other.creep - reference.creep) / reference.creep).abs(),
+    ]
+}
+
 /// (p, q, creepage, overlap) differences of the stand-in's solution from the full BEM's on the
 /// start grid bisected `levels` times, p and q in units of the peak pressure p and μp, the
 /// creepage and overlap relative; and the same for the bare half-plane (no remainder).
@@ -177,6 +187,33 @@ fn a_wrong_stand_in_is_dropped(with_check: bool) {
     );
 }
 
+/// `case` run at `tolerance`, asserted to take the stand-ins' results: the case, its scene, the
+/// run and its whole estimate.
+fn run_from_stand_ins(
+    case: &str,
+    tolerance: f64,
+) -> (
+    rollbem::case::LoadedCase,
+    Scene,
+    rollbem::app::Solved,
+    rollbem::post::adaptation::ErrorEstimate,
+) {
+    let loaded = rollbem::case::load(
+        &crate::common::case_path(case),
+        &[format!("contact.grid.tolerance={tolerance:e}")],
+    )
+    .expect("loads");
+    let scene = Scene::from_case(&loaded).expect("scene");
+    let run = rollbem::app::solve_scene(scene.clone(), std::time::Instant::now()).expect("meets the tolerance");
+    let adaptation = run.adaptation.as_ref().expect("error-controlled");
+    assert!(
+        adaptation.results_from_stand_ins,
+        "{case} at {tolerance:e}: the run takes the stand-ins' results"
+    );
+    let total = adaptation.estimate.expect("estimate");
+    (loaded, scene, run, total)
+}
+
 /// The stand-ins' results on the final grid (src/body/bem/stand_in.rs, "The final grid"), on
 /// fig14_true_geometry at tolerance 1e-4, whose run takes them (`results_from_stand_ins`),
 /// against the full BEM bodies cut along the same final grid:
@@ -194,20 +231,7 @@ fn a_wrong_stand_in_is_dropped(with_check: bool) {
 ///   stand-ins show the finest fitted grid's BEM body under the tractions projected onto it.
 #[test]
 fn the_stand_ins_give_the_final_grids_results_within_their_estimate() {
-    let tolerance = 1e-4;
-    let loaded = rollbem::case::load(
-        &crate::common::case_path("fig14_true_geometry"),
-        &[format!("contact.grid.tolerance={tolerance:e}")],
-    )
-    .expect("loads");
-    let scene = Scene::from_case(&loaded).expect("scene");
-    let run = rollbem::app::solve_scene(scene.clone(), std::time::Instant::now()).expect("meets the tolerance");
-    let adaptation = run.adaptation.as_ref().expect("error-controlled");
-    assert!(
-        adaptation.results_from_stand_ins,
-        "the run takes the stand-ins' results"
-    );
-    let total = adaptation.estimate.expect("estimate");
+    let (loaded, scene, run, total) = run_from_stand_ins("fig14_true_geometry", 1e-4);
     let grid = run.problem.grid.clone();
 
     // The stand-ins and their check on the levels of this tolerance.
@@ -241,16 +265,8 @@ fn the_stand_ins_give_the_final_grids_results_within_their_estimate() {
     let checked = ContactSolution::from_state(&si_problem, &check_state);
     let p0 = scene.estimates.hertz_peak_pressure;
     let mu = loaded.case.contact.friction;
-    let truth = [
-        rms(&full, &stand.pressure, |s| &s.pressure) / p0,
-        rms(&full, &stand.shear, |s| &s.shear) / (mu * p0),
-        ((stand.creep - full.creep) / full.creep).abs(),
-    ];
-    let estimate = [
-        rms(&stand, &checked.pressure, |s| &s.pressure) / p0 / 3.0,
-        rms(&stand, &checked.shear, |s| &s.shear) / (mu * p0) / 3.0,
-        ((checked.creep - stand.creep) / stand.creep).abs() / 3.0,
-    ];
+    let truth = relative_differences(&full, &stand, p0, mu);
+    let estimate = relative_differences(&stand, &checked, p0, mu).map(|d| d / 3.0);
     let reported = [total.pressure_rms, total.shear_rms, total.creep_rel];
     eprintln!("stand-ins on the final grid: true {truth:?}, estimate {estimate:?}, run {reported:?}");
     for (k, what) in ["pressure", "shear", "creepage"].iter().enumerate() {
@@ -364,19 +380,7 @@ fn the_runs_estimate_bounds_the_stand_ins_error_on_rollers_and_a_bore() {
         ("bore_a020_tractive", 1e-3),
         ("bore_a020_tractive", 1e-4),
     ] {
-        let loaded = rollbem::case::load(
-            &crate::common::case_path(case),
-            &[format!("contact.grid.tolerance={tolerance:e}")],
-        )
-        .expect("loads");
-        let scene = Scene::from_case(&loaded).expect("scene");
-        let run = rollbem::app::solve_scene(scene.clone(), std::time::Instant::now()).expect("meets the tolerance");
-        let adaptation = run.adaptation.as_ref().expect("error-controlled");
-        assert!(
-            adaptation.results_from_stand_ins,
-            "{case} at {tolerance:e}: the stand-ins' results"
-        );
-        let total = adaptation.estimate.expect("estimate");
+        let (loaded, scene, run, total) = run_from_stand_ins(case, tolerance);
         let on = scene.on_grid(run.problem.grid.clone());
         let (_, problem) = on.assemble().expect("assembles");
         let (state, report) = methods::solve(&problem, &on.solver);
@@ -385,11 +389,7 @@ fn the_runs_estimate_bounds_the_stand_ins_error_on_rollers_and_a_bore() {
         let stand = &run.solution;
         let p0 = scene.estimates.hertz_peak_pressure;
         let mu = loaded.case.contact.friction;
-        let truth = [
-            rms(&full, &stand.pressure, |s| &s.pressure) / p0,
-            rms(&full, &stand.shear, |s| &s.shear) / (mu * p0),
-            ((stand.creep - full.creep) / full.creep).abs(),
-        ];
+        let truth = relative_differences(&full, stand, p0, mu);
         let reported = [total.pressure_rms, total.shear_rms, total.creep_rel];
         eprintln!("{case} at {tolerance:e}: stand-ins' true difference {truth:?}, run's estimate {reported:?}");
         for (k, what) in ["pressure", "shear", "creepage"].iter().enumerate() {

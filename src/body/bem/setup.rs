@@ -101,9 +101,10 @@ impl BemSetup {
         profile_radius: Option<f64>,
         contact_circle: Option<Circle>,
     ) -> Self {
+        let shape = ContactShape::of(&mesh);
         Self {
-            radius: profile_radius.unwrap_or_else(|| mesh.contact_radius()),
-            shape: ContactShape::of(&mesh),
+            radius: profile_radius.unwrap_or(shape.radius),
+            shape,
             mesh,
             material,
             contact,
