@@ -409,14 +409,12 @@ impl HalfSpace {
     pub fn datum_length(&self) -> f64 {
         2.0 * self.radius.abs() / std::f64::consts::E
     }
-}
 
-impl BodyModel for HalfSpace {
-    fn model_name(&self) -> &'static str {
-        "half_space"
-    }
-
-    fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
+    /// The half-plane's H blocks (H_p, H_q) on a straight `grid` for the body on `side`, whose
+    /// W blocks are the same kernels (W_q = H_p, W_p = −H_q: [`Flexibility::of_half_plane`]):
+    /// a caller that transforms the flexibility (carries it to a curved grid, scales its
+    /// columns) transforms these two and makes the W blocks last, at half the work.
+    pub fn kernel_blocks(&self, grid: &ContactGrid, side: Side) -> (Mat<f64>, Mat<f64>) {
         let a_coef = self.material.halfplane_sgn_coefficient();
         let b_coef = self.material.halfplane_log_coefficient();
         let sign = side.sign();
@@ -435,6 +433,17 @@ impl BodyModel for HalfSpace {
                 *h *= sign * a_coef;
             }
         }
+        (hp, hq)
+    }
+}
+
+impl BodyModel for HalfSpace {
+    fn model_name(&self) -> &'static str {
+        "half_space"
+    }
+
+    fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
+        let (hp, hq) = self.kernel_blocks(grid, side);
         Flexibility::of_half_plane(hp, hq)
     }
 

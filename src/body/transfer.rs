@@ -134,7 +134,7 @@ pub fn transfer_flexibility(
     // `Flexibility::of_half_plane`): carried once, they are the same numbers to the bit (the
     // carry is linear, and a sign change rounds symmetrically), at half the cost.
     if same_entries(&flex.wq, &flex.hp, 1.0) && same_entries(&flex.wp, &flex.hq, -1.0) {
-        let (hp, hq) = (carry(&flex.hp), carry(&flex.hq));
+        let [hp, hq] = [&flex.hp, &flex.hq].map(carry);
         return Ok(Flexibility::of_half_plane(hp, hq));
     }
     Ok(Flexibility {
@@ -143,6 +143,20 @@ pub fn transfer_flexibility(
         wp: carry(&flex.wp),
         wq: carry(&flex.wq),
     })
+}
+
+/// Operator blocks on the body's own nodes (`body`) carried to the contact grid (`grid`), as
+/// [`transfer_flexibility`] carries each block; passed through when the nodes coincide.
+pub fn transfer_blocks<const N: usize>(
+    blocks: [Mat<f64>; N],
+    body: &ContactGrid,
+    grid: &ContactGrid,
+) -> Result<[Mat<f64>; N], TransferError> {
+    if grid.coincides_with(body) {
+        return Ok(blocks);
+    }
+    let (d, t) = operators(body, grid)?;
+    Ok(blocks.map(|f| carried(&d, &f, &t, grid.n_nodes())))
 }
 
 /// Whether a = sign·b entry for entry, exactly.
@@ -341,6 +355,21 @@ mod tests {
         other.wq[(mid, mid)] *= 1.0 + 1e-9;
         let carried_all = transfer_flexibility(&other, &own, &grid).unwrap();
         assert!(carried_all.wq == carry(&other.wq) && carried_all.wq != shortcut.wq);
+    }
+
+    /// A half-plane's two kernels carried as blocks ([`transfer_blocks`], what a stand-in
+    /// carries) are its flexibility's carried H blocks to the bit, and pass through unchanged
+    /// onto the same grid.
+    #[test]
+    fn the_kernel_blocks_carry_as_the_flexibility_does() {
+        let own = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 8, -1.4, 1.4);
+        let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 5, -1.2, 1.1);
+        let (hp, hq) = body().kernel_blocks(&own, Side::B);
+        let whole = transfer_flexibility(&body().flexibility(&own, Side::B), &own, &grid).unwrap();
+        let [cp, cq] = transfer_blocks([hp.clone(), hq.clone()], &own, &grid).unwrap();
+        assert!(cp == whole.hp && cq == whole.hq);
+        let [sp, sq] = transfer_blocks([hp.clone(), hq.clone()], &own, &own.clone()).unwrap();
+        assert!(sp == hp && sq == hq);
     }
 
     #[test]

@@ -52,7 +52,7 @@ use super::setup::BemSetup;
 use super::BemBody;
 use crate::body::half_space::HalfSpace;
 use crate::body::setup::{BodySetup, BuildContext, BuildError, Rolling, SurfaceAt};
-use crate::body::transfer::Transferred;
+use crate::body::transfer::{transfer_blocks, Transferred};
 use crate::body::{
     circle_profile, Body, BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery,
     InteriorResult, Side, StrainOperator,
@@ -113,6 +113,9 @@ fn chebyshev_derivative_rows(x: &[f64], lo: f64, hi: f64, degree: usize) -> DMat
     })
 }
 
+/// Columns of the remainder made at a time by [`SmoothRemainder::add_to`].
+const ADD_COLUMNS: usize = 64;
+
 /// The smooth remainder R(x, s) of a body's operator blocks (the four flexibility blocks, or
 /// the two of the surface strain) as Chebyshev series.
 #[derive(Debug, Clone)]
@@ -169,11 +172,17 @@ impl SmoothRemainder {
         let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
         let m = grid.n_nodes();
         for (c, target) in self.coefficients.iter().zip(targets) {
-            let r = &t * c * t.transpose();
-            for (j, &w) in grid.weights.iter().enumerate() {
-                let column = &r.as_slice()[j * m..(j + 1) * m];
-                for (a, &b) in target.col_as_slice_mut(j).iter_mut().zip(column) {
-                    *a += b * w;
+            let tc = &t * c;
+            // A few columns at a time: an m × m product would be one more matrix of the grid's
+            // size per block (each entry is the same short sum in either case).
+            for first in (0..m).step_by(ADD_COLUMNS) {
+                let n = ADD_COLUMNS.min(m - first);
+                let r = &tc * t.rows(first, n).transpose();
+                for (k, &w) in grid.weights[first..first + n].iter().enumerate() {
+                    let column = &r.as_slice()[k * m..(k + 1) * m];
+                    for (a, &b) in target.col_as_slice_mut(first + k).iter_mut().zip(column) {
+                        *a += b * w;
+                    }
                 }
             }
         }
@@ -439,8 +448,10 @@ impl BodySetup for BemStandIn {
     }
 
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
+        let half = self.half.clone().in_pair(ctx.pair);
         Ok(Box::new(StandInBody {
-            flat: Transferred::flat_model_on(Box::new(self.half.clone().in_pair(ctx.pair)), ctx.grid, ctx.side)?,
+            flat: Transferred::flat_model_on(Box::new(half.clone()), ctx.grid, ctx.side)?,
+            half,
             setup: self.clone(),
             side: ctx.side,
         }))
@@ -448,6 +459,18 @@ impl BodySetup for BemStandIn {
 }
 
 impl StandInBody {
+    /// The half-plane's H blocks on `grid`: on the straight grid between the same edges and
+    /// carried over when the grid's elements are curved (as [`Transferred::flat_model_on`]).
+    fn half_plane_blocks(&self, grid: &ContactGrid, side: Side) -> [Mat<f64>; 2] {
+        if grid.is_straight() {
+            let (hp, hq) = self.half.kernel_blocks(grid, side);
+            return [hp, hq];
+        }
+        let straight = grid.straightened();
+        let (hp, hq) = self.half.kernel_blocks(&straight, side);
+        transfer_blocks([hp, hq], &straight, grid).expect("a grid lies within its straightened self")
+    }
+
     /// The flexibility remainder this stand-in solves with.
     fn remainder(&self) -> &SmoothRemainder {
         let fitted = &self.setup.fitted;
@@ -462,6 +485,8 @@ impl StandInBody {
 struct StandInBody {
     /// The half-plane on the grid (carried over from the straightened grid on a curved one).
     flat: Box<dyn Body>,
+    /// The half-plane itself (in the pair's store), whose kernels the flexibility carries.
+    half: HalfSpace,
     setup: BemStandIn,
     side: Side,
 }
@@ -471,10 +496,15 @@ impl BodyModel for StandInBody {
         "bem"
     }
 
+    /// The half-plane's two kernels carried to the grid and scaled to a load per unit arc, the
+    /// W blocks made from them, and the remainder added in place: each m × m matrix made once
+    /// (on a graded final grid every further one costs its page faults, per body and pass).
     fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
         let inner = &self.setup.inner;
         let slope = |x: f64| inner.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
-        let mut f = arc_scaled(self.flat.model().flexibility(grid, side), grid, &slope);
+        let [mut hp, mut hq] = self.half_plane_blocks(grid, side);
+        scale_columns([&mut hp, &mut hq], grid, &slope);
+        let mut f = Flexibility::of_half_plane(hp, hq);
         self.remainder()
             .add_to(grid, [&mut f.hp, &mut f.hq, &mut f.wp, &mut f.wq].into_iter());
         f
