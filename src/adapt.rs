@@ -49,6 +49,7 @@ pub mod overlap;
 mod stand_ins;
 
 use crate::analytic::{hertz_half_width, hertz_peak_pressure};
+use crate::body::Side;
 use crate::contact::residual::State;
 use crate::contact::{methods, ContactProblem, NormalControl, SolveReport, TangentialControl, Workspace};
 use crate::error::Error;
@@ -110,10 +111,13 @@ struct Solve {
 }
 
 /// Builds the scene's models, assembles and solves (from `warm`, carried from the grid it was
-/// solved on), adding the times to `timings`.
+/// solved on), adding the times to `timings`. Unless the solve `may_be_final` (its solution
+/// may be the run's result), body B's own flexibility, which only the outputs read, is dropped
+/// before the solve: four m × m blocks fewer held while later grids are solved.
 fn solve_on(
     scene: Scene,
     warm: Option<(&ContactGrid, &State)>,
+    may_be_final: bool,
     timings: &mut Timings,
     ws: &mut Workspace,
 ) -> Result<Solve, Error> {
@@ -121,7 +125,10 @@ fn solve_on(
     let models = scene.body_models()?;
     let built = t.elapsed().as_secs_f64();
     // The strain operator serves only the outputs: the final grid's is added by `finished`.
-    let problem = scene.contact_problem_without_strain(&models);
+    let mut problem = scene.contact_problem_without_strain(&models);
+    if !may_be_final {
+        problem.body_b = None;
+    }
     let condense_s = condensation_share(&models, built);
     timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
     timings.condense_s += condense_s;
@@ -194,7 +201,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
     let mut ws = Workspace::new();
     let mut timings = Timings::default();
     let Some(control) = scene.grid_control else {
-        let only = solve_on(scene.clone(), None, &mut timings, &mut ws)?;
+        let only = solve_on(scene.clone(), None, true, &mut timings, &mut ws)?;
         return Ok(finished(only, scene, timings, None));
     };
     let tolerance = control.tolerance;
@@ -303,6 +310,7 @@ fn refine(
         let mut g = solve_on(
             pass_scene.on_grid(coarse.grid()),
             warm.as_ref().map(|(g, z)| (g, z)),
+            false,
             timings,
             ws,
         )?;
@@ -321,6 +329,7 @@ fn refine(
         let mut h = solve_on(
             pass_scene.on_grid(coarse.bisected().grid()),
             Some((&g.problem.grid, &g.state)),
+            true,
             timings,
             ws,
         )?;
@@ -393,6 +402,7 @@ fn refine(
             let full = solve_on(
                 scene.on_grid(h.problem.grid.clone()),
                 Some((&h.problem.grid, &h.state)),
+                true,
                 timings,
                 ws,
             )?;
@@ -513,6 +523,12 @@ fn finished(mut s: Solve, bodies: &Scene, mut timings: Timings, passes: Option<(
         s.models[1].model(),
         &s.problem.frame,
     );
+    // A solve that was not expected to be the result (one that did not converge ends the run).
+    if s.problem.body_b.is_none() {
+        let body_b = s.models[1].model().flexibility(&s.problem.grid, Side::B);
+        s.problem.body_b = Some(s.problem.frame.flexibility(body_b, Side::B));
+    }
+
     timings.assembly_s += t.elapsed().as_secs_f64();
     timings.total_s = timings.assembly_s + timings.condense_s + timings.solve_s;
     Adapted {

@@ -94,8 +94,11 @@ pub struct ContactProblem {
     /// Sum of the bodies' flexibilities (pair convention of [`crate::body`]).
     pub flex: Flexibility,
     /// Body B's own flexibility, for the bodies' surface displacements (A's is `flex` less
-    /// B's: one set of m × m blocks fewer to allocate on every grid).
-    pub body_b: Flexibility,
+    /// B's: one set of m × m blocks fewer to allocate on every grid). None on the intermediate
+    /// grids of an error-controlled run, which are solved but not written: src/adapt.rs drops
+    /// it there (four m × m blocks fewer held while the next grid is solved) and gives the
+    /// final grid's problem its own.
+    pub body_b: Option<Flexibility>,
     /// Slip operator: B_p = σ D W_p, B_q = σ D W_q (paper Eq. 20) [1/stress].
     pub bp: Mat<f64>,
     /// See `bp`.
@@ -194,7 +197,7 @@ impl ContactProblem {
         Self {
             grid,
             flex,
-            body_b: fb,
+            body_b: Some(fb),
             bp,
             bq,
             slip_operator,
@@ -296,9 +299,16 @@ pub struct SurfaceDisplacements {
 impl ContactProblem {
     /// Each body's surface displacements under the tractions (half-space bodies: relative to
     /// their logarithmic datum).
+    ///
+    /// Panics on a problem whose `body_b` was dropped (an intermediate grid of src/adapt.rs,
+    /// which never reaches the outputs).
     pub fn surface_displacements(&self, p: &[f64], q: &[f64]) -> SurfaceDisplacements {
-        let normal_b = self.body_b.normal(p, q);
-        let tangential_b = self.body_b.tangential(p, q);
+        let body_b = self
+            .body_b
+            .as_ref()
+            .expect("the final grid's problem keeps body B's flexibility");
+        let normal_b = body_b.normal(p, q);
+        let tangential_b = body_b.tangential(p, q);
         let less = |total: Vec<f64>, of_b: &[f64]| total.iter().zip(of_b).map(|(t, v)| t - v).collect();
         SurfaceDisplacements {
             normal_a: less(self.compression(p, q), &normal_b),

@@ -139,7 +139,7 @@ pub(super) fn check_on(
         return Ok(None);
     };
     let controlled = overlap::controlled(scene);
-    let given = solve_on(scene.on_grid(grid.clone()), Some(warm), timings, ws)?;
+    let given = solve_on(scene.on_grid(grid.clone()), Some(warm), false, timings, ws)?;
     if !given.report.converged {
         return Ok(unestimated());
     }
@@ -153,7 +153,7 @@ pub(super) fn check_on(
         );
         // Merging a coarse mesh's elements in pairs can give a boundary that crosses itself
         // (a pair spanning more than a half circle): the bisected comparison still applies.
-        match solve_on(coarse_scene.on_grid(grid.clone()), Some(warm), timings, ws) {
+        match solve_on(coarse_scene.on_grid(grid.clone()), Some(warm), false, timings, ws) {
             Ok(coarse) if coarse.report.converged => {
                 let estimate = estimate(
                     BodyMeshComparison::Coarsened,
@@ -187,7 +187,7 @@ pub(super) fn check_on(
          outside the contact",
         grid.n_elements()
     );
-    let fine = solve_on(fine_scene.on_grid(grid.clone()), Some(warm), timings, ws)?;
+    let fine = solve_on(fine_scene.on_grid(grid.clone()), Some(warm), false, timings, ws)?;
     if !fine.report.converged {
         return Ok(unestimated());
     }

@@ -82,14 +82,24 @@ pub(super) fn check_difference(
     ws: &mut Workspace,
 ) -> Result<Option<(BodyMeshError, usize)>, Error> {
     let (g_grid, h_grid) = (&g.problem.grid, &h.problem.grid);
-    let on_g = solve_on(check.on_grid(g_grid.clone()), Some((g_grid, &g.state)), timings, ws)?;
+    let on_g = solve_on(
+        check.on_grid(g_grid.clone()),
+        Some((g_grid, &g.state)),
+        false,
+        timings,
+        ws,
+    )?;
     let warm = on_g
         .report
         .converged
         .then(|| moved_by(&h.problem, &h.state, g_grid, &g.state, &on_g.state));
+    let g_iterations = on_g.report.iterations;
+    // Only its solution was needed: its matrices go before H's are made.
+    drop(on_g);
     let on_h = solve_on(
         check.on_grid(h_grid.clone()),
         Some((h_grid, warm.as_ref().unwrap_or(&h.state))),
+        false,
         timings,
         ws,
     )?;
@@ -97,7 +107,7 @@ pub(super) fn check_difference(
         return Ok(None);
     }
     let d = body_mesh::difference(h_grid, &on_h.state, &h.state, scales, overlap_controlled);
-    Ok(Some((d, on_g.report.iterations + on_h.report.iterations)))
+    Ok(Some((d, g_iterations + on_h.report.iterations)))
 }
 
 /// `z` (a solution on `pb`'s grid) moved by the change from `from` to `to` (two solutions on the
