@@ -27,12 +27,12 @@
 //!    per halving), or halved once when it holds none; sibling pieces in the open region with
 //!    a negligible share are merged back; neighbours stay within a length ratio of 2.
 //!    When the creepage's estimate alone exceeds the tolerance, with those of p and q below
-//!    [`CREEPAGE_ALONE`] times the tolerance, every element in the contact is halved at least once: the
-//!    creepage is a functional of the shear over the whole stick zone, its error the smooth
-//!    error there, which the indicators do not see and the marking by shares halves only a
-//!    few elements a pass (bore_a020_braking at 1e-3, whose creepage nearly cancels: five
-//!    passes to 542 elements, its estimate falling 1.3–1.6 times a pass; halving the contact:
-//!    three passes to 466 elements, 8.9 times in the pass that halved it).
+//!    [`CREEPAGE_ALONE`] times the tolerance, every element in the contact is halved at least
+//!    once: the creepage is a functional of the shear over the whole stick zone, its error the
+//!    smooth error there, which the indicators do not see and the marking by shares halves
+//!    only a few elements a pass (bore_a020_braking at 1e-3, whose creepage nearly cancels:
+//!    five passes to 542 elements, its estimate falling 1.3–1.6 times a pass; halving the
+//!    contact: three passes to 466 elements, 8.9 times in the pass that halved it).
 //!
 //! Once the grid meets the tolerance, the bodies' own meshes outside the contact (a BEM
 //! body's free boundary, shaft, rim) are checked too ([`body_mesh`]: the bodies solved on a
@@ -539,7 +539,6 @@ fn finished(mut s: Solve, bodies: &Scene, mut timings: Timings, passes: Option<(
         let body_b = s.models[1].model().flexibility(&s.problem.grid, Side::B);
         s.problem.body_b = Some(s.problem.frame.flexibility(body_b, Side::B));
     }
-
     timings.assembly_s += t.elapsed().as_secs_f64();
     timings.total_s = timings.assembly_s + timings.condense_s + timings.solve_s;
     Adapted {

@@ -96,8 +96,8 @@ pub struct ContactProblem {
     /// Body B's own flexibility, for the bodies' surface displacements (A's is `flex` less
     /// B's: one set of m × m blocks fewer to allocate on every grid). None on the intermediate
     /// grids of an error-controlled run, which are solved but not written: src/adapt.rs drops
-    /// it there (four m × m blocks fewer held while the next grid is solved) and gives the
-    /// final grid's problem its own.
+    /// it on every grid whose solution cannot be the result (four m × m blocks fewer held while
+    /// the next grid is solved) and restores it on one that ends a run unexpectedly.
     pub body_b: Option<Flexibility>,
     /// Slip operator: B_p = σ D W_p, B_q = σ D W_q (paper Eq. 20) [1/stress].
     pub bp: Mat<f64>,
