@@ -75,8 +75,8 @@ pub fn solve_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
 }
 
 /// [`solve_scene`], returning the best solution of an error-controlled grid that did not
-/// reach its tolerance (its `adaptation.reached` false).
-fn solve_scene_best(scene: Scene, start: Instant) -> Result<Solved, Error> {
+/// reach its tolerance (its `adaptation.reached` false) instead of an error.
+pub fn solve_scene_best(scene: Scene, start: Instant) -> Result<Solved, Error> {
     // Scenes of a study's own bodies are not checked by `Scene::from_case`.
     crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
     // Reading the case and the meshes counts as assembly.

@@ -128,35 +128,29 @@ pub fn transfer_flexibility(
     if grid.coincides_with(body) {
         return Ok(flex.clone());
     }
-    let (d, t) = operators(body, grid)?;
-    let carry = |f: &Mat<f64>| carried(&d, f, &t, grid.n_nodes());
     // A half-plane's W blocks are its H blocks (W_q = H_p, W_p = −H_q:
     // `Flexibility::of_half_plane`): carried once, they are the same numbers to the bit (the
     // carry is linear, and a sign change rounds symmetrically), at half the cost.
     if same_entries(&flex.wq, &flex.hp, 1.0) && same_entries(&flex.wp, &flex.hq, -1.0) {
-        let [hp, hq] = [&flex.hp, &flex.hq].map(carry);
+        let [hp, hq] = transfer_blocks([&flex.hp, &flex.hq], body, grid)?;
         return Ok(Flexibility::of_half_plane(hp, hq));
     }
-    Ok(Flexibility {
-        hp: carry(&flex.hp),
-        hq: carry(&flex.hq),
-        wp: carry(&flex.wp),
-        wq: carry(&flex.wq),
-    })
+    let [hp, hq, wp, wq] = transfer_blocks([&flex.hp, &flex.hq, &flex.wp, &flex.wq], body, grid)?;
+    Ok(Flexibility { hp, hq, wp, wq })
 }
 
-/// Operator blocks on the body's own nodes (`body`) carried to the contact grid (`grid`), as
-/// [`transfer_flexibility`] carries each block; passed through when the nodes coincide.
+/// Operator blocks on the body's own nodes (`body`) carried to the contact grid (`grid`) by
+/// the sparse product D·F·T of each; copied when the nodes coincide.
 pub fn transfer_blocks<const N: usize>(
-    blocks: [Mat<f64>; N],
+    blocks: [&Mat<f64>; N],
     body: &ContactGrid,
     grid: &ContactGrid,
 ) -> Result<[Mat<f64>; N], TransferError> {
     if grid.coincides_with(body) {
-        return Ok(blocks);
+        return Ok(blocks.map(|f| f.clone()));
     }
     let (d, t) = operators(body, grid)?;
-    Ok(blocks.map(|f| carried(&d, &f, &t, grid.n_nodes())))
+    Ok(blocks.map(|f| carried(&d, f, &t, grid.n_nodes())))
 }
 
 /// Whether a = sign·b entry for entry, exactly.
@@ -358,7 +352,7 @@ mod tests {
     }
 
     /// A half-plane's two kernels carried as blocks ([`transfer_blocks`], what a stand-in
-    /// carries) are its flexibility's carried H blocks to the bit, and pass through unchanged
+    /// carries) are its flexibility's carried H blocks to the bit, and are copied unchanged
     /// onto the same grid.
     #[test]
     fn the_kernel_blocks_carry_as_the_flexibility_does() {
@@ -366,9 +360,9 @@ mod tests {
         let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 5, -1.2, 1.1);
         let (hp, hq) = body().kernel_blocks(&own, Side::B);
         let whole = transfer_flexibility(&body().flexibility(&own, Side::B), &own, &grid).unwrap();
-        let [cp, cq] = transfer_blocks([hp.clone(), hq.clone()], &own, &grid).unwrap();
+        let [cp, cq] = transfer_blocks([&hp, &hq], &own, &grid).unwrap();
         assert!(cp == whole.hp && cq == whole.hq);
-        let [sp, sq] = transfer_blocks([hp.clone(), hq.clone()], &own, &own.clone()).unwrap();
+        let [sp, sq] = transfer_blocks([&hp, &hq], &own, &own.clone()).unwrap();
         assert!(sp == hp && sq == hq);
     }
 

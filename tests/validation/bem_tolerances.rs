@@ -120,10 +120,7 @@ fn best_of(name: &str, overrides: &[&str]) -> rollbem::post::Solved {
     let path = crate::common::case_path(name);
     let case = rollbem::app::load_case(path.as_path(), overrides).expect("the case loads");
     let scene = rollbem::scene::Scene::from_case(&case).expect("the scene builds");
-    let a = rollbem::adapt::solve(&scene).expect("the run solves");
-    assert!(a.report.converged, "{name} did not converge");
-    let mut s = rollbem::post::process(a.scene, &a.models, a.problem, &a.state, a.report, a.timings)
-        .expect("the solution post-processes");
-    s.adaptation = a.adaptation;
+    let s = rollbem::app::solve_scene_best(scene, std::time::Instant::now()).expect("the run solves");
+    assert!(s.report.converged, "{name} did not converge");
     s
 }

@@ -202,21 +202,27 @@ impl SmoothRemainder {
 }
 
 /// The half-plane of the body's material and profile radius on `grid`, its columns scaled to
-/// a load per unit arc (module docs): 1/cos θ_j with θ the body's surface slope at node j.
+/// a load per unit arc (module docs): 1/cos θ_j with θ the body's surface slope at node j. On a
+/// grid of curved elements, which the closed-form element integrals do not cover, its two
+/// kernels are made on the straight grid between the same edges and carried over (as
+/// [`Transferred::flat_model_on`] does); the W blocks are made from them last, so each m × m
+/// matrix is made once (on a graded final grid every further one costs its page faults).
 fn arc_half_plane(
     half: &HalfSpace,
     grid: &ContactGrid,
     side: Side,
     slope: &dyn Fn(f64) -> f64,
 ) -> Result<Flexibility, BuildError> {
-    let body = Transferred::flat_model_on(Box::new(half.clone()), grid, side)?;
-    Ok(arc_scaled(body.model().flexibility(grid, side), grid, slope))
-}
-
-/// A flexibility's columns divided by cos θ_j (a load per unit arc).
-fn arc_scaled(mut f: Flexibility, grid: &ContactGrid, slope: &dyn Fn(f64) -> f64) -> Flexibility {
-    scale_columns([&mut f.hp, &mut f.hq, &mut f.wp, &mut f.wq], grid, slope);
-    f
+    let [mut hp, mut hq] = if grid.is_straight() {
+        let (hp, hq) = half.kernel_blocks(grid, side);
+        [hp, hq]
+    } else {
+        let straight = grid.straightened();
+        let (hp, hq) = half.kernel_blocks(&straight, side);
+        transfer_blocks([&hp, &hq], &straight, grid)?
+    };
+    scale_columns([&mut hp, &mut hq], grid, slope);
+    Ok(Flexibility::of_half_plane(hp, hq))
 }
 
 /// The columns of `blocks` divided by cos θ_j at the grid's node j.
@@ -459,18 +465,6 @@ impl BodySetup for BemStandIn {
 }
 
 impl StandInBody {
-    /// The half-plane's H blocks on `grid`: on the straight grid between the same edges and
-    /// carried over when the grid's elements are curved (as [`Transferred::flat_model_on`]).
-    fn half_plane_blocks(&self, grid: &ContactGrid, side: Side) -> [Mat<f64>; 2] {
-        if grid.is_straight() {
-            let (hp, hq) = self.half.kernel_blocks(grid, side);
-            return [hp, hq];
-        }
-        let straight = grid.straightened();
-        let (hp, hq) = self.half.kernel_blocks(&straight, side);
-        transfer_blocks([hp, hq], &straight, grid).expect("a grid lies within its straightened self")
-    }
-
     /// The flexibility remainder this stand-in solves with.
     fn remainder(&self) -> &SmoothRemainder {
         let fitted = &self.setup.fitted;
@@ -485,7 +479,7 @@ impl StandInBody {
 struct StandInBody {
     /// The half-plane on the grid (carried over from the straightened grid on a curved one).
     flat: Box<dyn Body>,
-    /// The half-plane itself (in the pair's store), whose kernels the flexibility carries.
+    /// The half-plane itself (in the pair's store), whose kernels [`arc_half_plane`] carries.
     half: HalfSpace,
     setup: BemStandIn,
     side: Side,
@@ -496,15 +490,11 @@ impl BodyModel for StandInBody {
         "bem"
     }
 
-    /// The half-plane's two kernels carried to the grid and scaled to a load per unit arc, the
-    /// W blocks made from them, and the remainder added in place: each m × m matrix made once
-    /// (on a graded final grid every further one costs its page faults, per body and pass).
+    /// The half-plane per unit arc ([`arc_half_plane`]) plus the remainder, added in place.
     fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
         let inner = &self.setup.inner;
         let slope = |x: f64| inner.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
-        let [mut hp, mut hq] = self.half_plane_blocks(grid, side);
-        scale_columns([&mut hp, &mut hq], grid, &slope);
-        let mut f = Flexibility::of_half_plane(hp, hq);
+        let mut f = arc_half_plane(&self.half, grid, side, &slope).expect("a grid lies within its straightened self");
         self.remainder()
             .add_to(grid, [&mut f.hp, &mut f.hq, &mut f.wp, &mut f.wq].into_iter());
         f
