@@ -2,7 +2,7 @@
 // Boundary mesh (quadratic line3 elements) of a roller of radius R on a rigid shaft of radius rs,
 // body B (below the contact). The contact segment |x| <= L carries ne elements whose ends have exactly the x of the
 // half-space grid NOT: 54 elements on |x| <= 1.5 mm (over twice as fine), so its flexibility is transferred to body A's
-// contact grid by interpolation (DESIGN §4). Units: mm. Regenerate: python3 tools/make_meshes.py
+// contact grid by interpolation (src/body/transfer.rs). Units: mm. Regenerate: python3 tools/make_meshes.py
 R = 100;
 rs = 10;
 ne = 54;

@@ -1,5 +1,5 @@
 //! The repository stands alone: what a user reads (docs/, cases/, README.md, tools/, the report
-//! programs of examples/ and every `--help` text) cites the literature and the repository's own
+//! programs of examples/, the Gmsh scripts of meshes/ and every `--help` text) cites the literature and the repository's own
 //! files, never a document the repository does not hold (a "reference sheet", a "DESIGN" brief,
 //! `../shared`) nor a tracker number ("issue 6"). Fails naming the file (or help text) and line
 //! of each occurrence.
@@ -83,12 +83,21 @@ fn the_grep_recognises_what_it_must_refuse() {
 }
 
 #[test]
-fn docs_cases_readme_tools_and_examples_cite_nothing_outside_the_repository() {
+fn docs_cases_readme_tools_examples_and_mesh_scripts_cite_nothing_outside_the_repository() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let mut files = vec![root.join("README.md")];
     for dir in ["docs", "cases", "tools", "examples"] {
         text_files(&root.join(dir), &mut files);
     }
+    // The Gmsh scripts (the .msh files they make hold no prose).
+    let mut meshes = Vec::new();
+    text_files(&root.join("meshes"), &mut meshes);
+    let scripts: Vec<PathBuf> = meshes
+        .into_iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "geo" || e == "inc"))
+        .collect();
+    assert!(scripts.len() > 10, "found only {scripts:?}");
+    files.extend(scripts);
     assert!(files.len() > 20, "found only {files:?}");
     let mut found = Vec::new();
     for file in &files {
