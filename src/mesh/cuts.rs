@@ -15,6 +15,15 @@
 //! this the round-off of the user's mesh file would, on a deeply graded grid, exceed any
 //! tolerance relative to the grid's smallest spacing.
 //!
+//! **Non-matching meshes.** A mesh whose contact elements end elsewhere than the grid's (a body
+//! meshed on its own, across the contact from the body whose mesh set the grid) is first cut at
+//! every grid edge its elements hold; the pieces that then share one grid element are merged
+//! into one element spanning it, on the curve of the piece that holds the grid element's mid
+//! abscissa ([`conformed_to_grid`]). Within the grid the cut mesh's contact elements are the
+//! grid's, as a matching mesh's are: its own nodes there are replaced by the error-controlled
+//! grid's, and its flexibility needs no interpolation between two sets of nodes. Its contact
+//! elements beyond the grid stay as they were.
+//!
 //! The rest of the mesh is unchanged but for the two elements that meet the contact group at
 //! its ends: where the grid's end element was cut much shorter than its neighbour outside the
 //! group, that neighbour is halved towards the common node ([`graded_transitions`]), so the
@@ -96,8 +105,8 @@ pub fn cut_along_grid_on(
         };
         // The element's ends snapped onto the grid's edges they stand for, and the grid's edges
         // strictly inside it (a body whose contact elements end elsewhere than the grid's, a
-        // non-matching mesh, is cut at every grid edge it holds and carried over to the grid
-        // by interpolation).
+        // non-matching mesh, is cut at every grid edge it holds; [`conformed_to_grid`] then
+        // merges the pieces that share a grid element).
         let snapped = |x: f64| {
             let k = grid.edges.partition_point(|&e| e < x);
             [k.wrapping_sub(1), k]
@@ -160,8 +169,96 @@ pub fn cut_along_grid_on(
         }
         elements.extend(children);
     }
+    let elements = conformed_to_grid(&mut nodes, elements, group, grid, &on_surface);
     let elements = graded_transitions(mesh, &mut nodes, elements, group, max_ratio);
     BoundaryMesh::new(nodes, elements, mesh.groups.clone(), mesh.source.clone())
+}
+
+/// `elements` with the contact pieces that share one grid element merged into one element
+/// spanning it (module docs, non-matching meshes): its end nodes the pieces' outer ends (on the
+/// grid's edges), its mid node new, on the piece's curve that holds the grid element's mid
+/// abscissa, at that abscissa. A grid element the contact group does not cover whole (the
+/// group ends inside it) keeps its pieces. A matching mesh has one piece per grid element, and
+/// comes back unchanged.
+fn conformed_to_grid(
+    nodes: &mut Vec<[f64; 2]>,
+    elements: Vec<BoundaryElement>,
+    group: usize,
+    grid: &ContactGrid,
+    on_surface: &dyn Fn([f64; 2]) -> [f64; 2],
+) -> Vec<BoundaryElement> {
+    let (edges, n) = (&grid.edges, grid.n_elements());
+    // Each element's x-range, with the nodes at its lower and upper ends.
+    let ranges: Vec<(f64, f64, usize, usize)> = elements
+        .iter()
+        .map(|el| {
+            let (a, b) = (el.nodes[0], el.nodes[1]);
+            if nodes[a][0] <= nodes[b][0] {
+                (nodes[a][0], nodes[b][0], a, b)
+            } else {
+                (nodes[b][0], nodes[a][0], b, a)
+            }
+        })
+        .collect();
+    let slack = |k: usize| 1e-9 * (edges[k + 1] - edges[k]);
+    let cell_of = |i: usize| -> Option<usize> {
+        let (lo, hi, _, _) = ranges[i];
+        let mid = 0.5 * (lo + hi);
+        if !(edges[0]..=edges[n]).contains(&mid) {
+            return None;
+        }
+        let k = edges.partition_point(|&e| e <= mid).saturating_sub(1).min(n - 1);
+        (lo >= edges[k] - slack(k) && hi <= edges[k + 1] + slack(k)).then_some(k)
+    };
+    let mut by_cell: HashMap<usize, Vec<usize>> = HashMap::new();
+    for i in (0..elements.len()).filter(|&i| elements[i].group == group) {
+        if let Some(k) = cell_of(i) {
+            by_cell.entry(k).or_default().push(i);
+        }
+    }
+    let mut merged: HashMap<usize, BoundaryElement> = HashMap::new();
+    let mut dropped = vec![false; elements.len()];
+    for (k, mut pieces) in by_cell.into_iter().filter(|(_, p)| p.len() > 1) {
+        pieces.sort_by(|&a, &b| ranges[a].0.total_cmp(&ranges[b].0));
+        let (first, last) = (ranges[pieces[0]], ranges[pieces[pieces.len() - 1]]);
+        let chained = pieces.windows(2).all(|w| ranges[w[0]].3 == ranges[w[1]].2);
+        let covered = (first.0 - edges[k]).abs() <= slack(k) && (last.1 - edges[k + 1]).abs() <= slack(k);
+        if !(chained && covered) {
+            continue;
+        }
+        let x_mid = grid.mids[k];
+        let holder = pieces
+            .iter()
+            .copied()
+            .find(|&i| (ranges[i].0..=ranges[i].1).contains(&x_mid))
+            .unwrap_or(pieces[0]);
+        let geom = ElementGeometry::of_element(&elements[holder], nodes);
+        let y = geom.point(parameter_at(&geom, x_mid))[1];
+        nodes.push(on_surface([x_mid, y]));
+        // The walking direction of the pieces (the loop's): from the lower end or the upper.
+        let increasing = elements[pieces[0]].nodes[0] == first.2;
+        let (start, end) = if increasing {
+            (first.2, last.3)
+        } else {
+            (last.3, first.2)
+        };
+        let anchor = *pieces.iter().min().expect("two pieces or more");
+        for &i in &pieces {
+            dropped[i] = true;
+        }
+        merged.insert(
+            anchor,
+            BoundaryElement {
+                nodes: vec![start, end, nodes.len() - 1],
+                group,
+            },
+        );
+    }
+    elements
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, el)| merged.remove(&i).or((!dropped[i]).then_some(el)))
+        .collect()
 }
 
 /// Moves node `v` (an end of `geom`, at abscissa `x_now`) along the curve
@@ -367,6 +464,77 @@ mod tests {
         };
         let (l0, l1) = (total(before), total(&after));
         assert!((l1 - l0).abs() < 1e-9 * l0, "length {l0} -> {l1}");
+    }
+
+    /// The non-matching roller of cases/carter_051_true_nonmatching.yaml (54 contact elements on
+    /// |x| ≤ 1.5, the grid's 21 on |x| ≤ 1.24 from the other roller's mesh) cut along the grid,
+    /// as given and graded 6 times towards its ends: inside the grid its contact elements are
+    /// the grid's, edge for edge and mid node for mid node to 1e-6 of their length (its own
+    /// nodes there gone, each new node on its circle), beyond it its own elements' ends stay, and the boundary is closed.
+    #[test]
+    fn a_non_matching_mesh_is_cut_to_the_grids_elements() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let load = |name: &str| {
+            let path = root.join("meshes").join(name);
+            let (mut mesh, _) = crate::mesh::load(&path).unwrap();
+            validate_and_orient(&mut mesh).unwrap();
+            let contact_group = mesh.group_index("contact").unwrap();
+            LoadedMesh {
+                path,
+                mesh,
+                notices: Vec::new(),
+                contact_group,
+            }
+        };
+        let own = load("roller_r100_shaft10_B_nonmatching.msh");
+        let start = DyadicGrid::new(&roller().contact_grid());
+        let n = start.len();
+        let (lo, hi) = (start.root().edges[0], start.root().edges[n]);
+        let mut action = vec![Action::Keep; n];
+        action[0] = Action::GradeTowards(lo, 6);
+        action[n - 1] = Action::GradeTowards(hi, 6);
+        let own_grid = own.contact_grid();
+        let beyond = |g: &ContactGrid| -> Vec<f64> {
+            let slack = 1e-9 * (hi - lo);
+            g.edges
+                .iter()
+                .copied()
+                .filter(|&x| x < lo - slack || x > hi + slack)
+                .collect()
+        };
+        let own_inside = own_grid.nodes.iter().filter(|&&x| (lo..=hi).contains(&x)).count();
+        assert!(own_inside > 3 * 21, "{own_inside} of its own nodes inside the grid");
+        for grid in [start.grid(), start.refined(&action).grid()] {
+            let cut = cut_along_grid(&own, &grid, MAX_NEIGHBOUR_RATIO);
+            let mut checked = cut.clone();
+            validate_and_orient(&mut checked).expect("the cut mesh is a valid boundary");
+            let loaded = LoadedMesh {
+                mesh: cut,
+                ..own.clone()
+            };
+            let cut_grid = loaded.contact_grid();
+            let inside: Vec<usize> = (0..cut_grid.n_elements())
+                .filter(|&e| cut_grid.edges[e] >= lo - 1e-12 && cut_grid.edges[e + 1] <= hi + 1e-12)
+                .collect();
+            assert_eq!(inside.len(), grid.n_elements(), "one element per grid element");
+            let h = grid.node_spacing();
+            for (k, &e) in inside.iter().enumerate() {
+                assert!((cut_grid.edges[e] - grid.edges[k]).abs() < 1e-12 * h, "edge {k}");
+                // The grid's mid abscissa where pieces were merged; a piece that spans a grid
+                // element whole keeps its own curve's mid parameter, as a matching mesh's does.
+                let length = grid.edges[k + 1] - grid.edges[k];
+                let off = (cut_grid.mids[e] - grid.mids[k]).abs();
+                assert!(off < 1e-6 * length, "mid {k}: {off:e} off in {length:e}");
+            }
+            assert_eq!(beyond(&cut_grid), beyond(&own_grid), "its own edges beyond the grid");
+            // Every contact node on the roller's circle (centre (0, −100), R 100).
+            for el in loaded.contact_elements() {
+                for [x, y] in el.nodes {
+                    let r = (x * x + (y + 100.0).powi(2)).sqrt();
+                    assert!((r - 100.0).abs() < 1e-9, "contact node at radius {r}");
+                }
+            }
+        }
     }
 
     /// A grid that refines only inside the contact leaves every element outside the contact

@@ -135,34 +135,53 @@ fn non_matching_contact_nodes_are_transferred() {
 }
 
 /// Non-matching BEM meshes under a tolerance: body B's contact elements end elsewhere than A's
-/// (cases/carter_051_true_nonmatching.yaml), so each pass cuts B's mesh at every grid edge it
-/// holds and carries it over to the grid by interpolation, as the fixed grid does. Its
-/// creepage and pressure agree with the matching meshes' run at the same tolerance to within
-/// that tolerance, and its creepage with Carter's (μa/R*)(1 − √(1 − Q/μP)) within 0.5 % (the
-/// true cylinders' own departure from the half-plane theory is 0.2 %).
+/// (cases/carter_051_true_nonmatching.yaml: 54 on |x| ≤ 1.5 against the grid's 21 on |x| ≤ 1.24),
+/// so each pass cuts B's mesh to the grid's elements inside the grid (src/mesh/cuts.rs), and the
+/// passes and the results take the BEM bodies' stand-ins, as for matching meshes (before the
+/// cuts conformed, B kept its own nodes, was carried over to the grid by interpolation and
+/// solved with the full BEM in every pass, 4–5 times the time). At 1e-3 and 1e-4 its RMS
+/// pressure and shear over the contact (on the matching run's grid) and its creepage agree
+/// with the matching meshes' run at the same tolerance to within that tolerance (measured:
+/// 1e-3 6.2e-7 p0, 1.2e-5 μp0, 9.8e-6; 1e-4 2.6e-7, 4.5e-6, 9.6e-6), on the same number of
+/// elements, and its creepage with Carter's (μa/R*)(1 − √(1 − Q/μP)) within 0.5 % (the true
+/// cylinders' own departure from the half-plane theory is 0.2 %).
 #[test]
 fn non_matching_meshes_follow_an_error_controlled_grid() {
-    let tol = ["contact.grid.tolerance=1e-3"];
-    let nonmatching = crate::common::solve("carter_051_true_nonmatching", &tol);
-    let matching = crate::common::solve("carter_051_true", &tol);
-    let (a, b) = (&nonmatching.solution, &matching.solution);
-    assert!(
-        (a.creep / b.creep - 1.0).abs() < 1e-3,
-        "creepage {} against {}",
-        a.creep,
-        b.creep
-    );
-    let p0 = matching.scene.estimates.hertz_peak_pressure;
-    let pmax = |s: &[f64]| s.iter().copied().fold(0.0, f64::max);
-    assert!((pmax(&a.pressure) - pmax(&b.pressure)).abs() < 1e-3 * p0);
-    let carter = 0.1 * 1.0 / 50.0 * (1.0 - (1.0f64 - 0.51).sqrt());
-    assert!(
-        (a.creep.abs() / carter - 1.0).abs() < 5e-3,
-        "creepage {} against Carter {carter}",
-        a.creep
-    );
-    assert!(
-        nonmatching.adaptation.is_some_and(|g| g.refinements > 0),
-        "the grid was refined"
-    );
+    for tolerance in [1e-3, 1e-4] {
+        let tol = format!("contact.grid.tolerance={tolerance:e}");
+        let nonmatching = solve("carter_051_true_nonmatching", &[&tol]);
+        let matching = solve("carter_051_true", &[&tol]);
+        let (a, b) = (&nonmatching.solution, &matching.solution);
+        let (ga, gb) = (
+            nonmatching.adaptation.as_ref().expect("an error-controlled run"),
+            matching.adaptation.as_ref().expect("an error-controlled run"),
+        );
+        let errors = crate::adaptive::errors_against(&matching, &nonmatching);
+        println!(
+            "non-matching against matching at {tolerance:e}: {} and {} elements, p, q, ξ {:.2e} {:.2e} {:.2e}",
+            nonmatching.problem.grid.n_elements(),
+            matching.problem.grid.n_elements(),
+            errors.0,
+            errors.1,
+            errors.2
+        );
+        crate::adaptive::assert_true_errors_within("non-matching against matching", tolerance, errors);
+        assert!(
+            ga.results_from_stand_ins,
+            "the stand-ins give the results at {tolerance:e}"
+        );
+        assert_eq!(
+            nonmatching.problem.grid.n_elements(),
+            matching.problem.grid.n_elements(),
+            "the same grid at {tolerance:e}"
+        );
+        assert!(ga.refinements > 0 && gb.refinements > 0, "the grid was refined");
+        let carter = 0.1 * 1.0 / 50.0 * (1.0 - (1.0f64 - 0.51).sqrt());
+        assert!(
+            (a.creep.abs() / carter - 1.0).abs() < 5e-3,
+            "creepage {} against Carter {carter}",
+            a.creep
+        );
+        assert!(b.creep.abs() > 0.0);
+    }
 }
