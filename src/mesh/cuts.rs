@@ -381,7 +381,14 @@ mod tests {
     /// The shipped roller of radius 100 on a shaft of radius 10 (meshes/roller_r100_shaft10_A.msh):
     /// 17 contact elements on |x| ≤ 1.25, its free arc graded from there at ratio ≤ 1.04.
     fn roller() -> LoadedMesh {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r100_shaft10_A.msh");
+        shipped("roller_r100_shaft10_A.msh")
+    }
+
+    /// The mesh `name` of meshes/, oriented, with its group `contact`.
+    fn shipped(name: &str) -> LoadedMesh {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("meshes")
+            .join(name);
         let (mut mesh, _) = crate::mesh::load(&path).unwrap();
         validate_and_orient(&mut mesh).unwrap();
         let contact_group = mesh.group_index("contact").unwrap();
@@ -473,20 +480,7 @@ mod tests {
     /// nodes there gone, each new node on its circle), beyond it its own elements' ends stay, and the boundary is closed.
     #[test]
     fn a_non_matching_mesh_is_cut_to_the_grids_elements() {
-        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-        let load = |name: &str| {
-            let path = root.join("meshes").join(name);
-            let (mut mesh, _) = crate::mesh::load(&path).unwrap();
-            validate_and_orient(&mut mesh).unwrap();
-            let contact_group = mesh.group_index("contact").unwrap();
-            LoadedMesh {
-                path,
-                mesh,
-                notices: Vec::new(),
-                contact_group,
-            }
-        };
-        let own = load("roller_r100_shaft10_B_nonmatching.msh");
+        let own = shipped("roller_r100_shaft10_B_nonmatching.msh");
         let start = DyadicGrid::new(&roller().contact_grid());
         let n = start.len();
         let (lo, hi) = (start.root().edges[0], start.root().edges[n]);

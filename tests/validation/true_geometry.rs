@@ -156,16 +156,7 @@ fn non_matching_meshes_follow_an_error_controlled_grid() {
             nonmatching.adaptation.as_ref().expect("an error-controlled run"),
             matching.adaptation.as_ref().expect("an error-controlled run"),
         );
-        let errors = crate::adaptive::errors_against(&matching, &nonmatching);
-        println!(
-            "non-matching against matching at {tolerance:e}: {} and {} elements, p, q, ξ {:.2e} {:.2e} {:.2e}",
-            nonmatching.problem.grid.n_elements(),
-            matching.problem.grid.n_elements(),
-            errors.0,
-            errors.1,
-            errors.2
-        );
-        crate::adaptive::assert_true_errors_within("non-matching against matching", tolerance, errors);
+        agrees_with_matching("non-matching meshes", tolerance, &nonmatching, &matching);
         assert!(
             ga.results_from_stand_ins,
             "the stand-ins give the results at {tolerance:e}"
@@ -237,14 +228,20 @@ fn a_coarser_roller_meshed_on_its_own_follows_an_error_controlled_grid() {
         .expect("the roller meshed on its own meets the tolerance");
     let a = run.adaptation.as_ref().expect("an error-controlled run");
     assert!(a.results_from_stand_ins, "the stand-ins give the results");
-    let errors = crate::adaptive::errors_against(&matching, &run);
+    agrees_with_matching("roller meshed on its own", tolerance, &run, &matching);
+}
+
+/// Asserts that `run`'s RMS pressure and shear over the contact (on `matching`'s grid) and its
+/// creepage differ from `matching`'s within `tolerance`, printing them and both grids' sizes.
+fn agrees_with_matching(label: &str, tolerance: f64, run: &rollbem::app::Solved, matching: &rollbem::app::Solved) {
+    let errors = crate::adaptive::errors_against(matching, run);
     println!(
-        "roller meshed on its own against the matching meshes: {} and {} elements, p, q, ξ {:.2e} {:.2e} {:.2e}",
+        "{label} against the matching meshes at {tolerance:e}: {} and {} elements, p, q, ξ {:.2e} {:.2e} {:.2e}",
         run.problem.grid.n_elements(),
         matching.problem.grid.n_elements(),
         errors.0,
         errors.1,
         errors.2
     );
-    crate::adaptive::assert_true_errors_within("roller meshed on its own", tolerance, errors);
+    crate::adaptive::assert_true_errors_within(label, tolerance, errors);
 }
