@@ -531,6 +531,115 @@ mod tests {
         }
     }
 
+    /// Rollers meshed at random across the contact (R 100 below it, 4 to 40 contact elements
+    /// whose ends fall anywhere on |x| ≤ 1.5), cut along the shipped roller's grid refined at
+    /// random (elements kept, split or graded towards a point inside): every cut mesh is a valid
+    /// boundary, its contact elements inside the grid are the grid's edge for edge, every node
+    /// lies on the curve of the original element that holds it, its own edges beyond the grid
+    /// stay, and the contact segment keeps its length.
+    #[test]
+    fn randomly_meshed_rollers_are_cut_to_randomly_refined_grids() {
+        use crate::mesh::build::MeshBuilder;
+        // A small linear congruential generator: the same cases on every run.
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut uniform = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (r, centre) = (100.0, [0.0, -100.0]);
+        let surface = |x: f64| [x, -r + (r * r - x * x).sqrt()];
+        let start = DyadicGrid::new(&roller().contact_grid());
+        let n = start.len();
+        let (lo, hi) = (start.root().edges[0], start.root().edges[n]);
+        for case in 0..40 {
+            let elements = 4 + (uniform() * 37.0) as usize;
+            let mut ends: Vec<f64> = (1..elements).map(|_| -1.5 + 3.0 * uniform()).collect();
+            ends.sort_by(f64::total_cmp);
+            ends.dedup_by(|a, b| (*a - *b).abs() < 1e-3);
+            let mut b = MeshBuilder::new(true, "random roller");
+            b.move_to(surface(1.5));
+            for &x in ends.iter().rev().chain([-1.5].iter()) {
+                b.arc_to(centre, surface(x), 1, true, 1.0, "contact");
+            }
+            b.arc_to(centre, [0.0, -2.0 * r], 24, true, 1.26, "free");
+            b.arc_to(centre, surface(1.5), 24, true, 1.0 / 1.26, "free");
+            b.circle(centre, 10.0, 24, "shaft");
+            let mut mesh = b.finish();
+            validate_and_orient(&mut mesh).unwrap();
+            let contact_group = mesh.group_index("contact").unwrap();
+            let own = LoadedMesh {
+                path: "random roller".into(),
+                mesh,
+                notices: Vec::new(),
+                contact_group,
+            };
+            let actions: Vec<Action> = (0..n)
+                .map(|e| match (uniform() * 3.0) as usize {
+                    0 => Action::Keep,
+                    1 => Action::Split(1 + (uniform() * 3.0) as u32),
+                    _ => {
+                        let (a, b) = (start.root().edges[e], start.root().edges[e + 1]);
+                        Action::GradeTowards(a + (b - a) * uniform(), 1 + (uniform() * 8.0) as u32)
+                    }
+                })
+                .collect();
+            let grid = start.refined(&actions).grid();
+            let cut = cut_along_grid(&own, &grid, MAX_NEIGHBOUR_RATIO);
+            let mut checked = cut.clone();
+            validate_and_orient(&mut checked).unwrap_or_else(|e| panic!("case {case}: {e}"));
+            let loaded = LoadedMesh {
+                mesh: cut,
+                ..own.clone()
+            };
+            let (before, after) = (own.contact_grid(), loaded.contact_grid());
+            let slack = 1e-9 * (hi - lo);
+            let inside = |g: &ContactGrid| -> Vec<f64> {
+                g.edges
+                    .iter()
+                    .copied()
+                    .filter(|&x| x >= lo - slack && x <= hi + slack)
+                    .collect()
+            };
+            let beyond = |g: &ContactGrid| -> Vec<f64> {
+                g.edges
+                    .iter()
+                    .copied()
+                    .filter(|&x| x < lo - slack || x > hi + slack)
+                    .collect()
+            };
+            let h = grid.node_spacing();
+            let (cut_inside, grid_edges) = (inside(&after), &grid.edges);
+            assert_eq!(cut_inside.len(), grid_edges.len(), "case {case}: edges inside the grid");
+            for (k, (a, b)) in cut_inside.iter().zip(grid_edges).enumerate() {
+                assert!(
+                    (a - b).abs() < 1e-12 * h.max(1e-3),
+                    "case {case}: edge {k}: {a} against {b}"
+                );
+            }
+            assert_eq!(
+                beyond(&after),
+                beyond(&before),
+                "case {case}: its own edges beyond the grid"
+            );
+            // Every contact node on the curve of the original element that holds its abscissa.
+            let originals: Vec<ElementGeometry> = own.contact_elements().collect();
+            for el in loaded.contact_elements() {
+                for [x, y] in el.nodes {
+                    let on_curve = originals.iter().any(|g| {
+                        g.parameter_at_x(x)
+                            .is_some_and(|xi| (g.point(xi)[1] - y).abs() < 1e-12 * r)
+                    });
+                    assert!(on_curve, "case {case}: contact node ({x}, {y}) off its element's curve");
+                }
+            }
+            let length = |m: &LoadedMesh| -> f64 { m.contact_elements().map(|g| g.length()).sum() };
+            let (l0, l1) = (length(&own), length(&loaded));
+            assert!((l1 - l0).abs() < 1e-9 * l0, "case {case}: contact length {l0} -> {l1}");
+        }
+    }
+
     /// A grid that refines only inside the contact leaves every element outside the contact
     /// group as it was: the transition adds nothing where the cut is within the grid's ratio.
     #[test]
