@@ -301,14 +301,15 @@ fn refine(
     let level_refs: Vec<&ContactGrid> = levels.iter().collect();
     let stand_ins = scene.with_pass_stand_ins(&level_refs)?;
     let check_factor = stand_ins::check_factor(levels.len());
-    let (mut passes, mut check, condense_s) = match stand_ins {
+    let (mut passes, mut check, changes, condense_s) = match stand_ins {
         // The two bodies' builds may have overlapped: the condensation's share of the wall time.
         Some(s) => (
             Some(s.passes),
             s.check,
+            s.check_changes,
             Timings::share_of_wall(t.elapsed().as_secs_f64(), s.condense_s, s.build_s),
         ),
-        None => (None, None, 0.0),
+        None => (None, None, None, 0.0),
     };
     timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
     timings.condense_s += condense_s;
@@ -386,8 +387,16 @@ fn refine(
             // The stand-ins give the results when their own error, estimated by the check's
             // solution, leaves the total within the tolerance (src/body/bem/stand_in.rs).
             if let Some(check_scene) = check.as_ref().filter(|_| !asks_interior_fields(scene)) {
-                let checked =
-                    stand_ins::check_difference(check_scene, &g, &h, scales, e.overlap_rel.is_some(), timings, ws)?;
+                let checked = stand_ins::check_difference(
+                    check_scene,
+                    changes.as_ref(),
+                    &g,
+                    &h,
+                    scales,
+                    e.overlap_rel.is_some(),
+                    timings,
+                    ws,
+                )?;
                 if let Some((d, iterations)) = checked {
                     let total = e.plus(&d, check_factor);
                     log::info!(

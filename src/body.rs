@@ -42,7 +42,7 @@ use crate::interior::{InteriorOptions, InteriorSample};
 use crate::linalg::mat_vec2;
 use faer::Mat;
 use serde::Serialize;
-pub use setup::{BodySetup, BuildContext, BuildError, ContactMesh, PassStandIn, Rolling, SurfaceAt};
+pub use setup::{BodySetup, BuildContext, BuildError, ContactMesh, FlexibilityChange, PassStandIn, Rolling, SurfaceAt};
 
 /// Which body of the pair: A is the upper body (y > 0), B the lower one.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -112,6 +112,18 @@ impl Flexibility {
     pub fn tangential(&self, p: &[f64], q: &[f64]) -> Vec<f64> {
         mat_vec2(&self.wp, p, &self.wq, q)
     }
+}
+
+/// A change of a body's flexibility on a grid, of low rank: each block (in the order hp, hq,
+/// wp, wq of [`Flexibility`], the same axes and pair convention) is `left · right[k]`, with
+/// `left` m × r shared by the four and `right[k]` r × m. Units: length / stress, carried by
+/// `right`.
+#[derive(Debug, Clone)]
+pub struct LowRankFlexibility {
+    /// The blocks' common left factor, m × r [-].
+    pub left: Mat<f64>,
+    /// Each block's right factor, r × m [length/stress].
+    pub right: [Mat<f64>; 4],
 }
 
 /// Operator giving the tangential surface strain share ∂w/∂x at the nodes from nodal (p, q),

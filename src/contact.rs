@@ -33,7 +33,7 @@ pub mod stall;
 mod start;
 pub mod workspace;
 
-use crate::body::{BodyModel, Flexibility, Side, StrainOperator};
+use crate::body::{BodyModel, Flexibility, LowRankFlexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;
 use crate::linalg::mat_vec2;
 use faer::Mat;
@@ -209,6 +209,38 @@ impl ContactProblem {
             strain: None,
             frame,
             rigid_slip,
+        }
+    }
+
+    /// The same problem with the bodies' flexibilities changed by `changes` (A's, B's; None:
+    /// unchanged), each a low-rank term in global axes turned into this problem's frame and
+    /// added to the pair's flexibility; the slip operator's blocks follow. Body B's own
+    /// flexibility and the strain operator are not carried (the changed problem is solved,
+    /// not written).
+    pub fn with_flexibility_changes(&self, changes: [Option<&LowRankFlexibility>; 2]) -> Self {
+        let mut flex = self.flex.clone();
+        for (change, side) in changes.into_iter().zip([Side::A, Side::B]) {
+            if let Some(c) = change {
+                self.frame.add_low_rank(&mut flex, c, side);
+            }
+        }
+        let bp = self.slip_operator.apply_scaled(&flex.wp, self.flow_sign);
+        let bq = self.slip_operator.apply_scaled(&flex.wq, self.flow_sign);
+        Self {
+            grid: self.grid.clone(),
+            flex,
+            body_b: None,
+            bp,
+            bq,
+            slip_operator: self.slip_operator.clone(),
+            h0: self.h0.clone(),
+            friction: self.friction,
+            flow_sign: self.flow_sign,
+            normal: self.normal,
+            tangential: self.tangential,
+            strain: None,
+            frame: self.frame.clone(),
+            rigid_slip: self.rigid_slip.clone(),
         }
     }
 

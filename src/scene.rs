@@ -19,7 +19,7 @@ pub use crate::body::half_space::setup::HalfSpaceSetup;
 use crate::body::pair_influence::PairInfluence;
 pub use crate::body::rigid::RigidSetup;
 pub use crate::body::BodySetup;
-use crate::body::{Body, BuildContext, Rolling, Side};
+use crate::body::{Body, BuildContext, FlexibilityChange, Rolling, Side};
 use crate::case::{LoadedCase, NormalSpec, TangentialSpec};
 use crate::contact::{ContactFrame, ContactProblem, NewtonSettings, NormalControl, SolverSettings, TangentialControl};
 use crate::error::Error;
@@ -42,6 +42,11 @@ pub struct PassScenes {
     /// passes' stand-ins' error on the final grid; None when a stand-in cannot give the final
     /// grid's results.
     pub check: Option<Scene>,
+    /// How `check`'s bodies differ from `passes`' (A's, B's; None for a body that is the same
+    /// in both), when every stand-in with a check knows it as a low-rank change of its
+    /// flexibility ([`crate::body::FlexibilityChange`]): the check's problems are then the
+    /// passes' plus the changes.
+    pub check_changes: Option<[Option<Arc<dyn FlexibilityChange>>; 2]>,
     /// Time [s] the stand-ins' builds spent condensing the bodies, summed over both.
     pub condense_s: f64,
     /// The builds' own times [s], summed over both (they may have run side by side: the
@@ -238,11 +243,16 @@ impl Scene {
                 built.push((k, s));
             }
         }
+        let mut changes = Some([None, None]);
         for (k, stand_in) in built {
             bodies[k] = stand_in.body;
             match (stand_in.check, checks.as_mut()) {
                 (Some(check), Some(c)) => c[k] = check,
                 _ => checks = None,
+            }
+            match (stand_in.check_change, changes.as_mut()) {
+                (Some(change), Some(c)) => c[k] = Some(change),
+                _ => changes = None,
             }
             any = true;
         }
@@ -251,6 +261,7 @@ impl Scene {
         }
         Ok(Some(PassScenes {
             passes: Scene { bodies, ..self.clone() },
+            check_changes: changes.filter(|_| checks.is_some()),
             check: checks.map(|bodies| Scene { bodies, ..self.clone() }),
             condense_s,
             build_s,

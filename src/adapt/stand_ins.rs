@@ -5,6 +5,9 @@ use super::body_mesh;
 use super::estimate::Scales;
 use super::{carried, solve_on, Solve};
 use crate::adapt::cells::DyadicGrid;
+use crate::body::{FlexibilityChange, Side};
+use crate::contact::methods;
+use crate::contact::report::SolveReport;
 use crate::contact::residual::State;
 use crate::contact::{ContactProblem, Workspace};
 use crate::error::Error;
@@ -12,6 +15,8 @@ use crate::grid::ContactGrid;
 use crate::post::adaptation::BodyMeshError;
 use crate::post::Timings;
 use crate::scene::Scene;
+use std::sync::Arc;
+use std::time::Instant;
 
 /// The coarser of the two grids the pass stand-ins' result is extrapolated from (their
 /// remainder's error falls as the grid's spacing, and Richardson's extrapolation from a grid
@@ -72,8 +77,15 @@ pub(super) fn check_factor(levels: usize) -> f64 {
 /// first (an eighth of a Newton step on H): where the two stand-ins' active sets differ, `h`'s
 /// solution alone cost up to seven Newton steps on H (bore_a020_braking at 1e-3), the moved one
 /// two.
+///
+/// With `changes` (how each check body differs from its stand-in, a low-rank change of its
+/// flexibility), the check's problems are `g`'s and `h`'s plus the changes
+/// ([`ContactProblem::with_flexibility_changes`]): the half-plane blocks, the larger part of a
+/// stand-in's assembly, are the same in both, and are not made again.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn check_difference(
     check: &Scene,
+    changes: Option<&Changes>,
     g: &Solve,
     h: &Solve,
     scales: Scales,
@@ -82,32 +94,64 @@ pub(super) fn check_difference(
     ws: &mut Workspace,
 ) -> Result<Option<(BodyMeshError, usize)>, Error> {
     let (g_grid, h_grid) = (&g.problem.grid, &h.problem.grid);
-    let on_g = solve_on(
-        check.on_grid(g_grid.clone()),
-        Some((g_grid, &g.state)),
-        false,
-        timings,
-        ws,
-    )?;
-    let warm = on_g
-        .report
+    let solve = |on: &Solve, warm: &State, timings: &mut Timings, ws: &mut Workspace| match changes {
+        Some(c) => Ok(solve_changed(&on.problem, c, check, warm, timings, ws)),
+        None => solve_on(
+            check.on_grid(on.problem.grid.clone()),
+            Some((&on.problem.grid, warm)),
+            false,
+            timings,
+            ws,
+        )
+        .map(|s| (s.state, s.report)),
+    };
+    // Only its solution is needed: its matrices go before H's are made.
+    let (on_g, g_report) = solve(g, &g.state, timings, ws)?;
+    let warm = g_report
         .converged
-        .then(|| moved_by(&h.problem, &h.state, g_grid, &g.state, &on_g.state));
-    let g_iterations = on_g.report.iterations;
-    // Only its solution was needed: its matrices go before H's are made.
-    drop(on_g);
-    let on_h = solve_on(
-        check.on_grid(h_grid.clone()),
-        Some((h_grid, warm.as_ref().unwrap_or(&h.state))),
-        false,
-        timings,
-        ws,
-    )?;
-    if !on_h.report.converged {
+        .then(|| moved_by(&h.problem, &h.state, g_grid, &g.state, &on_g));
+    let (on_h, h_report) = solve(h, warm.as_ref().unwrap_or(&h.state), timings, ws)?;
+    if !h_report.converged {
         return Ok(None);
     }
-    let d = body_mesh::difference(h_grid, &on_h.state, &h.state, scales, overlap_controlled);
-    Ok(Some((d, g_iterations + on_h.report.iterations)))
+    let d = body_mesh::difference(h_grid, &on_h, &h.state, scales, overlap_controlled);
+    Ok(Some((d, g_report.iterations + h_report.iterations)))
+}
+
+/// How the check's bodies differ from the passes' stand-ins (A's, B's; None: the same body).
+pub(super) type Changes = [Option<Arc<dyn FlexibilityChange>>; 2];
+
+/// The check solved on `base`'s grid, its problem `base` (the passes' problem there) plus
+/// `changes`, from `warm` (a solution on that grid); the times added to `timings`.
+fn solve_changed(
+    base: &ContactProblem,
+    changes: &Changes,
+    check: &Scene,
+    warm: &State,
+    timings: &mut Timings,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let t = Instant::now();
+    log::info!(
+        target: crate::logging::PROGRESS,
+        "assembling the contact problem: {} contact nodes (the passes' problem with the check's change)",
+        base.n_nodes()
+    );
+    let grid = &base.grid;
+    let [a, b] = [(0, Side::A), (1, Side::B)].map(|(k, side)| changes[k].as_ref().map(|c| c.on_grid(grid, side)));
+    let pb = base.with_flexibility_changes([a.as_ref(), b.as_ref()]);
+    timings.assembly_s += t.elapsed().as_secs_f64();
+    log::info!(
+        target: crate::logging::PROGRESS,
+        "solving: {}, {} contact nodes",
+        check.solver.method.name(),
+        pb.n_nodes()
+    );
+    let t = Instant::now();
+    let warm = carried(&pb, grid, warm);
+    let solved = methods::solve_from_in(&pb, &check.solver, Some(warm), ws);
+    timings.solve_s += t.elapsed().as_secs_f64();
+    solved
 }
 
 /// `z` (a solution on `pb`'s grid) moved by the change from `from` to `to` (two solutions on the

@@ -362,6 +362,11 @@ impl std::fmt::Debug for FarFieldCache {
 }
 
 impl FarFieldCache {
+    /// Whether the far field has been built (by the first setup that needed it).
+    pub fn is_built(&self) -> bool {
+        self.0.get().is_some()
+    }
+
     /// The far field of the start mesh, built by `start` on first use (None while the reuse is
     /// turned off, [`set_reuse_enabled`]).
     pub fn get_or_build(&self, start: impl FnOnce() -> Option<BemModel>) -> Option<Arc<FarField>> {

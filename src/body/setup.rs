@@ -16,7 +16,7 @@
 //! * following a refined grid ([`BodySetup::follow_grid`]): a BEM body cuts its own mesh along
 //!   the grid, a closed-form model has nothing to change.
 
-use super::{circle_profile, circle_profile_slope, Body, Side};
+use super::{circle_profile, circle_profile_slope, Body, LowRankFlexibility, Side};
 use crate::body::pair_influence::PairInfluence;
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
@@ -113,9 +113,22 @@ pub struct PassStandIn {
     /// the final grid's results (its strain or its fields), and the final grid is solved with
     /// the body itself.
     pub check: Option<Arc<dyn BodySetup>>,
+    /// How `check` differs from `body`, when that is a low-rank change of the flexibility on
+    /// any grid: the check's contact problem is then the passes' problem plus the change
+    /// (src/adapt/stand_ins.rs) instead of a new assembly of both bodies. None: the check is
+    /// built as a body of its own.
+    pub check_change: Option<Arc<dyn FlexibilityChange>>,
     /// Wall time [s] the stand-in's build spent condensing the body (part of its build time;
     /// the run reports it as condensation).
     pub condense_s: f64,
+}
+
+/// A change of a body's flexibility known as a low-rank term on any contact grid (a pass
+/// stand-in's check against the stand-in: src/body/bem/stand_in.rs).
+pub trait FlexibilityChange: std::fmt::Debug + Send + Sync {
+    /// The change on `grid` for the body on `side`, in global axes and the pair convention of
+    /// [`super::Flexibility`].
+    fn on_grid(&self, grid: &ContactGrid, side: Side) -> LowRankFlexibility;
 }
 
 /// One body of a scene, ready to build its model on a contact grid (module docs).

@@ -26,7 +26,7 @@
 //! With ψ = 0, s = 1 and k = 0 ([`ContactFrame::global_axes`]) every transformation is the
 //! identity: the half-space model's frame (its bodies are flat), and the `global` option.
 
-use crate::body::{Flexibility, Side, StrainOperator};
+use crate::body::{Flexibility, LowRankFlexibility, Side, StrainOperator};
 use crate::grid::ContactGrid;
 use faer::Mat;
 use serde::{Deserialize, Serialize};
@@ -140,6 +140,50 @@ impl ContactFrame {
         f
     }
 
+    /// Adds one body's low-rank change of flexibility (global axes) to `f`, a flexibility in
+    /// this frame: the transformation of [`Self::flexibility`], which is linear, applied to the
+    /// change's right factors (the columns) and, for h' = h − tan ψ_i w', to its left factor
+    /// (the rows), so that no m × m matrix is made beyond the sums into `f`.
+    pub fn add_low_rank(&self, f: &mut Flexibility, change: &LowRankFlexibility, side: Side) {
+        let s = &self.arc_scale[Self::side(side)];
+        let m = self.normal_angle.len();
+        let (sc, ss): (Vec<f64>, Vec<f64>) = self
+            .normal_angle
+            .iter()
+            .zip(s)
+            .map(|(psi, s)| {
+                let (sn, c) = psi.sin_cos();
+                (s * c, s * sn)
+            })
+            .unzip();
+        let [hp, hq, wp, wq] = &change.right;
+        let r = change.left.ncols();
+        // (p, q) → (P, Q) at column j: P = s(cos ψ p − sin ψ q), Q = s(sin ψ p + cos ψ q).
+        let combined = |a: &Mat<f64>, ca: &[f64], b: &Mat<f64>, cb: &[f64]| {
+            Mat::from_fn(r, m, |l, j| ca[j] * a[(l, j)] + cb[j] * b[(l, j)])
+        };
+        let minus_ss: Vec<f64> = ss.iter().map(|v| -v).collect();
+        let (hp, hq, wp, wq) = (
+            combined(hp, &sc, hq, &minus_ss),
+            combined(hp, &ss, hq, &sc),
+            combined(wp, &sc, wq, &minus_ss),
+            combined(wp, &ss, wq, &sc),
+        );
+        let left = &change.left;
+        let add = |dst: &mut Mat<f64>, lhs: &Mat<f64>, rhs: &Mat<f64>, alpha: f64| {
+            faer::linalg::matmul::matmul(dst.as_mut(), faer::Accum::Add, lhs, rhs, alpha, faer::Par::Seq);
+        };
+        add(&mut f.hp, left, &hp, 1.0);
+        add(&mut f.hq, left, &hq, 1.0);
+        add(&mut f.wp, left, &wp, 1.0);
+        add(&mut f.wq, left, &wq, 1.0);
+        if self.normal_angle.iter().any(|&a| a != 0.0) {
+            let tan_left = Mat::from_fn(m, r, |i, l| self.normal_angle[i].tan() * left[(i, l)]);
+            add(&mut f.hp, &tan_left, &wp, -1.0);
+            add(&mut f.hq, &tan_left, &wq, -1.0);
+        }
+    }
+
     /// The global-axes surface-strain operator of one body turned into this frame (columns
     /// only: the slip stays ∂w/∂x).
     pub fn strain(&self, op: StrainOperator, side: Side) -> StrainOperator {
@@ -205,6 +249,60 @@ mod tests {
             rigid_slip: vec![0.0; m],
             normal_angle: psi,
         }
+    }
+
+    /// A low-rank change added in the frame ([`ContactFrame::add_low_rank`]) is the change of
+    /// the transformed flexibility: frame(F + UR) − frame(F) to rounding, on both sides (their
+    /// arc scales differ) of a frame turned by up to 0.1 rad; and a change of zero adds nothing.
+    #[test]
+    fn a_low_rank_change_is_turned_into_the_frame_as_the_whole_flexibility_is() {
+        let (m, r) = (7, 3);
+        let block = |a: f64, b: f64| Mat::from_fn(m, m, |i, j| a + b * ((i * 5 + 3 * j) % 11) as f64);
+        let f = Flexibility {
+            hp: block(1.0, 0.1),
+            hq: block(0.3, -0.05),
+            wp: block(-0.2, 0.02),
+            wq: block(0.8, 0.07),
+        };
+        let change = LowRankFlexibility {
+            left: Mat::from_fn(m, r, |i, l| ((i + 1) as f64).powi(l as i32) / 7.0),
+            right: [0.5, -0.3, 0.2, 0.9].map(|c| Mat::from_fn(r, m, |l, j| c * (1.0 + (l * 4 + j) as f64 * 0.1))),
+        };
+        let dense = |k: usize| &change.left * &change.right[k];
+        let plus = Flexibility {
+            hp: &f.hp + dense(0),
+            hq: &f.hq + dense(1),
+            wp: &f.wp + dense(2),
+            wq: &f.wq + dense(3),
+        };
+        let fr = frame(m);
+        for side in [Side::A, Side::B] {
+            let want = fr.flexibility(plus.clone(), side);
+            let mut got = fr.flexibility(f.clone(), side);
+            fr.add_low_rank(&mut got, &change, side);
+            for (g, w) in [
+                (&got.hp, &want.hp),
+                (&got.hq, &want.hq),
+                (&got.wp, &want.wp),
+                (&got.wq, &want.wq),
+            ] {
+                for j in 0..m {
+                    for i in 0..m {
+                        assert!(
+                            (g[(i, j)] - w[(i, j)]).abs() <= 1e-13 * w[(i, j)].abs().max(1.0),
+                            "{side:?} ({i}, {j})"
+                        );
+                    }
+                }
+            }
+        }
+        let zero = LowRankFlexibility {
+            left: change.left.clone(),
+            right: std::array::from_fn(|_| Mat::zeros(r, m)),
+        };
+        let mut same = fr.flexibility(f.clone(), Side::A);
+        fr.add_low_rank(&mut same, &zero, Side::A);
+        assert_eq!(same.hp, fr.flexibility(f, Side::A).hp);
     }
 
     /// The transformed flexibility is what the module docs say, entry by entry: apply it to

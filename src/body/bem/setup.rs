@@ -47,8 +47,9 @@ pub struct BemSetup {
     /// The start mesh a refined grid's cuts are made in (None: `mesh` is the start mesh).
     pub start_mesh: Option<Arc<LoadedMesh>>,
     /// The start mesh's far-field block of H and G ([`crate::bem::reuse`]), integrated by the
-    /// first setup that follows a grid and shared by every setup that follows one from this one
-    /// (`Default::default()` when constructing a setup).
+    /// first setup that follows a grid (or by the start mesh's own condensation, when the
+    /// stand-ins' first level is its own grid) and shared by every setup that follows one from
+    /// this one (`Default::default()` when constructing a setup).
     pub far_field: FarFieldCache,
     /// The exact circle of the contact segment when the body was generated from its
     /// geometry (`geometry:`): the cuts of [`BodySetup::follow_grid`] then place their new nodes
@@ -131,19 +132,24 @@ impl BemSetup {
     /// The model of the body's mesh, condensed to its own contact nodes. A setup that follows
     /// a refined grid (`start_mesh` set) takes the unchanged part of H and G from the run's
     /// [`FarFieldCache`], integrating it on first use: the same body, assembled once per run
-    /// where the cuts leave the mesh as it was.
-    fn own_body(&self, side: Side) -> Result<BemBody, BuildError> {
+    /// where the cuts leave the mesh as it was. With `seed_far_field`, a start mesh condensed
+    /// on its own grid before the grids cut from it (the first of the stand-ins' levels) is
+    /// assembled the same way, so that its far field, integrated here as part of its own
+    /// assembly, is not integrated again by the next level.
+    fn own_body(&self, side: Side, seed_far_field: bool) -> Result<BemBody, BuildError> {
         let t0 = std::time::Instant::now();
+        let model_of = |mesh: &LoadedMesh| {
+            BemModel::new(
+                mesh.mesh.clone(),
+                self.material,
+                self.conditions.clone(),
+                BemOptions::default(),
+            )
+            .ok()
+        };
         let far = match &self.start_mesh {
-            Some(start) => self.far_field.get_or_build(|| {
-                BemModel::new(
-                    start.mesh.clone(),
-                    self.material,
-                    self.conditions.clone(),
-                    BemOptions::default(),
-                )
-                .ok()
-            }),
+            Some(start) => self.far_field.get_or_build(|| model_of(start)),
+            None if seed_far_field => self.far_field.get_or_build(|| model_of(&self.mesh)),
             None => None,
         };
         let far_s = t0.elapsed().as_secs_f64();
@@ -160,8 +166,15 @@ impl BemSetup {
     }
 
     /// The body on `ctx.grid`: condensed anew, or taken from [`KeptBody`] when this mesh was
-    /// condensed for the same side before; with `keep`, a new condensation is kept.
-    pub(super) fn build_keeping(&self, ctx: &BuildContext, keep: bool) -> Result<Box<dyn Body>, BuildError> {
+    /// condensed for the same side before; with `keep`, a new condensation is kept. With
+    /// `seed_far_field` a start mesh's condensation leaves its far field for the setups that
+    /// follow grids from it (`own_body`).
+    pub(super) fn build_keeping(
+        &self,
+        ctx: &BuildContext,
+        keep: bool,
+        seed_far_field: bool,
+    ) -> Result<Box<dyn Body>, BuildError> {
         let own = self.mesh.contact_grid();
         let body: Box<dyn Body> = match self.kept.get(ctx.side, &own) {
             Some(kept) => {
@@ -181,7 +194,7 @@ impl BemSetup {
                     self.mesh.mesh.elements.len(),
                     self.mesh.mesh.nodes.len()
                 );
-                let body = self.own_body(ctx.side)?;
+                let body = self.own_body(ctx.side, seed_far_field)?;
                 if keep {
                     let body = Arc::new(body);
                     self.kept.keep(ctx.side, &own, body.clone());
@@ -359,7 +372,7 @@ impl BodySetup for BemSetup {
     /// Condensed to its own contact nodes; if those differ from the grid's, its flexibility is
     /// carried over by [`Transferred`]. With `profile_radius`, the gap sees that circle.
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
-        self.build_keeping(ctx, self.keep_builds)
+        self.build_keeping(ctx, self.keep_builds, false)
     }
     /// The start mesh with its contact elements cut along `grid`
     /// ([`crate::mesh::cuts::cut_along_grid`]; on the exact circle of a generated body).
@@ -389,7 +402,9 @@ impl BodySetup for BemSetup {
         let check = stand_in
             .gives_results()
             .then(|| Arc::new(stand_in.checking()) as Arc<dyn BodySetup>);
+        let check_change = stand_in.gives_results().then(|| stand_in.check_change());
         Ok(Some(PassStandIn {
+            check_change,
             condense_s: stand_in.condense_seconds(),
             body: Arc::new(stand_in),
             check,
@@ -499,6 +514,45 @@ mod tests {
             pair: None,
         };
         followed.build(&ctx).expect("the body builds on the grid it followed");
+    }
+
+    /// The first of the stand-ins' levels, condensed on the start mesh's own grid, assembles
+    /// it through the far-field cache the next levels cut from it share: the same flexibility
+    /// to the bit as the plain assembly (which a fixed grid keeps, leaving the cache empty), and
+    /// the cache filled, so that a level cut from the start mesh integrates its far field no
+    /// more.
+    #[test]
+    fn the_start_meshs_own_level_seeds_the_far_field() {
+        let plain = fig14_roller();
+        let seeded = fig14_roller();
+        let grid = plain.mesh.contact_grid();
+        let ctx = BuildContext {
+            grid: &grid,
+            side: Side::A,
+            rolling: crate::body::Rolling {
+                direction: 1.0,
+                speed: None,
+            },
+            pair: None,
+        };
+        let a = plain.build_keeping(&ctx, false, false).unwrap();
+        assert!(!plain.far_field.is_built(), "a plain build leaves the cache empty");
+        let b = seeded.build_keeping(&ctx, false, true).unwrap();
+        assert!(seeded.far_field.is_built(), "the seeded build fills the cache");
+        let (fa, fb) = (
+            a.model().flexibility(&grid, Side::A),
+            b.model().flexibility(&grid, Side::A),
+        );
+        for (x, y) in [(&fa.hp, &fb.hp), (&fa.hq, &fb.hq), (&fa.wp, &fb.wp), (&fa.wq, &fb.wq)] {
+            for j in 0..x.ncols() {
+                for i in 0..x.nrows() {
+                    assert_eq!(x[(i, j)].to_bits(), y[(i, j)].to_bits(), "entry ({i}, {j})");
+                }
+            }
+        }
+        let finer = DyadicGrid::new(&grid).bisected().grid();
+        let follower = seeded.followed(&finer);
+        assert!(follower.far_field.is_built(), "the next level shares the seeded cache");
     }
 
     /// The surface the contact frame reads is each mesh's own: the cached shape of a setup that

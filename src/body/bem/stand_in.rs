@@ -54,8 +54,8 @@ use crate::body::half_space::HalfSpace;
 use crate::body::setup::{BodySetup, BuildContext, BuildError, Rolling, SurfaceAt};
 use crate::body::transfer::{transfer_blocks, Transferred};
 use crate::body::{
-    circle_profile, Body, BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery,
-    InteriorResult, Side, StrainOperator,
+    circle_profile, Body, BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility,
+    FlexibilityChange, InteriorQuery, InteriorResult, LowRankFlexibility, Side, StrainOperator,
 };
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
@@ -188,6 +188,25 @@ impl SmoothRemainder {
         }
     }
 
+    /// `other` less this remainder on `grid`, as a low-rank change of the four blocks: left the
+    /// Chebyshev rows T(x_i), right (ΔC T(s_j)ᵀ)·w_j with ΔC the difference of the coefficients
+    /// (the entries [`Self::add_to`] would add, in factors). Both must be series of one span
+    /// and degree (the fits of one stand-in's levels).
+    fn change_to(&self, other: &Self, grid: &ContactGrid) -> LowRankFlexibility {
+        assert!(
+            self.span == other.span && self.degree == other.degree,
+            "a change between series of one span and degree"
+        );
+        let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
+        let (m, r) = (grid.n_nodes(), self.degree + 1);
+        let left = Mat::from_fn(m, r, |i, l| t[(i, l)]);
+        let right = std::array::from_fn(|k| {
+            let d = (&other.coefficients[k] - &self.coefficients[k]) * t.transpose();
+            Mat::from_fn(r, m, |l, j| d[(l, j)] * grid.weights[j])
+        });
+        LowRankFlexibility { left, right }
+    }
+
     /// ∂R/∂x of the w blocks (wp, wq) on `grid`: ∂R(x_i, s_j)/∂x·w_j, the surface strain of the
     /// remainder's tangential displacement.
     fn w_derivatives_on(&self, grid: &ContactGrid) -> [Mat<f64>; 2] {
@@ -266,7 +285,8 @@ fn level_fit(
         rolling: place.rolling,
         pair: None,
     };
-    let body = level.build_keeping(&ctx, keep)?;
+    // The start mesh's own level seeds the far field the levels cut from it reuse.
+    let body = level.build_keeping(&ctx, keep, own)?;
     let bem = body.model().flexibility(grid, side);
     let slope = |x: f64| setup.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
     let flat = arc_half_plane(half, grid, side, &slope)?;
@@ -321,6 +341,17 @@ struct Fitted {
     /// The finest level's full BEM body and its own contact grid (the level's, or the same
     /// elements mapped by its own mesh), for the boundary field.
     finest: Option<(ContactGrid, Arc<BemBody>)>,
+}
+
+/// The check's remainder less the result's ([`BemStandIn::check_change`]).
+#[derive(Debug)]
+struct CheckChange(Arc<Fitted>);
+
+impl FlexibilityChange for CheckChange {
+    /// The same on either side: the remainders were fitted for the stand-in's own.
+    fn on_grid(&self, grid: &ContactGrid, _side: Side) -> LowRankFlexibility {
+        self.0.result.change_to(&self.0.check, grid)
+    }
 }
 
 /// Which remainder a stand-in solves with.
@@ -409,6 +440,12 @@ impl BemStandIn {
             used: Use::Check,
             ..self.clone()
         }
+    }
+
+    /// How [`Self::checking`] differs from this stand-in: the check's flexibility remainder
+    /// less the result's, a low-rank change on any grid (the half-plane part is the same).
+    pub fn check_change(&self) -> Arc<dyn FlexibilityChange> {
+        Arc::new(CheckChange(self.fitted.clone()))
     }
 
     /// Wall time [s] the fitted levels' condensations took.
