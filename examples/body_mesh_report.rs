@@ -69,13 +69,13 @@ pub fn roller_mesh(edges: &[f64], r: f64, shaft: f64, n: usize, growth: f64, sha
     b.circle(centre, shaft, shaft_n, "shaft");
     let mut mesh = b.finish();
     validate_and_orient(&mut mesh).expect("the roller mesh is valid");
-    let contact_group = mesh.group_index("contact").expect("a contact group");
-    LoadedMesh {
-        path: format!("<coarse roller, {} elements on the free circle>", 2 * n).into(),
+    LoadedMesh::new(
+        format!("<coarse roller, {} elements on the free circle>", 2 * n),
         mesh,
-        notices: Vec::new(),
-        contact_group,
-    }
+        Vec::new(),
+        "contact",
+    )
+    .expect("a contact group")
 }
 
 /// Body A of the case's scene replaced by the roller of `2·half` elements on its free circle

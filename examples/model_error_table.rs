@@ -29,7 +29,6 @@ use rollbem::mesh::validate_and_orient;
 use rollbem::post::ContactSolution;
 use rollbem::scene::{BemSetup, LoadedMesh, Scene};
 use rollbem::study::accuracy::{solve_model, SceneModel};
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -210,7 +209,6 @@ fn layer_solution(b: Option<f64>, p_total: f64, a: f64) -> ContactSolution {
         let half_width = (20.0 * b).max(20.0 * a);
         let mut mesh = layer_strip(b, half_width, 1.3 * a, 41, (b / 2.0).max(a / 2.0));
         let notices = validate_and_orient(&mut mesh).expect("layer mesh");
-        let contact_group = mesh.group_index("contact").expect("contact group");
         let mut bodies = scene.bodies.clone();
         let layer = &scene.bodies[1];
         let material = layer
@@ -223,12 +221,7 @@ fn layer_solution(b: Option<f64>, p_total: f64, a: f64) -> ContactSolution {
             ("free", BoundaryCondition::Free),
             ("contact", BoundaryCondition::Contact),
         ];
-        let mesh = LoadedMesh {
-            path: PathBuf::from("<procedural layer>"),
-            mesh,
-            notices,
-            contact_group,
-        };
+        let mesh = LoadedMesh::new("<procedural layer>", mesh, notices, "contact").expect("contact group");
         let conditions = conditions.iter().map(|(g, c)| (g.to_string(), c.clone())).collect();
         bodies[1] = Arc::new(BemSetup {
             radius: layer.radius(),

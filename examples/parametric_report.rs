@@ -130,13 +130,7 @@ fn refined_body(
     let shape = g.shape();
     let mut mesh = shape.mesh_refined(&edges, "contact", side == 0, "refined", fineness);
     validate_and_orient(&mut mesh).expect("the refined mesh is valid");
-    let contact_group = mesh.group_index("contact").expect("a contact group");
-    let loaded = LoadedMesh {
-        path: "refined".into(),
-        mesh,
-        notices: Vec::new(),
-        contact_group,
-    };
+    let loaded = LoadedMesh::new("refined", mesh, Vec::new(), "contact").expect("a contact group");
     let mut conditions: Vec<(String, BoundaryCondition)> = shape
         .groups()
         .iter()

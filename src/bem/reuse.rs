@@ -395,13 +395,7 @@ mod tests {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r150_shaft15_A.msh");
         let (mut mesh, notices) = crate::mesh::load(&path).unwrap();
         crate::mesh::validate_and_orient(&mut mesh).unwrap();
-        let contact_group = mesh.group_index("contact").unwrap();
-        LoadedMesh {
-            path,
-            mesh,
-            notices,
-            contact_group,
-        }
+        LoadedMesh::new(path, mesh, notices, "contact").unwrap()
     }
 
     fn model(mesh: crate::mesh::BoundaryMesh) -> BemModel {

@@ -104,24 +104,29 @@ impl ContactFrame {
         }
     }
 
-    /// The global-axes flexibility of one body turned into this frame (module docs).
-    pub fn flexibility(&self, mut f: Flexibility, side: Side) -> Flexibility {
-        if self.is_global() {
-            return f;
-        }
+    /// The column transformation (p, q) → (P, Q) of one body's blocks at each node j:
+    /// (s_j cos ψ_j, s_j sin ψ_j), s the body's arc scale.
+    fn column_turn(&self, side: Side) -> (Vec<f64>, Vec<f64>) {
         let s = &self.arc_scale[Self::side(side)];
-        let m = self.normal_angle.len();
-        // Per column j: s_j (cos ψ_j, sin ψ_j); per row i: tan ψ_i (hoisted: the transform is
-        // O(m²) and ran every trigonometric function m² times).
-        let (sc, ss): (Vec<f64>, Vec<f64>) = self
-            .normal_angle
+        self.normal_angle
             .iter()
             .zip(s)
             .map(|(psi, s)| {
                 let (sn, c) = psi.sin_cos();
                 (s * c, s * sn)
             })
-            .unzip();
+            .unzip()
+    }
+
+    /// The global-axes flexibility of one body turned into this frame (module docs).
+    pub fn flexibility(&self, mut f: Flexibility, side: Side) -> Flexibility {
+        if self.is_global() {
+            return f;
+        }
+        let m = self.normal_angle.len();
+        // Per column j: s_j (cos ψ_j, sin ψ_j); per row i: tan ψ_i (hoisted: the transform is
+        // O(m²) and ran every trigonometric function m² times).
+        let (sc, ss) = self.column_turn(side);
         let tan: Vec<f64> = self.normal_angle.iter().map(|psi| psi.tan()).collect();
         // In place, entry by entry (no new m × m matrices: each costs its page faults on every
         // grid): the column transformation (p, q) → (P, Q) at node j of each pair of blocks,
@@ -145,17 +150,8 @@ impl ContactFrame {
     /// change's right factors (the columns) and, for h' = h − tan ψ_i w', to its left factor
     /// (the rows), so that no m × m matrix is made beyond the sums into `f`.
     pub fn add_low_rank(&self, f: &mut Flexibility, change: &LowRankFlexibility, side: Side) {
-        let s = &self.arc_scale[Self::side(side)];
         let m = self.normal_angle.len();
-        let (sc, ss): (Vec<f64>, Vec<f64>) = self
-            .normal_angle
-            .iter()
-            .zip(s)
-            .map(|(psi, s)| {
-                let (sn, c) = psi.sin_cos();
-                (s * c, s * sn)
-            })
-            .unzip();
+        let (sc, ss) = self.column_turn(side);
         let [hp, hq, wp, wq] = &change.right;
         let r = change.left.ncols();
         // (p, q) → (P, Q) at column j: P = s(cos ψ p − sin ψ q), Q = s(sin ψ p + cos ψ q).

@@ -391,13 +391,13 @@ mod tests {
             .join(name);
         let (mut mesh, _) = crate::mesh::load(&path).unwrap();
         validate_and_orient(&mut mesh).unwrap();
-        let contact_group = mesh.group_index("contact").unwrap();
-        LoadedMesh {
-            path,
-            mesh,
-            notices: Vec::new(),
-            contact_group,
-        }
+        LoadedMesh::new(path, mesh, Vec::new(), "contact").unwrap()
+    }
+
+    /// The edges of `g` inside [lo, hi] and beyond it, to 1e-9 of the interval's length.
+    fn edges_inside_and_beyond(g: &ContactGrid, [lo, hi]: [f64; 2]) -> (Vec<f64>, Vec<f64>) {
+        let slack = 1e-9 * (hi - lo);
+        g.edges.iter().partition(|&&x| x >= lo - slack && x <= hi + slack)
     }
 
     /// Length ratios of consecutive elements along every loop of `mesh`, largest first.
@@ -477,7 +477,8 @@ mod tests {
     /// |x| ≤ 1.5, the grid's 21 on |x| ≤ 1.24 from the other roller's mesh) cut along the grid,
     /// as given and graded 6 times towards its ends: inside the grid its contact elements are
     /// the grid's, edge for edge and mid node for mid node to 1e-6 of their length (its own
-    /// nodes there gone, each new node on its circle), beyond it its own elements' ends stay, and the boundary is closed.
+    /// nodes there gone, each new node on its circle), beyond it its own elements' ends stay,
+    /// and the boundary is closed.
     #[test]
     fn a_non_matching_mesh_is_cut_to_the_grids_elements() {
         let own = shipped("roller_r100_shaft10_B_nonmatching.msh");
@@ -488,14 +489,7 @@ mod tests {
         action[0] = Action::GradeTowards(lo, 6);
         action[n - 1] = Action::GradeTowards(hi, 6);
         let own_grid = own.contact_grid();
-        let beyond = |g: &ContactGrid| -> Vec<f64> {
-            let slack = 1e-9 * (hi - lo);
-            g.edges
-                .iter()
-                .copied()
-                .filter(|&x| x < lo - slack || x > hi + slack)
-                .collect()
-        };
+        let beyond = |g: &ContactGrid| edges_inside_and_beyond(g, [lo, hi]).1;
         let own_inside = own_grid.nodes.iter().filter(|&&x| (lo..=hi).contains(&x)).count();
         assert!(own_inside > 3 * 21, "{own_inside} of its own nodes inside the grid");
         for grid in [start.grid(), start.refined(&action).grid()] {
@@ -568,13 +562,7 @@ mod tests {
             b.circle(centre, 10.0, 24, "shaft");
             let mut mesh = b.finish();
             validate_and_orient(&mut mesh).unwrap();
-            let contact_group = mesh.group_index("contact").unwrap();
-            let own = LoadedMesh {
-                path: "random roller".into(),
-                mesh,
-                notices: Vec::new(),
-                contact_group,
-            };
+            let own = LoadedMesh::new("random roller", mesh, Vec::new(), "contact").unwrap();
             let actions: Vec<Action> = (0..n)
                 .map(|e| match (uniform() * 3.0) as usize {
                     0 => Action::Keep,
@@ -594,23 +582,9 @@ mod tests {
                 ..own.clone()
             };
             let (before, after) = (own.contact_grid(), loaded.contact_grid());
-            let slack = 1e-9 * (hi - lo);
-            let inside = |g: &ContactGrid| -> Vec<f64> {
-                g.edges
-                    .iter()
-                    .copied()
-                    .filter(|&x| x >= lo - slack && x <= hi + slack)
-                    .collect()
-            };
-            let beyond = |g: &ContactGrid| -> Vec<f64> {
-                g.edges
-                    .iter()
-                    .copied()
-                    .filter(|&x| x < lo - slack || x > hi + slack)
-                    .collect()
-            };
+            let (cut_inside, cut_beyond) = edges_inside_and_beyond(&after, [lo, hi]);
             let h = grid.node_spacing();
-            let (cut_inside, grid_edges) = (inside(&after), &grid.edges);
+            let grid_edges = &grid.edges;
             assert_eq!(cut_inside.len(), grid_edges.len(), "case {case}: edges inside the grid");
             for (k, (a, b)) in cut_inside.iter().zip(grid_edges).enumerate() {
                 assert!(
@@ -619,8 +593,8 @@ mod tests {
                 );
             }
             assert_eq!(
-                beyond(&after),
-                beyond(&before),
+                cut_beyond,
+                edges_inside_and_beyond(&before, [lo, hi]).1,
                 "case {case}: its own edges beyond the grid"
             );
             // Every contact node on the curve of the original element that holds its abscissa.

@@ -20,6 +20,24 @@ pub struct LoadedMesh {
 }
 
 impl LoadedMesh {
+    /// `mesh` read from `path` (or built in memory under that label) with its contact group
+    /// `contact` looked up by name, and the notices its checks gave; an error naming the
+    /// mesh's groups when it has no group of that name.
+    pub fn new(
+        path: impl Into<PathBuf>,
+        mesh: BoundaryMesh,
+        notices: Vec<String>,
+        contact: &str,
+    ) -> Result<Self, super::MeshError> {
+        let contact_group = mesh.group_index(contact)?;
+        Ok(Self {
+            path: path.into(),
+            mesh,
+            notices,
+            contact_group,
+        })
+    }
+
     /// x-range [x_min, x_max] of the contact segment [length].
     pub fn contact_range(&self) -> [f64; 2] {
         let xs = self.contact_nodes().map(|p| p[0]);

@@ -55,13 +55,7 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
             // profile radius; it does not set the contact grid.
             let path = case.base_dir().join(mesh.as_deref().unwrap_or_default());
             let (m, _) = crate::mesh::load(&path)?;
-            let contact_group = m.group_index(contact)?;
-            let loaded = LoadedMesh {
-                path,
-                mesh: m,
-                notices: Vec::new(),
-                contact_group,
-            };
+            let loaded = LoadedMesh::new(path, m, Vec::new(), contact)?;
             Arc::new(RigidSetup {
                 radius: loaded.contact_radius(),
             })
@@ -81,13 +75,7 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
             // The loops are drawn in a fixed turn and oriented here; that is no news to the
             // user, so the notices are dropped.
             crate::mesh::validate_and_orient(&mut m)?;
-            let contact_group = m.group_index(contact)?;
-            let loaded = LoadedMesh {
-                path: label.into(),
-                mesh: m,
-                notices: Vec::new(),
-                contact_group,
-            };
+            let loaded = LoadedMesh::new(label, m, Vec::new(), contact)?;
             let mut conditions: Vec<(String, BoundaryCondition)> = shape
                 .groups()
                 .iter()
@@ -123,7 +111,8 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
             // Validated: a bem body without a geometry has a mesh.
             let path = case.base_dir().join(mesh.as_deref().unwrap_or_default());
             let (m, notices) = crate::mesh::load(&path)?;
-            let contact_group = m.group_index(contact)?;
+            // The contact group first: a mesh without it is refused before its other groups.
+            m.group_index(contact)?;
             for name in m.group_names() {
                 if name != *contact && !boundaries.contains_key(&name) {
                     return Err(Error::MissingBoundary {
@@ -136,12 +125,7 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
             for name in boundaries.keys() {
                 m.group_index(name)?;
             }
-            let loaded = LoadedMesh {
-                path,
-                mesh: m,
-                notices,
-                contact_group,
-            };
+            let loaded = LoadedMesh::new(path, m, notices, contact)?;
             let mut conditions: Vec<(String, BoundaryCondition)> = boundaries
                 .iter()
                 .map(|(g, b)| (g.clone(), boundary_condition(b)))

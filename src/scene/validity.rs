@@ -191,13 +191,7 @@ mod tests {
     fn first_order_bem_meshes_are_warned() {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/msh/square_linear.msh");
         let (mesh, notices) = crate::mesh::load(&path).unwrap();
-        let contact_group = mesh.group_index("bottom").unwrap();
-        let mesh = LoadedMesh {
-            path,
-            mesh,
-            notices,
-            contact_group,
-        };
+        let mesh = LoadedMesh::new(path, mesh, notices, "bottom").unwrap();
         let conditions = vec![("bottom".into(), BoundaryCondition::Contact)];
         let linear: Arc<dyn crate::body::BodySetup> = Arc::new(BemSetup {
             radius: f64::INFINITY,

@@ -21,7 +21,6 @@ use rollbem::post::ContactSolution;
 use rollbem::scene::{BemSetup, BodySetup, LoadedMesh, Scene};
 use rollbem::study::accuracy::{solve_model, SceneModel};
 use std::f64::consts::PI;
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -301,16 +300,10 @@ fn free_rolling_creepage_of_unequal_rollers_converges_to_the_series() {
 /// A procedural mesh as a `bem` body with its `contact` group.
 fn bem_body(mut mesh: BoundaryMesh, groups: &[(&str, BoundaryCondition)], radius: f64) -> Arc<dyn BodySetup> {
     let notices = validate_and_orient(&mut mesh).unwrap();
-    let contact_group = mesh.group_index("contact").unwrap();
     let mut conditions: Vec<(String, BoundaryCondition)> =
         groups.iter().map(|(g, c)| (g.to_string(), c.clone())).collect();
     conditions.push(("contact".to_string(), BoundaryCondition::Contact));
-    let mesh = LoadedMesh {
-        path: PathBuf::from("<procedural>"),
-        mesh,
-        notices,
-        contact_group,
-    };
+    let mesh = LoadedMesh::new("<procedural>", mesh, notices, "contact").unwrap();
     Arc::new(BemSetup {
         radius,
         ..BemSetup::on_start_mesh(mesh, steel(), "contact".to_string(), conditions, None, None)

@@ -40,10 +40,9 @@ fn relative_differences(reference: &ContactSolution, other: &ContactSolution, p0
     ]
 }
 
-/// (p, q, creepage, overlap) differences of the stand-in's solution from the full BEM's on the
-/// start grid bisected `levels` times, p and q in units of the peak pressure p and μp, the
-/// creepage and overlap relative; and the same for the bare half-plane (no remainder).
-fn differences(case: &str, levels: usize) -> [f64; 4] {
+/// `case` at tolerance 1e-3: the case, its scene, its start grid and the stand-ins fitted on
+/// the start grid and its bisection.
+fn stand_ins_of(case: &str) -> (rollbem::case::LoadedCase, Scene, DyadicGrid, rollbem::scene::PassScenes) {
     let path = crate::common::case_path(case);
     let loaded = rollbem::case::load(&path, &["contact.grid.tolerance=1e-3".to_string()]).expect("loads");
     let scene = Scene::from_case(&loaded).expect("scene");
@@ -51,8 +50,16 @@ fn differences(case: &str, levels: usize) -> [f64; 4] {
     let stand_ins = scene
         .with_pass_stand_ins(&[&start.grid(), &start.bisected().grid()])
         .expect("builds")
-        .expect("BEM bodies offer a stand-in")
-        .passes;
+        .expect("BEM bodies offer a stand-in");
+    (loaded, scene, start, stand_ins)
+}
+
+/// (p, q, creepage, overlap) differences of the stand-in's solution from the full BEM's on the
+/// start grid bisected `levels` times, p and q in units of the peak pressure p and μp, the
+/// creepage and overlap relative; and the same for the bare half-plane (no remainder).
+fn differences(case: &str, levels: usize) -> [f64; 4] {
+    let (loaded, scene, start, stand_ins) = stand_ins_of(case);
+    let stand_ins = stand_ins.passes;
     let fine = (0..levels).fold(start, |g, _| g.bisected()).grid();
     let full = solved(&scene, &fine);
     let stand = solved(&stand_ins, &fine);
@@ -105,14 +112,7 @@ fn a_conformal_contact_in_a_bore_is_the_half_plane_plus_a_smooth_remainder() {
 fn the_checks_problem_is_the_passes_problem_plus_a_low_rank_change() {
     use rollbem::body::Side;
     for case in ["carter_051_true", "bore_a020_tractive"] {
-        let path = crate::common::case_path(case);
-        let loaded = rollbem::case::load(&path, &["contact.grid.tolerance=1e-3".to_string()]).expect("loads");
-        let scene = Scene::from_case(&loaded).expect("scene");
-        let start = DyadicGrid::new(&scene.grid);
-        let stand_ins = scene
-            .with_pass_stand_ins(&[&start.grid(), &start.bisected().grid()])
-            .expect("builds")
-            .expect("BEM bodies offer a stand-in");
+        let (_, _, start, stand_ins) = stand_ins_of(case);
         let changes = stand_ins
             .check_changes
             .clone()

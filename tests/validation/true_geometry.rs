@@ -210,13 +210,7 @@ fn a_coarser_roller_meshed_on_its_own_follows_an_error_controlled_grid() {
     b.circle(centre, 10.0, 24, "shaft");
     let mut mesh = b.finish();
     validate_and_orient(&mut mesh).expect("the roller mesh is valid");
-    let contact_group = mesh.group_index("contact").unwrap();
-    let loaded = LoadedMesh {
-        path: "<roller meshed on its own>".into(),
-        mesh,
-        notices: Vec::new(),
-        contact_group,
-    };
+    let loaded = LoadedMesh::new("<roller meshed on its own>", mesh, Vec::new(), "contact").unwrap();
     let conditions = vec![
         ("free".to_string(), BoundaryCondition::Free),
         ("shaft".to_string(), BoundaryCondition::Fixed),

@@ -455,13 +455,7 @@ mod tests {
     fn fig14_roller() -> BemSetup {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r150_shaft15_A.msh");
         let (mesh, notices) = crate::mesh::load(&path).unwrap();
-        let contact_group = mesh.group_index("contact").unwrap();
-        let mesh = LoadedMesh {
-            path,
-            mesh,
-            notices,
-            contact_group,
-        };
+        let mesh = LoadedMesh::new(path, mesh, notices, "contact").unwrap();
         let conditions = vec![
             ("free".into(), BoundaryCondition::Free),
             ("shaft".into(), BoundaryCondition::Fixed),
@@ -475,6 +469,19 @@ mod tests {
             None,
             None,
         )
+    }
+
+    /// The build context of body A on `grid`, rolling in +x.
+    fn side_a_on(grid: &ContactGrid) -> BuildContext<'_> {
+        BuildContext {
+            grid,
+            side: Side::A,
+            rolling: crate::body::Rolling {
+                direction: 1.0,
+                speed: None,
+            },
+            pair: None,
+        }
     }
 
     /// A grid graded 12 times towards both ends of the contact (elements of 1/4096 of the
@@ -504,15 +511,7 @@ mod tests {
             let h = grid.edges[e.max(1)] - grid.edges[e.max(1) - 1];
             assert!((a - b).abs() <= 1e-9 * h, "edge {e}: mesh {a}, grid {b}");
         }
-        let ctx = BuildContext {
-            grid: &grid,
-            side: Side::A,
-            rolling: crate::body::Rolling {
-                direction: 1.0,
-                speed: None,
-            },
-            pair: None,
-        };
+        let ctx = side_a_on(&grid);
         followed.build(&ctx).expect("the body builds on the grid it followed");
     }
 
@@ -526,15 +525,7 @@ mod tests {
         let plain = fig14_roller();
         let seeded = fig14_roller();
         let grid = plain.mesh.contact_grid();
-        let ctx = BuildContext {
-            grid: &grid,
-            side: Side::A,
-            rolling: crate::body::Rolling {
-                direction: 1.0,
-                speed: None,
-            },
-            pair: None,
-        };
+        let ctx = side_a_on(&grid);
         let a = plain.build_keeping(&ctx, false, false).unwrap();
         assert!(!plain.far_field.is_built(), "a plain build leaves the cache empty");
         let b = seeded.build_keeping(&ctx, false, true).unwrap();

@@ -11,7 +11,6 @@ use crate::mesh::build::{half_space_block, ring_with_bore, roller_on_shaft, Ring
 use crate::mesh::{validate_and_orient, BoundaryMesh};
 use crate::post::ContactSolution;
 use crate::scene::{registry, BemSetup, BodySetup, HalfSpaceSetup, LoadedMesh, RigidSetup, Scene};
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -218,16 +217,10 @@ fn bem_body(
     profile_radius: Option<f64>,
 ) -> Result<BemSetup, Error> {
     let notices = validate_and_orient(&mut mesh)?;
-    let contact_group = mesh.group_index("contact")?;
     let mut conditions: Vec<(String, BoundaryCondition)> =
         groups.iter().map(|(g, c)| (g.to_string(), c.clone())).collect();
     conditions.push(("contact".to_string(), BoundaryCondition::Contact));
-    let mesh = LoadedMesh {
-        path: PathBuf::from(format!("<procedural {}>", model.name())),
-        mesh,
-        notices,
-        contact_group,
-    };
+    let mesh = LoadedMesh::new(format!("<procedural {}>", model.name()), mesh, notices, "contact")?;
     Ok(BemSetup {
         radius,
         ..BemSetup::on_start_mesh(mesh, material, "contact".to_string(), conditions, profile_radius, None)
