@@ -232,6 +232,9 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         };
         let warm = (&met.problem.grid, &met.state);
         let first = bisections == 0;
+        // The check solves on a coarser grid than the final one: the final grid's Newton matrix
+        // goes before the check's condensations are made (the braking bore's: 25 MB).
+        ws = Workspace::new();
         let checked = body_mesh::check_on(
             &scene,
             &check_grid,
