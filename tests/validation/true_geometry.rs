@@ -239,3 +239,48 @@ fn agrees_with_matching(label: &str, tolerance: f64, run: &rollbem::app::Solved,
     );
     crate::adaptive::assert_true_errors_within(label, tolerance, errors);
 }
+
+/// A roller whose mesh has only four contact elements (on |x| ≤ 1.2, the run's start grid)
+/// runs under a tolerance and agrees with the matching rollers of cases/carter_051_true.yaml
+/// within it. Its stand-in's series have the degree the coarsest level allows (5 on 12 nodes)
+/// on every level; before, the start grid's fit took degree 5 and the next level's 8, and their
+/// Richardson extrapolation panicked on the matrices' shapes.
+#[test]
+fn a_roller_with_four_contact_elements_runs_under_a_tolerance() {
+    use rollbem::bem::BoundaryCondition;
+    use rollbem::body::BodySetup;
+    use rollbem::mesh::build::MeshBuilder;
+    use rollbem::mesh::{validate_and_orient, LoadedMesh};
+    use rollbem::scene::{BemSetup, Scene};
+    use std::sync::Arc;
+
+    let tolerance = 1e-3;
+    let tol = format!("contact.grid.tolerance={tolerance:e}");
+    let matching = solve("carter_051_true", &[&tol]);
+    let case = rollbem::app::load_case(&crate::common::case_path("carter_051_true"), &[&tol]).unwrap();
+    let generated = Scene::from_case(&case).unwrap();
+    let (r, centre) = (100.0, [0.0, 100.0]);
+    let surface = |x: f64| [x, r - (r * r - x * x).sqrt()];
+    let mut b = MeshBuilder::new(true, "roller with four contact elements");
+    b.move_to(surface(-1.2));
+    for k in 1..=4 {
+        b.arc_to(centre, surface(-1.2 + 0.6 * k as f64), 1, true, 1.0, "contact");
+    }
+    b.arc_to(centre, [0.0, 2.0 * r], 24, true, 1.26, "free");
+    b.arc_to(centre, surface(-1.2), 24, true, 1.0 / 1.26, "free");
+    b.circle(centre, 10.0, 24, "shaft");
+    let mut mesh = b.finish();
+    validate_and_orient(&mut mesh).expect("the roller mesh is valid");
+    let loaded = LoadedMesh::new("<roller with four contact elements>", mesh, Vec::new(), "contact").unwrap();
+    let conditions = vec![
+        ("free".to_string(), BoundaryCondition::Free),
+        ("shaft".to_string(), BoundaryCondition::Fixed),
+        ("contact".to_string(), BoundaryCondition::Contact),
+    ];
+    let own = BemSetup::on_start_mesh(loaded, case.material("steel"), "contact".into(), conditions, None, None);
+    assert_eq!(own.mesh.contact_grid().n_elements(), 4);
+    let bodies: [Arc<dyn BodySetup>; 2] = [Arc::new(own), generated.bodies[1].clone()];
+    let run = rollbem::app::solve_scene(Scene::new(case, bodies), std::time::Instant::now())
+        .expect("the roller with four contact elements meets the tolerance");
+    agrees_with_matching("roller with four contact elements", tolerance, &run, &matching);
+}

@@ -256,12 +256,21 @@ fn scale_columns<const N: usize>(blocks: [&mut Mat<f64>; N], grid: &ContactGrid,
     }
 }
 
-/// Where a stand-in's body sits: its side, the rolling, and the span its series map.
+/// Where a stand-in's body sits: its side, the rolling, the span its series map, and their
+/// degree (the same on every level: the levels' fits are combined term by term).
 #[derive(Debug, Clone, Copy)]
 struct Placement {
     side: Side,
     rolling: Rolling,
     span: [f64; 2],
+    degree: usize,
+}
+
+/// The degree of the remainder's series on levels whose coarsest grid is `coarsest`: fewer
+/// nodes than twice the series' terms would fit the BEM's element pattern, not the remainder
+/// (a mesh with four contact elements gives a start grid of 12 nodes, degree 5).
+fn series_degree(coarsest: &ContactGrid) -> usize {
+    REMAINDER_DEGREE.min((coarsest.n_nodes() / 2).saturating_sub(1)).max(1)
 }
 
 /// The remainder of `setup`'s BEM condensed on `grid` (the mesh cut along it unless the grid is
@@ -275,6 +284,7 @@ fn level_fit(
     place: &Placement,
     keep: bool,
 ) -> Result<LevelFit, BuildError> {
+    let degree = place.degree;
     let side = place.side;
     let own = setup.mesh.contact_grid().coincides_with(grid);
     let follows = (!own).then(|| setup.followed(grid));
@@ -290,9 +300,6 @@ fn level_fit(
     let bem = body.model().flexibility(grid, side);
     let slope = |x: f64| setup.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
     let flat = arc_half_plane(half, grid, side, &slope)?;
-    // Fewer nodes than twice the series' terms would fit the BEM's element pattern, not the
-    // remainder.
-    let degree = REMAINDER_DEGREE.min((grid.n_nodes() / 2).saturating_sub(1)).max(1);
     let fit = SmoothRemainder::fitted(
         &[
             (&bem.hp, &flat.hp),
@@ -392,7 +399,12 @@ impl BemStandIn {
         );
         let half = HalfSpace::new(setup.material, setup.radius);
         let span = [levels[0].edges[0], levels[0].edges[levels[0].n_elements()]];
-        let place = Placement { side, rolling, span };
+        let place = Placement {
+            side,
+            rolling,
+            span,
+            degree: series_degree(levels[0]),
+        };
         let mut fits = Vec::with_capacity(levels.len());
         let mut profile_shift = 0.0;
         let mut finest = None;
