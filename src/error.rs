@@ -129,8 +129,8 @@ pub enum Error {
         /// Their estimated relative creepage error.
         creep: f64,
     },
-    /// An error-controlled grid cannot be built for the scene.
-    #[error("{case}: contact.grid.tolerance: {message}")]
+    /// An error-controlled grid cannot be built for the scene (the message names the key).
+    #[error("{case}: {message}")]
     GridControl {
         /// Case file.
         case: PathBuf,

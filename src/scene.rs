@@ -111,6 +111,7 @@ impl Scene {
         // Before the grid is built: the checks keep it finite and the matrices within memory.
         preflight::check(case, &bodies)?;
         let scene = Self::new(case.clone(), bodies);
+        scene.check_max_elements()?;
         // What building the bodies would refuse, found without building them, so that `check`
         // refuses what `run` does.
         for (k, side) in [Side::A, Side::B].into_iter().enumerate() {
@@ -199,6 +200,32 @@ impl Scene {
     /// +1 when the leading edge is at x = +a (rolling in +x), −1 otherwise.
     pub fn leading_edge_sign(&self) -> f64 {
         -self.case.case.contact.rolling_direction.flow_sign()
+    }
+
+    /// Refuses an error-controlled grid whose `contact.grid.max_elements` is below twice the
+    /// start grid's elements when a body's mesh sets that grid: the first pass solves the grid
+    /// and its bisection, so the run could only stop at once (the case's own check compares
+    /// with `contact.grid.elements`, which such a grid does not use).
+    fn check_max_elements(&self) -> Result<(), Error> {
+        let (Some(control), Some(own)) = (self.grid_control, self.bodies.iter().find_map(|b| b.contact_mesh())) else {
+            return Ok(());
+        };
+        let elements = self.grid.n_elements();
+        if control.max_elements >= 2 * elements {
+            return Ok(());
+        }
+        Err(Error::GridControl {
+            case: self.case.path.clone(),
+            message: format!(
+                "contact.grid.max_elements = {} is less than twice the {elements} elements of the contact \
+                 grid, which is the contact group `{}` of the mesh {}: the first pass solves that grid and \
+                 its bisection; raise contact.grid.max_elements to at least {}",
+                control.max_elements,
+                own.group,
+                own.mesh.path.display(),
+                2 * elements
+            ),
+        })
     }
 
     /// Whether a body's own mesh sets the contact grid.

@@ -171,6 +171,43 @@ fn the_console_says_what_was_overridden_and_when_nothing_slips() {
     );
 }
 
+/// A bem body's mesh sets the contact grid (52 elements for the bore): a
+/// `contact.grid.max_elements` below twice that is refused by `check` and `run` with exit code 1,
+/// naming the mesh, its contact group and the least value, and nothing is written. Before, the
+/// case's check compared it with `contact.grid.elements` (21, not used by such a grid), and the
+/// run solved the first pass and stopped with exit code 2.
+#[test]
+fn a_grid_limit_below_the_meshs_own_grid_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let case = case_path("bore_a020_tractive");
+    for command in ["check", "run"] {
+        let mut args = vec![
+            command,
+            case.to_str().unwrap(),
+            "--set",
+            "contact.grid.tolerance=1e-4",
+            "--set",
+            "contact.grid.max_elements=60",
+        ];
+        if command == "run" {
+            args.extend(["--out", out.to_str().unwrap()]);
+        }
+        let (code, _, err) = rollbem(&args);
+        assert_eq!(code, 1, "{command}: {err}");
+        for s in [
+            "contact.grid.max_elements = 60",
+            "52 elements",
+            "contact group `contact`",
+            "bore_a020_roller.msh",
+            "at least 104",
+        ] {
+            assert!(err.contains(s), "{command} does not say `{s}`: {err}");
+        }
+    }
+    assert!(!out.exists(), "nothing written");
+}
+
 /// An error-controlled grid that reaches `contact.grid.max_elements` before its tolerance
 /// exits 2 and writes its best solution's summary.json, marked not converged, with the
 /// estimate it reached (before: exit 2 and nothing written, though the docs promised a
