@@ -58,7 +58,9 @@ mod stand_ins;
 use crate::analytic::{hertz_half_width, hertz_peak_pressure};
 use crate::body::Side;
 use crate::contact::residual::State;
-use crate::contact::{methods, ContactProblem, NormalControl, SolveReport, TangentialControl, Workspace};
+use crate::contact::{
+    methods, ContactProblem, NormalControl, SolveReport, SolverSettings, TangentialControl, Workspace,
+};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::post::adaptation::{AdaptationStep, GridAdaptation};
@@ -143,16 +145,7 @@ fn solve_on(
     let condense_s = condensation_share(&models, built);
     timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
     timings.condense_s += condense_s;
-    log::info!(
-        target: crate::logging::PROGRESS,
-        "solving: {}, {} contact nodes",
-        scene.solver.method.name(),
-        problem.n_nodes()
-    );
-    let t = Instant::now();
-    let warm = warm.map(|(from, z)| carried(&problem, from, z));
-    let (state, report) = methods::solve_from_in(&problem, &scene.solver, warm, ws);
-    timings.solve_s += t.elapsed().as_secs_f64();
+    let (state, report) = solve_problem(&problem, &scene.solver, warm, timings, ws);
     Ok(Solve {
         from_stand_ins: false,
         scene,
@@ -161,6 +154,28 @@ fn solve_on(
         state,
         report,
     })
+}
+
+/// Solves `problem` with `solver` (from `warm`, carried from the grid it was solved on),
+/// adding the time to `timings`.
+fn solve_problem(
+    problem: &ContactProblem,
+    solver: &SolverSettings,
+    warm: Option<(&ContactGrid, &State)>,
+    timings: &mut Timings,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    log::info!(
+        target: crate::logging::PROGRESS,
+        "solving: {}, {} contact nodes",
+        solver.method.name(),
+        problem.n_nodes()
+    );
+    let t = Instant::now();
+    let warm = warm.map(|(from, z)| carried(problem, from, z));
+    let solved = methods::solve_from_in(problem, solver, warm, ws);
+    timings.solve_s += t.elapsed().as_secs_f64();
+    solved
 }
 
 /// The part of the models' build time `built` [s] that was condensation: the bodies build side

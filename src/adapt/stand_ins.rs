@@ -3,10 +3,9 @@
 
 use super::body_mesh;
 use super::estimate::Scales;
-use super::{carried, solve_on, Solve};
+use super::{carried, solve_on, solve_problem, Solve};
 use crate::adapt::cells::DyadicGrid;
 use crate::body::{FlexibilityChange, Side};
-use crate::contact::methods;
 use crate::contact::report::SolveReport;
 use crate::contact::residual::State;
 use crate::contact::{ContactProblem, Workspace};
@@ -141,17 +140,7 @@ fn solve_changed(
     let [a, b] = [(0, Side::A), (1, Side::B)].map(|(k, side)| changes[k].as_ref().map(|c| c.on_grid(grid, side)));
     let pb = base.with_flexibility_changes([a.as_ref(), b.as_ref()]);
     timings.assembly_s += t.elapsed().as_secs_f64();
-    log::info!(
-        target: crate::logging::PROGRESS,
-        "solving: {}, {} contact nodes",
-        check.solver.method.name(),
-        pb.n_nodes()
-    );
-    let t = Instant::now();
-    let warm = carried(&pb, grid, warm);
-    let solved = methods::solve_from_in(&pb, &check.solver, Some(warm), ws);
-    timings.solve_s += t.elapsed().as_secs_f64();
-    solved
+    solve_problem(&pb, &check.solver, Some((grid, warm)), timings, ws)
 }
 
 /// `z` (a solution on `pb`'s grid) moved by the change from `from` to `to` (two solutions on the
