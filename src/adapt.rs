@@ -311,32 +311,13 @@ fn refine(
     let control = scene.grid_control.expect("an error-controlled grid");
     let (tolerance, max_elements) = (control.tolerance, control.max_elements);
     let mut coarse = DyadicGrid::new(&scene.grid);
-    // The passes' scene: bodies that offer a cheaper stand-in (a BEM body: the half-plane plus
-    // its smooth remainder) are replaced by it; the final grid is solved with the bodies
-    // themselves.
-    let t = Instant::now();
-    let levels = stand_ins::levels(&coarse, tolerance);
-    let level_refs: Vec<&ContactGrid> = levels.iter().collect();
-    let stand_ins = scene.with_pass_stand_ins(&level_refs)?;
-    let check_factor = stand_ins::check_factor(levels.len());
-    let (mut passes, mut check, changes, condense_s) = match stand_ins {
-        // The two bodies' builds may have overlapped: the condensation's share of the wall time.
-        Some(s) => (
-            Some(s.passes),
-            s.check,
-            s.check_changes,
-            Timings::share_of_wall(t.elapsed().as_secs_f64(), s.condense_s, s.build_s),
-        ),
-        None => (None, None, None, 0.0),
-    };
-    timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
-    timings.condense_s += condense_s;
+    let mut stand_ins = stand_ins::PassStandIns::build(scene, &coarse, tolerance, timings)?;
     let mut warm: Option<(ContactGrid, State)> = None;
     let mut hertz: Option<HertzScales> = None;
     let first_step = steps.len();
     loop {
-        let pass_scene = passes.as_ref().unwrap_or(scene);
-        let stand_ins = passes.is_some();
+        let pass_scene = stand_ins.passes.as_ref().unwrap_or(scene);
+        let from_stand_ins = stand_ins.passes.is_some();
         let mut g = solve_on(
             pass_scene.on_grid(coarse.grid()),
             warm.as_ref().map(|(g, z)| (g, z)),
@@ -344,7 +325,7 @@ fn refine(
             timings,
             ws,
         )?;
-        g.from_stand_ins = stand_ins;
+        g.from_stand_ins = from_stand_ins;
         if !g.report.converged {
             return Ok(Refined::Ended(g, true));
         }
@@ -363,7 +344,7 @@ fn refine(
             timings,
             ws,
         )?;
-        h.from_stand_ins = stand_ins;
+        h.from_stand_ins = from_stand_ins;
         if !h.report.converged {
             return Ok(Refined::Ended(h, true));
         }
@@ -399,89 +380,14 @@ fn refine(
         );
         let half_width = hertz.half_width;
         if e.within(tolerance) && resolved(&h.problem.grid, &singular, tolerance, half_width) {
-            if passes.is_none() {
-                return Ok(Refined::Met(h, scales));
-            }
-            // The stand-ins give the results when their own error, estimated by the check's
-            // solution, leaves the total within the tolerance (src/body/bem/stand_in.rs).
-            if let Some(check_scene) = check.as_ref().filter(|_| !asks_interior_fields(scene)) {
-                let checked = stand_ins::check_difference(
-                    check_scene,
-                    changes.as_ref(),
-                    &g,
-                    &h,
-                    scales,
-                    e.overlap_rel.is_some(),
-                    timings,
-                    ws,
-                )?;
-                if let Some((d, iterations)) = checked {
-                    let total = e.plus(&d, check_factor);
-                    log::info!(
-                        target: crate::logging::PROGRESS,
-                        "error control: the stand-ins' own estimated error on the final grid: pressure {:.2e} p0, \
-                         shear {:.2e} mu p0, creepage {:.2e}",
-                        check_factor * d.pressure,
-                        check_factor * d.shear,
-                        check_factor * d.creepage_rel
-                    );
-                    if total.within(tolerance) {
-                        if let Some(last) = steps.last_mut() {
-                            last.estimate = total;
-                            last.iterations += iterations;
-                        }
-                        return Ok(Refined::Met(h, scales));
-                    }
+            match stand_ins.finish(scene, &g, h, e, scales, tolerance, steps.last_mut(), timings, ws)? {
+                stand_ins::Final::Met(s) => return Ok(Refined::Met(s, scales)),
+                stand_ins::Final::Ended(s) => return Ok(Refined::Ended(s, true)),
+                stand_ins::Final::GoOn(full) => {
+                    warm = Some((full.problem.grid, full.state));
+                    continue;
                 }
-                // The stand-ins are not known well enough for this tolerance: the final grid
-                // is solved with the bodies themselves.
-                check = None;
             }
-            let full = solve_on(
-                scene.on_grid(h.problem.grid.clone()),
-                Some((&h.problem.grid, &h.state)),
-                true,
-                timings,
-                ws,
-            )?;
-            if !full.report.converged {
-                return Ok(Refined::Ended(full, true));
-            }
-            // The bodies themselves differ from their stand-ins by this much on the final grid;
-            // the estimate of their solution is the stand-in's plus the difference.
-            let d = body_mesh::difference(
-                &full.problem.grid,
-                &h.state,
-                &full.state,
-                scales,
-                e.overlap_rel.is_some(),
-            );
-            let total = e.plus(&d, 1.0);
-            log::info!(
-                target: crate::logging::PROGRESS,
-                "error control: the bodies themselves on the final grid differ from their pass stand-ins by \
-                 pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}",
-                d.pressure,
-                d.shear,
-                d.creepage_rel
-            );
-            if let Some(last) = steps.last_mut() {
-                last.estimate = total;
-                last.iterations += full.report.iterations;
-            }
-            if total.within(tolerance) {
-                return Ok(Refined::Met(full, scales));
-            }
-            // Not close enough at this tolerance: the passes go on with the bodies themselves,
-            // from this grid.
-            log::info!(
-                target: crate::logging::PROGRESS,
-                "error control: the pass stand-ins are not accurate enough at this tolerance; \
-                 refining with the full bodies"
-            );
-            passes = None;
-            warm = Some((full.problem.grid, full.state));
-            continue;
         }
         let next = coarse.refined(&actions(&coarse, &cmp, &singular, tolerance, half_width));
         log::debug!("singular points {singular:?}; next grid {} elements", next.len());

@@ -219,11 +219,12 @@ impl ContactProblem {
     /// not written).
     pub fn with_flexibility_changes(&self, changes: [Option<&LowRankFlexibility>; 2]) -> Self {
         let mut flex = self.flex.clone();
-        for (change, side) in changes.into_iter().zip([Side::A, Side::B]) {
-            if let Some(c) = change {
-                self.frame.add_low_rank(&mut flex, c, side);
-            }
-        }
+        let changes: Vec<(&LowRankFlexibility, Side)> = changes
+            .into_iter()
+            .zip([Side::A, Side::B])
+            .filter_map(|(c, side)| c.map(|c| (c, side)))
+            .collect();
+        self.frame.add_low_rank(&mut flex, &changes);
         let bp = self.slip_operator.apply_scaled(&flex.wp, self.flow_sign);
         let bq = self.slip_operator.apply_scaled(&flex.wq, self.flow_sign);
         Self {

@@ -11,7 +11,7 @@ use crate::contact::residual::State;
 use crate::contact::{ContactProblem, Workspace};
 use crate::error::Error;
 use crate::grid::ContactGrid;
-use crate::post::adaptation::BodyMeshError;
+use crate::post::adaptation::{AdaptationStep, BodyMeshError, ErrorEstimate};
 use crate::post::Timings;
 use crate::scene::Scene;
 use std::sync::Arc;
@@ -53,6 +53,160 @@ pub(super) fn levels(start: &DyadicGrid, tolerance: f64) -> Vec<ContactGrid> {
         .collect()
 }
 
+/// A run's pass stand-ins: the scene the passes solve (bodies that offer a cheaper stand-in,
+/// a BEM body's half-plane plus its smooth remainder, replaced by it; None when no body
+/// offers one or once the passes go on with the bodies themselves), and the check that
+/// estimates the stand-ins' own error on the final grid.
+pub(super) struct PassStandIns {
+    /// The passes' scene.
+    pub passes: Option<Scene>,
+    /// The scene of the stand-ins known less well (None: the final grid is solved with the
+    /// bodies themselves).
+    check: Option<Scene>,
+    /// How the check's bodies differ from the passes' stand-ins, where they offer it.
+    changes: Option<Changes>,
+    /// [`check_factor`] of the levels the stand-ins were fitted on.
+    check_factor: f64,
+}
+
+/// How the final grid of the passes ended ([`PassStandIns::finish`]).
+pub(super) enum Final {
+    /// Its solution meets the tolerance: the run's result.
+    Met(Solve),
+    /// The bodies themselves did not converge on it.
+    Ended(Solve),
+    /// The bodies themselves on it, whose estimate is above the tolerance: the passes go on
+    /// with them from this solution.
+    GoOn(Solve),
+}
+
+impl PassStandIns {
+    /// The stand-ins of `scene`'s bodies, fitted on the [`levels`] of `start` for `tolerance`,
+    /// their build time added to `timings`.
+    pub(super) fn build(
+        scene: &Scene,
+        start: &DyadicGrid,
+        tolerance: f64,
+        timings: &mut Timings,
+    ) -> Result<Self, Error> {
+        let t = Instant::now();
+        let levels = levels(start, tolerance);
+        let level_refs: Vec<&ContactGrid> = levels.iter().collect();
+        let built = scene.with_pass_stand_ins(&level_refs)?;
+        let (stand_ins, condense_s) = match built {
+            // The two bodies' builds may have overlapped: the condensation's share of the wall time.
+            Some(s) => (
+                Self {
+                    passes: Some(s.passes),
+                    check: s.check,
+                    changes: s.check_changes,
+                    check_factor: check_factor(levels.len()),
+                },
+                Timings::share_of_wall(t.elapsed().as_secs_f64(), s.condense_s, s.build_s),
+            ),
+            None => (
+                Self {
+                    passes: None,
+                    check: None,
+                    changes: None,
+                    check_factor: 1.0,
+                },
+                0.0,
+            ),
+        };
+        timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
+        timings.condense_s += condense_s;
+        Ok(stand_ins)
+    }
+
+    /// The passes' grids G (`g`) and H (`h`), solved, meet the tolerance with the grid's
+    /// estimate `e`: H's solution is the result when the passes solved the bodies themselves,
+    /// or when the stand-ins' own estimated error ([`check_difference`] times the check
+    /// factor) leaves the sum within `tolerance`; else H's grid is solved with the bodies
+    /// themselves, whose difference from the stand-ins' solution joins the estimate. The final
+    /// estimate and the iterations go to `last` (the pass's step).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn finish(
+        &mut self,
+        scene: &Scene,
+        g: &Solve,
+        h: Solve,
+        e: ErrorEstimate,
+        scales: Scales,
+        tolerance: f64,
+        last: Option<&mut AdaptationStep>,
+        timings: &mut Timings,
+        ws: &mut Workspace,
+    ) -> Result<Final, Error> {
+        if self.passes.is_none() {
+            return Ok(Final::Met(h));
+        }
+        let overlap = e.overlap_rel.is_some();
+        if let Some(check) = self.check.as_ref().filter(|_| !super::asks_interior_fields(scene)) {
+            let checked = check_difference(check, self.changes.as_ref(), g, &h, scales, overlap, timings, ws)?;
+            if let Some((d, iterations)) = checked {
+                let total = e.plus(&d, self.check_factor);
+                log::info!(
+                    target: crate::logging::PROGRESS,
+                    "error control: the stand-ins' own estimated error on the final grid: pressure {:.2e} p0, \
+                     shear {:.2e} mu p0, creepage {:.2e}",
+                    self.check_factor * d.pressure,
+                    self.check_factor * d.shear,
+                    self.check_factor * d.creepage_rel
+                );
+                if total.within(tolerance) {
+                    if let Some(last) = last {
+                        last.estimate = total;
+                        last.iterations += iterations;
+                    }
+                    return Ok(Final::Met(h));
+                }
+            }
+            // The stand-ins are not known well enough for this tolerance: the final grid is
+            // solved with the bodies themselves.
+            self.check = None;
+        }
+        let full = solve_on(
+            scene.on_grid(h.problem.grid.clone()),
+            Some((&h.problem.grid, &h.state)),
+            true,
+            timings,
+            ws,
+        )?;
+        if !full.report.converged {
+            return Ok(Final::Ended(full));
+        }
+        // The bodies themselves differ from their stand-ins by this much on the final grid; the
+        // estimate of their solution is the stand-in's plus the difference.
+        let d = body_mesh::difference(&full.problem.grid, &h.state, &full.state, scales, overlap);
+        let total = e.plus(&d, 1.0);
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "error control: the bodies themselves on the final grid differ from their pass stand-ins by \
+             pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}",
+            d.pressure,
+            d.shear,
+            d.creepage_rel
+        );
+        if let Some(last) = last {
+            last.estimate = total;
+            last.iterations += full.report.iterations;
+        }
+        if total.within(tolerance) {
+            return Ok(Final::Met(full));
+        }
+        // Not close enough at this tolerance: the passes go on with the bodies themselves, from
+        // this grid.
+        log::info!(
+            target: crate::logging::PROGRESS,
+            "error control: the pass stand-ins are not accurate enough at this tolerance; refining \
+             with the full bodies"
+        );
+        self.passes = None;
+        Ok(Final::GoOn(full))
+    }
+}
+
 /// The factor of the difference between the stand-ins' solution and their check's on the
 /// final grid that estimates the stand-ins' error (src/body/bem/stand_in.rs). Fitted on three
 /// levels, the check is the Richardson remainder of the two coarser: with the remainder's error
@@ -61,7 +215,7 @@ pub(super) fn levels(start: &DyadicGrid, tolerance: f64) -> Vec<ContactGrid> {
 /// second-order term; measured on fig14_true_geometry at 1e-4 and 1e-5: effectivities 0.7–1.2).
 /// Fitted on two, the check is the finer level's remainder alone, with the first-order error the
 /// extrapolation removes, and the whole difference stands for the result's.
-pub(super) fn check_factor(levels: usize) -> f64 {
+fn check_factor(levels: usize) -> f64 {
     if levels == 3 {
         1.0 / 3.0
     } else {
@@ -82,7 +236,7 @@ pub(super) fn check_factor(levels: usize) -> f64 {
 /// ([`ContactProblem::with_flexibility_changes`]): the half-plane blocks, the larger part of a
 /// stand-in's assembly, are the same in both, and are not made again.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn check_difference(
+fn check_difference(
     check: &Scene,
     changes: Option<&Changes>,
     g: &Solve,
