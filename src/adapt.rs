@@ -311,6 +311,7 @@ fn refine(
     let control = scene.grid_control.expect("an error-controlled grid");
     let (tolerance, max_elements) = (control.tolerance, control.max_elements);
     let mut coarse = DyadicGrid::new(&scene.grid);
+    let shortest = scene.shortest_grid_element();
     let mut stand_ins = stand_ins::PassStandIns::build(scene, &coarse, tolerance, timings)?;
     let mut warm: Option<(ContactGrid, State)> = None;
     let mut hertz: Option<HertzScales> = None;
@@ -389,7 +390,14 @@ fn refine(
                 }
             }
         }
-        let next = coarse.refined(&actions(&coarse, &cmp, &singular, tolerance, half_width));
+        let Some(marked) = actions(&coarse, &cmp, &singular, tolerance, half_width, shortest) else {
+            log::warn!(
+                "the contact grid cannot be refined further: its elements reached the shortest length \
+                 the bodies' meshes can be cut to ({shortest:.3e})"
+            );
+            return Ok(Refined::Ended(h, false));
+        };
+        let next = coarse.refined(&marked);
         log::debug!("singular points {singular:?}; next grid {} elements", next.len());
         if 2 * next.len() > max_elements || steps.len() - first_step >= MAX_PASSES {
             // The best solution reached, marked: the driver reports it as not converged.
@@ -518,8 +526,16 @@ fn resolved(grid: &ContactGrid, singular: &[f64], tolerance: f64, half_width: f6
     })
 }
 
-/// What to do with each element of `coarse` (module docs, step 4).
-fn actions(coarse: &DyadicGrid, cmp: &Comparison, singular: &[f64], tolerance: f64, half_width: f64) -> Vec<Action> {
+/// What to do with each element of `coarse` (module docs, step 4), no element of the bisection
+/// of the result shorter than `shortest` [length]; None when no element can be halved.
+fn actions(
+    coarse: &DyadicGrid,
+    cmp: &Comparison,
+    singular: &[f64],
+    tolerance: f64,
+    half_width: f64,
+    shortest: f64,
+) -> Option<Vec<Action>> {
     let indicator = &cmp.detail;
     let active = indicator.iter().filter(|&&z| z > 0.0).count().max(1);
     // The estimate (squared) is taken to fall with the sum of the local indicators: to bring
@@ -588,15 +604,77 @@ fn actions(coarse: &DyadicGrid, cmp: &Comparison, singular: &[f64], tolerance: f
             }
         })
         .collect();
+    // The grid's H halves each element of the result once more: 2^(depth + 1) pieces of an
+    // element must each be at least `shortest` long.
+    let deepest: Vec<u32> = coarse
+        .cells()
+        .iter()
+        .map(|&c| {
+            let pieces = (coarse.end(c, true) - coarse.end(c, false)) / shortest;
+            (pieces.log2().floor() - 1.0).max(0.0) as u32
+        })
+        .collect();
+    for (a, &d) in action.iter_mut().zip(&deepest) {
+        *a = match *a {
+            Action::Split(_) | Action::GradeTowards(..) if d == 0 => Action::Keep,
+            Action::Split(k) => Action::Split(k.min(d)),
+            Action::GradeTowards(x, k) => Action::GradeTowards(x, k.min(d)),
+            other => other,
+        };
+    }
     // Never a pass without a refinement: the element with the largest share is halved.
     if !action
         .iter()
         .any(|a| matches!(a, Action::Split(_) | Action::GradeTowards(..)))
     {
         let worst = (0..indicator.len())
-            .max_by(|&a, &b| indicator[a].total_cmp(&indicator[b]))
-            .unwrap_or(0);
+            .filter(|&k| deepest[k] > 0)
+            .max_by(|&a, &b| indicator[a].total_cmp(&indicator[b]))?;
         action[worst] = Action::Split(1);
     }
-    action
+    Some(action)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::ElementKind;
+
+    /// A grid of four elements of length 1/2 on [−1, 1] whose third holds a square-root point
+    /// at 0.3 and carries all the error, far above the tolerance.
+    fn marked(shortest: f64) -> Option<Vec<Action>> {
+        let coarse = DyadicGrid::new(&ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 4, -1.0, 1.0));
+        let cmp = Comparison {
+            estimate: crate::post::adaptation::ErrorEstimate {
+                pressure_rms: 1e-1,
+                shear_rms: 1e-1,
+                creep_rel: 1e-1,
+                overlap_rel: None,
+                body_mesh: None,
+            },
+            detail: vec![0.0, 0.0, 1.0, 0.0],
+            open: vec![false; 4],
+        };
+        actions(&coarse, &cmp, &[0.3], 1e-4, 1.0, shortest)
+    }
+
+    /// The grading towards a square-root point stops where the grid's bisection would hold an
+    /// element shorter than the bodies' meshes can be cut to; with no element left to halve
+    /// there is nothing to do (the run then ends, not reaching the tolerance, instead of cutting
+    /// a mesh into elements of zero length).
+    #[test]
+    fn no_element_is_graded_below_the_shortest_length() {
+        let depth = |a: &Action| match *a {
+            Action::GradeTowards(_, k) | Action::Split(k) => k,
+            _ => 0,
+        };
+        // Unlimited: graded as deep as a pass grades.
+        let free = marked(1e-12).expect("a refinement");
+        assert!(depth(&free[2]) > 3, "{:?}", free[2]);
+        // Pieces of 1/16 at most (1/2 halved three times, once more in H): depth 2.
+        let limited = marked(1.0 / 16.0).expect("a refinement");
+        assert_eq!(depth(&limited[2]), 2, "{:?}", limited[2]);
+        // Elements of 1/2 whose bisection is 1/4 already: none can be halved.
+        assert!(marked(0.2).is_none());
+    }
 }

@@ -295,6 +295,19 @@ impl Scene {
         }))
     }
 
+    /// The shortest element an error-controlled grid may make [length]: twice the length below
+    /// which a body's mesh, cut along the grid, would hold an element of zero length
+    /// ([`crate::mesh::check::zero_length_tolerance`]), and never below 1e-12 of the grid's
+    /// span, where the dyadic cells' ends would part by round-off alone.
+    pub fn shortest_grid_element(&self) -> f64 {
+        let span = self.grid.edges[self.grid.n_elements()] - self.grid.edges[0];
+        self.bodies
+            .iter()
+            .filter_map(|b| b.contact_mesh())
+            .map(|m| 2.0 * crate::mesh::check::zero_length_tolerance(&m.mesh.mesh))
+            .fold(1e-12 * span, f64::max)
+    }
+
     /// How the contact moves over the bodies.
     pub fn rolling(&self) -> Rolling {
         Rolling {

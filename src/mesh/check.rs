@@ -92,11 +92,17 @@ struct TracedLoop {
     reversed: Vec<bool>,
 }
 
+/// An element of `mesh` no longer than this [length] has zero length (a duplicated point):
+/// 1e-10 of the mesh's size, far above its coordinates' round-off.
+pub fn zero_length_tolerance(mesh: &BoundaryMesh) -> f64 {
+    1e-10 * mesh.size()
+}
+
 /// Per-element checks: node counts and indices, group index, zero length, distortion, one
 /// order (2 or 3 nodes) for all (the loops' polygons, the contact grid and the BEM take one).
 fn check_elements(mesh: &BoundaryMesh) -> Result<(), MeshError> {
     let path = || mesh.source.clone();
-    let tolerance = 1e-10 * mesh.size();
+    let tolerance = zero_length_tolerance(mesh);
     for (i, el) in mesh.elements.iter().enumerate() {
         if el.nodes.len() != 2 && el.nodes.len() != 3 {
             return Err(MeshError::MalformedElement {

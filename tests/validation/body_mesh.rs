@@ -167,3 +167,19 @@ fn a_grid_graded_to_sub_micrometre_elements_keeps_its_cuts() {
         Err(e) => panic!("{e}"),
     }
 }
+
+/// A roller whose free circle is 48 uniform elements (each 170 times as long as its contact
+/// elements) at tolerance 1e-3: the contact grid's estimate stalls (the coarse circle next to
+/// the contact makes G and H differ by 13 % in the creepage, pass after pass) while the
+/// refinement grades towards a stick/slip point by up to 12 halvings a pass. The grading stops
+/// at the shortest element the mesh can be cut to, and the run ends with exit code 2 at
+/// `max_elements`, its estimate reported (before, the fifth pass cut the mesh into an element of
+/// 3.5e-9 mm, zero length for a mesh of 300 mm, and the run stopped with exit code 1 blaming
+/// the geometry).
+#[test]
+fn a_stalled_grid_never_cuts_the_mesh_below_its_zero_length() {
+    let scene = scene_with_graded_roller(&["contact.grid.tolerance=1e-3"], 24, 1.0, SHAFT_ELEMENTS, 1);
+    let e = app::solve_scene(scene, std::time::Instant::now()).expect_err("the grid does not reach 1e-3");
+    assert_eq!(e.exit_code(), 2, "{e}");
+    assert!(e.to_string().contains("did not reach contact.grid.tolerance"), "{e}");
+}
