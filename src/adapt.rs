@@ -124,9 +124,10 @@ struct Solve {
 }
 
 /// Builds the scene's models, assembles and solves (from `warm`, carried from the grid it was
-/// solved on), adding the times to `timings`. Unless the solve `may_be_final` (its solution
-/// may be the run's result), body B's own flexibility, which only the outputs read, is dropped
-/// before the solve: four m × m blocks fewer held while later grids are solved.
+/// solved on), adding the times to `timings`. Unless the solve `may_be_final` (a fixed grid's:
+/// its solution is the run's result), body B's own flexibility, which only the outputs read, is
+/// dropped before the solve: four m × m blocks fewer held while later grids, the checks of the
+/// stand-ins and of the bodies' meshes are solved ([`finished`] makes it again for the result).
 fn solve_on(
     scene: Scene,
     warm: Option<(&ContactGrid, &State)>,
@@ -341,7 +342,7 @@ fn refine(
         let mut h = solve_on(
             pass_scene.on_grid(coarse.bisected().grid()),
             Some((&g.problem.grid, &g.state)),
-            true,
+            false,
             timings,
             ws,
         )?;
@@ -381,7 +382,7 @@ fn refine(
         );
         let half_width = hertz.half_width;
         if e.within(tolerance) && resolved(&h.problem.grid, &singular, tolerance, half_width) {
-            match stand_ins.finish(scene, &g, h, e, scales, tolerance, steps.last_mut(), timings, ws)? {
+            match stand_ins.finish(scene, g, h, e, scales, tolerance, steps.last_mut(), timings, ws)? {
                 stand_ins::Final::Met(s) => return Ok(Refined::Met(s, scales)),
                 stand_ins::Final::Ended(s) => return Ok(Refined::Ended(s, true)),
                 stand_ins::Final::GoOn(full) => {
@@ -475,7 +476,7 @@ fn finished(mut s: Solve, bodies: &Scene, mut timings: Timings, passes: Option<(
         s.models[1].model(),
         &s.problem.frame,
     );
-    // A solve that was not expected to be the result (one that did not converge ends the run).
+    // An error-controlled run's solves drop it (`solve_on`): it is made once, for the result.
     if s.problem.body_b.is_none() {
         let body_b = s.models[1].model().flexibility(&s.problem.grid, Side::B);
         s.problem.body_b = Some(s.problem.frame.flexibility(body_b, Side::B));

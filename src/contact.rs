@@ -219,12 +219,7 @@ impl ContactProblem {
     /// not written).
     pub fn with_flexibility_changes(&self, changes: [Option<&LowRankFlexibility>; 2]) -> Self {
         let mut flex = self.flex.clone();
-        let changes: Vec<(&LowRankFlexibility, Side)> = changes
-            .into_iter()
-            .zip([Side::A, Side::B])
-            .filter_map(|(c, side)| c.map(|c| (c, side)))
-            .collect();
-        self.frame.add_low_rank(&mut flex, &changes);
+        self.frame.add_low_rank(&mut flex, &sided(changes), 1.0);
         let bp = self.slip_operator.apply_scaled(&flex.wp, self.flow_sign);
         let bq = self.slip_operator.apply_scaled(&flex.wq, self.flow_sign);
         Self {
@@ -243,6 +238,27 @@ impl ContactProblem {
             frame: self.frame.clone(),
             rigid_slip: self.rigid_slip.clone(),
         }
+    }
+
+    /// `f` of this problem with the bodies' flexibilities changed by `changes` as
+    /// [`Self::with_flexibility_changes`] does, made in this problem's place and taken back
+    /// after: no second copy of the pair's four blocks (the slip operator's two are made for
+    /// the change and the problem's own put back). Taking the change back leaves the blocks
+    /// within round-off of their values (the sum and difference of the same terms).
+    pub fn with_flexibility_changes_in_place<R>(
+        &mut self,
+        changes: [Option<&LowRankFlexibility>; 2],
+        f: impl FnOnce(&Self) -> R,
+    ) -> R {
+        let changes = sided(changes);
+        self.frame.add_low_rank(&mut self.flex, &changes, 1.0);
+        let bp = self.slip_operator.apply_scaled(&self.flex.wp, self.flow_sign);
+        let bq = self.slip_operator.apply_scaled(&self.flex.wq, self.flow_sign);
+        let own = (std::mem::replace(&mut self.bp, bp), std::mem::replace(&mut self.bq, bq));
+        let result = f(self);
+        self.frame.add_low_rank(&mut self.flex, &changes, -1.0);
+        (self.bp, self.bq) = own;
+        result
     }
 
     /// Number of contact nodes m.
@@ -351,6 +367,15 @@ impl ContactProblem {
             tangential_b: tangential_b.into_iter().map(|v| -v).collect(),
         }
     }
+}
+
+/// The changes of bodies A and B (None: unchanged) with their sides.
+fn sided(changes: [Option<&LowRankFlexibility>; 2]) -> Vec<(&LowRankFlexibility, Side)> {
+    changes
+        .into_iter()
+        .zip([Side::A, Side::B])
+        .filter_map(|(c, side)| c.map(|c| (c, side)))
+        .collect()
 }
 
 #[cfg(test)]

@@ -74,13 +74,15 @@ pub struct ProblemSizes {
 pub const BYTES_PER_CONTACT_NODE_SQUARED: f64 = 180.0;
 
 /// Peak memory per squared boundary unknown n = 2 × field nodes of the largest `bem` body
-/// [bytes]: the BEM matrices H and G and the rows they are gathered from, four n × n matrices of
-/// doubles at the assembly's end; the system matrix is then factored in place and H and G are
-/// freed before the LU (only a body's condensed flexibility is kept; two bodies are built
-/// side by side only when both fit in a quarter of the memory, [`bem_builds_fit_side_by_side`],
-/// else one after the other). The peak RSS of rollers of 490–2090 nodes gives 25–40 bytes per n²
-/// (the calibration table of docs/reliability.md).
-pub const BYTES_PER_BEM_UNKNOWN_SQUARED: f64 = 48.0;
+/// [bytes]: the BEM matrices H and G, two n × n matrices of doubles at the assembly's end (their
+/// rows are gathered a chunk of collocation points at a time, the system matrix is made in H's
+/// place and G is freed before the LU; only a body's condensed flexibility is kept; two bodies
+/// are built side by side only when both fit in a quarter of the memory,
+/// [`bem_builds_fit_side_by_side`], else one after the other). The peak RSS of rollers of
+/// 490–2090 nodes gives 10–16 bytes per n² (the calibration table of docs/reliability.md), an
+/// error-controlled run on a bore with its bisected free boundary up to 20 (its contact
+/// problem beside them).
+pub const BYTES_PER_BEM_UNKNOWN_SQUARED: f64 = 28.0;
 
 /// Memory per interior point with VTK output [bytes]: the fields, the CSV rows and the arrays
 /// of interior_<body>.vtu (src/output/vtk.rs streams the file from them). Measured 215–230 bytes

@@ -129,8 +129,8 @@ impl PassStandIns {
     pub(super) fn finish(
         &mut self,
         scene: &Scene,
-        g: &Solve,
-        h: Solve,
+        g: Solve,
+        mut h: Solve,
         e: ErrorEstimate,
         scales: Scales,
         tolerance: f64,
@@ -143,7 +143,7 @@ impl PassStandIns {
         }
         let overlap = e.overlap_rel.is_some();
         if let Some(check) = self.check.as_ref().filter(|_| !super::asks_interior_fields(scene)) {
-            let checked = check_difference(check, self.changes.as_ref(), g, &h, scales, overlap, timings, ws)?;
+            let checked = check_difference(check, self.changes.as_ref(), g, &mut h, scales, overlap, timings, ws)?;
             if let Some((d, iterations)) = checked {
                 let total = e.plus(&d, self.check_factor);
                 log::info!(
@@ -169,7 +169,7 @@ impl PassStandIns {
         let full = solve_on(
             scene.on_grid(h.problem.grid.clone()),
             Some((&h.problem.grid, &h.state)),
-            true,
+            false,
             timings,
             ws,
         )?;
@@ -239,16 +239,15 @@ fn check_factor(levels: usize) -> f64 {
 fn check_difference(
     check: &Scene,
     changes: Option<&Changes>,
-    g: &Solve,
-    h: &Solve,
+    mut g: Solve,
+    h: &mut Solve,
     scales: Scales,
     overlap_controlled: bool,
     timings: &mut Timings,
     ws: &mut Workspace,
 ) -> Result<Option<(BodyMeshError, usize)>, Error> {
-    let (g_grid, h_grid) = (&g.problem.grid, &h.problem.grid);
-    let solve = |on: &Solve, warm: &State, timings: &mut Timings, ws: &mut Workspace| match changes {
-        Some(c) => Ok(solve_changed(&on.problem, c, check, warm, timings, ws)),
+    let solve = |on: &mut Solve, warm: &State, timings: &mut Timings, ws: &mut Workspace| match changes {
+        Some(c) => Ok(solve_changed(&mut on.problem, c, check, warm, timings, ws)),
         None => solve_on(
             check.on_grid(on.problem.grid.clone()),
             Some((&on.problem.grid, warm)),
@@ -258,16 +257,26 @@ fn check_difference(
         )
         .map(|s| (s.state, s.report)),
     };
-    // Only its solution is needed: its matrices go before H's are made.
-    let (on_g, g_report) = solve(g, &g.state, timings, ws)?;
-    let warm = g_report
-        .converged
-        .then(|| moved_by(&h.problem, &h.state, g_grid, &g.state, &on_g));
-    let (on_h, h_report) = solve(h, warm.as_ref().unwrap_or(&h.state), timings, ws)?;
+    // Only its solution is needed: its matrices, and the passes' problem on G with its
+    // models, go before H's are made.
+    let g_start = g.state.clone();
+    let (on_g, g_report) = solve(&mut g, &g_start, timings, ws)?;
+    let Solve {
+        problem: g_problem,
+        state: g_state,
+        ..
+    } = g;
+    let g_grid = g_problem.grid.clone();
+    drop(g_problem);
+    let h_start = match g_report.converged {
+        true => moved_by(&h.problem, &h.state, &g_grid, &g_state, &on_g),
+        false => h.state.clone(),
+    };
+    let (on_h, h_report) = solve(h, &h_start, timings, ws)?;
     if !h_report.converged {
         return Ok(None);
     }
-    let d = body_mesh::difference(h_grid, &on_h, &h.state, scales, overlap_controlled);
+    let d = body_mesh::difference(&h.problem.grid, &on_h, &h.state, scales, overlap_controlled);
     Ok(Some((d, g_report.iterations + h_report.iterations)))
 }
 
@@ -277,7 +286,7 @@ pub(super) type Changes = [Option<Arc<dyn FlexibilityChange>>; 2];
 /// The check solved on `base`'s grid, its problem `base` (the passes' problem there) plus
 /// `changes`, from `warm` (a solution on that grid); the times added to `timings`.
 fn solve_changed(
-    base: &ContactProblem,
+    base: &mut ContactProblem,
     changes: &Changes,
     check: &Scene,
     warm: &State,
@@ -290,11 +299,11 @@ fn solve_changed(
         "assembling the contact problem: {} contact nodes (the passes' problem with the check's change)",
         base.n_nodes()
     );
-    let grid = &base.grid;
-    let [a, b] = [(0, Side::A), (1, Side::B)].map(|(k, side)| changes[k].as_ref().map(|c| c.on_grid(grid, side)));
-    let pb = base.with_flexibility_changes([a.as_ref(), b.as_ref()]);
-    timings.assembly_s += t.elapsed().as_secs_f64();
-    solve_problem(&pb, &check.solver, Some((grid, warm)), timings, ws)
+    let [a, b] = [(0, Side::A), (1, Side::B)].map(|(k, side)| changes[k].as_ref().map(|c| c.on_grid(&base.grid, side)));
+    base.with_flexibility_changes_in_place([a.as_ref(), b.as_ref()], |pb| {
+        timings.assembly_s += t.elapsed().as_secs_f64();
+        solve_problem(pb, &check.solver, Some((&pb.grid, warm)), timings, ws)
+    })
 }
 
 /// `z` (a solution on `pb`'s grid) moved by the change from `from` to `to` (two solutions on the

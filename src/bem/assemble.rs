@@ -116,6 +116,32 @@ pub struct BemSolution {
     pub traction: Vec<[f64; 2]>,
 }
 
+/// Collocation points whose rows [`assemble_by_rows`] makes at a time.
+const ROW_CHUNK: usize = 64;
+
+/// H and G (2n × 2n) from the rows of each of the `n` collocation points (`rows(i)`: rows 2i,
+/// 2i+1 of H then of G, 4 × 2n values, as [`BemModel::collocation_rows`] gives them), made in
+/// parallel a chunk of points at a time and copied in: the rows of all points at once would
+/// double the memory of H and G at the assembly's end (a body's largest matrices).
+pub(crate) fn assemble_by_rows(n: usize, rows: impl Fn(usize) -> Vec<f64> + Sync) -> Assembly {
+    let m = 2 * n;
+    let mut h = Mat::zeros(m, m);
+    let mut g = Mat::zeros(m, m);
+    for first in (0..n).step_by(ROW_CHUNK) {
+        let chunk: Vec<Vec<f64>> = (first..n.min(first + ROW_CHUNK)).into_par_iter().map(&rows).collect();
+        // Column by column, the chunk's rows are contiguous in each matrix.
+        for c in 0..m {
+            for (k, point) in chunk.iter().enumerate() {
+                for r in 0..2 {
+                    h[(2 * (first + k) + r, c)] = point[r * m + c];
+                    g[(2 * (first + k) + r, c)] = point[(2 + r) * m + c];
+                }
+            }
+        }
+    }
+    Assembly { h, g }
+}
+
 /// The collocation matrices of a model.
 #[derive(Debug, Clone)]
 pub struct Assembly {
@@ -242,15 +268,8 @@ impl BemModel {
     /// `kernel`, in parallel over the collocation points.
     pub fn assemble_with<K: FundamentalSolution>(&self, kernel: &K) -> Assembly {
         let n = self.discretisation.n_nodes();
-        let m = 2 * n;
         let quadrature = Quadrature::new(self.options.quadrature());
-        let rows: Vec<Vec<f64>> = (0..n)
-            .into_par_iter()
-            .map(|i| self.collocation_rows(kernel, i, &quadrature))
-            .collect();
-        let h = Mat::from_fn(m, m, |r, c| rows[r / 2][(r % 2) * m + c]);
-        let g = Mat::from_fn(m, m, |r, c| rows[r / 2][(2 + r % 2) * m + c]);
-        Assembly { h, g }
+        assemble_by_rows(n, |i| self.collocation_rows(kernel, i, &quadrature))
     }
 
     /// Rows 2i, 2i+1 of H then of G (4 × 2N values, row after row) for collocation at node i.
@@ -387,27 +406,39 @@ impl BemModel {
 
     /// System matrix A and right-hand side b of A x = b for the given data (see module docs).
     pub(crate) fn linear_system(&self, asm: &Assembly, data: &[Component]) -> (Mat<f64>, Mat<f64>) {
+        let (a, b, _) = self.linear_system_in_place_of_h(asm.clone(), data);
+        (a, b)
+    }
+
+    /// [`Self::linear_system`] made in H's place: A's column of a known traction is H's, of a
+    /// known displacement −G's times the traction scale, so H becomes A and G stays (but for
+    /// the columns of known displacements) for right-hand sides of more tractions. Returns
+    /// (A, b, G): one matrix of the system's size fewer than A beside H and G.
+    pub(crate) fn linear_system_in_place_of_h(
+        &self,
+        asm: Assembly,
+        data: &[Component],
+    ) -> (Mat<f64>, Mat<f64>, Mat<f64>) {
+        let Assembly { h: mut a, g } = asm;
         let m = data.len();
         let s = self.traction_scale();
-        let mut a = Mat::zeros(m, m);
         let mut b = Mat::zeros(m, 1);
         for (k, c) in data.iter().enumerate() {
             match *c {
                 Component::Displacement(v) => {
                     for r in 0..m {
-                        a[(r, k)] = -asm.g[(r, k)] * s;
-                        b[(r, 0)] -= asm.h[(r, k)] * v;
+                        b[(r, 0)] -= a[(r, k)] * v;
+                        a[(r, k)] = -g[(r, k)] * s;
                     }
                 }
                 Component::Traction(v) => {
                     for r in 0..m {
-                        a[(r, k)] = asm.h[(r, k)];
-                        b[(r, 0)] += asm.g[(r, k)] * v;
+                        b[(r, 0)] += g[(r, k)] * v;
                     }
                 }
             }
         }
-        (a, b)
+        (a, b, g)
     }
 
     /// Factorises A and solves A X = B in place (B may have several columns); fails when the

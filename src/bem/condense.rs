@@ -124,7 +124,9 @@ pub fn condense_reusing(
     };
     let assembly_s = t_assembly.elapsed().as_secs_f64();
     let t_condense = std::time::Instant::now();
-    let (a, b0) = model.linear_system(&asm, &data);
+    // A is made in H's place (at the condensation's peak, H, G and the right-hand sides are all
+    // it holds).
+    let (a, b0, g) = model.linear_system_in_place_of_h(asm, &data);
     let n_dof = data.len();
     // Contact DOFs are traction-type, so each unit contact traction adds its G column to b.
     let mut rhs = Mat::from_fn(n_dof, 1 + 2 * m, |r, c| {
@@ -132,11 +134,11 @@ pub fn condense_reusing(
             b0[(r, 0)]
         } else {
             let (j, comp) = ((c - 1) / 2, (c - 1) % 2);
-            asm.g[(r, 2 * nodes[j] + comp)]
+            g[(r, 2 * nodes[j] + comp)]
         }
     });
-    // H and G are not needed past the right-hand sides: their memory goes before the LU's.
-    drop(asm);
+    // G is not needed past the right-hand sides: its memory goes before the LU's.
+    drop(g);
     model.solve_system(a, &mut rhs)?;
     // The unknowns at contact DOFs are the displacements themselves (unscaled).
     let matrix = Mat::from_fn(2 * m, 2 * m, |r, c| rhs[(2 * nodes[r / 2] + r % 2, 1 + c)]);

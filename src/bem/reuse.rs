@@ -45,7 +45,6 @@ use super::assemble::{Assembly, BemModel};
 use super::discretise::Discretisation;
 use super::integrate::{element_integrals, SourcePosition};
 use crate::quadrature::Quadrature;
-use faer::Mat;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -306,51 +305,45 @@ pub fn assemble_reusing(model: &BemModel, far: &FarField) -> Assembly {
         d.geometry.len()
     );
     let fixed_columns: Vec<(usize, usize)> = map.iter().enumerate().filter_map(|(l, q)| q.map(|q| (l, q))).collect();
-    let rows: Vec<Vec<f64>> = (0..n)
-        .into_par_iter()
-        .map(|i| {
-            let Some(p) = map[i] else {
-                return model.collocation_rows(kernel, i, &quadrature);
-            };
-            let mut rows = vec![0.0; 4 * m];
-            let (cached, nf) = (&far.rows[p], 2 * far.n_nodes());
-            for r in 0..4 {
-                for &(l, q) in &fixed_columns {
-                    for jc in 0..2 {
-                        rows[r * m + 2 * l + jc] = cached[r * nf + 2 * q + jc];
-                    }
+    super::assemble::assemble_by_rows(n, |i| {
+        let Some(p) = map[i] else {
+            return model.collocation_rows(kernel, i, &quadrature);
+        };
+        let mut rows = vec![0.0; 4 * m];
+        let (cached, nf) = (&far.rows[p], 2 * far.n_nodes());
+        for r in 0..4 {
+            for &(l, q) in &fixed_columns {
+                for jc in 0..2 {
+                    rows[r * m + 2 * l + jc] = cached[r * nf + 2 * q + jc];
                 }
             }
-            let source = d.nodes[i].position;
-            for &e in &changed_elements {
-                let ints = element_integrals(
-                    &quadrature,
-                    kernel,
-                    &d.geometry[e],
-                    &d.interpolation[e],
-                    source,
-                    source_position(d, e, i),
-                );
-                for (a, &col) in d.element_nodes[e].iter().enumerate() {
-                    if map[col].is_none() {
-                        ints.add_node_to_rows(a, &mut rows, m, col);
-                    }
+        }
+        let source = d.nodes[i].position;
+        for &e in &changed_elements {
+            let ints = element_integrals(
+                &quadrature,
+                kernel,
+                &d.geometry[e],
+                &d.interpolation[e],
+                source,
+                source_position(d, e, i),
+            );
+            for (a, &col) in d.element_nodes[e].iter().enumerate() {
+                if map[col].is_none() {
+                    ints.add_node_to_rows(a, &mut rows, m, col);
                 }
             }
-            super::assemble::rigid_body_diagonal(&mut rows, i, n);
-            rows
-        })
-        .collect();
-    let h = Mat::from_fn(m, m, |r, c| rows[r / 2][(r % 2) * m + c]);
-    let g = Mat::from_fn(m, m, |r, c| rows[r / 2][(2 + r % 2) * m + c]);
-    Assembly { h, g }
+        }
+        super::assemble::rigid_body_diagonal(&mut rows, i, n);
+        rows
+    })
 }
 
 /// A [`FarField`] built once and shared by the setups of one run (the setup of the start mesh
 /// and every setup that follows a refined grid from it, [`crate::body::bem::setup`]): cloning
 /// the cache shares it.
 #[derive(Clone, Default)]
-pub struct FarFieldCache(Arc<OnceLock<Arc<FarField>>>);
+pub struct FarFieldCache(Arc<OnceLock<Arc<FarField>>>, Arc<AtomicBool>);
 
 impl std::fmt::Debug for FarFieldCache {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -362,15 +355,24 @@ impl std::fmt::Debug for FarFieldCache {
 }
 
 impl FarFieldCache {
+    /// A cache that gives no far field to its first use and builds it on the second: for a
+    /// mesh condensed once as a rule (the check of a body's mesh, src/adapt/body_mesh.rs),
+    /// whose far field, integrated apart and copied into H and G, would cost two matrices of
+    /// the system's size beside them and a second pass over the block, for no reuse.
+    pub fn from_second_use() -> Self {
+        Self(Default::default(), Arc::new(AtomicBool::new(true)))
+    }
+
     /// Whether the far field has been built (by the first setup that needed it).
     pub fn is_built(&self) -> bool {
         self.0.get().is_some()
     }
 
-    /// The far field of the start mesh, built by `start` on first use (None while the reuse is
-    /// turned off, [`set_reuse_enabled`]).
+    /// The far field of the start mesh, built by `start` on first use, or on the second for a
+    /// cache [`Self::from_second_use`] (None while the reuse is turned off,
+    /// [`set_reuse_enabled`], and for that first use).
     pub fn get_or_build(&self, start: impl FnOnce() -> Option<BemModel>) -> Option<Arc<FarField>> {
-        if !reuse_enabled() {
+        if !reuse_enabled() || self.1.swap(false, Ordering::Relaxed) {
             return None;
         }
         if let Some(far) = self.0.get() {

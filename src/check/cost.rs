@@ -167,7 +167,7 @@ mod tests {
 
     /// `check` prints the memory estimate that `run` refuses cases by (tests/input/memory.rs
     /// measures that one against the peak RSS): the largest `bem` body's field nodes count, and
-    /// 16 MB + 180·m² + 48·(2N)² for 321 contact elements and rollers of 1100 and 900 nodes.
+    /// 16 MB + 180·m² + 28·(2N)² for 321 contact elements and rollers of 1100 and 900 nodes.
     #[test]
     fn memory_is_the_runs_estimate() {
         let mut sizes = half_space(321);
@@ -175,7 +175,7 @@ mod tests {
         sizes.interior_points = 0;
         sizes.bem_bodies = vec![(1100, 500), (900, 400)];
         let m = 3.0 * 321.0;
-        let expected = 16e6 + 180.0 * m * m + 48.0 * 2200.0 * 2200.0;
+        let expected = 16e6 + 180.0 * m * m + 28.0 * 2200.0 * 2200.0;
         let b = Cost::of(&sizes).bytes;
         assert!((b - expected).abs() < 1.0, "{b} bytes against {expected}");
     }

@@ -145,15 +145,15 @@ impl ContactFrame {
         f
     }
 
-    /// Adds the bodies' low-rank changes of flexibility (global axes; each with the side of
-    /// its body) to `f`, a flexibility in this frame: the transformation of
+    /// Adds `alpha` times the bodies' low-rank changes of flexibility (global axes; each with
+    /// the side of its body) to `f`, a flexibility in this frame: the transformation of
     /// [`Self::flexibility`], which is linear, applied to each change's right factors (the
     /// columns) and, for h' = h − tan ψ_i w', to its left factor (the rows). The factors of all
     /// changes are stacked, so that each block takes one product, made by the global
     /// parallelism (on a final grid of 1554 nodes the six thin products of each body, one after
     /// the other, cost half the check's assembly), and no m × m matrix is made beyond the sums
     /// into `f`.
-    pub fn add_low_rank(&self, f: &mut Flexibility, changes: &[(&LowRankFlexibility, Side)]) {
+    pub fn add_low_rank(&self, f: &mut Flexibility, changes: &[(&LowRankFlexibility, Side)], alpha: f64) {
         if changes.is_empty() {
             return;
         }
@@ -204,7 +204,7 @@ impl ContactFrame {
         let w = |block| turned.then_some(block);
         let par = faer::get_global_parallelism();
         let add = |dst: &mut Mat<f64>, lhs: faer::MatRef<'_, f64>, rhs: &Mat<f64>| {
-            faer::linalg::matmul::matmul(dst.as_mut(), faer::Accum::Add, lhs, rhs, 1.0, par);
+            faer::linalg::matmul::matmul(dst.as_mut(), faer::Accum::Add, lhs, rhs, alpha, par);
         };
         add(&mut f.hp, left.as_ref(), &stacked(0, w(2)));
         add(&mut f.hq, left.as_ref(), &stacked(1, w(3)));
@@ -320,7 +320,7 @@ mod tests {
         for side in [Side::A, Side::B] {
             let want = fr.flexibility(plus.clone(), side);
             let mut got = fr.flexibility(f.clone(), side);
-            fr.add_low_rank(&mut got, &[(&change, side)]);
+            fr.add_low_rank(&mut got, &[(&change, side)], 1.0);
             for (g, w) in [
                 (&got.hp, &want.hp),
                 (&got.hq, &want.hq),
@@ -354,7 +354,7 @@ mod tests {
         let got = {
             let [hp, hq, wp, wq] = pair(fr.flexibility(f.clone(), Side::A), fr.flexibility(f.clone(), Side::B));
             let mut got = Flexibility { hp, hq, wp, wq };
-            fr.add_low_rank(&mut got, &[(&change, Side::A), (&other, Side::B)]);
+            fr.add_low_rank(&mut got, &[(&change, Side::A), (&other, Side::B)], 1.0);
             [got.hp, got.hq, got.wp, got.wq]
         };
         for (g, w) in got.iter().zip(&want) {
@@ -372,7 +372,7 @@ mod tests {
             right: std::array::from_fn(|_| Mat::zeros(r, m)),
         };
         let mut same = fr.flexibility(f.clone(), Side::A);
-        fr.add_low_rank(&mut same, &[(&zero, Side::A)]);
+        fr.add_low_rank(&mut same, &[(&zero, Side::A)], 1.0);
         assert_eq!(same.hp, fr.flexibility(f, Side::A).hp);
     }
 

@@ -226,7 +226,8 @@ impl BemSetup {
 
     /// The mesh with its elements outside the contact group bisected on their own curves
     /// ([`crate::mesh::bisect`]). Its far field differs from the start mesh's, so the bisected
-    /// body is assembled afresh: no start mesh, no shared cache.
+    /// body is assembled afresh: no start mesh, a cache of its own, built only if the body is
+    /// condensed again (adopted by the error control, [`FarFieldCache::from_second_use`]).
     pub(super) fn free_boundary_bisected(&self) -> BemSetup {
         let mesh = LoadedMesh {
             mesh: bisect_outside_group(&self.mesh.mesh, self.mesh.contact_group),
@@ -236,7 +237,7 @@ impl BemSetup {
             shape: ContactShape::of(&mesh),
             mesh,
             start_mesh: None,
-            far_field: Default::default(),
+            far_field: FarFieldCache::from_second_use(),
             kept: Default::default(),
             keep_builds: true,
             ..self.clone()
@@ -255,7 +256,7 @@ impl BemSetup {
             shape: ContactShape::of(&mesh),
             mesh,
             start_mesh: None,
-            far_field: Default::default(),
+            far_field: FarFieldCache::from_second_use(),
             kept: Default::default(),
             keep_builds: false,
             ..self.clone()
@@ -417,7 +418,8 @@ impl BodySetup for BemSetup {
 
     /// The mesh with its elements outside the contact group bisected on their own curves
     /// ([`crate::mesh::bisect`]). Its far field differs from the start mesh's, so the bisected
-    /// body is assembled afresh: no start mesh, no shared cache.
+    /// body is assembled afresh: no start mesh, a cache of its own, built only if the body is
+    /// condensed again (adopted by the error control, [`FarFieldCache::from_second_use`]).
     fn with_free_boundary_bisected(&self) -> Option<Arc<dyn BodySetup>> {
         Some(Arc::new(self.free_boundary_bisected()))
     }
