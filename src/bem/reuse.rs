@@ -43,7 +43,8 @@
 
 use super::assemble::{Assembly, BemModel};
 use super::discretise::Discretisation;
-use super::integrate::{element_integrals, SourcePosition};
+use super::fundamental::FundamentalSolution;
+use super::integrate::{element_integrals, ElementIntegrals, SourcePosition};
 use crate::quadrature::Quadrature;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -181,17 +182,9 @@ impl FarField {
             .par_iter()
             .map(|&i| {
                 let mut rows = vec![0.0; 4 * nf];
-                let source = d.nodes[i].position;
                 for &e in &unchanged_elements {
                     let ids = &d.element_nodes[e];
-                    let ints = element_integrals(
-                        &quadrature,
-                        kernel,
-                        &d.geometry[e],
-                        &d.interpolation[e],
-                        source,
-                        source_position(d, e, i),
-                    );
+                    let ints = integrals_at(&quadrature, kernel, d, e, i);
                     for (a, &col) in ids.iter().enumerate() {
                         // A node shared with a changed element is a changed column: integrated
                         // per pass.
@@ -274,6 +267,24 @@ fn kernel_bits(model: &BemModel) -> [u64; 3] {
 }
 
 /// Where source node `i` lies relative to element `e`, as [`BemModel::assemble`] takes it.
+/// The integrals over element `e` of `d` with the source at field node `i`.
+fn integrals_at<K: FundamentalSolution>(
+    quadrature: &Quadrature,
+    kernel: &K,
+    d: &Discretisation,
+    e: usize,
+    i: usize,
+) -> ElementIntegrals {
+    element_integrals(
+        quadrature,
+        kernel,
+        &d.geometry[e],
+        &d.interpolation[e],
+        d.nodes[i].position,
+        source_position(d, e, i),
+    )
+}
+
 fn source_position(d: &Discretisation, e: usize, i: usize) -> SourcePosition {
     match d.element_nodes[e].iter().position(|&k| k == i) {
         Some(local) => SourcePosition::OnNode {
@@ -318,16 +329,8 @@ pub fn assemble_reusing(model: &BemModel, far: &FarField) -> Assembly {
                 }
             }
         }
-        let source = d.nodes[i].position;
         for &e in &changed_elements {
-            let ints = element_integrals(
-                &quadrature,
-                kernel,
-                &d.geometry[e],
-                &d.interpolation[e],
-                source,
-                source_position(d, e, i),
-            );
+            let ints = integrals_at(&quadrature, kernel, d, e, i);
             for (a, &col) in d.element_nodes[e].iter().enumerate() {
                 if map[col].is_none() {
                     ints.add_node_to_rows(a, &mut rows, m, col);

@@ -291,6 +291,20 @@ mod tests {
         }
     }
 
+    /// Each block of `got` equal to `want`'s to rounding, entry by entry.
+    fn assert_close(got: [&Mat<f64>; 4], want: [&Mat<f64>; 4], what: &str) {
+        for (g, w) in got.iter().zip(want) {
+            for j in 0..w.ncols() {
+                for i in 0..w.nrows() {
+                    assert!(
+                        (g[(i, j)] - w[(i, j)]).abs() <= 1e-13 * w[(i, j)].abs().max(1.0),
+                        "{what} ({i}, {j})"
+                    );
+                }
+            }
+        }
+    }
+
     /// A low-rank change added in the frame ([`ContactFrame::add_low_rank`]) is the change of
     /// the transformed flexibility: frame(F + UR) − frame(F) to rounding, on both sides (their
     /// arc scales differ) of a frame turned by up to 0.1 rad, one side at a time and both at once;
@@ -309,46 +323,34 @@ mod tests {
             left: Mat::from_fn(m, r, |i, l| ((i + 1) as f64).powi(l as i32) / 7.0),
             right: [0.5, -0.3, 0.2, 0.9].map(|c| Mat::from_fn(r, m, |l, j| c * (1.0 + (l * 4 + j) as f64 * 0.1))),
         };
-        let dense = |k: usize| &change.left * &change.right[k];
-        let plus = Flexibility {
-            hp: &f.hp + dense(0),
-            hq: &f.hq + dense(1),
-            wp: &f.wp + dense(2),
-            wq: &f.wq + dense(3),
+        // F + UR, the change made dense.
+        let plus_dense = |c: &LowRankFlexibility| {
+            let dense = |k: usize| &c.left * &c.right[k];
+            Flexibility {
+                hp: &f.hp + dense(0),
+                hq: &f.hq + dense(1),
+                wp: &f.wp + dense(2),
+                wq: &f.wq + dense(3),
+            }
         };
+        let plus = plus_dense(&change);
         let fr = frame(m);
         for side in [Side::A, Side::B] {
             let want = fr.flexibility(plus.clone(), side);
             let mut got = fr.flexibility(f.clone(), side);
             fr.add_low_rank(&mut got, &[(&change, side)], 1.0);
-            for (g, w) in [
-                (&got.hp, &want.hp),
-                (&got.hq, &want.hq),
-                (&got.wp, &want.wp),
-                (&got.wq, &want.wq),
-            ] {
-                for j in 0..m {
-                    for i in 0..m {
-                        assert!(
-                            (g[(i, j)] - w[(i, j)]).abs() <= 1e-13 * w[(i, j)].abs().max(1.0),
-                            "{side:?} ({i}, {j})"
-                        );
-                    }
-                }
-            }
+            assert_close(
+                [&got.hp, &got.hq, &got.wp, &got.wq],
+                [&want.hp, &want.hq, &want.wp, &want.wq],
+                &format!("{side:?}"),
+            );
         }
         // Both sides' changes at once (ranks 3 and 2): the sum of each side's.
         let other = LowRankFlexibility {
             left: Mat::from_fn(m, 2, |i, l| (0.3 * (i + l) as f64).cos()),
             right: [0.1, 0.4, -0.6, 0.25].map(|c| Mat::from_fn(2, m, |l, j| c * (j as f64 - 2.0 * l as f64))),
         };
-        let dense_other = |k: usize| &other.left * &other.right[k];
-        let plus_other = Flexibility {
-            hp: &f.hp + dense_other(0),
-            hq: &f.hq + dense_other(1),
-            wp: &f.wp + dense_other(2),
-            wq: &f.wq + dense_other(3),
-        };
+        let plus_other = plus_dense(&other);
         let pair = |a: Flexibility, b: Flexibility| [&a.hp + &b.hp, &a.hq + &b.hq, &a.wp + &b.wp, &a.wq + &b.wq];
         let want = pair(fr.flexibility(plus, Side::A), fr.flexibility(plus_other, Side::B));
         let got = {
@@ -357,16 +359,7 @@ mod tests {
             fr.add_low_rank(&mut got, &[(&change, Side::A), (&other, Side::B)], 1.0);
             [got.hp, got.hq, got.wp, got.wq]
         };
-        for (g, w) in got.iter().zip(&want) {
-            for j in 0..m {
-                for i in 0..m {
-                    assert!(
-                        (g[(i, j)] - w[(i, j)]).abs() <= 1e-13 * w[(i, j)].abs().max(1.0),
-                        "both sides ({i}, {j})"
-                    );
-                }
-            }
-        }
+        assert_close(got.each_ref(), want.each_ref(), "both sides");
         let zero = LowRankFlexibility {
             left: change.left.clone(),
             right: std::array::from_fn(|_| Mat::zeros(r, m)),
