@@ -404,13 +404,8 @@ impl BemModel {
         self.material.shear() / self.mesh.size()
     }
 
-    /// System matrix A and right-hand side b of A x = b for the given data (see module docs).
-    pub(crate) fn linear_system(&self, asm: &Assembly, data: &[Component]) -> (Mat<f64>, Mat<f64>) {
-        let (a, b, _) = self.linear_system_in_place_of_h(asm.clone(), data);
-        (a, b)
-    }
-
-    /// [`Self::linear_system`] made in H's place: A's column of a known traction is H's, of a
+    /// System matrix A and right-hand side b of A x = b for the given data (see module docs),
+    /// made in H's place: A's column of a known traction is H's, of a
     /// known displacement −G's times the traction scale, so H becomes A and G stays (but for
     /// the columns of known displacements) for right-hand sides of more tractions. Returns
     /// (A, b, G): one matrix of the system's size fewer than A beside H and G.
@@ -474,13 +469,13 @@ impl BemModel {
     /// Solves the model with point constraints `pins` added to the group conditions.
     pub fn solve_pinned(&self, pins: &[Pin]) -> Result<BemSolution, BemError> {
         let data = self.boundary_data(pins)?;
-        let asm = self.assemble();
-        self.solve_assembled(&asm, &data)
+        self.solve_assembled(self.assemble(), &data)
     }
 
-    /// Solves with an existing assembly and explicit per-component data.
-    pub fn solve_assembled(&self, asm: &Assembly, data: &[Component]) -> Result<BemSolution, BemError> {
-        let (a, mut x) = self.linear_system(asm, data);
+    /// Solves with an assembly (taken: the system matrix is made in H's place) and explicit
+    /// per-component data.
+    pub fn solve_assembled(&self, asm: Assembly, data: &[Component]) -> Result<BemSolution, BemError> {
+        let (a, mut x, _) = self.linear_system_in_place_of_h(asm, data);
         self.solve_system(a, &mut x)?;
         Ok(self.boundary_values(data, |k| x[(k, 0)]))
     }

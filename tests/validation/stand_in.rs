@@ -107,7 +107,9 @@ fn a_conformal_contact_in_a_bore_is_the_half_plane_plus_a_smooth_remainder() {
 /// coarser fitted one: on carter_051_true and on bore_a020_tractive, whose contact frame turns
 /// by up to 0.2 rad (the change's factors are turned into it); measured 2.4e-15 at most. The
 /// change itself is far above that rounding (measured 9e-5 and 1.6e-4 of the largest entry), so
-/// a change left out fails the comparison.
+/// a change left out fails the comparison. The same change made in the passes' problem's place
+/// and taken back (`with_flexibility_changes_in_place`, as the run makes it) gives the same
+/// problem inside and the passes' problem after, to 1e-15 of each block's kind.
 #[test]
 fn the_checks_problem_is_the_passes_problem_plus_a_low_rank_change() {
     use rollbem::body::Side;
@@ -158,6 +160,26 @@ fn the_checks_problem_is_the_passes_problem_plus_a_low_rank_change() {
             largest_change > 1e3 * largest_off.max(1e-16),
             "{case}: the change {largest_change:.2e} is not above the rounding {largest_off:.2e}"
         );
+        // Made in the passes' problem's place (what the run solves): the same problem while the
+        // change is in, and the passes' problem again after, its flexibility to rounding (the
+        // change added and taken away) and its slip blocks exactly (put back).
+        let mut in_place = passes.clone();
+        let inside = in_place.with_flexibility_changes_in_place([a.as_ref(), b.as_ref()], blocks);
+        for (k, ((inside, changed), (after, before))) in inside
+            .iter()
+            .zip(blocks(&changed))
+            .zip(blocks(&in_place).iter().zip(blocks(&passes)))
+            .enumerate()
+        {
+            let scale = scales[k / 4];
+            let off = largest_difference(inside, &changed) / scale;
+            let back = largest_difference(after, &before) / scale;
+            assert!(off <= 1e-15, "{case} block {k} in place: {off:.2e}");
+            assert!(back <= 1e-15, "{case} block {k} taken back: {back:.2e}");
+            if k >= 4 {
+                assert!(after == &before, "{case} slip block {k} not put back exactly");
+            }
+        }
     }
 }
 
