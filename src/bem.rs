@@ -58,7 +58,7 @@ pub mod reuse;
 pub mod somigliana;
 
 pub use assemble::{BemModel, BemOptions, BemSolution, Pin};
-pub use condense::{condense, condense_reusing, ContactFlexibility};
+pub use condense::{condense, condense_reusing, factor_reusing, ContactFlexibility};
 pub use discretise::{Discretisation, FieldNode};
 
 use crate::mesh::MeshError;

@@ -40,7 +40,7 @@ pub mod viscoelastic;
 use crate::grid::ContactGrid;
 use crate::interior::{InteriorOptions, InteriorSample};
 use crate::linalg::mat_vec2;
-use faer::Mat;
+use faer::{Mat, MatRef};
 use serde::Serialize;
 pub use setup::{BodySetup, BuildContext, BuildError, ContactMesh, FlexibilityChange, PassStandIn, Rolling, SurfaceAt};
 
@@ -144,6 +144,17 @@ pub trait BodyModel {
 
     /// Flexibility at the grid's nodes, for this body placed on `side`.
     fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility;
+
+    /// The surface displacements under k loads at the grid's nodes, for this body placed on
+    /// `side`: [h, w] with h = H_p p + H_q q and w = W_p p + W_q q column by column (`p`, `q`
+    /// m × k nodal tractions [stress], h and w m × k [length]; pair convention, global axes).
+    /// The flexibility's product (the default); a model that can answer a few loads without
+    /// making its whole flexibility (a BEM body built with
+    /// [`BuildContext::responses_only`]: factored, not solved for every unit load) does so.
+    fn displacements(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> [Mat<f64>; 2] {
+        let f = self.flexibility(grid, side);
+        [&f.hp * p + &f.hq * q, &f.wp * p + &f.wq * q]
+    }
 
     /// Undeformed distance [length] of this body's surface from the common tangent line at
     /// abscissa x (≥ 0 for a convex body); the two bodies' profiles add up to the initial gap.
@@ -307,6 +318,10 @@ impl BodyModel for WithCircularProfile {
 
     fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
         self.inner.flexibility(grid, side)
+    }
+
+    fn displacements(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> [Mat<f64>; 2] {
+        self.inner.displacements(grid, side, p, q)
     }
 
     fn profile(&self, x: f64) -> f64 {

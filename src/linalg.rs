@@ -99,11 +99,7 @@ impl LuWorkspace {
         assert_eq!(n, rhs.nrows(), "a right side of the matrix's order");
         // Below PARALLEL_LU_MIN unknowns the threads' hand-offs cost more than they share on two
         // cores (docs/performance.md).
-        let par = if n < PARALLEL_LU_MIN {
-            faer::Par::Seq
-        } else {
-            faer::get_global_parallelism()
-        };
+        let par = parallelism(n);
         self.perm.resize(n, 0);
         self.perm_inv.resize(n, 0);
         let req = factor::lu_in_place_scratch::<usize, f64>(n, n, par, Default::default())
@@ -118,6 +114,99 @@ impl LuWorkspace {
         let (_, row_perm) = factor::lu_in_place(a.as_mut(), perm, perm_inv, par, stack, Default::default());
         // L (unit lower) and U share the factored matrix: each solve reads only its own triangle.
         solve::solve_in_place(a.as_ref(), a.as_ref(), row_perm, rhs, par, stack);
+    }
+}
+
+/// An LU factorisation with partial pivoting kept for later solves: the factors in the
+/// factored matrix's place (L unit lower, U upper) and the row permutation. A BEM body that is
+/// asked only for its response to a few loads (the fits of an error-controlled grid's
+/// stand-ins, the checks of its mesh) is factored once and solved per load, instead of solved
+/// at once for every unit load of its contact nodes.
+#[derive(Clone)]
+pub struct LuFactors {
+    lu: Mat<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+}
+
+impl std::fmt::Debug for LuFactors {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LuFactors").field("order", &self.perm.len()).finish()
+    }
+}
+
+impl LuFactors {
+    /// Factors `a` (square) where it lies, with faer's routines as [`LuWorkspace`] does (one
+    /// thread below [`PARALLEL_LU_MIN`] unknowns).
+    pub fn new(mut a: Mat<f64>) -> Self {
+        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::linalg::lu::partial_pivoting::factor;
+        let n = a.nrows();
+        assert_eq!(n, a.ncols(), "a square matrix");
+        let par = parallelism(n);
+        let (mut perm, mut perm_inv) = (vec![0; n], vec![0; n]);
+        let mut scratch = MemBuffer::new(factor::lu_in_place_scratch::<usize, f64>(n, n, par, Default::default()));
+        factor::lu_in_place(
+            a.as_mut(),
+            &mut perm,
+            &mut perm_inv,
+            par,
+            MemStack::new(&mut scratch),
+            Default::default(),
+        );
+        Self { lu: a, perm, perm_inv }
+    }
+
+    /// The order n of the factored matrix.
+    pub fn order(&self) -> usize {
+        self.perm.len()
+    }
+
+    /// Solves A X = B in place for the columns of `rhs` (n rows).
+    pub fn solve_in_place(&self, rhs: faer::MatMut<'_, f64>) {
+        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::linalg::lu::partial_pivoting::solve;
+        let n = self.order();
+        assert_eq!(n, rhs.nrows(), "a right side of the matrix's order");
+        let par = parallelism(n);
+        let mut scratch = MemBuffer::new(solve::solve_in_place_scratch::<usize, f64>(n, rhs.ncols(), par));
+        let perm = faer::perm::PermRef::new_checked(&self.perm, &self.perm_inv, n);
+        let lu = self.lu.as_ref();
+        solve::solve_in_place(lu, lu, perm, rhs, par, MemStack::new(&mut scratch));
+    }
+
+    /// The ratio of the smallest to the largest |pivot| (U's diagonal): 0 or NaN for a
+    /// singular or non-finite matrix.
+    pub fn pivot_ratio(&self) -> f64 {
+        pivot_ratio(self.lu.as_ref())
+    }
+}
+
+/// The ratio of the smallest to the largest |diagonal entry| of a factored matrix (its U's
+/// pivots): 0 for a zero pivot, NaN where an entry is not finite.
+pub fn pivot_ratio(lu: faer::MatRef<'_, f64>) -> f64 {
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for k in 0..lu.nrows() {
+        let p = lu[(k, k)].abs();
+        if p.is_nan() {
+            return f64::NAN;
+        }
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    if hi > 0.0 {
+        lo / hi
+    } else {
+        0.0
+    }
+}
+
+/// faer's threads from [`PARALLEL_LU_MIN`] unknowns, one thread below.
+fn parallelism(n: usize) -> faer::Par {
+    if n < PARALLEL_LU_MIN {
+        faer::Par::Seq
+    } else {
+        faer::get_global_parallelism()
     }
 }
 

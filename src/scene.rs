@@ -19,7 +19,7 @@ pub use crate::body::half_space::setup::HalfSpaceSetup;
 use crate::body::pair_influence::PairInfluence;
 pub use crate::body::rigid::RigidSetup;
 pub use crate::body::BodySetup;
-use crate::body::{Body, BuildContext, FlexibilityChange, Rolling, Side};
+use crate::body::{Body, BodyModel, BuildContext, FlexibilityChange, Rolling, Side};
 use crate::case::{LoadedCase, NormalSpec, TangentialSpec};
 use crate::contact::{ContactFrame, ContactProblem, NewtonSettings, NormalControl, SolverSettings, TangentialControl};
 use crate::error::Error;
@@ -120,6 +120,7 @@ impl Scene {
                 side,
                 rolling: scene.rolling(),
                 pair: None,
+                responses_only: false,
             };
             scene.bodies[k].preflight(&ctx)?;
         }
@@ -324,6 +325,17 @@ impl Scene {
     /// Builds both body models on the contact grid, as a pair that computes the influence
     /// matrices both need once ([`PairInfluence`]).
     pub fn body_models(&self) -> Result<BodyModels, Error> {
+        self.body_models_built(false)
+    }
+
+    /// [`Self::body_models`] for a caller that asks the bodies only for their response to a
+    /// few loads ([`crate::body::BuildContext::responses_only`]: a BEM body factored, not solved
+    /// for every unit load).
+    pub fn body_models_for_responses(&self) -> Result<BodyModels, Error> {
+        self.body_models_built(true)
+    }
+
+    fn body_models_built(&self, responses_only: bool) -> Result<BodyModels, Error> {
         let pair = Arc::new(PairInfluence::new());
         let build = |k: usize, side: Side| -> Result<Box<dyn Body>, Error> {
             let ctx = BuildContext {
@@ -331,6 +343,7 @@ impl Scene {
                 side,
                 rolling: self.rolling(),
                 pair: Some(&pair),
+                responses_only,
             };
             Ok(self.bodies[k].build(&ctx)?)
         };
@@ -378,6 +391,11 @@ impl Scene {
     /// [`Self::contact_problem`] without the strain operator (an error-controlled run's
     /// intermediate grids; [`ContactProblem::strain_of`] adds it).
     pub fn contact_problem_without_strain(&self, models: &BodyModels) -> ContactProblem {
+        self.contact_problem_of(models[0].model(), models[1].model())
+    }
+
+    /// [`Self::contact_problem_without_strain`] of any two body models (A's, B's).
+    pub fn contact_problem_of(&self, a: &dyn BodyModel, b: &dyn BodyModel) -> ContactProblem {
         let c = &self.case.case.contact;
         log::info!(
             target: crate::logging::PROGRESS,
@@ -386,8 +404,8 @@ impl Scene {
         );
         ContactProblem::assemble(
             self.grid.clone(),
-            models[0].model(),
-            models[1].model(),
+            a,
+            b,
             c.slip_derivative,
             self.friction,
             c.rolling_direction,

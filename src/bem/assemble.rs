@@ -443,15 +443,13 @@ impl BemModel {
     pub(crate) fn solve_system(&self, mut a: Mat<f64>, b: &mut Mat<f64>) -> Result<(), BemError> {
         let mut ws = crate::linalg::LuWorkspace::new();
         ws.solve_in_place(a.as_mut(), b.as_mut());
-        // The factored matrix holds U on and above its diagonal.
-        let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
-        for k in 0..a.nrows() {
-            let p = a[(k, k)].abs();
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-        let ratio = if hi > 0.0 { lo / hi } else { 0.0 };
-        // NaN pivots (non-finite input) fail this test too; B is then left unused.
+        // The factored matrix holds U on and above its diagonal; B is left unused on failure.
+        self.check_pivots(crate::linalg::pivot_ratio(a.as_ref()))
+    }
+
+    /// Fails when the pivots' ratio of a factored system (smallest over largest |pivot|)
+    /// reveals a singular system, or is NaN (non-finite input).
+    pub(crate) fn check_pivots(&self, ratio: f64) -> Result<(), BemError> {
         if ratio.is_nan() || ratio < self.options.min_pivot_ratio {
             return Err(BemError::SingularSystem {
                 path: self.mesh.source.clone(),

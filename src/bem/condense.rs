@@ -29,24 +29,112 @@ use super::assemble::{BemModel, BemSolution};
 use super::hypersingular::{check_boundary_point, GradientEvaluator, GradientPoint};
 use super::reuse::{assemble_reusing, FarField};
 use super::{BemError, BoundaryCondition, Component};
+use crate::linalg::LuFactors;
 use faer::Mat;
 use rayon::prelude::*;
 use std::sync::OnceLock;
 
 /// Flexibility of a BEM body at the field nodes of its contact group (global axes).
+///
+/// Made in one of two ways: solved at once for every unit contact load ([`condense()`], what a
+/// contact problem on the body's own grid needs), or factored only ([`factor_reusing`]), for a
+/// body asked for its response to a few loads ([`ContactFlexibility::displacements`]: the fits
+/// of an error-controlled grid's stand-ins and the checks of its mesh). A factored body solves
+/// for every unit load when first asked for its whole flexibility or response, so every
+/// accessor works in both; only the cost differs.
 #[derive(Debug, Clone)]
 pub struct ContactFlexibility {
     /// Field nodes of the contact group, in increasing x.
     pub nodes: Vec<usize>,
     /// Their abscissae x [length].
     pub x: Vec<f64>,
+    /// The known data of every component that the system was set up with (the contact
+    /// components traction-type, zero), so that post-processing does not re-evaluate the
+    /// boundary conditions.
+    pub data: Vec<Component>,
+    /// Wall time of the BEM assembly (H, G) [s].
+    pub assembly_s: f64,
+    /// Wall time of the factorization (and, when solved at once, of the multi-column solve)
+    /// [s].
+    pub condense_s: f64,
+    /// The response to every unit contact load, solved at once or on first use.
+    solved: OnceLock<Solved>,
+    /// The factored system of a body made by [`factor_reusing`].
+    factored: Option<Factored>,
+    /// The HBEM surface strain with its wall time [s], computed on first use
+    /// ([`ContactFlexibility::surface_strain`]): the passes, the stand-ins' levels and the
+    /// body-mesh check of an error-controlled grid never ask for it.
+    strain: OnceLock<(Mat<f64>, f64)>,
+}
+
+/// The response of a condensed body to every unit contact load.
+#[derive(Debug, Clone)]
+struct Solved {
     /// F[(2i + a, 2j + b)] = displacement component a at contact node i per unit nodal value
     /// of the traction component b at contact node j (a, b = 0 for x, 1 for y)
     /// [length/stress].
-    pub matrix: Mat<f64>,
+    matrix: Mat<f64>,
     /// Displacement at the contact nodes with zero contact traction, due to the other
     /// prescribed data [length].
-    pub offset: Vec<[f64; 2]>,
+    offset: Vec<[f64; 2]>,
+    /// Every unknown of the BEM system as an affine function of the contact tractions
+    /// (column 0 with zero contact traction, column 1 + 2j + b per unit traction component b
+    /// at contact node j), 2N × (1 + 2m): [`ContactFlexibility::response`].
+    response: Mat<f64>,
+    /// Wall time of the solve when made on first use (zero when made with the factorization,
+    /// whose time `condense_s` holds) [s].
+    seconds: f64,
+}
+
+/// A body's collocation system A x = b0 + G_c τ factored, with what its right sides are made of.
+#[derive(Debug, Clone)]
+struct Factored {
+    /// A's LU factors.
+    lu: LuFactors,
+    /// The right side of the body's other prescribed data, 2N × 1.
+    b0: Mat<f64>,
+    /// G's columns of the contact traction components, 2N × 2m (column 2j + b: component b at
+    /// contact node j).
+    loads: Mat<f64>,
+}
+
+impl ContactFlexibility {
+    /// The response to every unit load: the one solved at once, or solved now from the factors.
+    fn solved(&self) -> &Solved {
+        self.solved.get_or_init(|| {
+            let t = std::time::Instant::now();
+            let f = self
+                .factored
+                .as_ref()
+                .expect("a condensation is either solved at once or factored");
+            let m = self.nodes.len();
+            let mut rhs = Mat::from_fn(f.b0.nrows(), 1 + 2 * m, |r, c| {
+                if c == 0 {
+                    f.b0[(r, 0)]
+                } else {
+                    f.loads[(r, c - 1)]
+                }
+            });
+            f.lu.solve_in_place(rhs.as_mut());
+            let mut solved = solved_from(rhs, &self.nodes);
+            solved.seconds = t.elapsed().as_secs_f64();
+            solved
+        })
+    }
+
+    /// The flexibility F, 2m × 2m: F[(2i + a, 2j + b)] = displacement component a at contact
+    /// node i per unit nodal value of the traction component b at contact node j (a, b = 0 for
+    /// x, 1 for y) [length/stress].
+    pub fn matrix(&self) -> &Mat<f64> {
+        &self.solved().matrix
+    }
+
+    /// Displacement at the contact nodes with zero contact traction, due to the other
+    /// prescribed data [length].
+    pub fn offset(&self) -> &[[f64; 2]] {
+        &self.solved().offset
+    }
+
     /// Every unknown of the BEM system as an affine function of the contact tractions:
     /// column 0 holds the unknowns x of the collocation system A x = b (a displacement where a
     /// traction is known, a traction scaled by G/L where a displacement is known) with zero
@@ -54,22 +142,31 @@ pub struct ContactFlexibility {
     /// (0 = x, 1 = y, global axes) at contact node j (the order of `nodes`). Post-processing
     /// rebuilds the whole boundary solution from it without a second solve
     /// ([`ContactFlexibility::boundary_solution`]). Size 2N × (1 + 2m).
-    pub response: Mat<f64>,
-    /// The known data of every component that `response` was solved with (the contact
-    /// components traction-type, zero), so that post-processing does not re-evaluate the
-    /// boundary conditions.
-    pub data: Vec<Component>,
-    /// Wall time of the BEM assembly (H, G) [s].
-    pub assembly_s: f64,
-    /// Wall time of the factorization and the multi-column solve [s].
-    pub condense_s: f64,
-    /// The HBEM surface strain with its wall time [s], computed on first use
-    /// ([`ContactFlexibility::surface_strain`]): the passes, the stand-ins' levels and the
-    /// body-mesh check of an error-controlled grid never ask for it.
-    strain: OnceLock<(Mat<f64>, f64)>,
-}
+    pub fn response(&self) -> &Mat<f64> {
+        &self.solved().response
+    }
 
-impl ContactFlexibility {
+    /// Whether the body was factored only and has not solved for every unit load yet (its
+    /// [`Self::displacements`] then cost one solve per load).
+    pub fn is_factored_only(&self) -> bool {
+        self.solved.get().is_none()
+    }
+
+    /// The contact displacements F·τ (2m × k, global axes) under the k contact loads `loads`
+    /// (2m × k: row 2j + b the traction component b at contact node j) [length]: the
+    /// flexibility's product where it is made, else one solve of the factored system for the k
+    /// loads together.
+    pub fn displacements(&self, loads: faer::MatRef<'_, f64>) -> Mat<f64> {
+        let m = self.nodes.len();
+        assert_eq!(loads.nrows(), 2 * m, "one row per contact traction component");
+        if let (Some(f), None) = (&self.factored, self.solved.get()) {
+            let mut rhs = &f.loads * loads;
+            f.lu.solve_in_place(rhs.as_mut());
+            return Mat::from_fn(2 * m, loads.ncols(), |r, c| rhs[(2 * self.nodes[r / 2] + r % 2, c)]);
+        }
+        self.matrix() * loads
+    }
+
     /// HBEM surface strain, m × 2m: S[(i, 2j + b)] = du_x/dx along the surface at contact
     /// node i per unit nodal value of the traction component b at contact node j (global axes;
     /// see the module docs) [1/stress]. `model` must be the one this was condensed from.
@@ -79,13 +176,19 @@ impl ContactFlexibility {
             return Ok(s);
         }
         let t = std::time::Instant::now();
-        let s = response_surface_strain(model, &self.nodes, &self.data, &self.response)?;
+        let s = response_surface_strain(model, &self.nodes, &self.data, self.response())?;
         Ok(&self.strain.get_or_init(|| (s, t.elapsed().as_secs_f64())).0)
     }
 
     /// Wall time of the HBEM surface strain [s]; zero until it is computed.
     pub fn strain_s(&self) -> f64 {
         self.strain.get().map_or(0.0, |(_, t)| *t)
+    }
+
+    /// Wall time of the solves made after the condensation [s]: a factored body's solve for
+    /// every unit load, when asked for ([`Self::matrix`]), and the HBEM strain.
+    pub fn later_s(&self) -> f64 {
+        self.solved.get().map_or(0.0, |s| s.seconds) + self.strain_s()
     }
 }
 
@@ -102,6 +205,27 @@ pub fn condense_reusing(
     model: &BemModel,
     contact_group: &str,
     far: Option<&FarField>,
+) -> Result<ContactFlexibility, BemError> {
+    build(model, contact_group, far, false)
+}
+
+/// [`condense_reusing`] factored only: the system's LU and right sides are kept, and the body
+/// solves per load ([`ContactFlexibility::displacements`]) or, when asked for its flexibility
+/// or response, for every unit load then.
+pub fn factor_reusing(
+    model: &BemModel,
+    contact_group: &str,
+    far: Option<&FarField>,
+) -> Result<ContactFlexibility, BemError> {
+    build(model, contact_group, far, true)
+}
+
+/// [`condense_reusing`] (`factored_only` false) or [`factor_reusing`].
+fn build(
+    model: &BemModel,
+    contact_group: &str,
+    far: Option<&FarField>,
+    factored_only: bool,
 ) -> Result<ContactFlexibility, BemError> {
     let g = model.mesh.group_index(contact_group)?;
     if !matches!(model.conditions[g], BoundaryCondition::Contact) {
@@ -129,20 +253,27 @@ pub fn condense_reusing(
     let (a, b0, g) = model.linear_system_in_place_of_h(asm, &data);
     let n_dof = data.len();
     // Contact DOFs are traction-type, so each unit contact traction adds its G column to b.
-    let mut rhs = Mat::from_fn(n_dof, 1 + 2 * m, |r, c| {
-        if c == 0 {
-            b0[(r, 0)]
-        } else {
-            let (j, comp) = ((c - 1) / 2, (c - 1) % 2);
-            g[(r, 2 * nodes[j] + comp)]
-        }
-    });
-    // G is not needed past the right-hand sides: its memory goes before the LU's.
-    drop(g);
-    model.solve_system(a, &mut rhs)?;
-    // The unknowns at contact DOFs are the displacements themselves (unscaled).
-    let matrix = Mat::from_fn(2 * m, 2 * m, |r, c| rhs[(2 * nodes[r / 2] + r % 2, 1 + c)]);
-    let offset = nodes.iter().map(|&k| [rhs[(2 * k, 0)], rhs[(2 * k + 1, 0)]]).collect();
+    let contact_columns = |k: usize| Mat::from_fn(n_dof, k, |r, c| g[(r, 2 * nodes[c / 2] + c % 2)]);
+    let (solved, factored) = if factored_only {
+        let loads = contact_columns(2 * m);
+        // G is not needed past the right-hand sides: its memory goes before the LU's.
+        drop(g);
+        let lu = LuFactors::new(a);
+        model.check_pivots(lu.pivot_ratio())?;
+        (OnceLock::new(), Some(Factored { lu, b0, loads }))
+    } else {
+        let mut rhs = Mat::from_fn(n_dof, 1 + 2 * m, |r, c| {
+            if c == 0 {
+                b0[(r, 0)]
+            } else {
+                let (j, comp) = ((c - 1) / 2, (c - 1) % 2);
+                g[(r, 2 * nodes[j] + comp)]
+            }
+        });
+        drop(g);
+        model.solve_system(a, &mut rhs)?;
+        (OnceLock::from(solved_from(rhs, &nodes)), None)
+    };
     let condense_s = t_condense.elapsed().as_secs_f64();
     // The strain is computed when first asked for; its points are checked now, so that a
     // contact node where the HBEM cannot be evaluated is an error of the condensation.
@@ -150,32 +281,58 @@ pub fn condense_reusing(
     Ok(ContactFlexibility {
         x: nodes.iter().map(|&k| field[k].position[0]).collect(),
         nodes,
-        matrix,
         assembly_s,
         condense_s,
-        offset,
-        response: rhs,
         data,
+        solved,
+        factored,
         strain: OnceLock::new(),
     })
+}
+
+/// The flexibility and offset read from the solved right sides `rhs` (column 0 the other
+/// data's, 1 + c the unit load c's), which become the response.
+fn solved_from(rhs: Mat<f64>, nodes: &[usize]) -> Solved {
+    let m = nodes.len();
+    // The unknowns at contact DOFs are the displacements themselves (unscaled).
+    let matrix = Mat::from_fn(2 * m, 2 * m, |r, c| rhs[(2 * nodes[r / 2] + r % 2, 1 + c)]);
+    let offset = nodes.iter().map(|&k| [rhs[(2 * k, 0)], rhs[(2 * k + 1, 0)]]).collect();
+    Solved {
+        matrix,
+        offset,
+        response: rhs,
+        seconds: 0.0,
+    }
 }
 
 impl ContactFlexibility {
     /// The whole boundary solution of `model` (u and t at every field node, global axes) under
     /// the traction `traction[j]` = (t_x, t_y) [stress] at contact node j (the order of
-    /// [`ContactFlexibility::nodes`]), from the condensed response: no second assembly or solve,
-    /// and exactly the state the flexibility describes. `model` must be the one condensed.
+    /// [`ContactFlexibility::nodes`]), from the condensed response (no second assembly or
+    /// solve, and exactly the state the flexibility describes), or for a factored body one
+    /// solve. `model` must be the one condensed.
     pub fn boundary_solution(&self, model: &BemModel, traction: &[[f64; 2]]) -> BemSolution {
         let mut data = self.data.clone();
-        let n_dof = data.len();
-        let mut unknowns: Vec<f64> = (0..n_dof).map(|r| self.response[(r, 0)]).collect();
-        for (j, (&k, t)) in self.nodes.iter().zip(traction).enumerate() {
+        for (&k, t) in self.nodes.iter().zip(traction) {
             for (b, &tb) in t.iter().enumerate() {
                 data[2 * k + b] = Component::Traction(tb);
+            }
+        }
+        if let (Some(f), None) = (&self.factored, self.solved.get()) {
+            let tau = Mat::from_fn(2 * self.nodes.len(), 1, |c, _| traction[c / 2][c % 2]);
+            let mut x = &f.b0 + &f.loads * &tau;
+            f.lu.solve_in_place(x.as_mut());
+            return model.boundary_values(&data, |k| x[(k, 0)]);
+        }
+        let response = self.response();
+        let n_dof = data.len();
+        let mut unknowns: Vec<f64> = (0..n_dof).map(|r| response[(r, 0)]).collect();
+        for (j, t) in traction.iter().enumerate() {
+            for (b, &tb) in t.iter().enumerate() {
                 if tb != 0.0 {
                     let col = 1 + 2 * j + b;
                     for (r, x) in unknowns.iter_mut().enumerate() {
-                        *x += self.response[(r, col)] * tb;
+                        *x += response[(r, col)] * tb;
                     }
                 }
             }
@@ -319,7 +476,7 @@ mod tests {
         let responses: Vec<BemSolution> = (0..2 * c.nodes.len())
             .map(|col| {
                 let loaded = 2 * c.nodes[col / 2] + col % 2;
-                model.boundary_values(&unit_load_data(&c.data, loaded), |k| c.response[(k, 1 + col)])
+                model.boundary_values(&unit_load_data(&c.data, loaded), |k| c.response()[(k, 1 + col)])
             })
             .collect();
         let want = surface_strain(&model, &c.nodes, &responses).unwrap();
@@ -332,6 +489,54 @@ mod tests {
         // Kept: the second call returns the same matrix.
         let first: *const Mat<f64> = c.surface_strain(&model).unwrap();
         assert!(std::ptr::eq(first, c.surface_strain(&model).unwrap()));
+    }
+
+    /// A body factored only answers as the body solved at once: its displacements under a few
+    /// loads are the flexibility's product, its boundary solution the response's, and the
+    /// flexibility it solves for when asked is the one solved at once (the same LU, the same
+    /// right sides). The two orders of the products (G's columns times the loads, then the
+    /// solve; or the solve, then F times the loads) agree to the system's condition times the
+    /// rounding, 1e-11 of the largest value (measured 1.4e-12).
+    #[test]
+    fn a_factored_body_answers_as_the_body_solved_at_once() {
+        let model = fig14_roller();
+        let solved = condense(&model, "contact").unwrap();
+        let factored = factor_reusing(&model, "contact", None).unwrap();
+        assert!(factored.is_factored_only() && !solved.is_factored_only());
+        let m = solved.nodes.len();
+        let loads = Mat::from_fn(2 * m, 3, |r, c| ((r * (c + 2)) % 7) as f64 - 3.0 + 0.1 * c as f64);
+        let want = solved.matrix() * &loads;
+        let got = factored.displacements(loads.as_ref());
+        let scale = want.norm_max();
+        assert!(
+            (&got - &want).norm_max() <= 1e-11 * scale,
+            "displacements: {:e} of {scale:e}",
+            (&got - &want).norm_max()
+        );
+        assert!(
+            factored.is_factored_only(),
+            "answered without solving for every unit load"
+        );
+        let traction: Vec<[f64; 2]> = (0..m).map(|j| [0.3 * j as f64, 100.0 - j as f64]).collect();
+        let (a, b) = (
+            solved.boundary_solution(&model, &traction),
+            factored.boundary_solution(&model, &traction),
+        );
+        let umax = a.displacement.iter().flatten().fold(0.0f64, |s, v| s.max(v.abs()));
+        for (x, y) in a.displacement.iter().flatten().zip(b.displacement.iter().flatten()) {
+            assert!((x - y).abs() <= 1e-11 * umax, "boundary displacement {x} vs {y}");
+        }
+        let tmax = a.traction.iter().flatten().fold(0.0f64, |s, v| s.max(v.abs()));
+        for (x, y) in a.traction.iter().flatten().zip(b.traction.iter().flatten()) {
+            assert!((x - y).abs() <= 1e-11 * tmax, "boundary traction {x} vs {y}");
+        }
+        let diff = (factored.matrix() - solved.matrix()).norm_max();
+        assert!(
+            diff <= 1e-14 * solved.matrix().norm_max(),
+            "flexibility differs by {diff:e}"
+        );
+        assert!(!factored.is_factored_only(), "solved for every unit load once asked");
+        assert!((&factored.displacements(loads.as_ref()) - &want).norm_max() <= 1e-11 * scale);
     }
 
     /// The strain's points are checked at the condensation: a contact node must lie strictly

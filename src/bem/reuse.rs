@@ -452,8 +452,8 @@ mod tests {
         );
         let scratch = condense(&cut_model, "contact").unwrap();
         let reused = condense_reusing(&cut_model, "contact", Some(&far)).unwrap();
-        let scale = scratch.matrix.norm_max();
-        let diff = (&reused.matrix - &scratch.matrix).norm_max();
+        let scale = scratch.matrix().norm_max();
+        let diff = (reused.matrix() - scratch.matrix()).norm_max();
         assert!(
             diff <= 1e-10 * scale,
             "flexibility differs by {diff:.3e} of {scale:.3e}"

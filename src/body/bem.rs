@@ -26,10 +26,10 @@ use super::{
 };
 use crate::bem::reuse::FarField;
 use crate::bem::somigliana::interior_fields;
-use crate::bem::{condense_reusing, BemError, BemModel, BemSolution, ContactFlexibility};
+use crate::bem::{condense_reusing, factor_reusing, BemError, BemModel, BemSolution, ContactFlexibility};
 use crate::grid::{ContactGrid, ElementKind};
 use crate::interior::{InteriorOptions, InteriorSample};
-use faer::Mat;
+use faer::{Mat, MatRef};
 
 /// A body modelled by the BEM, condensed to a contact grid whose nodes it shares.
 #[derive(Debug, Clone)]
@@ -134,17 +134,21 @@ impl BemBody {
     /// contact surface faces the other body (outward normal −y on A, +y on B, within
     /// [`MAX_CONTACT_ANGLE_DEG`]).
     pub fn new(model: BemModel, contact_group: &str, grid: &ContactGrid, side: Side) -> Result<Self, BemError> {
-        Self::new_reusing(model, contact_group, grid, side, None)
+        Self::new_reusing(model, contact_group, grid, side, None, false)
     }
 
     /// [`Self::new`] for a model cut from a start mesh whose unchanged part `far` holds
     /// ([`crate::bem::reuse`]): the same body, its far-field block of H and G taken from `far`.
+    /// With `factored_only` the body is factored and not solved for every unit load
+    /// ([`crate::bem::factor_reusing`]): for a caller that asks for its response to a few loads
+    /// ([`BodyModel::displacements`]) and its boundary field.
     pub fn new_reusing(
         model: BemModel,
         contact_group: &str,
         grid: &ContactGrid,
         side: Side,
         far: Option<&FarField>,
+        factored_only: bool,
     ) -> Result<Self, BemError> {
         Self::check_contact(&model, contact_group, grid, side)?;
         let facing = match side {
@@ -152,7 +156,11 @@ impl BemBody {
             Side::B => 1.0,
         };
         let g = model.mesh.group_index(contact_group)?;
-        let condensed = condense_reusing(&model, contact_group, far)?;
+        let condensed = if factored_only {
+            factor_reusing(&model, contact_group, far)?
+        } else {
+            condense_reusing(&model, contact_group, far)?
+        };
         let extreme = contact_heights(&model, g)
             .into_iter()
             .map(|(_, y)| y * facing)
@@ -340,13 +348,30 @@ impl BodyModel for BemBody {
     fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
         self.assert_same_grid(grid, side);
         let m = grid.n_nodes();
-        let f = &self.condensed.matrix;
+        let f = self.condensed.matrix();
         Flexibility {
             hp: Mat::from_fn(m, m, |i, j| f[(2 * i + 1, 2 * j + 1)]),
             hq: Mat::from_fn(m, m, |i, j| f[(2 * i + 1, 2 * j)]),
             wp: Mat::from_fn(m, m, |i, j| f[(2 * i, 2 * j + 1)]),
             wq: Mat::from_fn(m, m, |i, j| f[(2 * i, 2 * j)]),
         }
+    }
+
+    /// The displacements under the loads, per load (module docs: on either side h = F_yy p +
+    /// F_yx q and w = F_xy p + F_xx q, the global traction (q, p) on A and (−q, −p) on B whose
+    /// sign cancels against that of the shares): one solve of a factored body for the k loads
+    /// together, the flexibility's product otherwise. Same `grid`/`side` contract as
+    /// [`BodyModel::flexibility`].
+    fn displacements(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> [Mat<f64>; 2] {
+        self.assert_same_grid(grid, side);
+        let (m, k) = (grid.n_nodes(), p.ncols());
+        // Global axes with the sign folded out: rows 2j, 2j + 1 take q and p.
+        let loads = Mat::from_fn(2 * m, k, |r, c| if r % 2 == 0 { q[(r / 2, c)] } else { p[(r / 2, c)] });
+        let u = self.condensed.displacements(loads.as_ref());
+        [
+            Mat::from_fn(m, k, |i, c| u[(2 * i + 1, c)]),
+            Mat::from_fn(m, k, |i, c| u[(2 * i, c)]),
+        ]
     }
 
     /// Distance of the undeformed contact surface from the common tangent at x [length]
@@ -373,7 +398,7 @@ impl BodyModel for BemBody {
     fn stage_seconds(&self) -> (f64, f64) {
         (
             self.condensed.assembly_s,
-            self.condensed.condense_s + self.condensed.strain_s(),
+            self.condensed.condense_s + self.condensed.later_s(),
         )
     }
 

@@ -46,6 +46,12 @@ pub struct BuildContext<'a> {
     /// The store of influence matrices the pair's bodies share on this grid, if the caller
     /// builds a pair ([`PairInfluence`]: a half-plane body joins it and takes from it).
     pub pair: Option<&'a Arc<PairInfluence>>,
+    /// Whether the caller will ask the body only for its response to a few loads
+    /// ([`crate::body::BodyModel::displacements`]) and its boundary field, not for its whole
+    /// flexibility: a model that answers those more cheaply prepares for that (a BEM body is
+    /// factored, not solved for every unit load of its contact nodes). Anything else it is
+    /// asked still works, at the full cost.
+    pub responses_only: bool,
 }
 
 /// A body's contact group on its own mesh: a body that has one sets the contact grid (its

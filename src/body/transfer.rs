@@ -17,7 +17,7 @@ use super::{
     Side, StrainOperator,
 };
 use crate::grid::ContactGrid;
-use faer::Mat;
+use faer::{Mat, MatRef};
 use rayon::prelude::*;
 
 /// The contact grid reaches beyond the body's contact segment: the body cannot say what its
@@ -64,6 +64,13 @@ impl SparseRows {
         Self {
             rows: to.nodes.iter().map(|&x| from.interpolation_row(x)).collect(),
         }
+    }
+
+    /// The matrix times each column of `x`.
+    fn columns_times(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        Mat::from_fn(self.rows.len(), x.ncols(), |i, c| {
+            self.rows[i].iter().map(|&(j, v)| v * x[(j, c)]).sum()
+        })
     }
 
     /// The matrix times the vector `x`, row by row over the nonzeros: summed from 0 in the
@@ -220,6 +227,18 @@ impl BodyModel for Transferred {
     fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
         let own = self.inner.flexibility(&self.own_grid, side);
         transfer_flexibility(&own, &self.own_grid, grid).expect("grid checked against the body segment")
+    }
+
+    /// The loads carried to the body's own nodes (T), its displacements there carried back (D).
+    fn displacements(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> [Mat<f64>; 2] {
+        if grid.coincides_with(&self.own_grid) {
+            return self.inner.displacements(&self.own_grid, side, p, q);
+        }
+        let (d, t) = operators(&self.own_grid, grid).expect("grid checked against the body segment");
+        let (p, q) = (t.columns_times(p), t.columns_times(q));
+        self.inner
+            .displacements(&self.own_grid, side, p.as_ref(), q.as_ref())
+            .map(|v| d.columns_times(v.as_ref()))
     }
 
     fn profile(&self, x: f64) -> f64 {

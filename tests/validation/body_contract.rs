@@ -41,6 +41,7 @@ fn build(setup: &Arc<dyn BodySetup>, grid: &ContactGrid, side: Side, scene: &Sce
         side,
         rolling: scene.rolling(),
         pair: None,
+        responses_only: false,
     };
     setup
         .build(&ctx)

@@ -350,6 +350,7 @@ fn interior_displacements_meet_the_surface_ones() {
         side: Side::B,
         rolling: s.scene.rolling(),
         pair: None,
+        responses_only: false,
     };
     let body = s.scene.bodies[1].build(&ctx).unwrap();
     let (p, q) = (&s.solution.pressure, &s.solution.shear);

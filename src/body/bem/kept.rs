@@ -13,6 +13,7 @@ use crate::body::{
     StrainOperator,
 };
 use crate::grid::ContactGrid;
+use faer::{Mat, MatRef};
 use std::sync::{Arc, Mutex};
 
 /// The body kept: its side and the edges of its own contact grid, and the condensed body.
@@ -63,6 +64,10 @@ impl BodyModel for Kept {
 
     fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
         self.0.flexibility(grid, side)
+    }
+
+    fn displacements(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> [Mat<f64>; 2] {
+        self.0.displacements(grid, side, p, q)
     }
 
     fn profile(&self, x: f64) -> f64 {

@@ -135,8 +135,9 @@ impl BemSetup {
     /// where the cuts leave the mesh as it was. With `seed_far_field`, a start mesh condensed
     /// on its own grid before the grids cut from it (the first of the stand-ins' levels) is
     /// assembled the same way, so that its far field, integrated here as part of its own
-    /// assembly, is not integrated again by the next level.
-    fn own_body(&self, side: Side, seed_far_field: bool) -> Result<BemBody, BuildError> {
+    /// assembly, is not integrated again by the next level. With `factored_only` the body is
+    /// factored, not solved for every unit load ([`BemBody::new_reusing`]).
+    fn own_body(&self, side: Side, seed_far_field: bool, factored_only: bool) -> Result<BemBody, BuildError> {
         let t0 = std::time::Instant::now();
         let model_of = |mesh: &LoadedMesh| {
             BemModel::new(
@@ -159,16 +160,18 @@ impl BemSetup {
             &self.mesh.contact_grid(),
             side,
             far.as_deref(),
+            factored_only,
         )?;
         // The far field's integration (first pass only) is part of the assembly.
         body.condensed.assembly_s += far_s;
         Ok(body)
     }
 
-    /// The body on `ctx.grid`: condensed anew, or taken from [`KeptBody`] when this mesh was
-    /// condensed for the same side before; with `keep`, a new condensation is kept. With
-    /// `seed_far_field` a start mesh's condensation leaves its far field for the setups that
-    /// follow grids from it (`own_body`).
+    /// The body on `ctx.grid`: condensed anew (factored only, when the context asks for
+    /// responses only: [`BuildContext::responses_only`]), or taken from [`KeptBody`] when this
+    /// mesh was condensed for the same side before; with `keep`, a new condensation is kept.
+    /// With `seed_far_field` a start mesh's condensation leaves its far field for the setups
+    /// that follow grids from it (`own_body`).
     pub(super) fn build_keeping(
         &self,
         ctx: &BuildContext,
@@ -184,6 +187,11 @@ impl BemSetup {
                     ctx.side,
                     self.mesh.mesh.elements.len()
                 );
+                // A body kept factored only solves for every unit load now, in the build (which
+                // runs beside the other body's), rather than when the problem asks for it.
+                if !ctx.responses_only {
+                    kept.condensed.matrix();
+                }
                 Box::new(Kept(kept, false))
             }
             None => {
@@ -194,7 +202,7 @@ impl BemSetup {
                     self.mesh.mesh.elements.len(),
                     self.mesh.mesh.nodes.len()
                 );
-                let body = self.own_body(ctx.side, seed_far_field)?;
+                let body = self.own_body(ctx.side, seed_far_field, ctx.responses_only)?;
                 if keep {
                     let body = Arc::new(body);
                     self.kept.keep(ctx.side, &own, body.clone());
@@ -483,6 +491,7 @@ mod tests {
                 speed: None,
             },
             pair: None,
+            responses_only: false,
         }
     }
 

@@ -48,6 +48,8 @@
 //! estimate to the grid's and solves the final grid with the full BEM only when the sum
 //! exceeds the tolerance, or when the run asks for interior fields (the stand-in has none).
 
+mod remainder;
+
 use super::setup::BemSetup;
 use super::BemBody;
 use crate::body::half_space::HalfSpace;
@@ -60,9 +62,13 @@ use crate::body::{
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
 use faer::Mat;
-use nalgebra::DMatrix;
+
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, OnceLock};
+
+#[cfg(test)]
+use remainder::chebyshev_rows;
+use remainder::{FitFactors, SmoothRemainder};
 
 /// Degree of the Chebyshev series of the remainder in each variable: 8 fits a bore's
 /// conformal contact (a/R = 0.2) to 2e-5 p0 where 4 leaves 2e-3 (bore_a020_tractive, measured
@@ -83,141 +89,6 @@ pub fn stand_in_enabled() -> bool {
     static ENV: OnceLock<bool> = OnceLock::new();
     let env = *ENV.get_or_init(|| std::env::var("ROLLBEM_BEM_STAND_IN").map_or(true, |v| v.trim() != "0"));
     env && ENABLED.load(Ordering::Relaxed)
-}
-
-/// The Chebyshev polynomials T_0..T_d at `x`, mapped from [lo, hi] to [−1, 1] (one row each).
-fn chebyshev_rows(x: &[f64], lo: f64, hi: f64, degree: usize) -> DMatrix<f64> {
-    DMatrix::from_fn(x.len(), degree + 1, |i, k| {
-        let t = ((2.0 * x[i] - lo - hi) / (hi - lo)).clamp(-1.0, 1.0);
-        (k as f64 * t.acos()).cos()
-    })
-}
-
-/// d/dx of the Chebyshev polynomials T_0..T_d at `x`, mapped from [lo, hi] to [−1, 1]:
-/// T_k'(t) = k U_{k−1}(t) (U the second kind, by its recurrence), times dt/dx = 2/(hi − lo).
-fn chebyshev_derivative_rows(x: &[f64], lo: f64, hi: f64, degree: usize) -> DMatrix<f64> {
-    let dt_dx = 2.0 / (hi - lo);
-    DMatrix::from_fn(x.len(), degree + 1, |i, k| {
-        let t = ((2.0 * x[i] - lo - hi) / (hi - lo)).clamp(-1.0, 1.0);
-        let (mut u_prev, mut u) = (0.0, 1.0); // U_{-1}, U_0
-        for _ in 1..k {
-            let next = 2.0 * t * u - u_prev;
-            u_prev = u;
-            u = next;
-        }
-        if k == 0 {
-            0.0
-        } else {
-            k as f64 * u * dt_dx
-        }
-    })
-}
-
-/// Columns of the remainder made at a time by [`SmoothRemainder::add_to`].
-const ADD_COLUMNS: usize = 64;
-
-/// The smooth remainder R(x, s) of a body's operator blocks (the four flexibility blocks, or
-/// the two of the surface strain) as Chebyshev series.
-#[derive(Debug, Clone)]
-pub struct SmoothRemainder {
-    /// The interval the series map to [−1, 1] (the start grid's span) [length].
-    span: [f64; 2],
-    /// Degree in each variable.
-    degree: usize,
-    /// Coefficients of each block [the block's unit per length].
-    coefficients: Vec<DMatrix<f64>>,
-}
-
-impl SmoothRemainder {
-    /// The least-squares series of (B − H)_ij / w_j over the nodes of `grid`, for each pair
-    /// (B, H) of a body's block and the half-plane's.
-    fn fitted(blocks: &[(&Mat<f64>, &Mat<f64>)], grid: &ContactGrid, span: [f64; 2], degree: usize) -> Self {
-        let t = chebyshev_rows(&grid.nodes, span[0], span[1], degree);
-        // (TᵀT)⁻¹Tᵀ: the normal equations of a (degree + 1)-column basis, well conditioned on
-        // the nodes of a grid that covers its interval.
-        let pinv = (t.transpose() * &t)
-            .try_inverse()
-            .unwrap_or_else(|| DMatrix::zeros(degree + 1, degree + 1))
-            * t.transpose();
-        let m = grid.n_nodes();
-        let fit = |b: &Mat<f64>, h: &Mat<f64>| {
-            let samples = DMatrix::from_fn(m, m, |i, j| (b[(i, j)] - h[(i, j)]) / grid.weights[j]);
-            &pinv * samples * pinv.transpose()
-        };
-        Self {
-            span,
-            degree,
-            coefficients: blocks.iter().map(|(b, h)| fit(b, h)).collect(),
-        }
-    }
-
-    /// Richardson's extrapolation of a first-order error: 2·fine − coarse.
-    fn extrapolated(coarse: &Self, fine: &Self) -> Self {
-        Self {
-            span: fine.span,
-            degree: fine.degree,
-            coefficients: coarse
-                .coefficients
-                .iter()
-                .zip(&fine.coefficients)
-                .map(|(c, f)| 2.0 * f - c)
-                .collect(),
-        }
-    }
-
-    /// Adds the remainder's blocks on `grid`, R(x_i, s_j)·w_j, to `targets` (one per block, in
-    /// the order of the coefficients): in place, where a flexibility on a large grid would
-    /// otherwise take four more matrices of its size per body and pass.
-    pub fn add_to<'a>(&self, grid: &ContactGrid, targets: impl Iterator<Item = &'a mut Mat<f64>>) {
-        let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
-        let m = grid.n_nodes();
-        for (c, target) in self.coefficients.iter().zip(targets) {
-            let tc = &t * c;
-            // A few columns at a time: an m × m product would be one more matrix of the grid's
-            // size per block (each entry is the same short sum in either case).
-            for first in (0..m).step_by(ADD_COLUMNS) {
-                let n = ADD_COLUMNS.min(m - first);
-                let r = &tc * t.rows(first, n).transpose();
-                for (k, &w) in grid.weights[first..first + n].iter().enumerate() {
-                    let column = &r.as_slice()[k * m..(k + 1) * m];
-                    for (a, &b) in target.col_as_slice_mut(first + k).iter_mut().zip(column) {
-                        *a += b * w;
-                    }
-                }
-            }
-        }
-    }
-
-    /// `other` less this remainder on `grid`, as a low-rank change of the four blocks: left the
-    /// Chebyshev rows T(x_i), right (ΔC T(s_j)ᵀ)·w_j with ΔC the difference of the coefficients
-    /// (the entries [`Self::add_to`] would add, in factors). Both must be series of one span
-    /// and degree (the fits of one stand-in's levels).
-    fn change_to(&self, other: &Self, grid: &ContactGrid) -> LowRankFlexibility {
-        assert!(
-            self.span == other.span && self.degree == other.degree,
-            "a change between series of one span and degree"
-        );
-        let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
-        let (m, r) = (grid.n_nodes(), self.degree + 1);
-        let left = Mat::from_fn(m, r, |i, l| t[(i, l)]);
-        let right = std::array::from_fn(|k| {
-            let d = (&other.coefficients[k] - &self.coefficients[k]) * t.transpose();
-            Mat::from_fn(r, m, |l, j| d[(l, j)] * grid.weights[j])
-        });
-        LowRankFlexibility { left, right }
-    }
-
-    /// ∂R/∂x of the w blocks (wp, wq) on `grid`: ∂R(x_i, s_j)/∂x·w_j, the surface strain of the
-    /// remainder's tangential displacement.
-    fn w_derivatives_on(&self, grid: &ContactGrid) -> [Mat<f64>; 2] {
-        let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
-        let dt = chebyshev_derivative_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
-        let m = grid.n_nodes();
-        [2, 3].map(|k| {
-            let r = &dt * &self.coefficients[k] * t.transpose();
-            Mat::from_fn(m, m, |i, j| r[(i, j)] * grid.weights[j])
-        })
-    }
 }
 
 /// The half-plane of the body's material and profile radius on `grid`, its columns scaled to
@@ -294,20 +165,34 @@ fn level_fit(
         side,
         rolling: place.rolling,
         pair: None,
+        // The fit asks for the body's response to a few loads (and the finest level's boundary
+        // field and mesh check, for a few more).
+        responses_only: true,
     };
     // The start mesh's own level seeds the far field the levels cut from it reuse.
     let body = level.build_keeping(&ctx, keep, own)?;
-    let bem = body.model().flexibility(grid, side);
     let slope = |x: f64| setup.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
     let flat = arc_half_plane(half, grid, side, &slope)?;
+    let fit_factors = FitFactors::on(grid, place.span, degree);
+    // The body's response to the fit's loads, pressure then shear ones: [H_p V, H_q V] and
+    // [W_p V, W_q V] from one solve of the factored BEM.
+    let (m, r) = (grid.n_nodes(), degree + 1);
+    let v = &fit_factors.right;
+    let p = Mat::from_fn(m, 2 * r, |i, c| if c < r { v[(i, c)] } else { 0.0 });
+    let q = Mat::from_fn(m, 2 * r, |i, c| if c < r { 0.0 } else { v[(i, c - r)] });
+    let [h, w] = body.model().displacements(grid, side, p.as_ref(), q.as_ref());
+    let (first, second) = (
+        |x: &Mat<f64>| x.subcols(0, r).to_owned(),
+        |x: &Mat<f64>| x.subcols(r, r).to_owned(),
+    );
     let fit = SmoothRemainder::fitted(
         &[
-            (&bem.hp, &flat.hp),
-            (&bem.hq, &flat.hq),
-            (&bem.wp, &flat.wp),
-            (&bem.wq, &flat.wq),
+            (first(&h), &flat.hp * v),
+            (second(&h), &flat.hq * v),
+            (first(&w), &flat.wp * v),
+            (second(&w), &flat.wq * v),
         ],
-        grid,
+        &fit_factors,
         place.span,
         degree,
     );
@@ -583,5 +468,86 @@ impl BodyFields for StandInBody {
     /// None: a run that asks for interior fields solves its final grid with the full BEM body.
     fn interior(&self, _query: &InteriorQuery) -> InteriorResult {
         Err(FieldError::NoInteriorField { model: "bem stand-in" })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::adapt::cells::DyadicGrid;
+    use crate::bem::BoundaryCondition;
+    use crate::mesh::LoadedMesh;
+    use nalgebra::DMatrix;
+
+    /// The aluminium roller R 150 on a shaft of 15 of cases/fig14_true_geometry.yaml (body A).
+    fn fig14_roller() -> BemSetup {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r150_shaft15_A.msh");
+        let (mesh, notices) = crate::mesh::load(&path).unwrap();
+        let mesh = LoadedMesh::new(path, mesh, notices, "contact").unwrap();
+        let conditions = vec![
+            ("free".into(), BoundaryCondition::Free),
+            ("shaft".into(), BoundaryCondition::Fixed),
+            ("contact".into(), BoundaryCondition::Contact),
+        ];
+        BemSetup::on_start_mesh(
+            mesh,
+            Elastic::new(60_260.0, 0.31),
+            "contact".into(),
+            conditions,
+            None,
+            None,
+        )
+    }
+
+    /// A level's remainder fitted from the body's response to the fit's loads (a factored BEM,
+    /// 2(d + 1) right sides) is the least-squares series of the samples (B − H)_ij / w_j of the
+    /// whole flexibility, as the fit was defined: P⁺ S P⁺ᵀ block by block, on the start grid
+    /// and on its bisection (a level cut from the mesh), to round-off of the coefficients.
+    #[test]
+    fn the_fit_from_the_responses_is_the_fit_of_the_samples() {
+        let setup = fig14_roller();
+        let start = DyadicGrid::new(&setup.mesh.contact_grid());
+        let rolling = Rolling {
+            direction: 1.0,
+            speed: None,
+        };
+        let half = HalfSpace::new(setup.material, setup.radius);
+        for grid in [start.grid(), start.bisected().grid()] {
+            let span = [grid.edges[0], grid.edges[grid.n_elements()]];
+            let place = Placement {
+                side: Side::A,
+                rolling,
+                span,
+                degree: REMAINDER_DEGREE,
+            };
+            let level = level_fit(&setup, &half, &grid, &place, false).unwrap();
+            let bem = level.body.model().flexibility(&grid, Side::A);
+            let slope = |x: f64| setup.surface_at(x, Side::A).map_or(0.0, |s| s.slope_angle);
+            let flat = arc_half_plane(&half, &grid, Side::A, &slope).unwrap();
+            let t = chebyshev_rows(&grid.nodes, span[0], span[1], REMAINDER_DEGREE);
+            let pinv = (t.transpose() * &t).try_inverse().unwrap() * t.transpose();
+            let m = grid.n_nodes();
+            for (k, (b, h)) in [
+                (&bem.hp, &flat.hp),
+                (&bem.hq, &flat.hq),
+                (&bem.wp, &flat.wp),
+                (&bem.wq, &flat.wq),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                let samples = DMatrix::from_fn(m, m, |i, j| (b[(i, j)] - h[(i, j)]) / grid.weights[j]);
+                let want = &pinv * samples * pinv.transpose();
+                let got = &level.fit.coefficients[k];
+                let scale = want.amax();
+                assert!(scale > 0.0, "block {k}: a remainder to fit");
+                assert!(
+                    (got - &want).amax() <= 1e-10 * scale,
+                    "block {k} on {} elements: {:.3e} of {scale:.3e}",
+                    grid.n_elements(),
+                    (got - &want).amax()
+                );
+            }
+        }
     }
 }
