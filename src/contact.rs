@@ -139,19 +139,13 @@ impl ContactProblem {
         if grid.kind.shares_nodes() {
             return None;
         }
-        match (
-            body_a.strain_operator(grid, Side::A),
-            body_b.strain_operator(grid, Side::B),
-        ) {
-            (Some(a), Some(b)) => {
-                // Summed where A's lies, as the flexibilities are.
-                let (mut sum, b) = (frame.strain(a, Side::A), frame.strain(b, Side::B));
-                sum.p += &b.p;
-                sum.q += &b.q;
-                Some(sum)
-            }
-            _ => None,
-        }
+        // One body's operator after the other, each turned in place and B's summed where A's
+        // lies (as the flexibilities are): two m × m blocks at a time beside the sum.
+        let mut sum = frame.strain(body_a.strain_operator(grid, Side::A)?, Side::A);
+        let b = frame.strain(body_b.strain_operator(grid, Side::B)?, Side::B);
+        sum.p += &b.p;
+        sum.q += &b.q;
+        Some(sum)
     }
 
     /// Assembles the problem from the two body models on a grid, in the contact `frame` at

@@ -32,7 +32,7 @@ use super::{BemError, BoundaryCondition, Component};
 use crate::linalg::LuFactors;
 use faer::Mat;
 use rayon::prelude::*;
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock};
 
 /// Flexibility of a BEM body at the field nodes of its contact group (global axes).
 ///
@@ -42,7 +42,7 @@ use std::sync::OnceLock;
 /// of an error-controlled grid's stand-ins and the checks of its mesh). A factored body solves
 /// for every unit load when first asked for its whole flexibility or response, so every
 /// accessor works in both; only the cost differs.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct ContactFlexibility {
     /// Field nodes of the contact group, in increasing x.
     pub nodes: Vec<usize>,
@@ -59,8 +59,9 @@ pub struct ContactFlexibility {
     pub condense_s: f64,
     /// The response to every unit contact load, solved at once or on first use.
     solved: OnceLock<Solved>,
-    /// The factored system of a body made by [`factor_reusing`].
-    factored: Option<Factored>,
+    /// The factored system of a body made by [`factor_reusing`], until it has solved for every
+    /// unit load (its LU and right sides are then dropped: the response answers every load).
+    factored: Mutex<Option<Factored>>,
     /// The HBEM surface strain with its wall time [s], computed on first use
     /// ([`ContactFlexibility::surface_strain`]): the passes, the stand-ins' levels and the
     /// body-mesh check of an error-controlled grid never ask for it.
@@ -68,7 +69,7 @@ pub struct ContactFlexibility {
 }
 
 /// The response of a condensed body to every unit contact load.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 struct Solved {
     /// F[(2i + a, 2j + b)] = displacement component a at contact node i per unit nodal value
     /// of the traction component b at contact node j (a, b = 0 for x, 1 for y)
@@ -87,7 +88,7 @@ struct Solved {
 }
 
 /// A body's collocation system A x = b0 + G_c τ factored, with what its right sides are made of.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 struct Factored {
     /// A's LU factors.
     lu: LuFactors,
@@ -105,7 +106,9 @@ impl ContactFlexibility {
             let t = std::time::Instant::now();
             let f = self
                 .factored
-                .as_ref()
+                .lock()
+                .expect("the factors' lock")
+                .take()
                 .expect("a condensation is either solved at once or factored");
             let m = self.nodes.len();
             let mut rhs = Mat::from_fn(f.b0.nrows(), 1 + 2 * m, |r, c| {
@@ -120,6 +123,11 @@ impl ContactFlexibility {
             solved.seconds = t.elapsed().as_secs_f64();
             solved
         })
+    }
+
+    /// The factored system, while the body has not solved for every unit load.
+    fn factors(&self) -> std::sync::MutexGuard<'_, Option<Factored>> {
+        self.factored.lock().expect("the factors' lock")
     }
 
     /// The flexibility F, 2m × 2m: F[(2i + a, 2j + b)] = displacement component a at contact
@@ -149,7 +157,7 @@ impl ContactFlexibility {
     /// Whether the body was factored only and has not solved for every unit load yet (its
     /// [`Self::displacements`] then cost one solve per load).
     pub fn is_factored_only(&self) -> bool {
-        self.solved.get().is_none()
+        self.factors().is_some()
     }
 
     /// The contact displacements F·τ (2m × k, global axes) under the k contact loads `loads`
@@ -159,7 +167,7 @@ impl ContactFlexibility {
     pub fn displacements(&self, loads: faer::MatRef<'_, f64>) -> Mat<f64> {
         let m = self.nodes.len();
         assert_eq!(loads.nrows(), 2 * m, "one row per contact traction component");
-        if let (Some(f), None) = (&self.factored, self.solved.get()) {
+        if let Some(f) = self.factors().as_ref() {
             let mut rhs = &f.loads * loads;
             f.lu.solve_in_place(rhs.as_mut());
             return Mat::from_fn(2 * m, loads.ncols(), |r, c| rhs[(2 * self.nodes[r / 2] + r % 2, c)]);
@@ -260,7 +268,7 @@ fn build(
         drop(g);
         let lu = LuFactors::new(a);
         model.check_pivots(lu.pivot_ratio())?;
-        (OnceLock::new(), Some(Factored { lu, b0, loads }))
+        (OnceLock::new(), Mutex::new(Some(Factored { lu, b0, loads })))
     } else {
         let mut rhs = Mat::from_fn(n_dof, 1 + 2 * m, |r, c| {
             if c == 0 {
@@ -272,7 +280,7 @@ fn build(
         });
         drop(g);
         model.solve_system(a, &mut rhs)?;
-        (OnceLock::from(solved_from(rhs, &nodes)), None)
+        (OnceLock::from(solved_from(rhs, &nodes)), Mutex::new(None))
     };
     let condense_s = t_condense.elapsed().as_secs_f64();
     // The strain is computed when first asked for; its points are checked now, so that a
@@ -318,7 +326,7 @@ impl ContactFlexibility {
                 data[2 * k + b] = Component::Traction(tb);
             }
         }
-        if let (Some(f), None) = (&self.factored, self.solved.get()) {
+        if let Some(f) = self.factors().as_ref() {
             let tau = Mat::from_fn(2 * self.nodes.len(), 1, |c, _| traction[c / 2][c % 2]);
             let mut x = &f.b0 + &f.loads * &tau;
             f.lu.solve_in_place(x.as_mut());

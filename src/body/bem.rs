@@ -32,7 +32,7 @@ use crate::interior::{InteriorOptions, InteriorSample};
 use faer::{Mat, MatRef};
 
 /// A body modelled by the BEM, condensed to a contact grid whose nodes it shares.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct BemBody {
     /// The BEM model of the body.
     pub model: BemModel,

@@ -60,6 +60,10 @@ pub struct PairInfluence {
     /// The families the bodies joined, once per body.
     joined: Mutex<Vec<Family>>,
     kept: Mutex<Vec<Kept>>,
+    /// The matrices a copy was kept of once already (their keys and grids, matrices dropped):
+    /// a body that asks again after the other took its copy (body B's own flexibility made
+    /// again for a run's outputs) computes it without keeping another, which no body would take.
+    served: Mutex<Vec<Kept>>,
 }
 
 impl PairInfluence {
@@ -91,14 +95,17 @@ impl PairInfluence {
             .iter()
             .filter(|&&f| f == key.family)
             .count();
-        if users >= 2 {
-            self.kept.lock().expect("pair store").push(Kept {
+        let mut served = self.served.lock().expect("pair store");
+        if users >= 2 && !served.iter().any(same) {
+            let entry = |matrix| Kept {
                 key,
                 kind: grid.kind,
                 edges: grid.edges.clone(),
                 nodes: grid.nodes.clone(),
-                matrix: matrix.clone(),
-            });
+                matrix,
+            };
+            served.push(entry(Mat::zeros(0, 0)));
+            self.kept.lock().expect("pair store").push(entry(matrix.clone()));
         }
         matrix
     }
@@ -175,5 +182,8 @@ mod tests {
         // The half-plane matrices of `other` and `sign` wait for the second body; the aged one,
         // which only one body joined, was not kept.
         assert_eq!(pair.kept(), 2);
+        // A body asking again for a matrix the other took computes it and keeps no copy.
+        let again = pair.matrix(key, &grid, || counting(&mut calls, 6.0));
+        assert_eq!((again[(0, 0)], calls, pair.kept()), (6.0, 5, 2));
     }
 }

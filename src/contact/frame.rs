@@ -214,24 +214,21 @@ impl ContactFrame {
     }
 
     /// The global-axes surface-strain operator of one body turned into this frame (columns
-    /// only: the slip stays ∂w/∂x).
-    pub fn strain(&self, op: StrainOperator, side: Side) -> StrainOperator {
+    /// only: the slip stays ∂w/∂x), in place.
+    pub fn strain(&self, mut op: StrainOperator, side: Side) -> StrainOperator {
         if self.is_global() {
             return op;
         }
         let s = &self.arc_scale[Self::side(side)];
-        let psi = &self.normal_angle;
-        let (m, n) = (op.p.nrows(), op.p.ncols());
-        StrainOperator {
-            p: Mat::from_fn(m, n, |i, j| {
-                let (sn, c) = psi[j].sin_cos();
-                s[j] * (c * op.p[(i, j)] - sn * op.q[(i, j)])
-            }),
-            q: Mat::from_fn(m, n, |i, j| {
-                let (sn, c) = psi[j].sin_cos();
-                s[j] * (sn * op.p[(i, j)] + c * op.q[(i, j)])
-            }),
+        for (j, (psi, s)) in self.normal_angle.iter().zip(s).enumerate() {
+            let (sn, c) = psi.sin_cos();
+            for i in 0..op.p.nrows() {
+                let (p, q) = (op.p[(i, j)], op.q[(i, j)]);
+                op.p[(i, j)] = s * (c * p - sn * q);
+                op.q[(i, j)] = s * (sn * p + c * q);
+            }
         }
+        op
     }
 
     /// The nodal loads (P, Q) that body `side` carries in global axes (pair convention: P

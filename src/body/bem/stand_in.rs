@@ -445,9 +445,7 @@ impl BodyModel for StandInBody {
         let slope = |x: f64| inner.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
         let mut s = self.flat.model().strain_operator(grid, side)?;
         scale_columns([&mut s.p, &mut s.q], grid, &slope);
-        let [wp, wq] = self.remainder().w_derivatives_on(grid);
-        s.p += &wp;
-        s.q += &wq;
+        self.remainder().add_w_derivatives_to(grid, [&mut s.p, &mut s.q]);
         Some(s)
     }
 }

@@ -152,15 +152,25 @@ impl SmoothRemainder {
         LowRankFlexibility { left, right }
     }
 
-    /// ∂R/∂x of the w blocks (wp, wq) on `grid`: ∂R(x_i, s_j)/∂x·w_j, the surface strain of the
-    /// remainder's tangential displacement.
-    pub(super) fn w_derivatives_on(&self, grid: &ContactGrid) -> [Mat<f64>; 2] {
+    /// Adds ∂R/∂x of the w blocks (wp, wq) on `grid`, ∂R(x_i, s_j)/∂x·w_j (the surface strain
+    /// of the remainder's tangential displacement), to `targets` (the strain's p and q
+    /// blocks): in place, a few columns at a time, as [`Self::add_to`].
+    pub(super) fn add_w_derivatives_to(&self, grid: &ContactGrid, targets: [&mut Mat<f64>; 2]) {
         let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
         let dt = chebyshev_derivative_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
         let m = grid.n_nodes();
-        [2, 3].map(|k| {
-            let r = &dt * &self.coefficients[k] * t.transpose();
-            Mat::from_fn(m, m, |i, j| r[(i, j)] * grid.weights[j])
-        })
+        for (k, target) in [2, 3].into_iter().zip(targets) {
+            let dtc = &dt * &self.coefficients[k];
+            for first in (0..m).step_by(ADD_COLUMNS) {
+                let n = ADD_COLUMNS.min(m - first);
+                let r = &dtc * t.rows(first, n).transpose();
+                for (c, &w) in grid.weights[first..first + n].iter().enumerate() {
+                    let column = &r.as_slice()[c * m..(c + 1) * m];
+                    for (a, &b) in target.col_as_slice_mut(first + c).iter_mut().zip(column) {
+                        *a += b * w;
+                    }
+                }
+            }
+        }
     }
 }
