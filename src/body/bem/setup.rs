@@ -454,31 +454,31 @@ impl BodySetup for BemSetup {
     }
 }
 
+/// The roller R 150 on a shaft of 15 of cases/fig14_true_geometry.yaml (body A) in `material`,
+/// on its start mesh, whose Gmsh file puts the mid node of the contact element at the centre
+/// 4.2e-11 mm off x = 0 (for the tests of this module and of the stand-ins).
+#[cfg(test)]
+pub(crate) fn fig14_roller_in(material: Elastic) -> BemSetup {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r150_shaft15_A.msh");
+    let (mesh, notices) = crate::mesh::load(&path).unwrap();
+    let mesh = LoadedMesh::new(path, mesh, notices, "contact").unwrap();
+    let conditions = vec![
+        ("free".into(), BoundaryCondition::Free),
+        ("shaft".into(), BoundaryCondition::Fixed),
+        ("contact".into(), BoundaryCondition::Contact),
+    ];
+    BemSetup::on_start_mesh(mesh, material, "contact".into(), conditions, None, None)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::adapt::cells::{Action, DyadicGrid};
     use crate::material::Elastic;
 
-    /// The roller R 150 on a shaft of 15 of cases/fig14_true_geometry.yaml (body A), whose
-    /// Gmsh file puts the mid node of the contact element at the centre 4.2e-11 mm off x = 0.
+    /// The roller of [`fig14_roller_in`] in steel.
     fn fig14_roller() -> BemSetup {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r150_shaft15_A.msh");
-        let (mesh, notices) = crate::mesh::load(&path).unwrap();
-        let mesh = LoadedMesh::new(path, mesh, notices, "contact").unwrap();
-        let conditions = vec![
-            ("free".into(), BoundaryCondition::Free),
-            ("shaft".into(), BoundaryCondition::Fixed),
-            ("contact".into(), BoundaryCondition::Contact),
-        ];
-        BemSetup::on_start_mesh(
-            mesh,
-            Elastic::new(210_000.0, 0.3),
-            "contact".into(),
-            conditions,
-            None,
-            None,
-        )
+        fig14_roller_in(Elastic::new(210_000.0, 0.3))
     }
 
     /// The build context of body A on `grid`, rolling in +x.

@@ -473,28 +473,11 @@ impl BodyFields for StandInBody {
 mod tests {
     use super::*;
     use crate::adapt::cells::DyadicGrid;
-    use crate::bem::BoundaryCondition;
-    use crate::mesh::LoadedMesh;
     use nalgebra::DMatrix;
 
     /// The aluminium roller R 150 on a shaft of 15 of cases/fig14_true_geometry.yaml (body A).
     fn fig14_roller() -> BemSetup {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r150_shaft15_A.msh");
-        let (mesh, notices) = crate::mesh::load(&path).unwrap();
-        let mesh = LoadedMesh::new(path, mesh, notices, "contact").unwrap();
-        let conditions = vec![
-            ("free".into(), BoundaryCondition::Free),
-            ("shaft".into(), BoundaryCondition::Fixed),
-            ("contact".into(), BoundaryCondition::Contact),
-        ];
-        BemSetup::on_start_mesh(
-            mesh,
-            Elastic::new(60_260.0, 0.31),
-            "contact".into(),
-            conditions,
-            None,
-            None,
-        )
+        crate::body::bem::setup::fig14_roller_in(Elastic::new(60_260.0, 0.31))
     }
 
     /// A level's remainder fitted from the body's response to the fit's loads (a factored BEM,

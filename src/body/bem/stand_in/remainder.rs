@@ -115,21 +115,8 @@ impl SmoothRemainder {
     /// otherwise take four more matrices of its size per body and pass.
     pub fn add_to<'a>(&self, grid: &ContactGrid, targets: impl Iterator<Item = &'a mut Mat<f64>>) {
         let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
-        let m = grid.n_nodes();
         for (c, target) in self.coefficients.iter().zip(targets) {
-            let tc = &t * c;
-            // A few columns at a time: an m × m product would be one more matrix of the grid's
-            // size per block (each entry is the same short sum in either case).
-            for first in (0..m).step_by(ADD_COLUMNS) {
-                let n = ADD_COLUMNS.min(m - first);
-                let r = &tc * t.rows(first, n).transpose();
-                for (k, &w) in grid.weights[first..first + n].iter().enumerate() {
-                    let column = &r.as_slice()[k * m..(k + 1) * m];
-                    for (a, &b) in target.col_as_slice_mut(first + k).iter_mut().zip(column) {
-                        *a += b * w;
-                    }
-                }
-            }
+            add_weighted_product(&(&t * c), &t, &grid.weights, target);
         }
     }
 
@@ -158,18 +145,24 @@ impl SmoothRemainder {
     pub(super) fn add_w_derivatives_to(&self, grid: &ContactGrid, targets: [&mut Mat<f64>; 2]) {
         let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
         let dt = chebyshev_derivative_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
-        let m = grid.n_nodes();
         for (k, target) in [2, 3].into_iter().zip(targets) {
-            let dtc = &dt * &self.coefficients[k];
-            for first in (0..m).step_by(ADD_COLUMNS) {
-                let n = ADD_COLUMNS.min(m - first);
-                let r = &dtc * t.rows(first, n).transpose();
-                for (c, &w) in grid.weights[first..first + n].iter().enumerate() {
-                    let column = &r.as_slice()[c * m..(c + 1) * m];
-                    for (a, &b) in target.col_as_slice_mut(first + c).iter_mut().zip(column) {
-                        *a += b * w;
-                    }
-                }
+            add_weighted_product(&(&dt * &self.coefficients[k]), &t, &grid.weights, target);
+        }
+    }
+}
+
+/// Adds (L Tᵀ)_ij·w_j to `target` (m × m; L m × r, T m × r): a few columns at a time, since an
+/// m × m product would be one more matrix of the grid's size per block (each entry is the same
+/// short sum either way).
+fn add_weighted_product(left: &DMatrix<f64>, t: &DMatrix<f64>, weights: &[f64], target: &mut Mat<f64>) {
+    let m = left.nrows();
+    for first in (0..m).step_by(ADD_COLUMNS) {
+        let n = ADD_COLUMNS.min(m - first);
+        let r = left * t.rows(first, n).transpose();
+        for (k, &w) in weights[first..first + n].iter().enumerate() {
+            let column = &r.as_slice()[k * m..(k + 1) * m];
+            for (a, &b) in target.col_as_slice_mut(first + k).iter_mut().zip(column) {
+                *a += b * w;
             }
         }
     }
