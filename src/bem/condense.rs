@@ -110,14 +110,7 @@ impl ContactFlexibility {
                 .expect("the factors' lock")
                 .take()
                 .expect("a condensation is either solved at once or factored");
-            let m = self.nodes.len();
-            let mut rhs = Mat::from_fn(f.b0.nrows(), 1 + 2 * m, |r, c| {
-                if c == 0 {
-                    f.b0[(r, 0)]
-                } else {
-                    f.loads[(r, c - 1)]
-                }
-            });
+            let mut rhs = right_sides(&f.b0, f.loads.ncols(), |r, c| f.loads[(r, c)]);
             f.lu.solve_in_place(rhs.as_mut());
             let mut solved = solved_from(rhs, &self.nodes);
             solved.seconds = t.elapsed().as_secs_f64();
@@ -261,23 +254,16 @@ fn build(
     let (a, b0, g) = model.linear_system_in_place_of_h(asm, &data);
     let n_dof = data.len();
     // Contact DOFs are traction-type, so each unit contact traction adds its G column to b.
-    let contact_columns = |k: usize| Mat::from_fn(n_dof, k, |r, c| g[(r, 2 * nodes[c / 2] + c % 2)]);
+    let contact_column = |r: usize, c: usize| g[(r, 2 * nodes[c / 2] + c % 2)];
     let (solved, factored) = if factored_only {
-        let loads = contact_columns(2 * m);
+        let loads = Mat::from_fn(n_dof, 2 * m, contact_column);
         // G is not needed past the right-hand sides: its memory goes before the LU's.
         drop(g);
         let lu = LuFactors::new(a);
         model.check_pivots(lu.pivot_ratio())?;
         (OnceLock::new(), Mutex::new(Some(Factored { lu, b0, loads })))
     } else {
-        let mut rhs = Mat::from_fn(n_dof, 1 + 2 * m, |r, c| {
-            if c == 0 {
-                b0[(r, 0)]
-            } else {
-                let (j, comp) = ((c - 1) / 2, (c - 1) % 2);
-                g[(r, 2 * nodes[j] + comp)]
-            }
-        });
+        let mut rhs = right_sides(&b0, 2 * m, contact_column);
         drop(g);
         model.solve_system(a, &mut rhs)?;
         (OnceLock::from(solved_from(rhs, &nodes)), Mutex::new(None))
@@ -296,6 +282,16 @@ fn build(
         factored,
         strain: OnceLock::new(),
     })
+}
+
+/// The right sides [b0, loads]: the other data's column b0, then `count` load columns,
+/// `load(r, c)` the entry of row r in load c.
+fn right_sides(b0: &Mat<f64>, count: usize, load: impl Fn(usize, usize) -> f64) -> Mat<f64> {
+    Mat::from_fn(
+        b0.nrows(),
+        1 + count,
+        |r, c| if c == 0 { b0[(r, 0)] } else { load(r, c - 1) },
+    )
 }
 
 /// The flexibility and offset read from the solved right sides `rhs` (column 0 the other
