@@ -57,10 +57,10 @@ pub mod overlap;
 mod stand_ins;
 
 use crate::analytic::{hertz_half_width, hertz_peak_pressure};
-use crate::body::Side;
 use crate::contact::residual::State;
 use crate::contact::{
-    methods, ContactProblem, NormalControl, SolveReport, SolverSettings, TangentialControl, Workspace,
+    methods, BodyBLoad, BodyBShare, ContactProblem, NormalControl, SolveReport, SolverSettings, TangentialControl,
+    Workspace,
 };
 use crate::error::Error;
 use crate::grid::ContactGrid;
@@ -135,10 +135,7 @@ fn solve_on(
     let models = scene.body_models()?;
     let built = t.elapsed().as_secs_f64();
     // The strain operator serves only the outputs: the final grid's is added by `finished`.
-    let mut problem = scene.contact_problem_without_strain(&models);
-    if !may_be_final {
-        problem.body_b = None;
-    }
+    let problem = scene.contact_problem_without_strain(&models, may_be_final);
     let condense_s = condensation_share(&models, built);
     timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
     timings.condense_s += condense_s;
@@ -232,7 +229,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
     let mut steps: Vec<AdaptationStep> = Vec::new();
     let mut scene = scene.clone();
     for bisections in 0..=body_mesh::MAX_BODY_MESH_BISECTIONS {
-        let (met, scales) = match refine(&scene, estimator, &mut timings, &mut steps, &mut ws)? {
+        let (mut met, scales) = match refine(&scene, estimator, &mut timings, &mut steps, &mut ws)? {
             Refined::Met(met, scales) => (met, scales),
             Refined::Ended(s, reached) => {
                 let mut best = finished(s, &scene, timings, Some((tolerance, steps)));
@@ -242,6 +239,9 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
                 return Ok(best);
             }
         };
+        // The result's slip blocks wait for its outputs (`finished` makes them again): two
+        // m × m blocks fewer beside the check's bodies (the braking bore's: 31 MB).
+        met.problem.drop_slip_blocks();
         let warm = (&met.problem.grid, &met.state);
         let first = bisections == 0;
         // The check solves on a coarser grid than the final one: the final grid's Newton matrix
@@ -463,19 +463,30 @@ impl HertzScales {
 /// (the bodies themselves) on its grid, for their notices, validity and summary.
 fn finished(mut s: Solve, bodies: &Scene, mut timings: Timings, passes: Option<(f64, Vec<AdaptationStep>)>) -> Adapted {
     let t = Instant::now();
+    s.problem.restore_slip_blocks();
     if s.from_stand_ins {
         s.scene = bodies.on_grid(s.problem.grid.clone());
     }
-    s.problem.strain = ContactProblem::strain_of(
+    // The outputs need the strain of the result's tractions only (`ContactSolution::from_state`).
+    s.problem.strain = ContactProblem::strain_under(
         &s.problem.grid,
-        s.models[0].model(),
-        s.models[1].model(),
+        [s.models[0].model(), s.models[1].model()],
         &s.problem.frame,
+        &s.state.pressure,
+        &s.state.shear,
     );
-    // An error-controlled run's solves drop it (`solve_on`): it is made once, for the result.
+    // An error-controlled run's solves drop it (`solve_on`): the result's outputs need only
+    // its displacements under the result's tractions (those of `ContactSolution::from_state`,
+    // pressure ≥ 0), not its four m × m blocks.
     if s.problem.body_b.is_none() {
-        let body_b = s.models[1].model().flexibility(&s.problem.grid, Side::B);
-        s.problem.body_b = Some(s.problem.frame.flexibility(body_b, Side::B));
+        let pressure: Vec<f64> = s.state.pressure.iter().map(|p| p.max(0.0)).collect();
+        s.problem.body_b = Some(BodyBShare::Under(BodyBLoad::of(
+            s.models[1].model(),
+            &s.problem.grid,
+            &s.problem.frame,
+            &pressure,
+            &s.state.shear,
+        )));
     }
     timings.assembly_s += t.elapsed().as_secs_f64();
     timings.total_s = timings.assembly_s + timings.condense_s + timings.solve_s;

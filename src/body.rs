@@ -164,6 +164,14 @@ pub trait BodyModel {
     /// has one.
     fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator>;
 
+    /// The surface strain ∂w/∂x [-] at the grid's nodes under the k loads (p, q) (m × k
+    /// each, global axes as [`Self::displacements`]): the strain operator's product (the
+    /// default); closed-form models integrate it without making the operator's m × m blocks.
+    fn strain_at(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Option<Mat<f64>> {
+        let op = self.strain_operator(grid, side)?;
+        Some(&op.p * p + &op.q * q)
+    }
+
     /// Wall time [s] the model spent (assembling, condensing) when it was built; zero for
     /// closed-form models.
     fn stage_seconds(&self) -> (f64, f64) {
@@ -330,6 +338,10 @@ impl BodyModel for WithCircularProfile {
 
     fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
         self.inner.strain_operator(grid, side)
+    }
+
+    fn strain_at(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Option<Mat<f64>> {
+        self.inner.strain_at(grid, side, p, q)
     }
 
     fn stage_seconds(&self) -> (f64, f64) {

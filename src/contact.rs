@@ -98,7 +98,7 @@ pub struct ContactProblem {
     /// grids of an error-controlled run, which are solved but not written: src/adapt.rs drops
     /// it on every grid whose solution cannot be the result (four m × m blocks fewer held while
     /// the next grid is solved) and restores it on one that ends a run unexpectedly.
-    pub body_b: Option<Flexibility>,
+    pub body_b: Option<BodyBShare>,
     /// Slip operator: B_p = σ D W_p, B_q = σ D W_q (paper Eq. 20) [1/stress].
     pub bp: Mat<f64>,
     /// See `bp`.
@@ -116,7 +116,7 @@ pub struct ContactProblem {
     /// Tangential control.
     pub tangential: TangentialControl,
     /// Combined boundary-integral strain operator ∂w/∂x, when both models have one.
-    pub strain: Option<StrainOperator>,
+    pub strain: Option<StrainShare>,
     /// The contact's directions at the nodes, in which `flex`, `body_b` and `strain` are
     /// written ([`frame`]).
     pub frame: ContactFrame,
@@ -132,7 +132,7 @@ impl ContactProblem {
         body_a: &dyn BodyModel,
         body_b: &dyn BodyModel,
         frame: &ContactFrame,
-    ) -> Option<StrainOperator> {
+    ) -> Option<StrainShare> {
         // On a grid whose elements share end nodes the principal value of the strain kernel at a
         // shared node is the sum of two element integrals that diverge separately (only their
         // sum is finite), so the boundary-integral slip is not evaluated there.
@@ -145,7 +145,38 @@ impl ContactProblem {
         let b = frame.strain(body_b.strain_operator(grid, Side::B)?, Side::B);
         sum.p += &b.p;
         sum.q += &b.q;
-        Some(sum)
+        Some(StrainShare::Operator(sum))
+    }
+
+    /// [`Self::strain_of`] under the tractions (`pressure`, `shear`) alone, each body's
+    /// [`BodyModel::strain_at`] under its loads in global axes ([`ContactFrame::global_loads`],
+    /// the column transformation of [`ContactFrame::strain`]): an error-controlled run's result
+    /// (src/adapt.rs), whose outputs need the strain of its solution only.
+    pub fn strain_under(
+        grid: &ContactGrid,
+        bodies: [&dyn BodyModel; 2],
+        frame: &ContactFrame,
+        pressure: &[f64],
+        shear: &[f64],
+    ) -> Option<StrainShare> {
+        if grid.kind.shares_nodes() {
+            return None;
+        }
+        let m = grid.n_nodes();
+        let column = |v: &[f64]| Mat::from_fn(m, 1, |i, _| v[i]);
+        let mut strain = vec![0.0; m];
+        for (body, side) in bodies.into_iter().zip([Side::A, Side::B]) {
+            let (pg, qg) = frame.global_loads(side, pressure, shear);
+            let s = body.strain_at(grid, side, column(&pg).as_ref(), column(&qg).as_ref())?;
+            for (i, v) in strain.iter_mut().enumerate() {
+                *v += s[(i, 0)];
+            }
+        }
+        Some(StrainShare::Under {
+            pressure: pressure.to_vec(),
+            shear: shear.to_vec(),
+            strain,
+        })
     }
 
     /// Assembles the problem from the two body models on a grid, in the contact `frame` at
@@ -164,6 +195,7 @@ impl ContactProblem {
         normal: NormalControl,
         tangential: TangentialControl,
         frame: ContactFrame,
+        keep_body_b: bool,
     ) -> Self {
         assert_eq!(frame.normal_angle.len(), grid.n_nodes(), "one frame direction per node");
         // The pair's flexibility is summed where A's lies.
@@ -173,6 +205,15 @@ impl ContactProblem {
         flex.hq += &fb.hq;
         flex.wp += &fb.wp;
         flex.wq += &fb.wq;
+        // Dropped before the slip operator's blocks are made when not kept: the assembly's peak
+        // is then eight m × m blocks, not ten (the braking bore's last pass: 31 MB).
+        let kept_b = match keep_body_b {
+            true => Some(BodyBShare::Flexibility(fb)),
+            false => {
+                drop(fb);
+                None
+            }
+        };
         let h0 = grid
             .nodes
             .iter()
@@ -191,7 +232,7 @@ impl ContactProblem {
         Self {
             grid,
             flex,
-            body_b: Some(fb),
+            body_b: kept_b,
             bp,
             bq,
             slip_operator,
@@ -255,6 +296,23 @@ impl ContactProblem {
         result
     }
 
+    /// Drops the slip operator's blocks B_p, B_q (two m × m blocks) while a solved problem
+    /// waits for its outputs (src/adapt.rs: during the check of the bodies' meshes, which
+    /// solves other problems); [`Self::restore_slip_blocks`] makes them again from W.
+    pub fn drop_slip_blocks(&mut self) {
+        self.bp = Mat::zeros(0, 0);
+        self.bq = Mat::zeros(0, 0);
+    }
+
+    /// B_p = σ D W_p and B_q = σ D W_q made again after [`Self::drop_slip_blocks`] (nothing
+    /// to do when they are there).
+    pub fn restore_slip_blocks(&mut self) {
+        if self.bp.nrows() != self.n_nodes() {
+            self.bp = self.slip_operator.apply_scaled(&self.flex.wp, self.flow_sign);
+            self.bq = self.slip_operator.apply_scaled(&self.flex.wq, self.flow_sign);
+        }
+    }
+
     /// Number of contact nodes m.
     pub fn n_nodes(&self) -> usize {
         self.grid.n_nodes()
@@ -315,10 +373,25 @@ impl ContactProblem {
     }
 
     /// Slip from the boundary-integral strain operator, s = σ(ξ + k + ∂w/∂x), if available.
+    ///
+    /// Panics on a strain kept for other tractions than `p`, `q` ([`StrainShare::Under`]).
     pub fn slip_from_strain(&self, p: &[f64], q: &[f64], creep: f64) -> Option<Vec<f64>> {
-        self.strain.as_ref().map(|op| {
-            mat_vec2(&op.p, p, &op.q, q)
-                .into_iter()
+        self.strain.as_ref().map(|share| {
+            let dw = match share {
+                StrainShare::Operator(op) => mat_vec2(&op.p, p, &op.q, q),
+                StrainShare::Under {
+                    pressure,
+                    shear,
+                    strain,
+                } => {
+                    assert!(
+                        pressure == p && shear == q,
+                        "the surface strain was kept for the final tractions, not these"
+                    );
+                    strain.clone()
+                }
+            };
+            dw.into_iter()
                 .zip(&self.frame.rigid_slip)
                 .map(|(dw, k)| self.flow_sign * (creep + k + dw))
                 .collect()
@@ -344,14 +417,22 @@ impl ContactProblem {
     /// their logarithmic datum).
     ///
     /// Panics on a problem whose `body_b` was dropped (an intermediate grid of src/adapt.rs,
-    /// which never reaches the outputs).
+    /// which never reaches the outputs), or kept for other tractions than `p`, `q`.
     pub fn surface_displacements(&self, p: &[f64], q: &[f64]) -> SurfaceDisplacements {
-        let body_b = self
+        let (normal_b, tangential_b) = match self
             .body_b
             .as_ref()
-            .expect("the final grid's problem keeps body B's flexibility");
-        let normal_b = body_b.normal(p, q);
-        let tangential_b = body_b.tangential(p, q);
+            .expect("the final grid's problem keeps body B's share")
+        {
+            BodyBShare::Flexibility(f) => (f.normal(p, q), f.tangential(p, q)),
+            BodyBShare::Under(load) => {
+                assert!(
+                    load.pressure == p && load.shear == q,
+                    "body B's displacements were kept for the final tractions, not these"
+                );
+                (load.normal.clone(), load.tangential.clone())
+            }
+        };
         let less = |total: Vec<f64>, of_b: &[f64]| total.iter().zip(of_b).map(|(t, v)| t - v).collect();
         SurfaceDisplacements {
             normal_a: less(self.compression(p, q), &normal_b),
@@ -359,6 +440,69 @@ impl ContactProblem {
             normal_b,
             // w_B = −u_xB in the pair convention.
             tangential_b: tangential_b.into_iter().map(|v| -v).collect(),
+        }
+    }
+}
+
+/// The pair's surface-strain operator ∂w/∂x, for the boundary-integral check of the slip.
+#[derive(Debug, Clone)]
+pub enum StrainShare {
+    /// The operator's blocks in the contact frame ([`ContactProblem::strain_of`]).
+    Operator(StrainOperator),
+    /// Its product with one set of tractions only, the result's
+    /// ([`ContactProblem::strain_under`]).
+    Under {
+        /// p at the nodes [stress].
+        pressure: Vec<f64>,
+        /// q at the nodes [stress].
+        shear: Vec<f64>,
+        /// ∂w/∂x of the pair at the nodes [-].
+        strain: Vec<f64>,
+    },
+}
+
+/// Body B's share of the pair's flexibility, for the bodies' own surface displacements.
+#[derive(Debug, Clone)]
+pub enum BodyBShare {
+    /// Its flexibility in the contact frame (a grid's assembly makes it anyway).
+    Flexibility(Flexibility),
+    /// Its displacements under one set of tractions only, the result's (an error-controlled
+    /// run's final grid, src/adapt.rs: four m × m blocks fewer than the flexibility).
+    Under(BodyBLoad),
+}
+
+/// Body B's displacements in the contact frame under the nodal tractions `pressure`, `shear`
+/// (pair convention, as [`Flexibility::normal`] and [`Flexibility::tangential`] give them).
+#[derive(Debug, Clone)]
+pub struct BodyBLoad {
+    /// p at the nodes [stress].
+    pub pressure: Vec<f64>,
+    /// q at the nodes [stress].
+    pub shear: Vec<f64>,
+    /// h_B = (H_p p + H_q q)_B [length].
+    pub normal: Vec<f64>,
+    /// w_B = (W_p p + W_q q)_B [length].
+    pub tangential: Vec<f64>,
+}
+
+impl BodyBLoad {
+    /// Body B's displacements under (`pressure`, `shear`) from its model `body`, turned into
+    /// `frame` as [`ContactFrame::flexibility`] turns its blocks: the load into global axes
+    /// per column ([`ContactFrame::global_loads`]), h' = h − tan ψ_i w per row.
+    pub fn of(body: &dyn BodyModel, grid: &ContactGrid, frame: &ContactFrame, pressure: &[f64], shear: &[f64]) -> Self {
+        let m = grid.n_nodes();
+        let (pg, qg) = frame.global_loads(Side::B, pressure, shear);
+        let column = |v: &[f64]| Mat::from_fn(m, 1, |i, _| v[i]);
+        let [h, w] = body.displacements(grid, Side::B, column(&pg).as_ref(), column(&qg).as_ref());
+        let tangential: Vec<f64> = (0..m).map(|i| w[(i, 0)]).collect();
+        let normal = (0..m)
+            .map(|i| h[(i, 0)] - frame.normal_angle[i].tan() * tangential[i])
+            .collect();
+        Self {
+            pressure: pressure.to_vec(),
+            shear: shear.to_vec(),
+            normal,
+            tangential,
         }
     }
 }

@@ -383,19 +383,21 @@ impl Scene {
 
     /// Assembles the contact problem of the scene from its body models.
     pub fn contact_problem(&self, models: &BodyModels) -> ContactProblem {
-        let mut pb = self.contact_problem_without_strain(models);
+        let mut pb = self.contact_problem_without_strain(models, true);
         pb.strain = ContactProblem::strain_of(&pb.grid, models[0].model(), models[1].model(), &pb.frame);
         pb
     }
 
     /// [`Self::contact_problem`] without the strain operator (an error-controlled run's
-    /// intermediate grids; [`ContactProblem::strain_of`] adds it).
-    pub fn contact_problem_without_strain(&self, models: &BodyModels) -> ContactProblem {
-        self.contact_problem_of(models[0].model(), models[1].model())
+    /// intermediate grids; [`ContactProblem::strain_of`] adds it), and with body B's own
+    /// flexibility only when `keep_body_b` (the outputs' surface displacements need it; a grid
+    /// that cannot be the result does not).
+    pub fn contact_problem_without_strain(&self, models: &BodyModels, keep_body_b: bool) -> ContactProblem {
+        self.contact_problem_of(models[0].model(), models[1].model(), keep_body_b)
     }
 
     /// [`Self::contact_problem_without_strain`] of any two body models (A's, B's).
-    pub fn contact_problem_of(&self, a: &dyn BodyModel, b: &dyn BodyModel) -> ContactProblem {
+    pub fn contact_problem_of(&self, a: &dyn BodyModel, b: &dyn BodyModel, keep_body_b: bool) -> ContactProblem {
         let c = &self.case.case.contact;
         log::info!(
             target: crate::logging::PROGRESS,
@@ -412,6 +414,7 @@ impl Scene {
             self.normal,
             self.tangential,
             self.frame.clone(),
+            keep_body_b,
         )
     }
 

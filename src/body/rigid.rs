@@ -35,6 +35,16 @@ impl BodyModel for Rigid {
             q: faer::Mat::zeros(m, m),
         })
     }
+
+    fn strain_at(
+        &self,
+        grid: &ContactGrid,
+        _side: Side,
+        p: faer::MatRef<'_, f64>,
+        _q: faer::MatRef<'_, f64>,
+    ) -> Option<faer::Mat<f64>> {
+        Some(faer::Mat::zeros(grid.n_nodes(), p.ncols()))
+    }
 }
 
 /// A rigid body has neither a boundary solution nor interior fields.

@@ -250,6 +250,18 @@ impl BodyModel for Transferred {
         transfer_strain(&own, &self.own_grid, grid).ok()
     }
 
+    /// The loads carried to the body's own nodes (T), its strain there carried back (D), as
+    /// [`transfer_strain`] carries the operator.
+    fn strain_at(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Option<Mat<f64>> {
+        if grid.coincides_with(&self.own_grid) {
+            return self.inner.strain_at(&self.own_grid, side, p, q);
+        }
+        let (d, t) = operators(&self.own_grid, grid).ok()?;
+        let (p, q) = (t.columns_times(p), t.columns_times(q));
+        let own = self.inner.strain_at(&self.own_grid, side, p.as_ref(), q.as_ref())?;
+        Some(d.columns_times(own.as_ref()))
+    }
+
     fn stage_seconds(&self) -> (f64, f64) {
         self.inner.stage_seconds()
     }

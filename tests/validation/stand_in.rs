@@ -492,3 +492,48 @@ fn the_runs_estimate_bounds_the_stand_ins_error_on_rollers_and_a_bore() {
         }
     }
 }
+
+/// The result's outputs take body B's displacements and the pair's surface strain under the
+/// final tractions alone, integrated without their m × m blocks (the stand-in's half-plane row
+/// by row, its remainder in factors: `BodyModel::displacements`, `BodyModel::strain_at`,
+/// `BodyBLoad::of`, `ContactProblem::strain_under`). They are the products of the blocks the
+/// contact problem assembles, to rounding (1e-12 of the largest value): on carter_051_true
+/// (straight grid, global frame) and on bore_a020_tractive (curved grid, a frame turning by up
+/// to 0.2 rad), on a graded grid, under the solution's tractions.
+#[test]
+fn the_results_displacements_and_strain_without_the_blocks_are_their_products() {
+    use rollbem::contact::{BodyBLoad, BodyBShare, ContactProblem, StrainShare};
+    for case in ["carter_051_true", "bore_a020_tractive"] {
+        let (_, _, start, stand_ins) = stand_ins_of(case);
+        let grid = start.bisected().bisected().grid();
+        let on = stand_ins.passes.on_grid(grid.clone());
+        let (models, problem) = on.assemble().expect("assembles");
+        let (state, report) = methods::solve(&problem, &on.solver);
+        assert!(report.converged, "{case}: solves");
+        let (p, q) = (&state.pressure, &state.shear);
+        let close = |got: &[f64], want: &[f64], what: &str| {
+            let scale = want.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            let diff = got.iter().zip(want).fold(0.0f64, |a, (g, w)| a.max((g - w).abs()));
+            assert!(
+                scale > 0.0 && diff <= 1e-12 * scale,
+                "{case} {what}: {diff:.2e} of {scale:.2e}"
+            );
+        };
+        let Some(BodyBShare::Flexibility(fb)) = &problem.body_b else {
+            panic!("{case}: the assembled problem keeps body B's flexibility")
+        };
+        let under = BodyBLoad::of(models[1].model(), &grid, &problem.frame, p, q);
+        close(&under.normal, &fb.normal(p, q), "h_B");
+        close(&under.tangential, &fb.tangential(p, q), "w_B");
+        let bodies = [models[0].model(), models[1].model()];
+        let Some(StrainShare::Operator(op)) = ContactProblem::strain_of(&grid, bodies[0], bodies[1], &problem.frame)
+        else {
+            panic!("{case}: a strain operator")
+        };
+        let Some(StrainShare::Under { strain, .. }) = ContactProblem::strain_under(&grid, bodies, &problem.frame, p, q)
+        else {
+            panic!("{case}: a strain under the tractions")
+        };
+        close(&strain, &rollbem::linalg::mat_vec2(&op.p, p, &op.q, q), "strain");
+    }
+}

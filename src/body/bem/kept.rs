@@ -78,6 +78,10 @@ impl BodyModel for Kept {
         self.0.strain_operator(grid, side)
     }
 
+    fn strain_at(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Option<Mat<f64>> {
+        self.0.strain_at(grid, side, p, q)
+    }
+
     /// The body's own times in the build that condensed it (the flag), zero in a later
     /// build: that build counted them.
     fn stage_seconds(&self) -> (f64, f64) {

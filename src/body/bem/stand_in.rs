@@ -61,7 +61,7 @@ use crate::body::{
 };
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
-use faer::Mat;
+use faer::{Mat, MatRef};
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, OnceLock};
@@ -419,6 +419,18 @@ struct StandInBody {
     side: Side,
 }
 
+impl StandInBody {
+    /// The nodal loads `v` per unit x made per unit arc: divided by cos θ_j, θ the surface's
+    /// slope at node j (the column scaling of [`arc_half_plane`], applied to the load).
+    fn per_arc(&self, grid: &ContactGrid, side: Side, v: MatRef<'_, f64>) -> Mat<f64> {
+        let inner = &self.setup.inner;
+        Mat::from_fn(v.nrows(), v.ncols(), |j, c| {
+            let slope = inner.surface_at(grid.nodes[j], side).map_or(0.0, |s| s.slope_angle);
+            v[(j, c)] / slope.cos()
+        })
+    }
+}
+
 impl BodyModel for StandInBody {
     fn model_name(&self) -> &'static str {
         "bem"
@@ -434,6 +446,16 @@ impl BodyModel for StandInBody {
         f
     }
 
+    /// [`Self::flexibility`]'s product without its blocks: the half-plane's applied to the
+    /// loads per unit arc (on a curved grid carried as [`arc_half_plane`] carries its blocks),
+    /// the remainder's in factors.
+    fn displacements(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> [Mat<f64>; 2] {
+        let (pa, qa) = (self.per_arc(grid, side, p), self.per_arc(grid, side, q));
+        let [h, w] = self.flat.model().displacements(grid, side, pa.as_ref(), qa.as_ref());
+        let [rh, rw] = self.remainder().times(grid, p, q);
+        [h + rh, w + rw]
+    }
+
     fn profile(&self, x: f64) -> f64 {
         self.setup.profile(x, self.side)
     }
@@ -447,6 +469,13 @@ impl BodyModel for StandInBody {
         scale_columns([&mut s.p, &mut s.q], grid, &slope);
         self.remainder().add_w_derivatives_to(grid, [&mut s.p, &mut s.q]);
         Some(s)
+    }
+
+    /// [`Self::strain_operator`]'s product without its blocks (as [`Self::displacements`]).
+    fn strain_at(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Option<Mat<f64>> {
+        let (pa, qa) = (self.per_arc(grid, side, p), self.per_arc(grid, side, q));
+        let flat = self.flat.model().strain_at(grid, side, pa.as_ref(), qa.as_ref())?;
+        Some(flat + self.remainder().w_derivatives_times(grid, p, q))
     }
 }
 

@@ -5,7 +5,7 @@
 
 use crate::body::LowRankFlexibility;
 use crate::grid::ContactGrid;
-use faer::Mat;
+use faer::{Mat, MatRef};
 use nalgebra::DMatrix;
 
 /// The Chebyshev polynomials T_0..T_d at `x`, mapped from [lo, hi] to [−1, 1] (one row each).
@@ -118,6 +118,34 @@ impl SmoothRemainder {
         for (c, target) in self.coefficients.iter().zip(targets) {
             add_weighted_product(&(&t * c), &t, &grid.weights, target);
         }
+    }
+
+    /// The four blocks of [`Self::add_to`] applied to the loads `p`, `q` (m × k each) on
+    /// `grid`, in factors (no m × m block made): [h, w] = [R_hp p + R_hq q, R_wp p + R_wq q],
+    /// each block T C Tᵀ diag(w) [length].
+    pub fn times(&self, grid: &ContactGrid, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> [Mat<f64>; 2] {
+        let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
+        let (m, k) = (grid.n_nodes(), p.ncols());
+        let projected = |v: MatRef<'_, f64>| t.transpose() * DMatrix::from_fn(m, k, |j, c| grid.weights[j] * v[(j, c)]);
+        let (tp, tq) = (projected(p), projected(q));
+        let c = &self.coefficients;
+        let block_pair = |a: usize, b: usize| {
+            let y = &t * (&c[a] * &tp + &c[b] * &tq);
+            Mat::from_fn(m, k, |i, l| y[(i, l)])
+        };
+        [block_pair(0, 1), block_pair(2, 3)]
+    }
+
+    /// The two blocks of [`Self::add_w_derivatives_to`] applied to the loads `p`, `q` (m × k
+    /// each) on `grid`, in factors: ∂R_wp/∂x p + ∂R_wq/∂x q [-].
+    pub fn w_derivatives_times(&self, grid: &ContactGrid, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Mat<f64> {
+        let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
+        let dt = chebyshev_derivative_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
+        let (m, k) = (grid.n_nodes(), p.ncols());
+        let projected = |v: MatRef<'_, f64>| t.transpose() * DMatrix::from_fn(m, k, |j, c| grid.weights[j] * v[(j, c)]);
+        let c = &self.coefficients;
+        let y = &dt * (&c[2] * projected(p) + &c[3] * projected(q));
+        Mat::from_fn(m, k, |i, l| y[(i, l)])
     }
 
     /// `other` less this remainder on `grid`, as a low-rank change of the four blocks: left the
