@@ -20,6 +20,7 @@ use rollbem::adapt::body_mesh::{difference, estimate};
 use rollbem::adapt::estimate::{Scales, CREEP_FLOOR};
 use rollbem::app::{self, Solved};
 use rollbem::bem::BoundaryCondition;
+use rollbem::body::setup::ChangedFor;
 use rollbem::body::BodySetup;
 use rollbem::contact::residual::State;
 use rollbem::mesh::build::MeshBuilder;
@@ -175,7 +176,9 @@ pub fn coarse_roller() -> CoarseRoller {
     let reference = meshed(FINER);
     let coarse = {
         let s = scene_with_roller(&[], HALF_CIRCLE_ELEMENTS, SHAFT_ELEMENTS, 1);
-        let body = s.bodies[0].with_free_boundary_coarsened().expect("a bem body coarsens");
+        let body = s.bodies[0]
+            .with_free_boundary_coarsened(ChangedFor::Check)
+            .expect("a bem body coarsens");
         on_run_grid(s, body)
     };
     let est = &run.scene.estimates;

@@ -30,7 +30,11 @@
 //! finer of the grids the BEM's stand-ins are fitted on): the bisection changes a body's
 //! flexibility by a smooth remainder, and the solution's response to it needs the contact's
 //! size and zones resolved, not its square-root points (the coarse roller's estimate of
-//! docs/validation.md moves by under 2 % from the final grid to the check grid).
+//! docs/validation.md moves by under 2 % from the final grid to the check grid). The changed
+//! bodies' element integrals are accurate to
+//! [`crate::body::setup::CHECK_QUADRATURE_TOLERANCE`] (1e-9, against 1e-12): the differences the
+//! check measures matter from a fifth of the tolerance, and the looser rule takes a sixth off
+//! the bisected bodies' assembly, which is most of the check's cost.
 //!
 //! Above the tolerance, the bisected bodies are adopted (src/adapt.rs refines the contact
 //! grid again on them) and estimated in turn, at most [`MAX_BODY_MESH_BISECTIONS`] times; a
@@ -40,6 +44,7 @@
 use super::corrections::GivenBodies;
 use super::estimate::Scales;
 use super::{overlap, solve_on};
+use crate::body::setup::ChangedFor;
 use crate::body::BodySetup;
 use crate::contact::residual::State;
 use crate::contact::Workspace;
@@ -79,14 +84,14 @@ pub(super) struct Checked {
 
 /// The scene with every body that has a mesh of its own bisected outside the contact, None
 /// when no body has one.
-pub(super) fn bisected(scene: &Scene) -> Option<Scene> {
-    with_bodies(scene, |b| b.with_free_boundary_bisected())
+pub(super) fn bisected(scene: &Scene, changed_for: ChangedFor) -> Option<Scene> {
+    with_bodies(scene, |b| b.with_free_boundary_bisected(changed_for))
 }
 
 /// The scene with every body that has a mesh of its own coarsened outside the contact
 /// (elements merged in pairs), None when no body has one.
 pub(super) fn coarsened(scene: &Scene) -> Option<Scene> {
-    with_bodies(scene, |b| b.with_free_boundary_coarsened())
+    with_bodies(scene, |b| b.with_free_boundary_coarsened(ChangedFor::Check))
 }
 
 /// The scene with each body replaced by `change(body)` where that is Some; None when no body
@@ -140,7 +145,9 @@ pub(super) fn check_on(
     timings: &mut Timings,
     ws: &mut Workspace,
 ) -> Result<Option<Checked>, Error> {
-    let Some(fine_scene) = bisected(scene) else {
+    // Solved with integrals to the check's accuracy; the bodies adopted (`Checked::bisected`)
+    // are bisected again with the run's.
+    let Some(fine_scene) = bisected(scene, ChangedFor::Check) else {
         return Ok(None);
     };
     let controlled = overlap::controlled(scene);
@@ -220,7 +227,7 @@ pub(super) fn check_on(
     log_estimate("bisected", &estimate);
     Ok(Some(Checked {
         estimate,
-        bisected: Some(fine_scene),
+        bisected: bisected(scene, ChangedFor::Run),
     }))
 }
 
@@ -411,7 +418,7 @@ mod tests {
             creep_floor: 0.0,
         };
         let state = given.state.clone();
-        for changed in [coarsened(&scene).unwrap(), bisected(&scene).unwrap()] {
+        for changed in [coarsened(&scene).unwrap(), bisected(&scene, ChangedFor::Check).unwrap()] {
             let on = changed.on_grid(grid.clone());
             let mut base = GivenBodies {
                 problem: &mut given.problem,

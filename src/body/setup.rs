@@ -137,6 +137,27 @@ pub trait FlexibilityChange: std::fmt::Debug + Send + Sync {
     fn on_grid(&self, grid: &ContactGrid, side: Side) -> LowRankFlexibility;
 }
 
+/// What a body with its own mesh changed outside the contact
+/// ([`BodySetup::with_free_boundary_bisected`], [`BodySetup::with_free_boundary_coarsened`]) is
+/// built for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ChangedFor {
+    /// Solved once by the check of the body mesh's error, which compares its solution with the
+    /// body's as given: its element integrals to [`CHECK_QUADRATURE_TOLERANCE`], nothing of it
+    /// kept.
+    Check,
+    /// The run's body from then on (the check's bisection adopted): integrals as the body's own.
+    Run,
+}
+
+/// Relative accuracy of the element integrals of a body changed for the check of the body
+/// mesh's error ([`ChangedFor::Check`]), against 1e-12 for the run's own bodies. The check
+/// measures differences of its solution from the given bodies' that matter from a fifth of the
+/// tolerance (2e-7 at the tightest tolerance, 1e-6): integrals to 1e-9 move them by about that
+/// relative, and the estimates of both bores of cases/ at 1e-3 are the same to three digits
+/// while their bisected bodies' assembly takes a sixth less (docs/performance.md).
+pub const CHECK_QUADRATURE_TOLERANCE: f64 = 1e-9;
+
 /// One body of a scene, ready to build its model on a contact grid (module docs).
 pub trait BodySetup: std::fmt::Debug + Send + Sync {
     /// The model's name in outputs (`half_space`, `rigid`, `bem`, …).
@@ -234,7 +255,7 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
     /// error control solves the final grid with once more to estimate the body mesh's error
     /// (docs/theory.md, "Error-controlled grids"). None for a body without a mesh of its own
     /// (closed-form models: half-space, rigid, viscoelastic).
-    fn with_free_boundary_bisected(&self) -> Option<Arc<dyn BodySetup>> {
+    fn with_free_boundary_bisected(&self, _for: ChangedFor) -> Option<Arc<dyn BodySetup>> {
         None
     }
 
@@ -242,7 +263,7 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
     /// pairs, its contact elements unchanged: the cheaper comparison the error control tries
     /// first to bound the body mesh's error (docs/theory.md, "Error-controlled grids"). None
     /// for a body without a mesh of its own, or without two neighbouring elements to merge.
-    fn with_free_boundary_coarsened(&self) -> Option<Arc<dyn BodySetup>> {
+    fn with_free_boundary_coarsened(&self, _for: ChangedFor) -> Option<Arc<dyn BodySetup>> {
         None
     }
 

@@ -12,6 +12,7 @@ use crate::body_mesh_report::{
 use crate::common::solve;
 use rollbem::adapt::body_mesh::COARSENED_MARGIN;
 use rollbem::app;
+use rollbem::body::setup::ChangedFor;
 use rollbem::error::Error;
 use rollbem::post::adaptation::{BodyMeshComparison, BodyMeshError};
 
@@ -102,7 +103,7 @@ fn a_body_mesh_above_the_tolerance_is_bisected_until_it_meets_it() {
     let start = scene_with_roller(&[], HALF_CIRCLE_ELEMENTS, SHAFT_ELEMENTS, 1);
     let given = outside(start.bodies[0].as_ref());
     assert!(given >= 2 * HALF_CIRCLE_ELEMENTS + SHAFT_ELEMENTS);
-    let bisected = start.bodies[0].with_free_boundary_bisected().unwrap();
+    let bisected = start.bodies[0].with_free_boundary_bisected(ChangedFor::Run).unwrap();
     assert_eq!(outside(bisected.as_ref()), 2 * given);
     let expected = bisected.follow_grid(&s.problem.grid).unwrap();
     assert_eq!(outside(s.scene.bodies[0].as_ref()), outside(expected.as_ref()));

@@ -6,7 +6,10 @@ use super::kept::{Kept, KeptBody};
 use super::BemBody;
 use crate::bem::reuse::FarFieldCache;
 use crate::bem::{BemModel, BemOptions, BoundaryCondition};
-use crate::body::setup::{BodySetup, BuildContext, BuildError, ContactMesh, PassStandIn, Rolling, SurfaceAt};
+use crate::body::setup::{
+    BodySetup, BuildContext, BuildError, ChangedFor, ContactMesh, PassStandIn, Rolling, SurfaceAt,
+    CHECK_QUADRATURE_TOLERANCE,
+};
 use crate::body::transfer::Transferred;
 use crate::body::{Body, Side, WithCircularProfile};
 use crate::grid::ContactGrid;
@@ -59,9 +62,13 @@ pub struct BemSetup {
     /// every setup that follows a grid from this one).
     pub kept: KeptBody,
     /// Whether [`BodySetup::build`] keeps its condensation in `kept`: set on the body bisected
-    /// outside the contact, whose check builds it on the finest grid its stand-in would be
-    /// fitted on, should the run adopt it (src/adapt/body_mesh.rs).
+    /// outside the contact for the run ([`ChangedFor::Run`]: the error control adopted it,
+    /// src/adapt/body_mesh.rs), whose first build on the finest grid its stand-in is fitted on
+    /// serves the next check of its mesh as its given body.
     pub keep_builds: bool,
+    /// Relative accuracy of the element integrals (1e-12; a body changed for the check of the
+    /// body mesh's error, [`ChangedFor::Check`], looser).
+    pub quadrature_tolerance: f64,
     /// What [`BodySetup::surface_at`] reads of `mesh`'s contact group, computed with the mesh
     /// (every constructor here sets it from the mesh it sets).
     pub shape: ContactShape,
@@ -116,6 +123,7 @@ impl BemSetup {
             contact_circle,
             kept: Default::default(),
             keep_builds: false,
+            quadrature_tolerance: BemOptions::default().quadrature_tolerance,
         }
     }
 
@@ -125,7 +133,7 @@ impl BemSetup {
             self.mesh.mesh.clone(),
             self.material,
             self.conditions.clone(),
-            BemOptions::default(),
+            self.options(),
         )?)
     }
 
@@ -144,7 +152,7 @@ impl BemSetup {
                 mesh.mesh.clone(),
                 self.material,
                 self.conditions.clone(),
-                BemOptions::default(),
+                self.options(),
             )
             .ok()
         };
@@ -236,7 +244,7 @@ impl BemSetup {
     /// ([`crate::mesh::bisect`]). Its far field differs from the start mesh's, so the bisected
     /// body is assembled afresh: no start mesh, a cache of its own, built only if the body is
     /// condensed again (adopted by the error control, [`FarFieldCache::from_second_use`]).
-    pub(super) fn free_boundary_bisected(&self) -> BemSetup {
+    pub(super) fn free_boundary_bisected(&self, changed_for: ChangedFor) -> BemSetup {
         let mesh = LoadedMesh {
             mesh: bisect_outside_group(&self.mesh.mesh, self.mesh.contact_group),
             ..self.mesh.clone()
@@ -247,7 +255,8 @@ impl BemSetup {
             start_mesh: None,
             far_field: FarFieldCache::from_second_use(),
             kept: Default::default(),
-            keep_builds: true,
+            keep_builds: changed_for == ChangedFor::Run,
+            quadrature_tolerance: self.quadrature_tolerance_for(changed_for),
             ..self.clone()
         }
     }
@@ -255,7 +264,7 @@ impl BemSetup {
     /// The mesh with its elements outside the contact group merged in pairs
     /// ([`crate::mesh::coarsen`]), None when there are none to merge. Assembled afresh, as
     /// [`Self::free_boundary_bisected`], and nothing of it kept: it is solved once.
-    pub(super) fn free_boundary_coarsened(&self) -> Option<BemSetup> {
+    pub(super) fn free_boundary_coarsened(&self, changed_for: ChangedFor) -> Option<BemSetup> {
         let mesh = LoadedMesh {
             mesh: coarsen_outside_group(&self.mesh.mesh, self.mesh.contact_group)?,
             ..self.mesh.clone()
@@ -267,8 +276,25 @@ impl BemSetup {
             far_field: FarFieldCache::from_second_use(),
             kept: Default::default(),
             keep_builds: false,
+            quadrature_tolerance: self.quadrature_tolerance_for(changed_for),
             ..self.clone()
         })
+    }
+
+    /// The element integrals' accuracy of this body changed for `changed_for`.
+    fn quadrature_tolerance_for(&self, changed_for: ChangedFor) -> f64 {
+        match changed_for {
+            ChangedFor::Check => CHECK_QUADRATURE_TOLERANCE,
+            ChangedFor::Run => self.quadrature_tolerance,
+        }
+    }
+
+    /// The BEM options of the body: the defaults with its integrals' accuracy.
+    fn options(&self) -> BemOptions {
+        BemOptions {
+            quadrature_tolerance: self.quadrature_tolerance,
+            ..BemOptions::default()
+        }
     }
 
     /// The setup whose mesh is the start mesh cut along `grid` ([`BodySetup::follow_grid`]).
@@ -428,14 +454,14 @@ impl BodySetup for BemSetup {
     /// ([`crate::mesh::bisect`]). Its far field differs from the start mesh's, so the bisected
     /// body is assembled afresh: no start mesh, a cache of its own, built only if the body is
     /// condensed again (adopted by the error control, [`FarFieldCache::from_second_use`]).
-    fn with_free_boundary_bisected(&self) -> Option<Arc<dyn BodySetup>> {
-        Some(Arc::new(self.free_boundary_bisected()))
+    fn with_free_boundary_bisected(&self, changed_for: ChangedFor) -> Option<Arc<dyn BodySetup>> {
+        Some(Arc::new(self.free_boundary_bisected(changed_for)))
     }
 
     /// The mesh with its elements outside the contact group merged in pairs
     /// ([`crate::mesh::coarsen`]).
-    fn with_free_boundary_coarsened(&self) -> Option<Arc<dyn BodySetup>> {
-        self.free_boundary_coarsened()
+    fn with_free_boundary_coarsened(&self, changed_for: ChangedFor) -> Option<Arc<dyn BodySetup>> {
+        self.free_boundary_coarsened(changed_for)
             .map(|s| Arc::new(s) as Arc<dyn BodySetup>)
     }
 
@@ -568,8 +594,10 @@ mod tests {
         let grid = DyadicGrid::new(&setup.mesh.contact_grid()).bisected().grid();
         let changed = [
             setup.followed(&grid),
-            setup.free_boundary_bisected(),
-            setup.free_boundary_coarsened().expect("the roller coarsens"),
+            setup.free_boundary_bisected(ChangedFor::Run),
+            setup
+                .free_boundary_coarsened(ChangedFor::Check)
+                .expect("the roller coarsens"),
         ];
         for s in std::iter::once(&setup).chain(&changed) {
             let mesh = &s.mesh;
