@@ -386,6 +386,9 @@ pub struct HalfSpace {
     /// The pair's shared influence matrices, when the body was built as one of a pair
     /// ([`PairInfluence`]); None computes them alone.
     pub pair: Option<Arc<PairInfluence>>,
+    /// The family its matrices are shared as ([`Family::HalfPlane`] unless
+    /// [`Self::in_pair_of_stand_ins`]).
+    pub family: Family,
 }
 
 impl HalfSpace {
@@ -395,6 +398,7 @@ impl HalfSpace {
             material,
             radius,
             pair: None,
+            family: Family::HalfPlane,
         }
     }
 
@@ -402,7 +406,22 @@ impl HalfSpace {
     /// `pair` (joined here), or on its own when `pair` is None.
     pub fn in_pair(mut self, pair: Option<&Arc<PairInfluence>>) -> Self {
         self.pair = joined(pair, &[Family::HalfPlane]);
+        self.family = Family::HalfPlane;
         self
+    }
+
+    /// [`Self::in_pair`] as a BEM body's stand-in, sharing its matrices with the other body's
+    /// stand-in only ([`Family::StandInHalfPlane`]).
+    pub fn in_pair_of_stand_ins(mut self, pair: Option<&Arc<PairInfluence>>) -> Self {
+        self.pair = joined(pair, &[Family::StandInHalfPlane]);
+        self.family = Family::StandInHalfPlane;
+        self
+    }
+
+    /// The influence matrix of `kernel` on `grid` ([`influence_matrix`]), through the pair's
+    /// store in the body's family.
+    fn kernel_matrix(&self, grid: &ContactGrid, kernel: Kernel) -> Mat<f64> {
+        self.shared_kernel(grid, kernel, || influence_matrix(grid, kernel))
     }
 
     /// Datum length ℓ = 2|R|/e [length] of the logarithmic displacement (see the module docs;
@@ -416,19 +435,43 @@ impl HalfSpace {
     /// a caller that transforms the flexibility (carries it to a curved grid, scales its
     /// columns) transforms these two and makes the W blocks last, at half the work.
     pub fn kernel_blocks(&self, grid: &ContactGrid, side: Side) -> (Mat<f64>, Mat<f64>) {
+        let log = self.kernel_matrix(grid, Kernel::Log);
+        let sgn = self.kernel_matrix(grid, Kernel::Sign);
+        self.blocks_of_kernels(log, sgn, &grid.weights, side)
+    }
+
+    /// The influence matrix of `kernel` on `grid` from the pair's store when the other body
+    /// of the pair made it there, else `compute()`'s (a copy kept for the other body): for
+    /// kernels made otherwise than [`influence_matrix`] makes them (carried to a curved grid).
+    pub fn shared_kernel(&self, grid: &ContactGrid, kernel: Kernel, compute: impl FnOnce() -> Mat<f64>) -> Mat<f64> {
+        let key = InfluenceKey {
+            family: self.family,
+            kernel: kernel as u8,
+        };
+        shared_or_computed(self.pair.as_deref(), key, grid, compute)
+    }
+
+    /// [`Self::kernel_blocks`] from the kernels' influence matrices K_log (`hp`) and K_sgn
+    /// (`hq`), in place: H_p = −B (K_log − w_j ln ℓ), H_q = side·A K_sgn, with `weights` the
+    /// w_j of the grid's columns (a grid's own, or those carried with the kernels).
+    pub fn blocks_of_kernels(
+        &self,
+        mut hp: Mat<f64>,
+        mut hq: Mat<f64>,
+        weights: &[f64],
+        side: Side,
+    ) -> (Mat<f64>, Mat<f64>) {
         let a_coef = self.material.halfplane_sgn_coefficient();
         let b_coef = self.material.halfplane_log_coefficient();
         let sign = side.sign();
         let ln_datum = self.datum_length().ln();
         // ∫ N_j ln(|x−s|/ℓ) ds = ∫ N_j ln|x−s| ds − w_j ln ℓ; the blocks are made in place, since
         // a graded grid's m² matrices are large and each new one costs its page faults.
-        let mut hp = shared_influence_matrix(self.pair.as_deref(), grid, Kernel::Log);
-        for (j, &w) in grid.weights.iter().enumerate() {
+        for (j, &w) in weights.iter().enumerate() {
             for v in hp.col_mut(j).iter_mut() {
                 *v = -b_coef * (*v - w * ln_datum);
             }
         }
-        let mut hq = shared_influence_matrix(self.pair.as_deref(), grid, Kernel::Sign);
         for j in 0..hq.ncols() {
             for h in hq.col_mut(j).iter_mut() {
                 *h *= sign * a_coef;
@@ -463,7 +506,7 @@ impl BodyModel for HalfSpace {
         let a_coef = self.material.halfplane_sgn_coefficient();
         let b_coef = self.material.halfplane_log_coefficient();
         let m = grid.n_nodes();
-        let mut q = shared_influence_matrix(self.pair.as_deref(), grid, Kernel::Cauchy);
+        let mut q = self.kernel_matrix(grid, Kernel::Cauchy);
         for j in 0..m {
             for v in q.col_mut(j).iter_mut() {
                 *v *= -b_coef;

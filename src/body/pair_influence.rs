@@ -24,6 +24,12 @@ use std::sync::{Arc, Mutex};
 pub enum Family {
     /// The elastic half-plane's kernels ln|x − s|, sgn(x − s), 1/(x − s).
     HalfPlane,
+    /// The same kernels as the BEM bodies' pass stand-ins make them (src/body/bem/stand_in.rs):
+    /// on a grid of curved elements carried from the straight grid between the same edges,
+    /// where a half-space body asks for the straight grid's. A family of its own, so that a
+    /// stand-in shares with a stand-in only and keeps no copy a half-space partner would not
+    /// take.
+    StandInHalfPlane,
     /// The kernels aged over the length L = V τc with the material coming from `direction`
     /// (src/body/viscoelastic/aged_kernels.rs), by the bits of (L, direction).
     Aged {

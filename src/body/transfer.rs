@@ -188,6 +188,20 @@ pub fn transfer_strain(
     })
 }
 
+/// The body's node weights carried to the grid's columns, Tᵀw (w the body's weights, T the
+/// traction carry of [`transfer_blocks`]): the weights a column term w_j·c of a body's block
+/// takes when the block is carried, D (1 wᵀ) T = 1 (Tᵀw)ᵀ (D's rows sum to one).
+pub fn carried_weights(body: &ContactGrid, grid: &ContactGrid) -> Result<Vec<f64>, TransferError> {
+    let (_, t) = operators(body, grid)?;
+    let mut carried = vec![0.0; grid.n_nodes()];
+    for (l, row) in t.rows.iter().enumerate() {
+        for &(j, v) in row {
+            carried[j] += body.weights[l] * v;
+        }
+    }
+    Ok(carried)
+}
+
 /// (D, T): displacement body → grid and traction grid → body.
 fn operators(body: &ContactGrid, grid: &ContactGrid) -> Result<(SparseRows, SparseRows), TransferError> {
     let (b0, b1) = (body.edges[0], body.edges[body.n_elements()]);

@@ -52,9 +52,9 @@ mod remainder;
 
 use super::setup::BemSetup;
 use super::BemBody;
-use crate::body::half_space::HalfSpace;
+use crate::body::half_space::{influence_matrix, HalfSpace, Kernel};
 use crate::body::setup::{BodySetup, BuildContext, BuildError, Rolling, SurfaceAt};
-use crate::body::transfer::{transfer_blocks, Transferred};
+use crate::body::transfer::{carried_weights, transfer_blocks, Transferred};
 use crate::body::{
     circle_profile, Body, BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility,
     FlexibilityChange, InteriorQuery, InteriorResult, LowRankFlexibility, Side, StrainOperator,
@@ -103,13 +103,30 @@ fn arc_half_plane(
     side: Side,
     slope: &dyn Fn(f64) -> f64,
 ) -> Result<Flexibility, BuildError> {
-    let [mut hp, mut hq] = if grid.is_straight() {
-        let (hp, hq) = half.kernel_blocks(grid, side);
-        [hp, hq]
+    let (mut hp, mut hq) = if grid.is_straight() {
+        half.kernel_blocks(grid, side)
     } else {
+        // Each kernel carried once per grid and pair (the other body's stand-in takes the
+        // pair's copy), then made into the body's blocks as on a straight grid, the column
+        // term −B w_j ln ℓ with the straight grid's weights carried: the blocks carried, to
+        // rounding, as the matrix-free displacements of `StandInBody` carry them.
         let straight = grid.straightened();
-        let (hp, hq) = half.kernel_blocks(&straight, side);
-        transfer_blocks([&hp, &hq], &straight, grid)?
+        let carried = |kernel: Kernel| -> Result<Mat<f64>, BuildError> {
+            let mut failed = None;
+            let k = half.shared_kernel(grid, kernel, || {
+                let flat = influence_matrix(&straight, kernel);
+                transfer_blocks([&flat], &straight, grid).map_or_else(
+                    |e| {
+                        failed = Some(e);
+                        Mat::zeros(0, 0)
+                    },
+                    |[k]| k,
+                )
+            });
+            failed.map_or(Ok(k), |e| Err(e.into()))
+        };
+        let (log, sgn) = (carried(Kernel::Log)?, carried(Kernel::Sign)?);
+        half.blocks_of_kernels(log, sgn, &carried_weights(&straight, grid)?, side)
     };
     scale_columns([&mut hp, &mut hq], grid, slope);
     Ok(Flexibility::of_half_plane(hp, hq))
@@ -388,7 +405,7 @@ impl BodySetup for BemStandIn {
     }
 
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
-        let half = self.half.clone().in_pair(ctx.pair);
+        let half = self.half.clone().in_pair_of_stand_ins(ctx.pair);
         Ok(Box::new(StandInBody {
             flat: Transferred::flat_model_on(Box::new(half.clone()), ctx.grid, ctx.side)?,
             half,
