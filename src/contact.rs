@@ -162,19 +162,16 @@ impl ContactProblem {
         if grid.kind.shares_nodes() {
             return None;
         }
-        let m = grid.n_nodes();
-        let column = |v: &[f64]| Mat::from_fn(m, 1, |i, _| v[i]);
-        let mut strain = vec![0.0; m];
+        let mut strain = vec![0.0; grid.n_nodes()];
         for (body, side) in bodies.into_iter().zip([Side::A, Side::B]) {
-            let (pg, qg) = frame.global_loads(side, pressure, shear);
-            let s = body.strain_at(grid, side, column(&pg).as_ref(), column(&qg).as_ref())?;
+            let (pg, qg) = frame.global_load_columns(side, pressure, shear);
+            let s = body.strain_at(grid, side, pg.as_ref(), qg.as_ref())?;
             for (i, v) in strain.iter_mut().enumerate() {
                 *v += s[(i, 0)];
             }
         }
         Some(StrainShare::Under {
-            pressure: pressure.to_vec(),
-            shear: shear.to_vec(),
+            tractions: Tractions::of(pressure, shear),
             strain,
         })
     }
@@ -384,15 +381,8 @@ impl ContactProblem {
         self.strain.as_ref().map(|share| {
             let dw = match share {
                 StrainShare::Operator(op) => mat_vec2(&op.p, p, &op.q, q),
-                StrainShare::Under {
-                    pressure,
-                    shear,
-                    strain,
-                } => {
-                    assert!(
-                        pressure == p && shear == q,
-                        "the surface strain was kept for the final tractions, not these"
-                    );
+                StrainShare::Under { tractions, strain } => {
+                    tractions.assert_are(p, q, "the surface strain");
                     strain.clone()
                 }
             };
@@ -431,10 +421,7 @@ impl ContactProblem {
         {
             BodyBShare::Flexibility(f) => (f.normal(p, q), f.tangential(p, q)),
             BodyBShare::Under(load) => {
-                assert!(
-                    load.pressure == p && load.shear == q,
-                    "body B's displacements were kept for the final tractions, not these"
-                );
+                load.tractions.assert_are(p, q, "body B's displacement");
                 (load.normal.clone(), load.tangential.clone())
             }
         };
@@ -457,13 +444,38 @@ pub enum StrainShare {
     /// Its product with one set of tractions only, the result's
     /// ([`ContactProblem::strain_under`]).
     Under {
-        /// p at the nodes [stress].
-        pressure: Vec<f64>,
-        /// q at the nodes [stress].
-        shear: Vec<f64>,
+        /// The tractions it is for.
+        tractions: Tractions,
         /// ∂w/∂x of the pair at the nodes [-].
         strain: Vec<f64>,
     },
+}
+
+/// The nodal tractions a product was kept for ([`StrainShare::Under`], [`BodyBLoad`]).
+#[derive(Debug, Clone)]
+pub struct Tractions {
+    /// p at the nodes [stress].
+    pub pressure: Vec<f64>,
+    /// q at the nodes [stress].
+    pub shear: Vec<f64>,
+}
+
+impl Tractions {
+    fn of(pressure: &[f64], shear: &[f64]) -> Self {
+        Self {
+            pressure: pressure.to_vec(),
+            shear: shear.to_vec(),
+        }
+    }
+
+    /// Panics unless (`p`, `q`) are these tractions: a product kept for the result's
+    /// tractions answers for them only (`what` names it in the message).
+    fn assert_are(&self, p: &[f64], q: &[f64], what: &str) {
+        assert!(
+            self.pressure == p && self.shear == q,
+            "{what} was kept for the final tractions, not these"
+        );
+    }
 }
 
 /// Body B's share of the pair's flexibility, for the bodies' own surface displacements.
@@ -480,10 +492,8 @@ pub enum BodyBShare {
 /// (pair convention, as [`Flexibility::normal`] and [`Flexibility::tangential`] give them).
 #[derive(Debug, Clone)]
 pub struct BodyBLoad {
-    /// p at the nodes [stress].
-    pub pressure: Vec<f64>,
-    /// q at the nodes [stress].
-    pub shear: Vec<f64>,
+    /// The tractions they are for.
+    pub tractions: Tractions,
     /// h_B = (H_p p + H_q q)_B [length].
     pub normal: Vec<f64>,
     /// w_B = (W_p p + W_q q)_B [length].
@@ -495,17 +505,14 @@ impl BodyBLoad {
     /// `frame` as [`ContactFrame::flexibility`] turns its blocks: the load into global axes
     /// per column ([`ContactFrame::global_loads`]), h' = h − tan ψ_i w per row.
     pub fn of(body: &dyn BodyModel, grid: &ContactGrid, frame: &ContactFrame, pressure: &[f64], shear: &[f64]) -> Self {
-        let m = grid.n_nodes();
-        let (pg, qg) = frame.global_loads(Side::B, pressure, shear);
-        let column = |v: &[f64]| Mat::from_fn(m, 1, |i, _| v[i]);
-        let [h, w] = body.displacements(grid, Side::B, column(&pg).as_ref(), column(&qg).as_ref());
-        let tangential: Vec<f64> = (0..m).map(|i| w[(i, 0)]).collect();
-        let normal = (0..m)
+        let (pg, qg) = frame.global_load_columns(Side::B, pressure, shear);
+        let [h, w] = body.displacements(grid, Side::B, pg.as_ref(), qg.as_ref());
+        let tangential: Vec<f64> = (0..grid.n_nodes()).map(|i| w[(i, 0)]).collect();
+        let normal = (0..grid.n_nodes())
             .map(|i| h[(i, 0)] - frame.normal_angle[i].tan() * tangential[i])
             .collect();
         Self {
-            pressure: pressure.to_vec(),
-            shear: shear.to_vec(),
+            tractions: Tractions::of(pressure, shear),
             normal,
             tangential,
         }

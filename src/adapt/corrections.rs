@@ -133,8 +133,7 @@ impl GivenBodies<'_> {
         };
         let grid = &self.problem.grid;
         let m = grid.n_nodes();
-        let (p, q) = self.problem.frame.global_loads(side, &z.pressure, &z.shear);
-        let (p, q) = (Mat::from_fn(m, 1, |i, _| p[i]), Mat::from_fn(m, 1, |i, _| q[i]));
+        let (p, q) = self.problem.frame.global_load_columns(side, &z.pressure, &z.shear);
         let [h, w] = changed[k].model().displacements(grid, side, p.as_ref(), q.as_ref());
         let [h0, w0] = self.models[k].model().displacements(grid, side, p.as_ref(), q.as_ref());
         let norm2 = p.squared_norm_l2() + q.squared_norm_l2();

@@ -231,6 +231,14 @@ impl ContactFrame {
         op
     }
 
+    /// [`Self::global_loads`] as one-column matrices, the loads a body model's
+    /// [`crate::body::BodyModel::displacements`] and `strain_at` take.
+    pub fn global_load_columns(&self, side: Side, p: &[f64], q: &[f64]) -> (Mat<f64>, Mat<f64>) {
+        let (pg, qg) = self.global_loads(side, p, q);
+        let column = |v: &[f64]| Mat::from_fn(v.len(), 1, |i, _| v[i]);
+        (column(&pg), column(&qg))
+    }
+
     /// The nodal loads (P, Q) that body `side` carries in global axes (pair convention: P
     /// along y, Q along x, per unit length of its own surface) for the contact's nodal p, q.
     pub fn global_loads(&self, side: Side, p: &[f64], q: &[f64]) -> (Vec<f64>, Vec<f64>) {

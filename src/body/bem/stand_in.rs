@@ -111,30 +111,29 @@ fn arc_half_plane(
         // term −B w_j ln ℓ with the straight grid's weights carried: the blocks carried, to
         // rounding, as the matrix-free displacements of `StandInBody` carry them.
         let straight = grid.straightened();
-        let carried = |kernel: Kernel| -> Result<Mat<f64>, BuildError> {
-            let mut failed = None;
-            let k = half.shared_kernel(grid, kernel, || {
+        // The carry's check (the grid within the straight one's span) is made here, once.
+        let weights = carried_weights(&straight, grid)?;
+        let carried = |kernel: Kernel| {
+            half.shared_kernel(grid, kernel, || {
                 let flat = influence_matrix(&straight, kernel);
-                transfer_blocks([&flat], &straight, grid).map_or_else(
-                    |e| {
-                        failed = Some(e);
-                        Mat::zeros(0, 0)
-                    },
-                    |[k]| k,
-                )
-            });
-            failed.map_or(Ok(k), |e| Err(e.into()))
+                let [k] = transfer_blocks([&flat], &straight, grid).expect("the carry was checked");
+                k
+            })
         };
-        let (log, sgn) = (carried(Kernel::Log)?, carried(Kernel::Sign)?);
-        half.blocks_of_kernels(log, sgn, &carried_weights(&straight, grid)?, side)
+        half.blocks_of_kernels(carried(Kernel::Log), carried(Kernel::Sign), &weights, side)
     };
     scale_columns([&mut hp, &mut hq], grid, slope);
     Ok(Flexibility::of_half_plane(hp, hq))
 }
 
-/// The columns of `blocks` divided by cos θ_j at the grid's node j.
+/// 1/cos θ_j at the grid's nodes, θ the surface's slope: a load per unit x made per unit arc.
+fn arc_scales(grid: &ContactGrid, slope: &dyn Fn(f64) -> f64) -> Vec<f64> {
+    grid.nodes.iter().map(|&x| 1.0 / slope(x).cos()).collect()
+}
+
+/// The columns of `blocks` times [`arc_scales`] (divided by cos θ_j at the grid's node j).
 fn scale_columns<const N: usize>(blocks: [&mut Mat<f64>; N], grid: &ContactGrid, slope: &dyn Fn(f64) -> f64) {
-    let scales: Vec<f64> = grid.nodes.iter().map(|&x| 1.0 / slope(x).cos()).collect();
+    let scales = arc_scales(grid, slope);
     for block in blocks {
         for (j, &scale) in scales.iter().enumerate() {
             for v in block.col_mut(j).iter_mut() {
@@ -437,14 +436,16 @@ struct StandInBody {
 }
 
 impl StandInBody {
-    /// The nodal loads `v` per unit x made per unit arc: divided by cos θ_j, θ the surface's
-    /// slope at node j (the column scaling of [`arc_half_plane`], applied to the load).
+    /// The slope angle θ [rad] of the body's surface at x on `side` (0 beyond its contact).
+    fn slope(&self, x: f64, side: Side) -> f64 {
+        self.setup.inner.surface_at(x, side).map_or(0.0, |s| s.slope_angle)
+    }
+
+    /// The nodal loads `v` per unit x made per unit arc ([`arc_scales`]: the column scaling of
+    /// [`arc_half_plane`], applied to the load).
     fn per_arc(&self, grid: &ContactGrid, side: Side, v: MatRef<'_, f64>) -> Mat<f64> {
-        let inner = &self.setup.inner;
-        Mat::from_fn(v.nrows(), v.ncols(), |j, c| {
-            let slope = inner.surface_at(grid.nodes[j], side).map_or(0.0, |s| s.slope_angle);
-            v[(j, c)] / slope.cos()
-        })
+        let scales = arc_scales(grid, &|x| self.slope(x, side));
+        Mat::from_fn(v.nrows(), v.ncols(), |j, c| scales[j] * v[(j, c)])
     }
 }
 
@@ -455,8 +456,7 @@ impl BodyModel for StandInBody {
 
     /// The half-plane per unit arc ([`arc_half_plane`]) plus the remainder, added in place.
     fn flexibility(&self, grid: &ContactGrid, side: Side) -> Flexibility {
-        let inner = &self.setup.inner;
-        let slope = |x: f64| inner.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
+        let slope = |x: f64| self.slope(x, side);
         let mut f = arc_half_plane(&self.half, grid, side, &slope).expect("a grid lies within its straightened self");
         self.remainder()
             .add_to(grid, [&mut f.hp, &mut f.hq, &mut f.wp, &mut f.wq].into_iter());
@@ -480,8 +480,7 @@ impl BodyModel for StandInBody {
     /// The derivative along x of the stand-in's own tangential displacement (module docs): the
     /// half-plane's strain plus ∂R/∂x of the remainder's w blocks.
     fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
-        let inner = &self.setup.inner;
-        let slope = |x: f64| inner.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
+        let slope = |x: f64| self.slope(x, side);
         let mut s = self.flat.model().strain_operator(grid, side)?;
         scale_columns([&mut s.p, &mut s.q], grid, &slope);
         self.remainder().add_w_derivatives_to(grid, [&mut s.p, &mut s.q]);

@@ -126,8 +126,7 @@ impl SmoothRemainder {
     pub fn times(&self, grid: &ContactGrid, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> [Mat<f64>; 2] {
         let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
         let (m, k) = (grid.n_nodes(), p.ncols());
-        let projected = |v: MatRef<'_, f64>| t.transpose() * DMatrix::from_fn(m, k, |j, c| grid.weights[j] * v[(j, c)]);
-        let (tp, tq) = (projected(p), projected(q));
+        let (tp, tq) = (weighted_projection(&t, grid, p), weighted_projection(&t, grid, q));
         let c = &self.coefficients;
         let block_pair = |a: usize, b: usize| {
             let y = &t * (&c[a] * &tp + &c[b] * &tq);
@@ -142,9 +141,9 @@ impl SmoothRemainder {
         let t = chebyshev_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
         let dt = chebyshev_derivative_rows(&grid.nodes, self.span[0], self.span[1], self.degree);
         let (m, k) = (grid.n_nodes(), p.ncols());
-        let projected = |v: MatRef<'_, f64>| t.transpose() * DMatrix::from_fn(m, k, |j, c| grid.weights[j] * v[(j, c)]);
+        let (tp, tq) = (weighted_projection(&t, grid, p), weighted_projection(&t, grid, q));
         let c = &self.coefficients;
-        let y = &dt * (&c[2] * projected(p) + &c[3] * projected(q));
+        let y = &dt * (&c[2] * tp + &c[3] * tq);
         Mat::from_fn(m, k, |i, l| y[(i, l)])
     }
 
@@ -177,6 +176,12 @@ impl SmoothRemainder {
             add_weighted_product(&(&dt * &self.coefficients[k]), &t, &grid.weights, target);
         }
     }
+}
+
+/// Tᵀ diag(w) V: the loads V (m × k) weighted by the grid's node weights and projected on the
+/// Chebyshev rows T (m × r), the right half of a series block T C Tᵀ diag(w) applied to V.
+fn weighted_projection(t: &DMatrix<f64>, grid: &ContactGrid, v: MatRef<'_, f64>) -> DMatrix<f64> {
+    t.transpose() * DMatrix::from_fn(v.nrows(), v.ncols(), |j, c| grid.weights[j] * v[(j, c)])
 }
 
 /// Adds (L Tᵀ)_ij·w_j to `target` (m × m; L m × r, T m × r): a few columns at a time, since an
