@@ -1,7 +1,7 @@
 //! The cost of an error-controlled grid on BEM bodies: the wall time of a run at a tolerance
 //! over the same case's run on its fixed grid, with every pass on the full BEM (before: the
 //! far field reused, `rollbem::bem::reuse`, the contact cut and condensed in every pass;
-//! `set_stand_in_enabled(false)`) and with the passes on the BEM's stand-ins (after:
+//! `contact.grid.stand_ins=false`) and with the passes on the BEM's stand-ins (after:
 //! `rollbem::body::bem::stand_in`, the full BEM on the final grid only). Prints the table of
 //! docs/performance.md ("Error-controlled grids on BEM bodies"). Each row's three runs (fixed,
 //! before, after) follow each other in one process, so the ratios share the machine's load;
@@ -19,7 +19,6 @@ pub mod common;
 
 use common::{solve, Table};
 use rollbem::app::Solved;
-use rollbem::body::bem::stand_in::set_stand_in_enabled;
 use std::time::Instant;
 
 /// The header of the table.
@@ -82,10 +81,8 @@ pub fn table_of(repeat: usize, with_before: bool) -> Table {
         let (fixed, _) = timed(name, &[], repeat.max(FIXED_REPEAT));
         let set = vec![format!("contact.grid.tolerance={tolerance:e}")];
         let old = with_before.then(|| {
-            set_stand_in_enabled(false);
-            let run = timed(name, &set, repeat);
-            set_stand_in_enabled(true);
-            run
+            let full_bem = [set.clone(), vec!["contact.grid.stand_ins=false".to_string()]].concat();
+            timed(name, &full_bem, repeat)
         });
         let (after, new) = timed(name, &set, repeat);
         for run in old.iter().map(|(_, s)| s).chain([&new]) {

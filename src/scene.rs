@@ -102,6 +102,9 @@ pub struct GridControl {
     pub tolerance: f64,
     /// Most elements of the bisected grid before the run stops (exit code 2).
     pub max_elements: usize,
+    /// Whether the passes may solve with the bodies' stand-ins (`contact.grid.stand_ins`,
+    /// [`Scene::with_pass_stand_ins`]).
+    pub stand_ins: bool,
 }
 
 impl Scene {
@@ -159,6 +162,7 @@ impl Scene {
         let grid_control = c.contact.grid.tolerance.map(|tolerance| GridControl {
             tolerance,
             max_elements: c.contact.grid.max_elements,
+            stand_ins: c.contact.grid.stand_ins,
         });
         let fields = FieldRequests {
             vtk: c.output.vtk,
@@ -251,6 +255,9 @@ impl Scene {
     /// first) replaced by it, on the start grid; None when no body offers one. The stand-ins
     /// have no mesh of their own: the pass grids are the scene's to choose ([`Self::on_grid`]).
     pub fn with_pass_stand_ins(&self, levels: &[&ContactGrid]) -> Result<Option<PassScenes>, Error> {
+        if self.grid_control.is_some_and(|g| !g.stand_ins) {
+            return Ok(None);
+        }
         let mut bodies = self.bodies.clone();
         let mut checks = Some(self.bodies.clone());
         let mut any = false;

@@ -51,25 +51,6 @@ use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, OnceLock};
 
-/// Whether [`FarFieldCache`] hands out its far field (default true): a switch for benchmarks
-/// that time a run with and without the reuse in one process (`examples/bem_refinement_cost.rs`).
-static ENABLED: AtomicBool = AtomicBool::new(true);
-
-/// Turns the reuse of the far-field assembly on or off for the whole process (it is on unless
-/// turned off). The results are the same either way; only the time differs.
-pub fn set_reuse_enabled(enabled: bool) {
-    ENABLED.store(enabled, Ordering::Relaxed);
-}
-
-/// Whether the reuse of the far-field assembly is on: unless turned off by
-/// [`set_reuse_enabled`] or by the environment variable `ROLLBEM_BEM_REUSE=0` (which times the
-/// program as it ran before the reuse, docs/performance.md).
-pub fn reuse_enabled() -> bool {
-    static ENV: OnceLock<bool> = OnceLock::new();
-    let env = *ENV.get_or_init(|| std::env::var("ROLLBEM_BEM_REUSE").map_or(true, |v| v.trim() != "0"));
-    env && ENABLED.load(Ordering::Relaxed)
-}
-
 /// An element's identity: the bits of its three geometric nodes, of its field interpolation's
 /// end-node parameters, and its group.
 type ElementKey = ([u64; 6], [u64; 2], usize);
@@ -344,45 +325,81 @@ pub fn assemble_reusing(model: &BemModel, far: &FarField) -> Assembly {
 
 /// A [`FarField`] built once and shared by the setups of one run (the setup of the start mesh
 /// and every setup that follows a refined grid from it, [`crate::body::bem::setup`]): cloning
-/// the cache shares it.
-#[derive(Clone, Default)]
-pub struct FarFieldCache(Arc<OnceLock<Arc<FarField>>>, Arc<AtomicBool>);
+/// the cache shares it. A cache made with `reuse` false (`contact.grid.reuse_far_field: false`)
+/// never hands one out: every grid is assembled afresh, with the same results to the element
+/// integrals' accuracy.
+#[derive(Clone)]
+pub struct FarFieldCache {
+    /// The far field, once built.
+    field: Arc<OnceLock<Arc<FarField>>>,
+    /// Set while the first use is still to be refused ([`Self::for_another_mesh`]).
+    skip_first_use: Arc<AtomicBool>,
+    /// Whether the cache hands out a far field at all.
+    reuse: bool,
+}
+
+impl Default for FarFieldCache {
+    fn default() -> Self {
+        Self::new(true)
+    }
+}
 
 impl std::fmt::Debug for FarFieldCache {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.0.get() {
+        match self.field.get() {
             Some(far) => write!(f, "FarFieldCache({} unchanged nodes)", far.n_nodes()),
+            None if !self.reuse => write!(f, "FarFieldCache(off)"),
             None => write!(f, "FarFieldCache(empty)"),
         }
     }
 }
 
 impl FarFieldCache {
-    /// A cache that gives no far field to its first use and builds it on the second: for a
+    /// An empty cache that builds the far field on its first use, or, with `reuse` false,
+    /// never gives one.
+    pub fn new(reuse: bool) -> Self {
+        Self {
+            field: Default::default(),
+            skip_first_use: Default::default(),
+            reuse,
+        }
+    }
+
+    /// A cache of its own for a mesh whose far field differs from this one's, with this one's
+    /// `reuse`, that gives no far field to its first use and builds it on the second: for a
     /// mesh condensed once as a rule (the check of a body's mesh, src/adapt/body_mesh.rs),
     /// whose far field, integrated apart and copied into H and G, would cost two matrices of
     /// the system's size beside them and a second pass over the block, for no reuse.
-    pub fn from_second_use() -> Self {
-        Self(Default::default(), Arc::new(AtomicBool::new(true)))
+    pub fn for_another_mesh(&self) -> Self {
+        Self {
+            field: Default::default(),
+            skip_first_use: Arc::new(AtomicBool::new(true)),
+            reuse: self.reuse,
+        }
+    }
+
+    /// Whether the cache hands out far fields (`contact.grid.reuse_far_field`).
+    pub fn reuses(&self) -> bool {
+        self.reuse
     }
 
     /// Whether the far field has been built (by the first setup that needed it).
     pub fn is_built(&self) -> bool {
-        self.0.get().is_some()
+        self.field.get().is_some()
     }
 
     /// The far field of the start mesh, built by `start` on first use, or on the second for a
-    /// cache [`Self::from_second_use`] (None while the reuse is turned off,
-    /// [`set_reuse_enabled`], and for that first use).
+    /// cache [`Self::for_another_mesh`] (None when the cache does not reuse, and for that
+    /// first use).
     pub fn get_or_build(&self, start: impl FnOnce() -> Option<BemModel>) -> Option<Arc<FarField>> {
-        if !reuse_enabled() || self.1.swap(false, Ordering::Relaxed) {
+        if !self.reuse || self.skip_first_use.swap(false, Ordering::Relaxed) {
             return None;
         }
-        if let Some(far) = self.0.get() {
+        if let Some(far) = self.field.get() {
             return Some(far.clone());
         }
         let far = Arc::new(FarField::new(&start()?));
-        Some(self.0.get_or_init(|| far).clone())
+        Some(self.field.get_or_init(|| far).clone())
     }
 }
 

@@ -431,6 +431,17 @@ pub struct GridSpec {
     /// Largest number of contact elements an error-controlled grid may use; reaching it without
     /// the tolerance ends the run with exit code 2 and the estimate. Default = 1000.
     pub max_elements: usize,
+    /// Whether the passes of an error-controlled grid solve a `bem` body through its cheaper
+    /// stand-in (its half-plane plus a smooth remainder fitted to the full BEM, checked against
+    /// the full BEM at the end; docs/theory.md) rather than cutting and condensing the full BEM
+    /// in every pass. Both give results within the tolerance; the stand-ins are faster.
+    /// Default = true.
+    pub stand_ins: bool,
+    /// Whether the condensations of one `bem` body on the grids of an error-controlled run share
+    /// the part of the BEM matrices that the cuts along the grid leave unchanged (integrated
+    /// once per run) instead of assembling every grid's matrices afresh. The results agree to
+    /// the element integrals' accuracy; only the time differs. Default = true.
+    pub reuse_far_field: bool,
 }
 
 impl Default for GridSpec {
@@ -443,6 +454,8 @@ impl Default for GridSpec {
             align_edges: true,
             tolerance: None,
             max_elements: 1000,
+            stand_ins: true,
+            reuse_far_field: true,
         }
     }
 }

@@ -91,14 +91,17 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
             conditions.sort_by(|a, b| a.0.cmp(&b.0));
             conditions.push((contact.clone(), BoundaryCondition::Contact));
             let contact_circle = exact_circle(&loaded, shape.profile_radius());
-            Arc::new(BemSetup::on_start_mesh(
-                loaded,
-                case.material(material),
-                contact.clone(),
-                conditions,
-                *radius,
-                contact_circle,
-            ))
+            Arc::new(
+                BemSetup::on_start_mesh(
+                    loaded,
+                    case.material(material),
+                    contact.clone(),
+                    conditions,
+                    *radius,
+                    contact_circle,
+                )
+                .reusing_far_field(case.case.contact.grid.reuse_far_field),
+            )
         }
         BodySpec::Bem {
             mesh,
@@ -131,14 +134,17 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
                 .map(|(g, b)| (g.clone(), boundary_condition(b)))
                 .collect();
             conditions.push((contact.clone(), BoundaryCondition::Contact));
-            Arc::new(BemSetup::on_start_mesh(
-                loaded,
-                case.material(material),
-                contact.clone(),
-                conditions,
-                *radius,
-                None,
-            ))
+            Arc::new(
+                BemSetup::on_start_mesh(
+                    loaded,
+                    case.material(material),
+                    contact.clone(),
+                    conditions,
+                    *radius,
+                    None,
+                )
+                .reusing_far_field(case.case.contact.grid.reuse_far_field),
+            )
         }
     })
 }

@@ -537,3 +537,59 @@ fn the_results_displacements_and_strain_without_the_blocks_are_their_products() 
         close(&strain, &rollbem::linalg::mat_vec2(&op.p, p, &op.q, q), "strain");
     }
 }
+
+/// fig14_true_geometry at tolerance 1e-3 with each setting of the run options
+/// `contact.grid.stand_ins` and `contact.grid.reuse_far_field`: every run meets the tolerance;
+/// the far field's reuse changes nothing but the time (the same final grid, tractions and
+/// creepage to 1e-12: H and G are bitwise those of a fresh assembly, the residual only differs
+/// by the order of the Newton solve's round-off); the passes on the stand-ins and on the full
+/// BEM end on their own grids, each within the tolerance of the truth, so their creepages and
+/// overlaps agree within twice it.
+#[test]
+fn the_run_options_change_the_time_not_the_results() {
+    let tolerance = 1e-3;
+    let run = |stand_ins: bool, reuse: bool| {
+        let overrides = [
+            format!("contact.grid.tolerance={tolerance:e}"),
+            format!("contact.grid.stand_ins={stand_ins}"),
+            format!("contact.grid.reuse_far_field={reuse}"),
+        ];
+        let path = crate::common::case_path("fig14_true_geometry");
+        let solved = rollbem::app::solve_case(path.as_path(), &overrides).expect("meets the tolerance");
+        let adaptation = solved.adaptation.as_ref().expect("error-controlled");
+        let estimate = adaptation.estimate.expect("an estimate");
+        assert!(
+            estimate.within(tolerance),
+            "stand_ins {stand_ins}, reuse {reuse}: estimate {estimate:?}"
+        );
+        assert_eq!(
+            adaptation.results_from_stand_ins, stand_ins,
+            "stand_ins {stand_ins}: the results come from the stand-ins exactly when they are on"
+        );
+        solved
+    };
+    let relative = |a: f64, b: f64| (a - b).abs() / a.abs().max(b.abs());
+    for stand_ins in [true, false] {
+        let (reused, fresh) = (run(stand_ins, true), run(stand_ins, false));
+        let (a, b) = (&reused.solution, &fresh.solution);
+        assert_eq!(
+            a.x, b.x,
+            "stand_ins {stand_ins}: the same final grid with and without the reuse"
+        );
+        let peak = a.pressure.iter().fold(0.0_f64, |m, p| m.max(*p));
+        for (name, u, v) in [("pressure", &a.pressure, &b.pressure), ("shear", &a.shear, &b.shear)] {
+            let worst = u.iter().zip(v.iter()).map(|(u, v)| (u - v).abs()).fold(0.0, f64::max);
+            assert!(
+                worst <= 1e-12 * peak,
+                "stand_ins {stand_ins}: {name} differs by {worst:e}"
+            );
+        }
+        assert!(relative(a.creep, b.creep) <= 1e-12, "stand_ins {stand_ins}: creepage");
+    }
+    let (on, off) = (run(true, true), run(false, true));
+    let creep = relative(on.solution.creep, off.solution.creep);
+    let overlap = relative(on.solution.overlap, off.solution.overlap);
+    eprintln!("stand-ins against the full BEM in every pass: creepage {creep:.2e}, overlap {overlap:.2e}");
+    assert!(creep <= 2.0 * tolerance, "the creepages differ by {creep:.2e}");
+    assert!(overlap <= 2.0 * tolerance, "the overlaps differ by {overlap:.2e}");
+}

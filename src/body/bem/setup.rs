@@ -127,6 +127,15 @@ impl BemSetup {
         }
     }
 
+    /// The body with its far-field cache reusing or not (`contact.grid.reuse_far_field`,
+    /// [`FarFieldCache::new`]).
+    pub fn reusing_far_field(self, reuse: bool) -> Self {
+        Self {
+            far_field: FarFieldCache::new(reuse),
+            ..self
+        }
+    }
+
     /// The BEM model of the body's mesh (its discretisation; nothing assembled).
     fn bem_model(&self) -> Result<BemModel, BuildError> {
         Ok(BemModel::new(
@@ -243,7 +252,7 @@ impl BemSetup {
     /// The mesh with its elements outside the contact group bisected on their own curves
     /// ([`crate::mesh::bisect`]). Its far field differs from the start mesh's, so the bisected
     /// body is assembled afresh: no start mesh, a cache of its own, built only if the body is
-    /// condensed again (adopted by the error control, [`FarFieldCache::from_second_use`]).
+    /// condensed again (adopted by the error control, [`FarFieldCache::for_another_mesh`]).
     pub(super) fn free_boundary_bisected(&self, changed_for: ChangedFor) -> BemSetup {
         let mesh = LoadedMesh {
             mesh: bisect_outside_group(&self.mesh.mesh, self.mesh.contact_group),
@@ -253,7 +262,7 @@ impl BemSetup {
             shape: ContactShape::of(&mesh),
             mesh,
             start_mesh: None,
-            far_field: FarFieldCache::from_second_use(),
+            far_field: self.far_field.for_another_mesh(),
             kept: Default::default(),
             keep_builds: changed_for == ChangedFor::Run,
             quadrature_tolerance: self.quadrature_tolerance_for(changed_for),
@@ -273,7 +282,7 @@ impl BemSetup {
             shape: ContactShape::of(&mesh),
             mesh,
             start_mesh: None,
-            far_field: FarFieldCache::from_second_use(),
+            far_field: self.far_field.for_another_mesh(),
             kept: Default::default(),
             keep_builds: false,
             quadrature_tolerance: self.quadrature_tolerance_for(changed_for),
@@ -430,7 +439,7 @@ impl BodySetup for BemSetup {
         let start = self.start_mesh.as_deref().unwrap_or(&self.mesh).contact_grid();
         let slack = 1e-9 * (hi - lo);
         let covers = start.edges[0] <= lo + slack && start.edges[start.n_elements()] >= hi - slack;
-        if !super::stand_in::stand_in_enabled() || thin || !covers {
+        if thin || !covers {
             return Ok(None);
         }
         let stand_in = super::stand_in::BemStandIn::of(self, levels, side, rolling)?;
@@ -453,7 +462,7 @@ impl BodySetup for BemSetup {
     /// The mesh with its elements outside the contact group bisected on their own curves
     /// ([`crate::mesh::bisect`]). Its far field differs from the start mesh's, so the bisected
     /// body is assembled afresh: no start mesh, a cache of its own, built only if the body is
-    /// condensed again (adopted by the error control, [`FarFieldCache::from_second_use`]).
+    /// condensed again (adopted by the error control, [`FarFieldCache::for_another_mesh`]).
     fn with_free_boundary_bisected(&self, changed_for: ChangedFor) -> Option<Arc<dyn BodySetup>> {
         Some(Arc::new(self.free_boundary_bisected(changed_for)))
     }
@@ -581,6 +590,19 @@ mod tests {
         let finer = DyadicGrid::new(&grid).bisected().grid();
         let follower = seeded.followed(&finer);
         assert!(follower.far_field.is_built(), "the next level shares the seeded cache");
+
+        // `contact.grid.reuse_far_field: false`: the seeded build and its followers, and the
+        // bodies changed outside the contact, assemble afresh.
+        let off = fig14_roller().reusing_far_field(false);
+        off.build_keeping(&ctx, false, true).unwrap();
+        assert!(!off.far_field.is_built(), "a cache that does not reuse stays empty");
+        let follower = off.followed(&finer);
+        assert!(!follower.far_field.reuses(), "the followers share the setting");
+        let bisected = off.free_boundary_bisected(ChangedFor::Run);
+        assert!(
+            !bisected.far_field.reuses(),
+            "so does a body changed outside the contact"
+        );
     }
 
     /// The surface the contact frame reads is each mesh's own: the cached shape of a setup that

@@ -63,8 +63,7 @@ use crate::grid::ContactGrid;
 use crate::material::Elastic;
 use faer::{Mat, MatRef};
 
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 #[cfg(test)]
 use remainder::chebyshev_rows;
@@ -74,22 +73,6 @@ use remainder::{FitFactors, SmoothRemainder};
 /// conformal contact (a/R = 0.2) to 2e-5 p0 where 4 leaves 2e-3 (bore_a020_tractive, measured
 /// against the full BEM on the final grid); convex rollers need less and lose nothing by it.
 pub const REMAINDER_DEGREE: usize = 8;
-
-static ENABLED: AtomicBool = AtomicBool::new(true);
-
-/// Turns the stand-in on or off for the runs that follow (benchmarks compare both).
-pub fn set_stand_in_enabled(enabled: bool) {
-    ENABLED.store(enabled, Ordering::Relaxed);
-}
-
-/// Whether the passes of an error-controlled grid use the stand-in: unless turned off by
-/// [`set_stand_in_enabled`] or by the environment variable `ROLLBEM_BEM_STAND_IN=0` (every pass
-/// then cuts and condenses the full BEM, as before; docs/performance.md).
-pub fn stand_in_enabled() -> bool {
-    static ENV: OnceLock<bool> = OnceLock::new();
-    let env = *ENV.get_or_init(|| std::env::var("ROLLBEM_BEM_STAND_IN").map_or(true, |v| v.trim() != "0"));
-    env && ENABLED.load(Ordering::Relaxed)
-}
 
 /// The half-plane of the body's material and profile radius on `grid`, its columns scaled to
 /// a load per unit arc (module docs): 1/cos θ_j with θ the body's surface slope at node j. On a
