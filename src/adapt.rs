@@ -443,7 +443,8 @@ impl HertzScales {
             peak_pressure: est.hertz_peak_pressure,
             half_width: est.hertz_half_width,
         };
-        if matches!(scene.normal, NormalControl::Force(_)) {
+        // A body's own scales (a cover on its core) do not follow Hertz's law in the force.
+        if matches!(scene.normal, NormalControl::Force(_)) || est.scales_from.is_some() {
             return of_estimates;
         }
         let force = ContactSolution::from_state(&first.problem, &first.state).normal_force;

@@ -33,6 +33,7 @@ pub mod half_space;
 pub mod layer;
 pub mod pair_influence;
 pub mod rigid;
+pub mod scales;
 pub mod setup;
 pub mod transfer;
 pub mod viscoelastic;

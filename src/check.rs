@@ -117,15 +117,20 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
             if given { "" } else { " (estimated from the overlap)" }
         ),
     );
+    // A body's own scales (a cover on its core) replace Hertz's, said as such.
+    let (name, by) = match est.scales_from {
+        Some(model) => ("contact", format!("; frictionless, from the {model}'s own compliance")),
+        None => ("Hertz", String::new()),
+    };
     line(
-        "Hertz half-width a",
+        &format!("{name} half-width a"),
         format!(
-            "{:.6} {l}  (a/R = {:.3e})",
+            "{:.6} {l}  (a/R = {:.3e}{by})",
             est.hertz_half_width, est.half_width_over_radius
         ),
     );
     line(
-        "Hertz peak pressure p0",
+        &format!("{name} peak pressure p0"),
         format!("{:.6} {f}/{l}^2", est.hertz_peak_pressure),
     );
     let from_mesh = if scene.grid_from_mesh() {
@@ -185,7 +190,17 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
     } else {
         crate::scene::validity::half_space_error(bodies, est)
     };
-    let advice = if bodies.iter().all(|b| b.has_true_geometry_model()) {
+    // The advice weighs half-space against true geometry for the bodies it concerns; a
+    // layer's own idealisation or a rigid body's is not that question.
+    let concerned: Vec<_> = bodies.iter().filter(|b| b.shares_half_space_error()).collect();
+    let advice = if crate::scene::validity::half_plane_share(bodies) == 0.0 {
+        format!(
+            "no compliant body is a half-space or a true geometry a half-space could replace ({} / {}): \
+             the half-space advice does not apply (docs/choosing-a-model.md)",
+            bodies[0].model_name(),
+            bodies[1].model_name()
+        )
+    } else if concerned.iter().all(|b| b.has_true_geometry_model()) {
         crate::advice::advise(&error, tolerance)
     } else {
         crate::advice::advise_without_alternative(&error)

@@ -318,10 +318,7 @@ impl Scene {
 
     /// How the contact moves over the bodies.
     pub fn rolling(&self) -> Rolling {
-        Rolling {
-            direction: -self.case.case.contact.rolling_direction.flow_sign(),
-            speed: self.case.case.load.speed,
-        }
+        estimates::rolling_of(&self.case.case)
     }
 
     /// The notices of the bodies' inputs (mesh loops turned round), A's first.

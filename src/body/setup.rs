@@ -34,6 +34,27 @@ pub struct Rolling {
     pub speed: Option<f64>,
 }
 
+/// A contact's size and peak pressure as a body's own compliance gives them
+/// ([`BodySetup::own_contact_scales`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactScales {
+    /// Half-width a of the contact [length].
+    pub half_width: f64,
+    /// Largest pressure [stress].
+    pub peak_pressure: f64,
+    /// The normal force P [force/length]: the given one, or the one the overlap takes.
+    pub normal_force: f64,
+}
+
+/// What presses the bodies together, for [`BodySetup::own_contact_scales`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NormalLoad {
+    /// Normal force P per unit length [force/length].
+    Force(f64),
+    /// Overlap δ0 [length] measured from the body's datum (a cover: its rigid core).
+    Overlap(f64),
+}
+
 /// What a body model is built with besides its own keys.
 #[derive(Debug, Clone, Copy)]
 pub struct BuildContext<'a> {
@@ -179,10 +200,35 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         self.hertz_material().map_or(0.0, |m| m.plane_strain_compliance())
     }
 
+    /// The contact's half-width and peak pressure under `load` against a rigid cylinder of
+    /// signed `effective_radius` [length], rolling as `rolling` says, when
+    /// the body's own compliance rather than the half-plane of [`Self::hertz_material`] sets
+    /// them (a cover bonded to a rigid core: [`crate::body::scales`]; a foundation that is no
+    /// continuum). They then size the grid and the errors' units in place of Hertz's, and
+    /// `rollbem check` prints them. None (the default): the Hertz estimates hold.
+    /// `hertz_half_width` [length] is the Hertz estimate of the same load, a start.
+    fn own_contact_scales(
+        &self,
+        _load: NormalLoad,
+        _effective_radius: f64,
+        _hertz_half_width: f64,
+        _rolling: Rolling,
+    ) -> Option<ContactScales> {
+        None
+    }
+
     /// Whether the model replaces the body by an elastic half-plane (its error against the true
     /// geometry then grows with a/R, and the validity warnings estimate it).
     fn idealises_as_half_plane(&self) -> bool {
         false
+    }
+
+    /// Whether the half-space model's measured error against the true geometry (the model
+    /// advice of `rollbem check`) concerns this body: true for a body a half-space models, or
+    /// could model in place of its true geometry (`bem`); false for a model with an
+    /// idealisation of its own (a cover on a rigid core).
+    fn shares_half_space_error(&self) -> bool {
+        true
     }
 
     /// Whether a true-geometry (`bem`) model of the same physics exists, so that the advice may

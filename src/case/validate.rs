@@ -163,11 +163,19 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 if let Some(why) = positive_quantity(*thickness) {
                     bad(format!("bodies.{side}.thickness"), format!("cover thickness {why}"));
                 } else if radius.is_finite() && *thickness >= 0.5 * radius.abs() {
+                    // The true geometry of a cover is a bem body, which is elastic only.
+                    let instead = if case.materials.get(material).is_some_and(|m| m.viscoelastic.is_some()) {
+                        "no model of rollbem takes a viscoelastic cover this thick (the bem body that models \
+                         a thick cover is elastic): make the cover thinner than R/2, or give an elastic \
+                         material and model the body by `bem` with `geometry: {covered_roller: ...}`"
+                    } else {
+                        "model the body by `bem` with `geometry: {covered_roller: ...}`"
+                    };
                     bad(
                         format!("bodies.{side}.thickness"),
                         format!(
                             "the layer model takes the cover flat (thickness b << radius R); b = {} is not below \
-                             R/2 = {}: model the body by `bem` with `geometry: {{covered_roller: ...}}`",
+                             R/2 = {}: {instead}",
                             shown(*thickness),
                             shown(0.5 * radius.abs())
                         ),

@@ -3,6 +3,7 @@
 
 use super::registry::BodySetups;
 use crate::analytic;
+use crate::body::setup::{NormalLoad, Rolling};
 use crate::case::{Case, NormalSpec, TangentialSpec};
 use crate::grid::ContactGrid;
 use crate::material::{self, Elastic};
@@ -20,10 +21,17 @@ pub struct Estimates {
     pub effective_radius: f64,
     /// Normal force P used for the estimates (given, or estimated from the overlap) [force/length].
     pub normal_force: f64,
-    /// Hertz half-width a [length].
+    /// Hertz half-width a [length], or the contact's half-width from a body's own compliance
+    /// when [`Self::scales_from`] names one.
     pub hertz_half_width: f64,
-    /// Hertz peak pressure p0 [stress].
+    /// Hertz peak pressure p0 [stress], or the largest pressure from a body's own compliance
+    /// when [`Self::scales_from`] names one.
     pub hertz_peak_pressure: f64,
+    /// The model whose own compliance gave the half-width and peak pressure
+    /// ([`crate::body::BodySetup::own_contact_scales`]: a cover on a rigid core); absent when
+    /// they are Hertz's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scales_from: Option<&'static str>,
     /// a / R.
     pub half_width_over_radius: f64,
     /// Carter stick-zone width 2a√(1 − |Q|/μP) (similar bodies), if Q/μP is known [length].
@@ -53,7 +61,25 @@ impl Estimates {
                 e_star,
             ),
         };
-        let a = analytic::hertz_half_width(normal_force, radius, e_star);
+        // Two bodies without elastic constants (rigid, or a foundation) have no β.
+        let dundurs_beta = if dundurs_beta.is_finite() { dundurs_beta } else { 0.0 };
+        let hertz_a = analytic::hertz_half_width(normal_force, radius, e_star);
+        let rolling = rolling_of(case);
+        let load = match case.load.normal() {
+            NormalSpec::Force(p) => NormalLoad::Force(p),
+            NormalSpec::Overlap(d) => NormalLoad::Overlap(d),
+        };
+        let own = bodies
+            .iter()
+            .find_map(|b| Some((b.own_contact_scales(load, radius, hertz_a, rolling)?, b.model_name())));
+        let (a, p0, normal_force) = match own {
+            Some((s, _)) => (s.half_width, s.peak_pressure, s.normal_force),
+            None => (
+                hertz_a,
+                analytic::hertz_peak_pressure(normal_force, hertz_a),
+                normal_force,
+            ),
+        };
         let ratio = match case.load.tangential() {
             TangentialSpec::Ratio(r) => Some(r),
             TangentialSpec::Force(q) if case.contact.friction > 0.0 => Some(q / (case.contact.friction * normal_force)),
@@ -73,7 +99,8 @@ impl Estimates {
             effective_radius: radius,
             normal_force,
             hertz_half_width: a,
-            hertz_peak_pressure: analytic::hertz_peak_pressure(normal_force, a),
+            hertz_peak_pressure: p0,
+            scales_from: own.map(|(_, name)| name),
             half_width_over_radius: a / radius,
             carter_stick_width: ratio
                 .filter(|r| r.abs() < 1.0)
@@ -91,6 +118,15 @@ impl Estimates {
             grid_spacing: grid.node_spacing(),
             ..self
         }
+    }
+}
+
+/// How the case's contact moves over the bodies: the direction of `contact.rolling_direction`
+/// and the speed of `load.speed`.
+pub fn rolling_of(case: &Case) -> Rolling {
+    Rolling {
+        direction: -case.contact.rolling_direction.flow_sign(),
+        speed: case.load.speed,
     }
 }
 

@@ -39,11 +39,44 @@ pub fn convex_radius_in_a_bore(bodies: &BodySetups) -> Option<f64> {
 }
 
 /// The half-space model's estimated error on the scene's rollers (or roller in a bore), from
-/// the measured tables of `crate::advice`.
+/// the measured tables of `crate::advice` (measured with every compliant body a half-space),
+/// times the share of the pair's compliance held by the bodies the half-space question concerns
+/// ([`half_plane_share`]): the error is those bodies' displacements' and, to first order,
+/// scales with them (a steel half-space on a rubber cover shares in almost none).
 pub fn half_space_error(bodies: &BodySetups, est: &Estimates) -> HalfSpaceError {
-    match convex_radius_in_a_bore(bodies) {
+    let error = match convex_radius_in_a_bore(bodies) {
         Some(r1) => advice::internal_error(est.hertz_half_width / r1),
         None => advice::roller_error(est.half_width_over_radius),
+    };
+    let share = half_plane_share(bodies);
+    if share == 1.0 {
+        return error;
+    }
+    HalfSpaceError {
+        pressure: share * error.pressure,
+        shear: error.shear.map(|q| share * q),
+        basis: format!(
+            "{}, times {share:.2e}: the half-space bodies' share of the compliance",
+            error.basis
+        ),
+        ..error
+    }
+}
+
+/// The share [-] of the pair's plane-strain compliance (1 − ν²)/E held by the bodies whose
+/// model the half-space question concerns ([`crate::body::BodySetup::shares_half_space_error`]):
+/// 1 when every compliant body is one, 0 when none is (or nothing deforms).
+pub fn half_plane_share(bodies: &BodySetups) -> f64 {
+    let total: f64 = bodies.iter().map(|b| b.compliance()).sum();
+    let idealised: f64 = bodies
+        .iter()
+        .filter(|b| b.shares_half_space_error())
+        .map(|b| b.compliance())
+        .sum();
+    if total > 0.0 {
+        idealised / total
+    } else {
+        0.0
     }
 }
 
@@ -71,12 +104,17 @@ pub fn traction_axes_warning(case: &crate::case::LoadedCase, bodies: &BodySetups
 pub fn warnings(bodies: &BodySetups, est: &Estimates) -> Vec<String> {
     let mut out = Vec::new();
     let p0 = est.hertz_peak_pressure;
+    let which = if est.scales_from.is_some() {
+        "estimated"
+    } else {
+        "Hertz"
+    };
     for (side, body) in ["A", "B"].iter().zip(bodies) {
         if let Some(m) = body.hertz_material() {
             let ratio = p0 / m.young;
             if ratio > MAX_PRESSURE_OVER_MODULUS {
                 out.push(format!(
-                    "body {side}: the Hertz peak pressure p0 = {p0:.4e} is {ratio:.3} of its Young's modulus \
+                    "body {side}: the {which} peak pressure p0 = {p0:.4e} is {ratio:.3} of its Young's modulus \
                      E = {:.4e}: strains of this size leave linear elasticity (small strain, every model \
                      here); take the results as indicative, or check the units of E and the load",
                     m.young
@@ -148,6 +186,7 @@ mod tests {
             normal_force: 1.0,
             hertz_half_width: 50.0 * a_over_r,
             hertz_peak_pressure: p0,
+            scales_from: None,
             half_width_over_radius: a_over_r,
             carter_stick_width: None,
             grid_half_length: 1.0,

@@ -2,7 +2,7 @@
 //! core, built on any grid from the half-plane integrals and the layer's tabulated remainder.
 
 use super::Layer;
-use crate::body::setup::{BodySetup, BuildContext, BuildError, SurfaceAt};
+use crate::body::setup::{BodySetup, BuildContext, BuildError, ContactScales, NormalLoad, Rolling, SurfaceAt};
 use crate::body::transfer::Transferred;
 use crate::body::viscoelastic::aged_kernels::Ageing;
 use crate::body::{Body, Side};
@@ -36,7 +36,12 @@ impl LayerSetup {
     /// The model on the kinematics of `ctx`: aged with L = V τc when the material creeps
     /// (the case's validation guarantees a speed whenever τc > 0).
     pub fn model(&self, ctx: &BuildContext) -> Layer {
-        let length = self.material.creep_time * ctx.rolling.speed.unwrap_or(0.0);
+        self.rolling_as(ctx.rolling)
+    }
+
+    /// The model rolling as `rolling` says (see [`Self::model`]).
+    pub fn rolling_as(&self, rolling: Rolling) -> Layer {
+        let length = self.material.creep_time * rolling.speed.unwrap_or(0.0);
         let creeps = length > 0.0 && self.material.rubbery_young < self.material.glassy.young;
         Layer {
             material: self.material,
@@ -44,7 +49,7 @@ impl LayerSetup {
             radius: self.radius,
             ageing: creeps.then_some(Ageing {
                 length,
-                direction: ctx.rolling.direction,
+                direction: rolling.direction,
             }),
         }
     }
@@ -63,6 +68,28 @@ impl BodySetup for LayerSetup {
     /// contact, which the grid must cover.
     fn hertz_material(&self) -> Option<Elastic> {
         Some(self.material.rubbery())
+    }
+
+    /// The cover is stiffer than the half-plane of its material (its rigid core), the more so
+    /// the thinner it is: the scales of its own flexibility, on the model of the run's rolling
+    /// (a viscoelastic cover as fast as it rolls), against a rigid cylinder
+    /// ([`crate::body::scales`]); an overlap measured from the core.
+    fn own_contact_scales(
+        &self,
+        load: NormalLoad,
+        effective_radius: f64,
+        hertz_half_width: f64,
+        rolling: Rolling,
+    ) -> Option<ContactScales> {
+        let model = self.rolling_as(rolling);
+        let block = crate::body::scales::pressure_block(&model);
+        crate::body::scales::normal_contact_scales(&block, load, effective_radius, hertz_half_width)
+    }
+
+    /// The half-space's error against the true geometry is not this model's (its own is the
+    /// flat cover's, b ≪ R).
+    fn shares_half_space_error(&self) -> bool {
+        false
     }
 
     /// The layer's own kernels are exact for a flat cover; the half-plane idealisation's

@@ -70,7 +70,9 @@ pub(super) fn rolling_speed_problems(case: &Case) -> Vec<(String, String)> {
                      (a cover on a rigid core: a layer)"
                 ),
             )),
-            _ => {}
+            // Elastic bem bodies; a rigid body has no material. Every kind named, so that a new
+            // body model decides here whether it takes a viscoelastic material.
+            BodySpec::Bem { .. } | BodySpec::Rigid { .. } => {}
         }
     }
     match case.load.speed {
