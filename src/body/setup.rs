@@ -223,6 +223,13 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         false
     }
 
+    /// Whether the body is the elastic half-plane of [`Self::hertz_material`] that the Hertz
+    /// estimates describe, so that they compare with its solved contact (the run's table
+    /// prints them beside it when both bodies are); false by default.
+    fn hertz_applies(&self) -> bool {
+        false
+    }
+
     /// Whether the half-space model's measured error against the true geometry (the model
     /// advice of `rollbem check`) concerns this body: true for a body a half-space models, or
     /// could model in place of its true geometry (`bem`); false for a model with an

@@ -150,6 +150,11 @@ pub struct Models {
     /// Model of B.
     #[serde(rename = "B")]
     pub b: String,
+    /// Whether both bodies are the elastic half-planes the Hertz estimates describe
+    /// ([`crate::body::BodySetup::hertz_applies`]): the run's table then sets Hertz's
+    /// half-width and p0 beside the solved ones. Not written to summary.json.
+    #[serde(skip)]
+    pub hertzian: bool,
 }
 
 /// Solver diagnostics.
@@ -221,6 +226,7 @@ pub fn summary(s: &Solved) -> Summary {
         models: Models {
             a: scene.bodies[0].model_name().to_string(),
             b: scene.bodies[1].model_name().to_string(),
+            hertzian: scene.bodies.iter().all(|b| b.hertz_applies()),
         },
         estimates: scene.estimates.clone(),
         grid: GridSummary {

@@ -45,8 +45,8 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     }
     line(&format!("overlap delta0 [{len}]"), format!("{:.6e}", s.overlap));
     line("creepage xi [-]", format!("{:.6e}", s.creep));
-    // Hertz comparisons only mean something when both bodies are half-spaces.
-    let hertzian = s.models.a == "half_space" && s.models.b == "half_space";
+    // Hertz comparisons only mean something when both bodies are elastic half-planes.
+    let hertzian = s.models.hertzian;
     if let Some(c) = &s.contact {
         let hertz = if hertzian {
             format!(" (Hertz {:.5})", s.estimates.hertz_half_width)

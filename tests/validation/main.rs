@@ -48,3 +48,4 @@ mod viscoelastic;
 #[allow(dead_code)]
 #[path = "../../examples/viscoelastic_report.rs"]
 mod viscoelastic_report;
+mod winkler;

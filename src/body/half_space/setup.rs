@@ -33,6 +33,10 @@ impl BodySetup for HalfSpaceSetup {
         true
     }
 
+    fn hertz_applies(&self) -> bool {
+        true
+    }
+
     /// Flat in its model: the contact frame keeps the global axes.
     fn surface_at(&self, _x: f64, _side: Side) -> Option<SurfaceAt> {
         None
