@@ -68,12 +68,11 @@ use markdown::{assert_table, cell_mismatch, number_after, page, Printed, Rows};
 
 /// The page's table of the same header holds every printed row and no other.
 fn assert_same(page_name: &str, t: &validation_report::common::Table) {
-    let p = page(page_name);
     let printed = Printed {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&p, printed, Rows::All, &[], (&[], 0.0));
+    assert_table(page_name, printed, Rows::All, &[], (&[], 0.0));
 }
 
 /// A number the prose quotes (right after `before`) is the printed one.
@@ -116,7 +115,7 @@ fn validation_phi_psi_table() {
         rows: &t.rows,
     };
     let noise = ["max |p_Φ − p_Ψ|/p_max", "max |q_Φ − q_Ψ|/max|q|"];
-    assert_table(&page("validation.md"), printed, Rows::All, &[], (&noise, 1e-12));
+    assert_table("validation.md", printed, Rows::All, &[], (&noise, 1e-12));
 }
 
 /// Every method converges to the default Newton's solution of the same discrete problem: the
@@ -130,7 +129,7 @@ fn validation_methods_table() {
         rows: &t.rows,
     };
     let noise = ["max Δq / μp0", "max Δp / p0"];
-    assert_table(&page("validation.md"), printed, Rows::All, &[], (&noise, 1e-9));
+    assert_table("validation.md", printed, Rows::All, &[], (&noise, 1e-9));
 }
 
 /// docs/validation.md, "Parametric bodies": each family against its Gmsh twin.
@@ -141,7 +140,7 @@ fn validation_parametric_table() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("validation.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_table("validation.md", printed, Rows::All, &[], (&[], 0.0));
 }
 
 /// docs/validation.md, "The body mesh's error": the coarse roller's estimate against the
@@ -153,7 +152,7 @@ fn validation_body_mesh_table() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("validation.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_table("validation.md", printed, Rows::All, &[], (&[], 0.0));
 }
 
 /// The rows of the BEM tolerance matrix that the tests repeat (the whole table takes half an
@@ -170,7 +169,7 @@ fn validation_bem_tolerance_table() {
         rows: &t.rows,
     };
     assert_table(
-        &page("validation.md"),
+        "validation.md",
         printed,
         Rows::Printed { key: 2 },
         &["time [s]"],
@@ -195,7 +194,7 @@ fn viscoelastic_tables() {
             header: &t.header,
             rows: &t.rows,
         };
-        assert_table(&page("viscoelastic.md"), printed, Rows::All, &[], (&[], 0.0));
+        assert_table("viscoelastic.md", printed, Rows::All, &[], (&[], 0.0));
     }
 }
 
@@ -218,7 +217,7 @@ fn traction_axes_table() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("theory.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_table("theory.md", printed, Rows::All, &[], (&[], 0.0));
 }
 
 /// docs/conformal.md §6: the roller-in-a-ring-bore cases, BEM and half-space.
@@ -230,7 +229,7 @@ fn bore_table() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("conformal.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_table("conformal.md", printed, Rows::All, &[], (&[], 0.0));
 }
 
 /// docs/hbem.md: Carter with true rollers (the error table), Fig. 4's nodes (a selection of
@@ -244,7 +243,7 @@ fn hbem_tables_and_quoted_numbers() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("hbem.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_table("hbem.md", printed, Rows::All, &[], (&[], 0.0));
     let (hbem_slip, fd_slip) = (&t.rows[0][1], &t.rows[1][1]);
     assert_quoted("validation.md", "largest slip: HBEM slip", percent(hbem_slip));
     assert_quoted(
@@ -259,14 +258,14 @@ fn hbem_tables_and_quoted_numbers() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("hbem.md"), printed, Rows::Selection { key: 1 }, &[], (&[], 0.0));
+    assert_table("hbem.md", printed, Rows::Selection { key: 1 }, &[], (&[], 0.0));
 
     let t = hbem_report::check_table();
     let printed = Printed {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("hbem.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_table("hbem.md", printed, Rows::All, &[], (&[], 0.0));
     let stick = r"max \|s_hbem\| at stick nodes";
     let slip = r"max \|s_hbem − s\| at slip nodes";
     let fig4_stick = percent(cell(&t.header, &t.rows, "fig4_true_geometry", stick));
@@ -297,7 +296,7 @@ fn model_error_tables_and_advice_constants() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("choosing-a-model.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_table("choosing-a-model.md", printed, Rows::All, &[], (&[], 0.0));
     assert_eq!(rollers.len(), rollbem::advice::ROLLER_ERROR.len());
     for (r, &(a_over_r, p, q)) in rollers.iter().zip(&rollbem::advice::ROLLER_ERROR) {
         assert_eq!(r.a_over_r, a_over_r);
@@ -310,7 +309,7 @@ fn model_error_tables_and_advice_constants() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("choosing-a-model.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_table("choosing-a-model.md", printed, Rows::All, &[], (&[], 0.0));
     assert_eq!(internal.len(), rollbem::advice::INTERNAL_ERROR.len());
     for (r, &(a_over_r, p, q)) in internal.iter().zip(&rollbem::advice::INTERNAL_ERROR) {
         assert_eq!(r.a_over_r, a_over_r);
@@ -323,7 +322,7 @@ fn model_error_tables_and_advice_constants() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("choosing-a-model.md"), printed, Rows::All, &[], (&[], 0.0));
+    assert_table("choosing-a-model.md", printed, Rows::All, &[], (&[], 0.0));
     assert_eq!(layers.len(), rollbem::advice::LAYER_ERROR.len());
     for (r, &(b_over_a, p)) in layers.iter().zip(&rollbem::advice::LAYER_ERROR) {
         assert_eq!(r.b_over_a, b_over_a);
@@ -349,7 +348,7 @@ fn validation_adaptive_table() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("validation.md"), printed, Rows::All, &["time [s]"], (&[], 0.0));
+    assert_table("validation.md", printed, Rows::All, &["time [s]"], (&[], 0.0));
 }
 
 /// docs/validation.md: the effectivity matrix of the error estimate, without the times.
@@ -360,7 +359,7 @@ fn validation_effectivity_matrix_table() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("validation.md"), printed, Rows::All, &["time [s]"], (&[], 0.0));
+    assert_table("validation.md", printed, Rows::All, &["time [s]"], (&[], 0.0));
 }
 
 /// docs/validation.md: error-controlled grids of BEM rollers, without the times.
@@ -371,7 +370,7 @@ fn validation_adaptive_true_geometry_table() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("validation.md"), printed, Rows::All, &["time [s]"], (&[], 0.0));
+    assert_table("validation.md", printed, Rows::All, &["time [s]"], (&[], 0.0));
 }
 
 /// docs/performance.md: uniform against error-controlled grids, without the times.
@@ -389,13 +388,7 @@ fn performance_error_vs_time_table() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(
-        &page("performance.md"),
-        printed,
-        Rows::All,
-        &["whole process [s]"],
-        (&[], 0.0),
-    );
+    assert_table("performance.md", printed, Rows::All, &["whole process [s]"], (&[], 0.0));
 }
 
 /// docs/performance.md: the carter2d table without its times.
@@ -410,7 +403,7 @@ fn performance_carter2d_table() {
         rows: &t.rows,
     };
     let times = ["assembly [ms]", "solve [ms]", "per iteration [ms]", "whole process [s]"];
-    assert_table(&page("performance.md"), printed, Rows::All, &times, (&[], 0.0));
+    assert_table("performance.md", printed, Rows::All, &times, (&[], 0.0));
 }
 
 /// docs/performance.md: the methods table without its times. A difference from Newton below
@@ -424,13 +417,7 @@ fn performance_methods_table() {
         rows: &t.rows,
     };
     let noise = ["max |Δq| vs newton (μp0)"];
-    assert_table(
-        &page("performance.md"),
-        printed,
-        Rows::All,
-        &["solve [ms]"],
-        (&noise, 1e-9),
-    );
+    assert_table("performance.md", printed, Rows::All, &["solve [ms]"], (&noise, 1e-9));
 }
 
 /// docs/performance.md, "Solver cost at the friction limits": the ladder at 41 and 81 elements
@@ -443,5 +430,5 @@ fn performance_friction_limits_table() {
         header: &t.header,
         rows: &t.rows,
     };
-    assert_table(&page("performance.md"), printed, Rows::All, &["solve [s]"], (&[], 0.0));
+    assert_table("performance.md", printed, Rows::All, &["solve [s]"], (&[], 0.0));
 }

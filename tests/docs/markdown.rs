@@ -163,7 +163,18 @@ pub enum Rows {
 /// named in `skip` (times, which depend on the machine) are not compared, and a cell of a
 /// `noise` column (a difference at round-off level) passes when it is below `noise_limit` on
 /// both sides, else it is compared like any other.
-pub fn assert_table(page: &str, printed: Printed, rows: Rows, skip: &[&str], noise: (&[&str], f64)) {
+///
+/// With `ROLLBEM_DOCS_WRITE=1` a table whose rows the report prints in full ([`Rows::All`]) is
+/// written into the page instead (the `skip` columns, times measured on another occasion, kept
+/// from the page's row of the same first cell where there is one), so that
+/// `ROLLBEM_DOCS_WRITE=1 cargo test --release --test docs` regenerates every such table in
+/// docs/ (a new shipped case adds its rows); the other kinds are compared as always.
+pub fn assert_table(page_name: &str, printed: Printed, rows: Rows, skip: &[&str], noise: (&[&str], f64)) {
+    if matches!(rows, Rows::All) && std::env::var_os(WRITE_ENV).is_some_and(|v| v == "1") {
+        write_table(page_name, &printed, skip, noise);
+        return;
+    }
+    let page = &self::page(page_name);
     let on_page = table(page, printed.header);
     let compared: Vec<usize> = (0..printed.header.len())
         .filter(|&j| !skip.contains(&printed.header[j].as_str()))
@@ -188,7 +199,7 @@ pub fn assert_table(page: &str, printed: Printed, rows: Rows, skip: &[&str], noi
             assert_eq!(
                 on_page.len(),
                 printed.rows.len(),
-                "the page's table {:?} has {} rows, the report prints {}: first column on the page {:?}, printed {:?}",
+                "docs/{page_name}: the page's table {:?} has {} rows, the report prints {}: first column on the page {:?}, printed {:?}\n{REGENERATE}",
                 printed.header,
                 on_page.len(),
                 printed.rows.len(),
@@ -228,10 +239,68 @@ pub fn assert_table(page: &str, printed: Printed, rows: Rows, skip: &[&str], noi
     }
     assert!(
         failures.is_empty(),
-        "the page and the report disagree ({} cells):\n  {}",
+        "docs/{page_name}: the page and the report disagree ({} cells):\n  {}\n{REGENERATE}",
         failures.len(),
         failures.join("\n  ")
     );
+}
+
+/// The variable that turns [`assert_table`] into the docs' writer.
+pub const WRITE_ENV: &str = "ROLLBEM_DOCS_WRITE";
+
+/// What a failure says to do when the report is right and the page is old.
+const REGENERATE: &str = "if the report is right, regenerate the docs' tables: \
+    ROLLBEM_DOCS_WRITE=1 cargo test --release --test docs (then review `git diff docs/`)";
+
+/// Replaces the rows of the table of docs/`page_name` whose header is `printed`'s with the
+/// printed rows, the cells of the `skip` columns kept from the page's row of the same first
+/// cell (in the same place, or else the first), and so are the cells of the `noise` columns
+/// that the comparison passes as round-off; the rest of the page stays as it was.
+fn write_table(page_name: &str, printed: &Printed, skip: &[&str], noise: (&[&str], f64)) {
+    let (noise_columns, noise_limit) = noise;
+    let below = |c: &str| tokens(c).1.iter().all(|n| n.value.abs() < noise_limit);
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs").join(page_name);
+    let text = page(page_name);
+    let wanted = squeeze(&format!("| {} |", printed.header.join(" | ")));
+    let lines: Vec<&str> = text.lines().collect();
+    let start = lines
+        .iter()
+        .position(|l| squeeze(l) == wanted)
+        .unwrap_or_else(|| panic!("docs/{page_name}: no table with the header\n  {wanted}\nto write"));
+    let end = start
+        + 2
+        + lines[start + 2..]
+            .iter()
+            .take_while(|l| l.trim_start().starts_with('|'))
+            .count();
+    let mut out: Vec<String> = lines[..start + 2].iter().map(|l| l.to_string()).collect();
+    let on_page = table(&text, printed.header);
+    for (i, row) in printed.rows.iter().enumerate() {
+        // The row in the same place if it is the same case, else the first of that name.
+        let same = |p: &&Vec<String>| p[0] == row[0];
+        let old = on_page.get(i).filter(same).or_else(|| on_page.iter().find(same));
+        let cells: Vec<&str> = (0..row.len())
+            .map(|j| {
+                let name = printed.header[j].as_str();
+                match old {
+                    Some(p) if skip.contains(&name) => p[j].as_str(),
+                    // Round-off that the comparison passes is not churned either.
+                    Some(p) if noise_columns.contains(&name) && below(&p[j]) && below(&row[j]) => p[j].as_str(),
+                    _ => row[j].as_str(),
+                }
+            })
+            .collect();
+        out.push(format!("| {} |", cells.join(" | ")));
+    }
+    out.extend(lines[end..].iter().map(|l| l.to_string()));
+    let mut written = out.join("\n");
+    if text.ends_with('\n') {
+        written.push('\n');
+    }
+    if written != text {
+        std::fs::write(&path, written).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        eprintln!("wrote the table {:?} of docs/{page_name}", printed.header[0]);
+    }
 }
 
 /// The number printed right after `before` on the page (the first occurrence).
