@@ -18,13 +18,21 @@ pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> R
 /// as the Python module's `rollbem.check` loads a case given as a dict); its first line names
 /// `case.path`.
 pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
-    let case_path = case.path.as_path();
     let scene = Scene::from_case(case)?;
-    let (bodies, est, grid) = (&scene.bodies, &scene.estimates, &scene.grid);
+    let mut t = format!("rollbem check {}: valid\n", case.path.display());
+    t.push_str(&format!("  {:<26} {}\n", "title", case.case.title));
+    mesh_lines(case, &scene, &mut t)?;
+    estimate_lines(case, &scene, &mut t);
+    advice_lines(case, &scene, tolerance, &mut t);
+    cost_lines(case, &scene, &mut t)?;
+    Ok(t)
+}
+
+/// The bodies as understood, their meshes' groups, loops and contact segments, and how their contact nodes meet the grid.
+fn mesh_lines(case: &LoadedCase, scene: &Scene, t: &mut String) -> Result<(), Error> {
+    let (bodies, grid) = (&scene.bodies, &scene.grid);
     let c = &case.case;
-    let mut t = format!("rollbem check {}: valid\n", case_path.display());
     let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
-    line("title", c.title.clone());
     for (side, spec) in [("A", &c.bodies.a), ("B", &c.bodies.b)] {
         let text = crate::scene::registry::describe(case, spec, bodies[if side == "A" { 0 } else { 1 }].as_ref());
         line(&format!("body {side}"), text);
@@ -96,6 +104,14 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
             },
         );
     }
+    Ok(())
+}
+
+/// The estimates of the contact (Hertz's, or a body's own) and the grid around it.
+fn estimate_lines(case: &LoadedCase, scene: &Scene, t: &mut String) {
+    let (est, grid) = (&scene.estimates, &scene.grid);
+    let c = &case.case;
+    let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
     let (l, f) = (&c.units.length, &c.units.force);
     line("effective radius R", format!("{:.6} {l}", est.effective_radius));
     line("contact modulus E*", format!("{:.6} {f}/{l}^2", est.e_star));
@@ -160,6 +176,14 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
             ),
         );
     }
+}
+
+/// The model advice (the half-space's estimated error against the true geometry) and the validity warnings.
+fn advice_lines(case: &LoadedCase, scene: &Scene, tolerance: f64, t: &mut String) {
+    let (bodies, est) = (&scene.bodies, &scene.estimates);
+    let c = &case.case;
+    let l = &c.units.length;
+    let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
     // The half-space error of the scene: a roller in a bore's if a body is concave (the
     // family's ring has its rim fixed 0.3 bore radii under the contact, so its error includes
     // that wall's), a layer's if a bem body is held fixed closer under its contact than half its
@@ -209,6 +233,12 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
     for w in crate::scene::validity::warnings(bodies, est) {
         line("warning", w);
     }
+}
+
+/// The error control, and the cost and memory of the run and of the other model.
+fn cost_lines(case: &LoadedCase, scene: &Scene, t: &mut String) -> Result<(), Error> {
+    let c = &case.case;
+    let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
     if let Some(tol) = c.contact.grid.tolerance {
         line(
             "error control",
@@ -220,7 +250,7 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
             ),
         );
     }
-    let (this, other) = costs(&scene);
+    let (this, other) = costs(scene);
     let this = if c.contact.grid.tolerance.is_some() {
         format!("{this} for the start grid; the refined grids cost more (docs/performance.md)")
     } else {
@@ -237,7 +267,7 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
             crate::limits::available_memory().map_or("unknown".into(), crate::limits::human_bytes)
         ),
     );
-    Ok(t)
+    Ok(())
 }
 
 /// The estimated cost of the case as it stands and with the other model: BEM rollers on shafts

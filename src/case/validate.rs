@@ -94,43 +94,68 @@ impl std::fmt::Display for Violation {
     }
 }
 
+/// The violations of a case, as the checks find them.
+struct Problems(Vec<Violation>);
+
+impl Problems {
+    /// Records that `key` breaks a rule, and why.
+    fn bad(&mut self, key: String, message: String) {
+        self.0.push(Violation { key, message });
+    }
+}
+
 /// Checks every rule of the case; an empty list means the case is valid.
 pub fn validate(case: &Case) -> Vec<Violation> {
-    let mut out = Vec::new();
-    let mut bad = |key: String, message: String| out.push(Violation { key, message });
+    let mut found = Problems(Vec::new());
+    material_problems(case, &mut found);
+    body_problems(case, &mut found);
+    for (key, message) in rolling_speed_problems(case) {
+        found.bad(key, message);
+    }
+    contact_problems(case, &mut found);
+    load_problems(case, &mut found);
+    solver_problems(case, &mut found);
+    interior_problems(case, &mut found);
+    found.0
+}
 
+/// The materials: moduli, Poisson's ratio, the viscoelastic keys.
+fn material_problems(case: &Case, found: &mut Problems) {
     for (name, m) in &case.materials {
         let key = |k: &str| format!("materials.{name}.{k}");
         match (m.young, m.shear) {
-            (Some(_), Some(_)) => bad(key("E"), "give either E or G, not both".into()),
-            (None, None) => bad(
+            (Some(_), Some(_)) => found.bad(key("E"), "give either E or G, not both".into()),
+            (None, None) => found.bad(
                 key("E"),
                 "missing: give Young's modulus E (or the shear modulus G)".into(),
             ),
             (Some(e), None) => {
                 if let Some(why) = positive_quantity(e) {
-                    bad(key("E"), format!("Young's modulus {why}"));
+                    found.bad(key("E"), format!("Young's modulus {why}"));
                 }
             }
             (None, Some(g)) => {
                 if let Some(why) = positive_quantity(g) {
-                    bad(key("G"), format!("shear modulus {why}"));
+                    found.bad(key("G"), format!("shear modulus {why}"));
                 }
             }
         }
         if !(m.nu > -1.0 && m.nu <= 0.5) {
-            bad(
+            found.bad(
                 key("nu"),
                 format!("Poisson's ratio must lie in (-1, 0.5] (value = {})", shown(m.nu)),
             );
         }
         if let Some(v) = &m.viscoelastic {
             for (k, message) in viscoelastic_problems(m, v) {
-                bad(key(&format!("viscoelastic.{k}")), message);
+                found.bad(key(&format!("viscoelastic.{k}")), message);
             }
         }
     }
+}
 
+/// The bodies: each body's keys by its model, their radii as a pair, not both rigid.
+fn body_problems(case: &Case, found: &mut Problems) {
     let undefined_material = |side: &str, material: &str| {
         (!case.materials.contains_key(material)).then(|| Violation {
             key: format!("bodies.{side}.material"),
@@ -147,7 +172,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         let radius = match body {
             BodySpec::HalfSpace { material, radius } => {
                 if let Some(v) = undefined_material(side, material) {
-                    bad(v.key, v.message);
+                    found.bad(v.key, v.message);
                 }
                 given[k] = Some(*radius);
                 *radius
@@ -158,10 +183,10 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 thickness,
             } => {
                 if let Some(v) = undefined_material(side, material) {
-                    bad(v.key, v.message);
+                    found.bad(v.key, v.message);
                 }
                 if let Some(why) = positive_quantity(*thickness) {
-                    bad(format!("bodies.{side}.thickness"), format!("cover thickness {why}"));
+                    found.bad(format!("bodies.{side}.thickness"), format!("cover thickness {why}"));
                 } else if radius.is_finite() && *thickness >= 0.5 * radius.abs() {
                     // The true geometry of a cover is a bem body, which is elastic only.
                     let instead = if case.materials.get(material).is_some_and(|m| m.viscoelastic.is_some()) {
@@ -171,7 +196,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                     } else {
                         "model the body by `bem` with `geometry: {covered_roller: ...}`"
                     };
-                    bad(
+                    found.bad(
                         format!("bodies.{side}.thickness"),
                         format!(
                             "the layer model takes the cover flat (thickness b << radius R); b = {} is not below \
@@ -193,7 +218,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                     }
                     (None, Some(_)) => 1.0,
                     _ => {
-                        bad(
+                        found.bad(
                             format!("bodies.{side}"),
                             "a rigid body takes exactly one of `radius` (the profile radius) or `mesh` \
                              (a Gmsh mesh whose contact group's circle gives it)"
@@ -212,16 +237,16 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                 geometry,
             } => {
                 if let Some(v) = undefined_material(side, material) {
-                    bad(v.key, v.message);
+                    found.bad(v.key, v.message);
                 }
                 match (mesh, geometry) {
-                    (Some(_), Some(_)) => bad(
+                    (Some(_), Some(_)) => found.bad(
                         format!("bodies.{side}.geometry"),
                         "a bem body takes exactly one of `mesh` (a Gmsh file) or `geometry` (a parametric \
                          body rollbem meshes itself): remove one of the two"
                             .into(),
                     ),
-                    (None, None) => bad(
+                    (None, None) => found.bad(
                         format!("bodies.{side}.mesh"),
                         "missing: give `mesh` (a Gmsh .msh file) or `geometry` (e.g. {roller: {radius: 150, \
                          shaft: 15}}; cases/README.md lists the families)"
@@ -229,42 +254,18 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                     ),
                     (None, Some(g)) => {
                         for v in geometry_violations(side, g, contact, boundaries, *radius) {
-                            bad(v.key, v.message);
+                            found.bad(v.key, v.message);
                         }
                     }
                     (Some(_), None) => {}
                 }
                 if boundaries.contains_key(contact) {
-                    bad(
+                    found.bad(
                         format!("bodies.{side}.boundaries.{contact}"),
                         "the contact group takes the contact tractions; do not give it a boundary condition".into(),
                     );
                 }
-                for (group, spec) in boundaries {
-                    if let BoundarySpec::Prescribed(p) = spec {
-                        let n = [p.displacement.is_some(), p.traction.is_some(), p.pressure.is_some()];
-                        if n.iter().filter(|&&b| b).count() != 1 {
-                            bad(
-                                format!("bodies.{side}.boundaries.{group}"),
-                                "give `fixed`, `free`, or exactly one of {displacement: [ux, uy]}, {traction: [tx, ty]}, {pressure: p}".into(),
-                            );
-                        } else {
-                            let values = p
-                                .displacement
-                                .or(p.traction)
-                                .map_or(vec![p.pressure.unwrap_or(0.0)], |v| v.to_vec());
-                            if values.iter().any(|v| *v != 0.0) {
-                                bad(
-                                    format!("bodies.{side}.boundaries.{group}"),
-                                    "non-zero prescribed data on other groups is not supported in contact runs yet (its \
-                                     displacement of the contact surface is not added to the gap); use fixed, free or \
-                                     zero values, and load the contact by the case's `load`"
-                                        .into(),
-                                );
-                            }
-                        }
-                    }
-                }
+                prescribed_boundary_problems(side, boundaries, found);
                 given[k] = radius.or_else(|| {
                     geometry
                         .as_ref()
@@ -280,7 +281,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             magnitude(radius)
         };
         if let Some(why) = nonzero {
-            bad(
+            found.bad(
                 format!("bodies.{side}.radius"),
                 format!(
                     "radius {why}: positive for a convex body, negative for a concave one (a ring's bore); \
@@ -291,23 +292,56 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     }
     if let [Some(ra), Some(rb)] = given {
         if let Some(message) = radius_pair_problem(ra, rb) {
-            bad("bodies.A.radius, bodies.B.radius".into(), message);
+            found.bad("bodies.A.radius, bodies.B.radius".into(), message);
         }
     }
     if rigid == 2 {
-        bad(
+        found.bad(
             "bodies".into(),
             "both bodies are rigid: at least one must be elastic".into(),
         );
     }
+}
 
-    for (key, message) in rolling_speed_problems(case) {
-        bad(key, message);
+/// The prescribed boundary conditions of a bem body's other groups: exactly one kind each,
+/// and zero (a non-zero one would move the contact surface outside the gap the run solves).
+fn prescribed_boundary_problems(
+    side: &str,
+    boundaries: &std::collections::BTreeMap<String, BoundarySpec>,
+    found: &mut Problems,
+) {
+    for (group, spec) in boundaries {
+        if let BoundarySpec::Prescribed(p) = spec {
+            let n = [p.displacement.is_some(), p.traction.is_some(), p.pressure.is_some()];
+            if n.iter().filter(|&&b| b).count() != 1 {
+                found.bad(
+                    format!("bodies.{side}.boundaries.{group}"),
+                    "give `fixed`, `free`, or exactly one of {displacement: [ux, uy]}, {traction: [tx, ty]}, {pressure: p}".into(),
+                );
+            } else {
+                let values = p
+                    .displacement
+                    .or(p.traction)
+                    .map_or(vec![p.pressure.unwrap_or(0.0)], |v| v.to_vec());
+                if values.iter().any(|v| *v != 0.0) {
+                    found.bad(
+                        format!("bodies.{side}.boundaries.{group}"),
+                        "non-zero prescribed data on other groups is not supported in contact runs yet (its \
+                         displacement of the contact surface is not added to the gap); use fixed, free or \
+                         zero values, and load the contact by the case's `load`"
+                            .into(),
+                    );
+                }
+            }
+        }
     }
+}
 
+/// `contact`: friction and the grid.
+fn contact_problems(case: &Case, found: &mut Problems) {
     let c = &case.contact;
     if !(c.friction >= 0.0 && c.friction <= MAX_FRICTION) {
-        bad(
+        found.bad(
             "contact.friction".into(),
             format!(
                 "friction coefficient must be >= 0 and <= {MAX_FRICTION:e} (value = {})",
@@ -319,12 +353,12 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         .into_iter()
         .any(|b| matches!(b, BodySpec::Bem { .. }));
     if c.grid.elements == 0 {
-        bad(
+        found.bad(
             "contact.grid.elements".into(),
             "need at least one contact element (value = 0); 21 is the paper's grid".into(),
         );
     } else if c.grid.elements > MAX_ELEMENTS {
-        bad(
+        found.bad(
             "contact.grid.elements".into(),
             format!(
                 "{} elements are beyond the memory of any machine (at most {MAX_ELEMENTS}); 21 is the paper's grid",
@@ -332,7 +366,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             ),
         );
     } else if c.grid.elements < MIN_UNIFORM_ELEMENTS && !bem_body {
-        bad(
+        found.bad(
             "contact.grid.elements".into(),
             format!(
                 "need at least {MIN_UNIFORM_ELEMENTS} elements (value = {}): with fewer, the elements that \
@@ -343,7 +377,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         );
     }
     if !(c.grid.extent > 1.0 && c.grid.extent <= MAX_EXTENT) {
-        bad(
+        found.bad(
             "contact.grid.extent".into(),
             format!(
                 "the grid must extend beyond the Hertz contact and hold it in more than a couple of \
@@ -354,7 +388,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         );
     }
     if bem_body && c.grid.element != crate::grid::ElementKind::DiscontinuousQuadratic {
-        bad(
+        found.bad(
             "contact.grid.element".into(),
             format!(
                 "{} elements cannot be used with a bem body: the contact grid is then the mesh's own \
@@ -366,12 +400,12 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     }
     if let Some(h) = c.grid.half_length {
         if let Some(why) = positive_quantity(h) {
-            bad("contact.grid.half_length".into(), why);
+            found.bad("contact.grid.half_length".into(), why);
         }
     }
     if let Some(tol) = c.grid.tolerance {
         if !(MIN_GRID_TOLERANCE..=MAX_GRID_TOLERANCE).contains(&tol) {
-            bad(
+            found.bad(
                 "contact.grid.tolerance".into(),
                 format!(
                     "the requested error must lie in [{MIN_GRID_TOLERANCE:e}, {MAX_GRID_TOLERANCE}] \
@@ -386,7 +420,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             // constant interpolants differ by O(h) jumps even where the nodal values are exact,
             // so the estimate stays an order above the true error and the grid refines to its
             // limit (Carter at 1e-4 stopped at max_elements with a true error of 9e-5).
-            bad(
+            found.bad(
                 "contact.grid.element".into(),
                 "an error-controlled grid (contact.grid.tolerance) needs quadratic elements: with \
                  constant ones the error estimate is dominated by the jumps of the piecewise-constant \
@@ -396,7 +430,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             );
         }
         if c.grid.max_elements < 2 * c.grid.elements.max(1) || c.grid.max_elements > MAX_ADAPTIVE_ELEMENTS {
-            bad(
+            found.bad(
                 "contact.grid.max_elements".into(),
                 format!(
                     "must be at least twice contact.grid.elements ({}) and at most \
@@ -407,23 +441,27 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             );
         }
     }
+}
 
+/// `load`: the normal and tangential controls and their ranges.
+fn load_problems(case: &Case, found: &mut Problems) {
+    let c = &case.contact;
     if let Err(m) = case.load.normal_keys.spec() {
-        bad("load.normal".into(), m);
+        found.bad("load.normal".into(), m);
     }
     if let Err(m) = case.load.tangential_keys.spec() {
-        bad("load.tangential".into(), m);
+        found.bad("load.tangential".into(), m);
     }
     let normal_force = match case.load.normal() {
         NormalSpec::Force(p) => {
             if let Some(why) = positive_quantity(p) {
-                bad("load.normal.force".into(), format!("normal force {why}"));
+                found.bad("load.normal.force".into(), format!("normal force {why}"));
             }
             Some(p)
         }
         NormalSpec::Overlap(d) => {
             if let Some(why) = positive_quantity(d) {
-                bad("load.normal.overlap".into(), format!("overlap {why}"));
+                found.bad("load.normal.overlap".into(), format!("overlap {why}"));
             }
             None
         }
@@ -432,12 +470,12 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     match case.load.tangential() {
         TangentialSpec::Ratio(r) => {
             if r.is_nan() || r.abs() >= 1.0 {
-                bad(
+                found.bad(
                     "load.tangential.ratio".into(),
                     format!("|Q/(muP)| must be < 1 (value = {}): {full_sliding}", shown(r)),
                 );
             } else if c.friction == 0.0 && r != 0.0 {
-                bad(
+                found.bad(
                     "load.tangential.ratio".into(),
                     "a ratio Q/(muP) needs friction > 0".into(),
                 );
@@ -445,10 +483,10 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         }
         TangentialSpec::Force(q) => {
             if let Some(why) = magnitude(q) {
-                bad("load.tangential.force".into(), format!("tangential force: {why}"));
+                found.bad("load.tangential.force".into(), format!("tangential force: {why}"));
             } else if let Some(p) = normal_force {
                 if q.is_nan() || q.abs() >= c.friction * p {
-                    bad(
+                    found.bad(
                         "load.tangential.force".into(),
                         format!("|Q| = {} must be < muP = {} : {full_sliding}", q.abs(), c.friction * p),
                     );
@@ -458,7 +496,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         TangentialSpec::Creep(x) => {
             // ξ = (V_A − V_B)/V with V the mean speed: |ξ| = 2 means that one surface stands still.
             if x.is_nan() || x.abs() >= 2.0 {
-                bad(
+                found.bad(
                     "load.tangential.creep".into(),
                     format!(
                         "creepage (V_A - V_B)/V must lie in (-2, 2) (value = {}): at |xi| = 2 one surface \
@@ -469,12 +507,15 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             }
         }
     }
+}
 
+/// `solver`: tolerance, iterations, penalty.
+fn solver_problems(case: &Case, found: &mut Problems) {
     let s = &case.solver;
     // A tolerance below round-off (about 1e-14) is allowed: it enters no derived quantity, and
     // the stall test of every method ends such a run with exit 2 and its history.
     if !(s.tolerance > 0.0 && s.tolerance < 1.0) {
-        bad(
+        found.bad(
             "solver.tolerance".into(),
             format!(
                 "must lie in (0, 1) (value = {}); 1e-10 is the default",
@@ -483,11 +524,11 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         );
     }
     if s.max_iterations == 0 {
-        bad("solver.max_iterations".into(), "must be >= 1 (value = 0)".into());
+        found.bad("solver.max_iterations".into(), "must be >= 1 (value = 0)".into());
     }
     if let Penalty::Scale(p) = s.penalty {
         if !(PENALTY_RANGE[0]..=PENALTY_RANGE[1]).contains(&p) {
-            bad(
+            found.bad(
                 "solver.penalty".into(),
                 format!(
                     "penalty scale must be `auto` or lie in [{:e}, {:e}] (value = {}); it multiplies the \
@@ -499,6 +540,10 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             );
         }
     }
+}
+
+/// `output.interior`: a body with an interior, a grid inside it.
+fn interior_problems(case: &Case, found: &mut Problems) {
     if let Some(g) = &case.output.interior {
         let body = match g.body.as_str() {
             "A" => Some(&case.bodies.a),
@@ -506,12 +551,12 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             _ => None,
         };
         match body {
-            None => bad(
+            None => found.bad(
                 "output.interior.body".into(),
                 format!("must be A or B (value = {})", g.body),
             ),
             Some(BodySpec::HalfSpace { .. } | BodySpec::Bem { .. }) => {}
-            Some(BodySpec::Layer { .. }) => bad(
+            Some(BodySpec::Layer { .. }) => found.bad(
                 "output.interior.body".into(),
                 format!(
                     "body {} is a layer, whose model gives its surface only; ask for the other body, or \
@@ -519,7 +564,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
                     g.body
                 ),
             ),
-            Some(BodySpec::Rigid { .. }) => bad(
+            Some(BodySpec::Rigid { .. }) => found.bad(
                 "output.interior.body".into(),
                 format!(
                     "body {} is rigid: it does not deform and has no interior stresses; ask for a \
@@ -530,9 +575,9 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         }
         for (k, v) in [("x", g.x), ("y", g.y)] {
             if let Some(why) = magnitude(v[0]).or_else(|| magnitude(v[1])) {
-                bad(format!("output.interior.{k}"), format!("start and end: {why}"));
+                found.bad(format!("output.interior.{k}"), format!("start and end: {why}"));
             } else if !(v[2] >= 2.0 && v[2].fract() == 0.0 && v[2] <= 10_000.0 && v[1] > v[0]) {
-                bad(
+                found.bad(
                     format!("output.interior.{k}"),
                     format!("give [start, end, points] with end > start and 2..10000 points (value = {v:?})"),
                 );
@@ -540,7 +585,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         }
         let inside = if g.body == "B" { g.y[1] < 0.0 } else { g.y[0] > 0.0 };
         if !inside {
-            bad(
+            found.bad(
                 "output.interior.y".into(),
                 format!(
                     "the points must lie inside body {}: y > 0 for A, y < 0 for B (value = {:?})",
@@ -549,7 +594,6 @@ pub fn validate(case: &Case) -> Vec<Violation> {
             );
         }
     }
-    out
 }
 
 /// Why two signed profile radii cannot touch in a contact of the kind the models assume, or
