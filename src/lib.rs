@@ -48,3 +48,4 @@ pub mod reference;
 pub mod scene;
 pub mod study;
 pub mod sweep;
+pub mod transient;

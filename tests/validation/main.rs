@@ -42,6 +42,7 @@ mod parametric_report;
 mod slip_end;
 mod solver;
 mod stand_in;
+mod transient;
 mod true_geometry;
 mod tyre;
 mod viscoelastic;

@@ -1,0 +1,216 @@
+//! Transient rolling: a history of steps instead of the steady state, on any body model.
+//!
+//! Kalker's transient formulation in the frame that moves with the contact (Kalker,
+//! *Three-dimensional elastic bodies in rolling contact*, 1990, §1.3; J.A. González and
+//! R. Abascal, IJNME 53:843–874, 2002, for the same generalized Newton method): over a step
+//! in which the contact rolls a distance Δ, the slip of the material point at node x_i is the
+//! rigid shift plus the change of the relative tangential displacement w = u_xA − u_xB at that
+//! material point, which one step earlier lay at x_i − σΔ (σ the material's flow sign):
+//!
+//! ```text
+//! S_i = Δ·σ(ξ + k_i) + w_i(t) − w(x_i − σΔ, t − 1)          (distance over the step)
+//! s_i = S_i / Δ = σ(ξ + k_i) + (W_p p + W_q q)_i / Δ − w*_i / Δ
+//! ```
+//!
+//! with ξ the step's mean creepage (its rigid shift over Δ) and k the rigid slip of curved
+//! bodies' surface speeds. As the history repeats, w(t) = w(t − 1) and (w_i − w(x_i − σΔ))/Δ
+//! is the upwind difference of σ ∂w/∂x over one step: the steady problem (paper Eq. 7) is the
+//! limit. A step with Δ = 0 is a shift without rolling (tangential loading of bodies pressed
+//! together: Cattaneo–Mindlin); its slip is a distance (S with L = 1 length unit) and its "ξ"
+//! is the rigid shift [length].
+//!
+//! Each step is the steady contact problem of [`crate::contact`] with its slip blocks
+//! B = W/L (L = Δ, or 1 for a shift) and its constant slip term k − σw*/L, so the same solver
+//! (generalized Newton with line search) solves it, warm-started from the previous step: the
+//! bodies' flexibilities are assembled once for the whole history.
+//!
+//! **The previous displacement at the material point.** w* is the previous step's w
+//! interpolated at x_i − σΔ by the grid's own shape functions (quadratic on quadratic
+//! elements: exact where Δ is a multiple of the element length, whose shift maps every node of
+//! a uniform grid of discontinuous elements onto a node; else an interpolation error O(h³)).
+//! Material that enters the grid from upstream carries the displacement of the grid's
+//! upstream end (outside the contact on a sensible grid, where it has no traction to act on).
+
+use crate::contact::methods;
+use crate::contact::{ContactProblem, NormalControl, SolverSettings, State, TangentialControl};
+use crate::error::Error;
+
+/// Why a history stops.
+#[derive(Debug, thiserror::Error)]
+pub enum TransientError {
+    /// The scene could not be assembled.
+    #[error(transparent)]
+    Scene(#[from] Error),
+    /// An error-controlled grid: a history keeps one grid.
+    #[error(
+        "contact.grid.tolerance: a transient history keeps one grid for all its steps (the previous \
+         step's displacements live on it): give a fixed grid (contact.grid.elements) instead"
+    )]
+    AdaptiveGrid,
+    /// A step's rolling distance is negative or not finite.
+    #[error("a step's rolling distance must be >= 0 and finite (value = {0})")]
+    StepDistance(f64),
+    /// A step's contact problem did not converge; the steps before it stand.
+    #[error(
+        "the step ending at rolling distance {rolled} did not converge ({iterations} iterations, residual \
+         {residual:e}); the steps before it stand"
+    )]
+    NotConverged {
+        /// The rolling distance at the end of the step [length].
+        rolled: f64,
+        /// Newton iterations spent.
+        iterations: usize,
+        /// The last residual.
+        residual: f64,
+    },
+}
+use crate::grid::ContactGrid;
+use crate::scene::Scene;
+
+/// One step of a history: how far the contact rolls and what is prescribed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Step {
+    /// Rolling distance Δ ≥ 0 of the step [length]; 0 is a shift without rolling.
+    pub distance: f64,
+    /// The normal control of the step.
+    pub normal: NormalControl,
+    /// The tangential control of the step (under a force or ratio, ξ is the step's unknown:
+    /// its mean creepage, or for a shift its rigid shift [length]).
+    pub tangential: TangentialControl,
+}
+
+/// The solution of one step.
+#[derive(Debug, Clone)]
+pub struct StepSolution {
+    /// The step.
+    pub step: Step,
+    /// Distance rolled from the start of the history to the end of this step [length].
+    pub rolled: f64,
+    /// The contact state at the end of the step (pressure, shear [stress], slip, overlap, ξ).
+    pub state: State,
+    /// Newton iterations the step took.
+    pub iterations: usize,
+}
+
+/// A history on a scene's grid: its contact problem, assembled once.
+pub struct History {
+    problem: ContactProblem,
+    /// The steady problem's constant slip term k (the rigid slip of the surface speeds).
+    rigid_slip: Vec<f64>,
+    /// The slip length L of the problem's blocks: Δ, or 1 for a shift; None before the first.
+    length: Option<f64>,
+    settings: SolverSettings,
+    /// The relative tangential displacement w at the end of the last step [length].
+    displacement: Vec<f64>,
+    state: Option<State>,
+    rolled: f64,
+}
+
+impl History {
+    /// The history of `scene` on its grid, from unloaded bodies. A scene with an
+    /// error-controlled grid is refused: a history holds one grid (the previous step's
+    /// displacements live on it).
+    pub fn new(scene: &Scene) -> Result<Self, TransientError> {
+        if scene.grid_control.is_some() {
+            return Err(TransientError::AdaptiveGrid);
+        }
+        let (_, mut problem) = scene.assemble()?;
+        // Every row carries the rigid shift: the steady problem's datum row (no creepage at
+        // the upstream end) has no place in a step, whose w is absolute.
+        problem.slip_operator.creep_weight.iter_mut().for_each(|e| *e = 1.0);
+        let m = problem.n_nodes();
+        Ok(Self {
+            rigid_slip: problem.rigid_slip.clone(),
+            problem,
+            length: None,
+            settings: scene.solver,
+            displacement: vec![0.0; m],
+            state: None,
+            rolled: 0.0,
+        })
+    }
+
+    /// The contact grid of the history.
+    pub fn grid(&self) -> &ContactGrid {
+        &self.problem.grid
+    }
+
+    /// The problem of the last step solved (its grid, flexibilities and controls).
+    pub fn problem(&self) -> &ContactProblem {
+        &self.problem
+    }
+
+    /// Solves the next step, warm-started from the last. A step that does not converge is an
+    /// error naming its distance; the history before it stands.
+    pub fn advance(&mut self, step: Step) -> Result<StepSolution, TransientError> {
+        if !(step.distance >= 0.0 && step.distance.is_finite()) {
+            return Err(TransientError::StepDistance(step.distance));
+        }
+        let length = if step.distance > 0.0 { step.distance } else { 1.0 };
+        if self.length != Some(length) {
+            let scale = faer::Scale(1.0 / length);
+            self.problem.bp = &self.problem.flex.wp * scale;
+            self.problem.bq = &self.problem.flex.wq * scale;
+            self.length = Some(length);
+        }
+        let sigma = self.problem.flow_sign;
+        let earlier = displacement_upstream(&self.problem.grid, &self.displacement, sigma * step.distance);
+        for ((k, k0), w) in self.problem.rigid_slip.iter_mut().zip(&self.rigid_slip).zip(&earlier) {
+            *k = k0 - sigma * w / length;
+        }
+        self.problem.normal = step.normal;
+        self.problem.tangential = step.tangential;
+        let (state, report) = methods::solve_from(&self.problem, &self.settings, self.state.clone());
+        if !report.converged {
+            return Err(TransientError::NotConverged {
+                rolled: self.rolled + step.distance,
+                iterations: report.iterations,
+                residual: report.residual,
+            });
+        }
+        self.displacement = self.problem.relative_tangential(&state.pressure, &state.shear);
+        self.rolled += step.distance;
+        self.state = Some(state.clone());
+        Ok(StepSolution {
+            step,
+            rolled: self.rolled,
+            state,
+            iterations: report.iterations,
+        })
+    }
+}
+
+/// w at x_i − `shift` for every node x_i [length]: the grid's interpolation of the nodal
+/// values `w`, the points upstream of the grid given the value at its end.
+pub fn displacement_upstream(grid: &ContactGrid, w: &[f64], shift: f64) -> Vec<f64> {
+    if shift == 0.0 {
+        return w.to_vec();
+    }
+    let (lo, hi) = (grid.edges[0], grid.edges[grid.n_elements()]);
+    grid.nodes
+        .iter()
+        .map(|x| grid.interpolate(w, (x - shift).clamp(lo, hi)))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::ElementKind;
+
+    /// The shifted interpolation is exact for a quadratic on quadratic elements at any shift,
+    /// and takes the end value beyond the grid.
+    #[test]
+    fn the_previous_displacement_is_interpolated_exactly_for_a_quadratic() {
+        let grid = ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 8, -2.0, 2.0);
+        let f = |x: f64| 0.3 + x - 0.7 * x * x;
+        let w: Vec<f64> = grid.nodes.iter().map(|&x| f(x)).collect();
+        for shift in [0.1, 0.5, -0.37] {
+            let moved = displacement_upstream(&grid, &w, shift);
+            for (x, v) in grid.nodes.iter().zip(&moved) {
+                let at = (x - shift).clamp(-2.0, 2.0);
+                assert!((v - f(at)).abs() < 1e-12, "shift {shift}, x {x}: {v} against {}", f(at));
+            }
+        }
+    }
+}
