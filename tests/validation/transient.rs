@@ -228,3 +228,80 @@ fn the_history_converges_as_the_step_shrinks() {
     assert!((0.3..1.2).contains(&order), "order {order}");
     assert!(last.1 < 5e-2);
 }
+
+/// The same history on the true geometry (cases/fig14_true_geometry.yaml: BEM rollers on their
+/// shafts, dissimilar aluminium on steel, so the pressure and the shear couple) and on a
+/// bonded cover (cases/tyre_b05_layer.yaml): pressed, shifted, then rolled 400 steps of one
+/// node spacing (about 15a and 11a); each settles on its own first-order steady state of the
+/// same grid, the difference decaying geometrically (measured at the end: q 7.5e-9 and 2.2e-7
+/// of μp_max, p 1.9e-10 and 5.9e-9 of p_max; within 1e-3 μp_max after about 6a and 4.5a).
+#[test]
+fn true_geometry_and_a_cover_settle_on_their_own_steady_state() {
+    for (name, steps) in [("fig14_true_geometry", 400), ("tyre_b05_layer", 400)] {
+        let load = |derivative: &str| {
+            let overrides = [format!("contact.slip_derivative={derivative}")];
+            let case = rollbem::case::load(&crate::common::case_path(name), &overrides).expect("loads");
+            Scene::from_case(&case).expect("scene")
+        };
+        let scene = load("first_order");
+        let (_, problem) = scene.assemble().expect("assembles");
+        let (steady, report) = rollbem::contact::methods::solve(&problem, &scene.solver);
+        assert!(report.converged);
+        let mut history = History::new(&scene).expect("a history");
+        let (normal, tangential) = (scene.normal, scene.tangential);
+        let mut step = Step {
+            distance: 0.0,
+            normal,
+            tangential: TangentialControl::Ratio(0.0),
+        };
+        history.advance(step).expect("pressed");
+        step.tangential = tangential;
+        history.advance(step).expect("shifted");
+        step.distance = scene.grid.node_spacing();
+        let mut last = None;
+        let p0 = steady.pressure.iter().copied().fold(0.0, f64::max);
+        for _ in 0..steps {
+            let s = history.advance(step).expect("rolls");
+            last = Some(s);
+        }
+        let last = last.expect("steps").state;
+        let dq = max_difference(&last.shear, &steady.shear, scene.friction * p0);
+        let dp = max_difference(&last.pressure, &steady.pressure, p0);
+        eprintln!(
+            "{name}: {} nodes, uniform {}: q {dq:.1e} μp_max, p {dp:.1e} p_max from the steady state",
+            scene.grid.n_nodes(),
+            scene.grid.is_uniform()
+        );
+        assert!(dq < 1e-6 && dp < 1e-7, "{name}: q {dq:e}, p {dp:e}");
+    }
+}
+
+/// What a history refuses, by name: a viscoelastic body (its kernels are the steady ones), an
+/// error-controlled grid (a history keeps one grid), a negative step.
+#[test]
+fn a_history_refuses_what_it_cannot_follow() {
+    let load = |name: &str, overrides: &[&str]| {
+        let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+        Scene::from_case(&rollbem::case::load(&crate::common::case_path(name), &overrides).expect("loads"))
+            .expect("scene")
+    };
+    let err = History::new(&load("covered_roller_v_peak", &[]))
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(err.contains("body B") && err.contains("viscoelastic"), "{err}");
+    let err = History::new(&load("carter_051", &["contact.grid.tolerance=1e-3"]))
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(err.contains("contact.grid.tolerance"), "{err}");
+    let scene = load("carter_051", &[]);
+    let mut history = History::new(&scene).expect("a history");
+    let step = Step {
+        distance: -1.0,
+        normal: scene.normal,
+        tangential: scene.tangential,
+    };
+    let err = history.advance(step).expect_err("refused").to_string();
+    assert!(err.contains("rolling distance"), "{err}");
+}
