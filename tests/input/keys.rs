@@ -393,6 +393,22 @@ fn viscoelastic_keys_are_checked() {
         "load.speed",
         &["> 0"],
     );
+    // Beyond the physical range the ageing's exponentials underflow or overflow (a run of
+    // either used to end with exit 2 and a NaN): refused by key.
+    for time in ["1e-300", "1e300"] {
+        assert_refused(
+            &[&sls("E_rubbery: 100000", time), "load.speed=10"],
+            "materials.steel.viscoelastic.creep_time",
+            &["lies outside", "check the units"],
+        );
+    }
+    for speed in ["1e-300", "1e300"] {
+        assert_refused(
+            &[&sls("E_rubbery: 100000", "1"), &format!("load.speed={speed}")],
+            "load.speed",
+            &["lies outside", "check the units"],
+        );
+    }
     // τc = 0 (the rubbery elastic material) needs no speed.
     let (code, stderr, _) = run_base("check", None, &[&sls("E_rubbery: 100000", "0")]);
     assert_eq!(code, 0, "{stderr}");

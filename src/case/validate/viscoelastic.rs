@@ -1,6 +1,6 @@
 //! The checks of viscoelastic materials and the rolling speed they need.
 
-use super::{positive_quantity, shown};
+use super::{magnitude, positive_quantity, shown};
 use crate::case::schema::*;
 
 /// What is wrong with a material's `viscoelastic` keys, as (key under `viscoelastic`, message).
@@ -43,6 +43,10 @@ pub(super) fn viscoelastic_problems(m: &MaterialSpec, v: &ViscoelasticSpec) -> V
                 shown(v.creep_time)
             ),
         ));
+    } else if let Some(why) = magnitude(v.creep_time) {
+        // The ageing length Vτc enters exponentials of x/(Vτc): beyond the physical range they
+        // underflow or overflow.
+        out.push(("creep_time", format!("creep time: {why}")));
     }
     out
 }
@@ -79,6 +83,10 @@ pub(super) fn rolling_speed_problems(case: &Case) -> Vec<(String, String)> {
         Some(v) if !(v > 0.0 && v.is_finite()) => out.push((
             "load.speed".into(),
             format!("rolling speed must be > 0 and finite (value = {})", shown(v)),
+        )),
+        Some(v) if magnitude(v).is_some() => out.push((
+            "load.speed".into(),
+            format!("rolling speed: {}", magnitude(v).unwrap_or_default()),
         )),
         None if needs_speed => out.push((
             "load.speed".into(),
