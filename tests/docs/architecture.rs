@@ -1,6 +1,7 @@
 //! The rules of docs/architecture.md, checked on the source: the imports of `src/` have no
-//! cycle, neither between its top-level modules nor between the files of one folder; no source
-//! file is over 700 lines and the driver (`src/app.rs`) stays under 400.
+//! cycle, neither between its top-level modules nor between the files of one folder at any
+//! depth; no source file is over 700 lines, no function over 150 (but those named as being
+//! split), and the driver (`src/app.rs`) stays under 400.
 //!
 //! Imports are read as text: every `crate::a::b` and `super::b` path (and the items of
 //! `crate::{…}` / `super::{…}` groups) outside comments and outside the `#[cfg(test)]` module
@@ -48,7 +49,7 @@ fn ident(s: &str) -> &str {
     &s[..end]
 }
 
-/// The first two path segments after each `prefix` (`crate::` or `super::`), reading the
+/// The first path segments after each `prefix` (`crate::` or `super::`), reading the
 /// items of a `{…}` group one by one.
 fn paths_after(code: &str, prefix: &str) -> Vec<Vec<String>> {
     let mut out = Vec::new();
@@ -79,11 +80,11 @@ fn paths_after(code: &str, prefix: &str) -> Vec<Vec<String>> {
     out.into_iter().filter(|p| !p.is_empty()).collect()
 }
 
-/// Up to two identifier segments of a path (`a::b::{…}` → [a, b]).
+/// Up to six identifier segments of a path (`a::b::{…}` → [a, b]).
 fn segments(s: &str) -> Vec<String> {
     let mut out = Vec::new();
     let mut rest = s.trim();
-    while out.len() < 2 {
+    while out.len() < 6 {
         let id = ident(rest);
         if id.is_empty() || id == "self" {
             break;
@@ -97,11 +98,16 @@ fn segments(s: &str) -> Vec<String> {
     out
 }
 
-/// Edges `a → b` of the import graphs: the top level, and each folder's files.
+/// Edges `a → b` of the import graphs: the top level, and each folder's files, at every depth
+/// (`src/body/bem`'s files among themselves too). An import names a module by the longest
+/// prefix of its path that is a file of `src/`; it is an edge of the folder where the importing
+/// module and the imported one first differ (an import of an ancestor or a descendant is none).
 fn graphs() -> BTreeMap<String, BTreeSet<(String, String)>> {
     let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
+    let files = sources(&src);
+    let modules: BTreeSet<Vec<String>> = files.iter().map(|f| module_path(&src, f)).collect();
     let mut graphs: BTreeMap<String, BTreeSet<(String, String)>> = BTreeMap::new();
-    for file in sources(&src) {
+    for file in files {
         let m = module_path(&src, &file);
         if m.is_empty() {
             continue;
@@ -114,15 +120,22 @@ fn graphs() -> BTreeMap<String, BTreeSet<(String, String)>> {
             targets.push(full);
         }
         for t in targets {
-            if t[0] != m[0] {
-                graphs
-                    .entry("src".into())
-                    .or_default()
-                    .insert((m[0].clone(), t[0].clone()));
-            } else if m.len() > 1 && t.len() > 1 && t[1] != m[1] {
-                let folder = format!("src/{}", m[0]);
-                graphs.entry(folder).or_default().insert((m[1].clone(), t[1].clone()));
-            }
+            let Some(t) = (1..=t.len())
+                .rev()
+                .map(|k| t[..k].to_vec())
+                .find(|p| modules.contains(p))
+            else {
+                continue;
+            };
+            let Some(d) = (0..m.len().min(t.len())).find(|&d| m[d] != t[d]) else {
+                continue;
+            };
+            let folder = if d == 0 {
+                "src".to_string()
+            } else {
+                format!("src/{}", m[..d].join("/"))
+            };
+            graphs.entry(folder).or_default().insert((m[d].clone(), t[d].clone()));
         }
     }
     graphs
@@ -197,6 +210,68 @@ fn source_files_stay_small() {
     );
 }
 
+/// Longest function of `src/` [lines], from its `fn` line to its closing brace.
+const MAX_FUNCTION_LINES: usize = 150;
+
+/// Functions over [`MAX_FUNCTION_LINES`] that are still to be split by concept (file, name).
+const LONG_FUNCTIONS_BEING_SPLIT: [(&str, &str); 3] = [
+    ("contact/direction.rs", "newton_direction"),
+    ("output/table.rs", "render_table"),
+    ("main.rs", "dispatch"),
+];
+
+/// The functions of a file with their lengths [lines]: from a line that declares a function
+/// to the closing brace at its indentation (declarations without a body are skipped).
+fn function_lengths(text: &str) -> Vec<(String, usize)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut out = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let trimmed = line.trim_start();
+        let indent = line.len() - trimmed.len();
+        let after = [
+            "pub fn ",
+            "pub(crate) fn ",
+            "pub(super) fn ",
+            "fn ",
+            "const fn ",
+            "pub const fn ",
+        ]
+        .iter()
+        .find_map(|p| trimmed.strip_prefix(p));
+        let Some(rest) = after else { continue };
+        if line.trim_end().ends_with(';') {
+            continue;
+        }
+        let close = format!("{}}}", " ".repeat(indent));
+        if let Some(end) = lines[i + 1..].iter().position(|l| l.trim_end() == close) {
+            out.push((ident(rest).to_string(), end + 2));
+        }
+    }
+    out
+}
+
+/// Small rooms: no function of `src/` over [`MAX_FUNCTION_LINES`] lines but those being split,
+/// each named.
+#[test]
+fn functions_stay_short() {
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut long = Vec::new();
+    for file in sources(&src) {
+        let rel = file.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+        for (name, n) in function_lengths(&std::fs::read_to_string(&file).unwrap()) {
+            let known = LONG_FUNCTIONS_BEING_SPLIT.contains(&(rel.as_str(), name.as_str()));
+            if n > MAX_FUNCTION_LINES && !known {
+                long.push(format!("{rel}: {name}, {n} lines"));
+            }
+        }
+    }
+    assert!(
+        long.is_empty(),
+        "over {MAX_FUNCTION_LINES} lines (split by concept):\n  {}",
+        long.join("\n  ")
+    );
+}
+
 /// One extension point per body model: the kinds of body are matched only in `src/body/`, in
 /// the case schema that names them (`src/case/`) and in the registry that turns a spec into a
 /// model's setup (`src/scene/registry.rs`); the error control reaches bodies only through the
@@ -211,6 +286,12 @@ fn body_kinds_are_matched_only_in_their_modules_and_the_registry() {
         let allowed = rel.starts_with("body") || rel.starts_with("case") || rel == "scene/registry.rs";
         if !allowed && text.contains("BodySpec::") {
             offenders.push(format!("{rel}: matches on BodySpec"));
+        }
+        // Nor by their names: a capability of `BodySetup` answers what a stage asks.
+        for name in ["half_space", "bem", "layer", "rigid"] {
+            if !allowed && (text.contains(&format!("== \"{name}\"")) || text.contains(&format!("\"{name}\" =>"))) {
+                offenders.push(format!("{rel}: compares a model's name with \"{name}\""));
+            }
         }
         if rel.starts_with("adapt") {
             for t in paths_after(&text, "crate::") {

@@ -418,41 +418,16 @@ impl BodySetup for BemSetup {
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
         self.build_keeping(ctx, self.keep_builds, false)
     }
-    /// The start mesh with its contact elements cut along `grid`
-    /// ([`crate::mesh::cuts::cut_along_grid`]; on the exact circle of a generated body).
+    /// The half-plane plus its smooth remainder, fitted on `levels` ([`super::stand_in`]).
     fn pass_stand_in(
         &self,
         levels: &[&ContactGrid],
         side: Side,
         rolling: Rolling,
     ) -> Result<Option<PassStandIn>, BuildError> {
-        // A cover thinner than half the grid's span has a remainder that varies on the scale of
-        // its thickness, which the series cannot follow (the shipped tyre layers differ from
-        // their stand-ins by more than p0; a bore's 15 mm rim under a 19 mm grid by 2e-5); a
-        // contact group that does not cover the grid keeps nodes of its own inside it, whose
-        // flexibility carried over to the grid the remainder does not follow (3e-3 on
-        // cases/carter_051_true_nonmatching.yaml before its cuts conformed to the grid). Both
-        // keep the full BEM in every pass. A group that covers the grid is cut to the grid's
-        // elements there, its own nodes or not ([`crate::mesh::cuts`]).
-        let (lo, hi) = (levels[0].edges[0], levels[0].edges[levels[0].n_elements()]);
-        let thin = self.layer_thickness().is_some_and(|b| b < 0.5 * (hi - lo));
-        let start = self.start_mesh.as_deref().unwrap_or(&self.mesh).contact_grid();
-        let slack = 1e-9 * (hi - lo);
-        let covers = start.edges[0] <= lo + slack && start.edges[start.n_elements()] >= hi - slack;
-        if thin || !covers {
-            return Ok(None);
-        }
-        let stand_in = super::stand_in::BemStandIn::of(self, levels, side, rolling)?;
-        let check = stand_in
-            .gives_results()
-            .then(|| Arc::new(stand_in.checking()) as Arc<dyn BodySetup>);
-        let check_change = stand_in.gives_results().then(|| stand_in.check_change());
-        Ok(Some(PassStandIn {
-            check_change,
-            condense_s: stand_in.condense_seconds(),
-            body: Arc::new(stand_in),
-            check,
-        }))
+        // Made by the folder's module, which wires a setup to its stand-in: the stand-in is
+        // built from the setup, so the setup does not name it.
+        super::pass_stand_in(self, levels, side, rolling)
     }
 
     fn follow_grid(&self, grid: &ContactGrid) -> Option<Arc<dyn BodySetup>> {
