@@ -160,28 +160,7 @@ fn not_converged_message(report: &rollbem::app::RunReport) -> String {
 fn dispatch(cli: Cli) -> Result<i32> {
     let quiet = cli.quiet;
     match cli.command {
-        Command::Run { case, out, set } => {
-            let report = rollbem::app::run(&case, &set, out.as_deref())?;
-            rollbem::logging::finish();
-            if !quiet {
-                for notice in &report.summary.notices {
-                    eprintln!("notice: {notice}");
-                }
-            }
-            // Warnings are printed even with --quiet: they qualify the result.
-            for warning in &report.summary.warnings {
-                eprintln!("warning: {warning}");
-            }
-            warn_restarts(&report.summary);
-            println!("rollbem run {}", case.display());
-            print!("{}", rollbem::output::render_table(&report.summary, &report.output_dir));
-            if report.summary.converged {
-                Ok(0)
-            } else {
-                eprintln!("error: {}", not_converged_message(&report));
-                Ok(EXIT_NOT_CONVERGED)
-            }
-        }
+        Command::Run { case, out, set } => run_case(&case, out.as_deref(), &set, quiet),
         Command::Sweep {
             case,
             vary,
@@ -190,49 +169,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             shard,
             merge,
             resume,
-        } => {
-            if !merge.is_empty() {
-                let out = out.unwrap_or_else(|| merge[0].clone());
-                let path = rollbem::sweep::merge(&merge, &out)?;
-                println!("merged {} folder(s) into {}", merge.len(), path.display());
-                return Ok(0);
-            }
-            let case = case.expect("clap requires CASE without --merge");
-            let varies = vary
-                .iter()
-                .map(|v| rollbem::sweep::Vary::parse(v))
-                .collect::<Result<Vec<_>, _>>()?;
-            let shard = shard.as_deref().map(rollbem::sweep::Shard::parse).transpose()?;
-            let out = match out {
-                Some(o) => o,
-                None => default_output_dir(&rollbem::case::load(&case, &set)?, "sweep"),
-            };
-            let report = rollbem::sweep::run(&case, &set, &varies, shard, &out, resume)?;
-            let failed: Vec<&rollbem::sweep::RunRow> = report.rows.iter().filter(|r| r.status != "ok").collect();
-            let kept = if report.resumed > 0 {
-                format!(" ({} kept from the interrupted sweep)", report.resumed)
-            } else {
-                String::new()
-            };
-            println!(
-                "sweep: {} of {} runs here{kept}, {} ok, {} failed or not converged; table {}",
-                report.rows.len(),
-                report.total_runs,
-                report.rows.len() - failed.len(),
-                failed.len(),
-                report.csv.display()
-            );
-            for r in &failed {
-                eprintln!("  {} {}: {} {}", r.folder, r.values.join(" "), r.status, r.message);
-            }
-            Ok(if report.rows.iter().any(|r| r.internal_error) {
-                EXIT_INTERNAL_ERROR
-            } else if failed.is_empty() {
-                0
-            } else {
-                EXIT_NOT_CONVERGED
-            })
-        }
+        } => sweep(case, &vary, &set, out, shard.as_deref(), &merge, resume),
         Command::Validate => {
             let checks = rollbem::reference::run()?;
             print!("{}", rollbem::reference::render(&checks));
@@ -242,93 +179,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
                 EXIT_NOT_CONVERGED
             })
         }
-        Command::Study { study } => match study {
-            StudyCommand::Accuracy {
-                case,
-                out,
-                set,
-                quick,
-                ladder,
-                models,
-                tolerances,
-                reference_curve,
-                shaft_ratio,
-                jobs,
-            } => {
-                use rollbem::study::accuracy::{self, AccuracyOptions, SceneModel};
-                let loaded = rollbem::case::load(&case, &set)?;
-                let mut options = AccuracyOptions {
-                    shaft_ratio,
-                    jobs,
-                    ..AccuracyOptions::default()
-                };
-                if quick {
-                    options.ladder = AccuracyOptions::quick_ladder();
-                    options.tolerances = AccuracyOptions::quick_tolerances();
-                } else if !ladder.is_empty() {
-                    options.ladder = ladder;
-                }
-                if !tolerances.is_empty() {
-                    options.tolerances = tolerances;
-                }
-                if let Some(path) = &reference_curve {
-                    options.reference_curve = Some(accuracy::read_reference_curve(path)?);
-                }
-                if !models.is_empty() {
-                    options.models = models
-                        .iter()
-                        .map(|m| {
-                            SceneModel::parse(m).ok_or_else(|| {
-                                anyhow::anyhow!(
-                                    "--models: unknown model `{m}`; choose from half_space, half_space_block, true_geometry, half_space_adaptive"
-                                )
-                            })
-                        })
-                        .collect::<Result<_>>()?;
-                }
-                let out = out.unwrap_or_else(|| default_output_dir(&loaded, "accuracy"));
-                // Lock and check the output folder before the study runs.
-                let _claim = rollbem::output::folder::Claim::acquire(
-                    &out,
-                    rollbem::output::folder::Kind::StudyAccuracy,
-                    rollbem::output::folder::Access::Exclusive,
-                )?;
-                let report = accuracy::run(&loaded, &options, true)?;
-                accuracy::write(&out, &report, &loaded.case.title)?;
-                print!("{}", accuracy::render(&report));
-                println!("  results                {}", out.display());
-                Ok(if report.rows.iter().all(|r| r.converged) {
-                    0
-                } else {
-                    EXIT_NOT_CONVERGED
-                })
-            }
-            StudyCommand::Stability { case, quick, out, set } => {
-                let out = match out {
-                    Some(o) => o,
-                    None => default_output_dir(&rollbem::case::load(&case, &set)?, "stability"),
-                };
-                let preset = if quick {
-                    rollbem::study::stability::Preset::Quick
-                } else {
-                    rollbem::study::stability::Preset::Default
-                };
-                let report = rollbem::study::stability::run(&case, &set, preset, &out)?;
-                print!("{}", rollbem::study::stability::render_summary(&report));
-                println!("results in {}", report.dir.display());
-                let failures = report.default_failures();
-                for c in &failures {
-                    let (x, y) = report.coordinates(c);
-                    eprintln!(
-                        "  default method failed: {} at ({x}, {y}): {} {}",
-                        report.slices[c.slice].name,
-                        c.status.name(),
-                        c.message
-                    );
-                }
-                Ok(if failures.is_empty() { 0 } else { EXIT_NOT_CONVERGED })
-            }
-        },
+        Command::Study { study } => run_study(study),
         Command::Mesh { case, out, set } => {
             let out = match out {
                 Some(o) => o,
@@ -345,6 +196,175 @@ fn dispatch(cli: Cli) -> Result<i32> {
             }
             print!("{}", rollbem::check::check_report(&case, &set, tolerance)?);
             Ok(0)
+        }
+    }
+}
+
+/// `rollbem run`: solves a case, writes its folder and prints its table.
+fn run_case(case: &std::path::Path, out: Option<&std::path::Path>, set: &[String], quiet: bool) -> Result<i32> {
+    let report = rollbem::app::run(case, set, out)?;
+    rollbem::logging::finish();
+    // --quiet says nothing on stderr but errors, as its help promises: the notices and the
+    // warnings that qualify the result stay in summary.json (`notices`, `warnings`).
+    if !quiet {
+        for notice in &report.summary.notices {
+            eprintln!("notice: {notice}");
+        }
+        for warning in &report.summary.warnings {
+            eprintln!("warning: {warning}");
+        }
+        warn_restarts(&report.summary);
+    }
+    println!("rollbem run {}", case.display());
+    print!("{}", rollbem::output::render_table(&report.summary, &report.output_dir));
+    if report.summary.converged {
+        Ok(0)
+    } else {
+        eprintln!("error: {}", not_converged_message(&report));
+        Ok(EXIT_NOT_CONVERGED)
+    }
+}
+
+/// `rollbem sweep`: the runs of a sweep (or a shard of it), or the merge of shards.
+fn sweep(
+    case: Option<PathBuf>,
+    vary: &[String],
+    set: &[String],
+    out: Option<PathBuf>,
+    shard: Option<&str>,
+    merge: &[PathBuf],
+    resume: bool,
+) -> Result<i32> {
+    if !merge.is_empty() {
+        let out = out.unwrap_or_else(|| merge[0].clone());
+        let path = rollbem::sweep::merge(merge, &out)?;
+        println!("merged {} folder(s) into {}", merge.len(), path.display());
+        return Ok(0);
+    }
+    let case = case.expect("clap requires CASE without --merge");
+    let varies = vary
+        .iter()
+        .map(|v| rollbem::sweep::Vary::parse(v))
+        .collect::<Result<Vec<_>, _>>()?;
+    let shard = shard.map(rollbem::sweep::Shard::parse).transpose()?;
+    let out = match out {
+        Some(o) => o,
+        None => default_output_dir(&rollbem::case::load(&case, set)?, "sweep"),
+    };
+    let report = rollbem::sweep::run(&case, set, &varies, shard, &out, resume)?;
+    let failed: Vec<&rollbem::sweep::RunRow> = report.rows.iter().filter(|r| r.status != "ok").collect();
+    let kept = if report.resumed > 0 {
+        format!(" ({} kept from the interrupted sweep)", report.resumed)
+    } else {
+        String::new()
+    };
+    println!(
+        "sweep: {} of {} runs here{kept}, {} ok, {} failed or not converged; table {}",
+        report.rows.len(),
+        report.total_runs,
+        report.rows.len() - failed.len(),
+        failed.len(),
+        report.csv.display()
+    );
+    for r in &failed {
+        eprintln!("  {} {}: {} {}", r.folder, r.values.join(" "), r.status, r.message);
+    }
+    Ok(if report.rows.iter().any(|r| r.internal_error) {
+        EXIT_INTERNAL_ERROR
+    } else if failed.is_empty() {
+        0
+    } else {
+        EXIT_NOT_CONVERGED
+    })
+}
+
+/// `rollbem study`: the speed-accuracy study or the stability map.
+fn run_study(study: StudyCommand) -> Result<i32> {
+    match study {
+        StudyCommand::Accuracy {
+            case,
+            out,
+            set,
+            quick,
+            ladder,
+            models,
+            tolerances,
+            reference_curve,
+            shaft_ratio,
+            jobs,
+        } => {
+            use rollbem::study::accuracy::{self, AccuracyOptions, SceneModel};
+            let loaded = rollbem::case::load(&case, &set)?;
+            let mut options = AccuracyOptions {
+                shaft_ratio,
+                jobs,
+                ..AccuracyOptions::default()
+            };
+            if quick {
+                options.ladder = AccuracyOptions::quick_ladder();
+                options.tolerances = AccuracyOptions::quick_tolerances();
+            } else if !ladder.is_empty() {
+                options.ladder = ladder;
+            }
+            if !tolerances.is_empty() {
+                options.tolerances = tolerances;
+            }
+            if let Some(path) = &reference_curve {
+                options.reference_curve = Some(accuracy::read_reference_curve(path)?);
+            }
+            if !models.is_empty() {
+                options.models = models
+                    .iter()
+                    .map(|m| {
+                        SceneModel::parse(m).ok_or_else(|| {
+                            anyhow::anyhow!(
+                                "--models: unknown model `{m}`; choose from half_space, half_space_block, true_geometry, half_space_adaptive"
+                            )
+                        })
+                    })
+                    .collect::<Result<_>>()?;
+            }
+            let out = out.unwrap_or_else(|| default_output_dir(&loaded, "accuracy"));
+            // Lock and check the output folder before the study runs.
+            let _claim = rollbem::output::folder::Claim::acquire(
+                &out,
+                rollbem::output::folder::Kind::StudyAccuracy,
+                rollbem::output::folder::Access::Exclusive,
+            )?;
+            let report = accuracy::run(&loaded, &options, true)?;
+            accuracy::write(&out, &report, &loaded.case.title)?;
+            print!("{}", accuracy::render(&report));
+            println!("  results                {}", out.display());
+            Ok(if report.rows.iter().all(|r| r.converged) {
+                0
+            } else {
+                EXIT_NOT_CONVERGED
+            })
+        }
+        StudyCommand::Stability { case, quick, out, set } => {
+            let out = match out {
+                Some(o) => o,
+                None => default_output_dir(&rollbem::case::load(&case, &set)?, "stability"),
+            };
+            let preset = if quick {
+                rollbem::study::stability::Preset::Quick
+            } else {
+                rollbem::study::stability::Preset::Default
+            };
+            let report = rollbem::study::stability::run(&case, &set, preset, &out)?;
+            print!("{}", rollbem::study::stability::render_summary(&report));
+            println!("results in {}", report.dir.display());
+            let failures = report.default_failures();
+            for c in &failures {
+                let (x, y) = report.coordinates(c);
+                eprintln!(
+                    "  default method failed: {} at ({x}, {y}): {} {}",
+                    report.slices[c.slice].name,
+                    c.status.name(),
+                    c.message
+                );
+            }
+            Ok(if failures.is_empty() { 0 } else { EXIT_NOT_CONVERGED })
         }
     }
 }

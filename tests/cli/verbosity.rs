@@ -146,3 +146,26 @@ fn check_estimates_the_cost_of_the_cases_own_grid() {
     assert!(large.contains("(6003 contact nodes"), "{large}");
     assert!(large.contains(" min, ") && large.contains(" GB"), "{large}");
 }
+
+/// `-q` prints nothing on stderr but errors, as its help says, also for a run whose inputs
+/// leave a model's validity (a rubber cover strained to half its modulus): the warning stays in
+/// summary.json; without `-q` it is printed.
+#[test]
+fn quiet_runs_keep_their_warnings_in_the_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = crate::common::case_path("covered_roller_v_peak");
+    let out = dir.path().join("q");
+    let (code, _, stderr) = rollbem(&["run", case.to_str().unwrap(), "--out", out.to_str().unwrap(), "-q"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stderr.trim().is_empty(), "-q printed:\n{stderr}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(
+        !summary["warnings"].as_array().unwrap().is_empty(),
+        "the warning is in summary.json"
+    );
+    let loud = dir.path().join("loud");
+    let (code, _, stderr) = rollbem(&["run", case.to_str().unwrap(), "--out", loud.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(stderr.contains("warning: body B"), "{stderr}");
+}
