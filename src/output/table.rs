@@ -20,8 +20,10 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     line(
         "solver",
         format!(
-            "{status} in {} iterations{restarts}, residual {:.2e}",
-            s.iterations, s.residual
+            "{status} in {} iteration{}{restarts}, residual {:.2e}",
+            s.iterations,
+            if s.iterations == 1 { "" } else { "s" },
+            s.residual
         ),
     );
     line(&format!("normal force P [{force}]"), format!("{:.6}", s.normal_force));
@@ -121,6 +123,17 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     if let Some(check) = s.hbem_check.as_ref().and_then(|c| c.summary_line()) {
         line("HBEM slip check", check);
     }
+    grid_rows(s, [&len, &stress], &mut rows);
+    rows.push(("results".into(), output_dir.display().to_string()));
+    // The label column is as wide as the widest label (units make some long), at least 22,
+    // and two spaces apart from the values.
+    let width = rows.iter().map(|(k, _)| k.chars().count()).max().unwrap_or(0).max(22);
+    rows.iter().map(|(k, v)| format!("  {k:<width$}  {v}\n")).collect()
+}
+
+/// The rows of the grid, its error estimate and control, the interior field and the times.
+fn grid_rows(s: &Summary, [len, stress]: [&str; 2], rows: &mut Vec<(String, String)>) {
+    let mut line = |k: &str, v: String| rows.push((k.to_string(), v));
     let grid = if s.grid.tolerance.is_some() {
         format!(
             "{} {} elements, {} nodes, spacing {:.4e} to {:.4e} {len}, {} refinements",
@@ -197,9 +210,4 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
             s.timings.assembly_s, s.timings.condense_s, s.timings.solve_s, s.timings.interior_s, s.timings.total_s
         ),
     );
-    line("results", output_dir.display().to_string());
-    // The label column is as wide as the widest label (units make some long), at least 22,
-    // and two spaces apart from the values.
-    let width = rows.iter().map(|(k, _)| k.chars().count()).max().unwrap_or(0).max(22);
-    rows.iter().map(|(k, v)| format!("  {k:<width$}  {v}\n")).collect()
 }
