@@ -91,17 +91,7 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
             conditions.sort_by(|a, b| a.0.cmp(&b.0));
             conditions.push((contact.clone(), BoundaryCondition::Contact));
             let contact_circle = exact_circle(&loaded, shape.profile_radius());
-            Arc::new(
-                BemSetup::on_start_mesh(
-                    loaded,
-                    case.material(material),
-                    contact.clone(),
-                    conditions,
-                    *radius,
-                    contact_circle,
-                )
-                .reusing_far_field(case.case.contact.grid.reuse_far_field),
-            )
+            bem_setup(case, loaded, material, contact, conditions, *radius, contact_circle)
         }
         BodySpec::Bem {
             mesh,
@@ -134,19 +124,33 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
                 .map(|(g, b)| (g.clone(), boundary_condition(b)))
                 .collect();
             conditions.push((contact.clone(), BoundaryCondition::Contact));
-            Arc::new(
-                BemSetup::on_start_mesh(
-                    loaded,
-                    case.material(material),
-                    contact.clone(),
-                    conditions,
-                    *radius,
-                    None,
-                )
-                .reusing_far_field(case.case.contact.grid.reuse_far_field),
-            )
+            bem_setup(case, loaded, material, contact, conditions, *radius, None)
         }
     })
+}
+
+/// A `bem` body on its start mesh with the case's material and run options
+/// (`contact.grid.reuse_far_field`).
+fn bem_setup(
+    case: &LoadedCase,
+    loaded: LoadedMesh,
+    material: &str,
+    contact: &str,
+    conditions: Vec<(String, BoundaryCondition)>,
+    radius: Option<f64>,
+    contact_circle: Option<crate::mesh::cuts::Circle>,
+) -> Arc<dyn BodySetup> {
+    Arc::new(
+        BemSetup::on_start_mesh(
+            loaded,
+            case.material(material),
+            contact.to_string(),
+            conditions,
+            radius,
+            contact_circle,
+        )
+        .reusing_far_field(case.case.contact.grid.reuse_far_field),
+    )
 }
 
 /// The circle of radius |`radius`| (the generated shape's) through a generated body's
