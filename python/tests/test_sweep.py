@@ -94,6 +94,13 @@ def test_bad_sweeps():
         rollbem.sweep("cases/carter_051.yaml", vary={})
     with pytest.raises(rollbem.InputError, match="jobs"):
         rollbem.sweep("cases/carter_051.yaml", vary={"contact.friction": [0.1]}, jobs=0)
+    # True is an integer to Python, not a thread count.
+    with pytest.raises(rollbem.InputError, match="jobs"):
+        rollbem.sweep("cases/carter_051.yaml", vary={"contact.friction": [0.1]}, jobs=True)
+    # More threads than cores: capped, with a warning, not a million threads.
+    with pytest.warns(RuntimeWarning, match="cores"):
+        rows = rollbem.sweep("cases/carter_051.yaml", vary={"contact.friction": [0.1]}, jobs=10**6)
+    assert rows[0]["status"] == "ok"
     with pytest.raises(rollbem.InputError, match="cannot read case file"):
         rollbem.sweep("cases/none.yaml", vary={"contact.friction": [0.1]})
     rows = rollbem.sweep("cases/carter_051.yaml", vary={"contact.frictio": [0.1]})

@@ -26,6 +26,7 @@ import json
 import math
 import numbers
 import os
+import warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Union
 
 import numpy as np
@@ -310,7 +311,8 @@ def sweep(
         case, set: as for :func:`run` (``set`` applies to every run).
         vary: ``{"key.path": [v1, v2, ...], ...}``; the first key varies slowest, as with
             ``--vary``.
-        jobs: threads (>= 1), or None for every core.
+        jobs: threads (>= 1; more than the machine's cores are capped to them, with a
+            ``RuntimeWarning``), or None for every core.
 
     Returns:
         one dict per run in run order, with sweep.csv's columns but ``folder``: ``run``,
@@ -337,8 +339,19 @@ def sweep(
             raise InputError(f"sweep: vary[{key!r}] must be a list of values")
         values.append(list(vs))
     texts = [(key, [_value_text(key, v) for v in vs]) for key, vs in zip(keys, values)]
-    if jobs is not None and (not isinstance(jobs, numbers.Integral) or jobs < 1):
+    if jobs is not None and (
+        isinstance(jobs, bool) or not isinstance(jobs, numbers.Integral) or jobs < 1
+    ):
         raise InputError(f"sweep: jobs must be a positive whole number or None (value = {jobs!r})")
+    cores = os.cpu_count() or 1
+    if jobs is not None and jobs > cores:
+        # More threads than cores only add switching: each run is one thread's work.
+        warnings.warn(
+            f"sweep: jobs = {jobs} exceeds the {cores} cores of this machine; running on {cores}",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+        jobs = cores
     path, text = _case_source(case)
     rows = _rollbem.sweep(path, text, _overrides(set), texts, None if jobs is None else int(jobs))
     combos = list(itertools.product(*values))
