@@ -86,7 +86,10 @@ fn every_shipped_case_converges_balances_its_loads_and_phi_equals_psi() {
         .filter(|n| !n.contains(' '))
         .map(String::from)
         .collect();
-    assert_eq!(warned, documented, "the shipped cases that warn, against docs/reliability.md");
+    assert_eq!(
+        warned, documented,
+        "the shipped cases that warn, against docs/reliability.md"
+    );
 }
 
 /// A kinematic run fed with the δ0 and ξ of a load-controlled run returns its P and Q to 1e-8;
