@@ -144,10 +144,6 @@ impl System<'_> {
         let m = self.m();
         let (g1, g2, g3, g4) = (&G[0..m], &G[m..2 * m], &G[2 * m..3 * m], &G[3 * m..4 * m]);
         let mu = pb.friction;
-        fn reset<T: Clone>(v: &mut Vec<T>, m: usize, value: T) {
-            v.clear();
-            v.resize(m, value);
-        }
 
         // Δp_j = p_const + [column p_col]; Δq_j = q_const + [column q_col] + q_pcoef·Δp_j.
         let mut n_cols = 0;
@@ -169,10 +165,7 @@ impl System<'_> {
         let (solve_p, solve_q) = (block.solves_normal(), block.solves_tangential());
         let free_overlap = self.free_overlap && solve_p;
         let free_creep = self.free_creep && solve_q;
-        for i in 0..m {
-            if !solve_p {
-                continue;
-            }
+        for i in (0..m).filter(|_| solve_p) {
             if normal_contact[i] {
                 p_col[i] = Some(n_cols);
                 n_cols += 1;
@@ -189,10 +182,7 @@ impl System<'_> {
         reset(&mut q_pcoef, m, 0.0);
         let mut stick_rows = std::mem::take(&mut ws.stick_rows);
         stick_rows.clear();
-        for i in 0..m {
-            if !solve_q {
-                continue;
-            }
+        for i in (0..m).filter(|_| solve_q) {
             match tangential[i] {
                 Tangential::Free => q_const[i] = -g4[i],
                 Tangential::Stick => {
@@ -210,73 +200,25 @@ impl System<'_> {
                 }
             }
         }
-        let col_overlap = free_overlap.then(|| {
-            n_cols += 1;
-            n_cols - 1
-        });
-        let col_creep = free_creep.then(|| {
-            n_cols += 1;
-            n_cols - 1
-        });
+        // The load unknowns δ0 and ξ, when free, take the last columns.
+        let col_overlap = free_overlap.then_some(n_cols);
+        n_cols += usize::from(free_overlap);
+        let col_creep = free_creep.then_some(n_cols);
+        n_cols += usize::from(free_creep);
         let n = n_cols;
         let (J, rhs, lu) = ws.system(n);
 
-        // Adds Σ_j (ap_j Δp_j + aq_j Δq_j) to row `row`, moving known parts to the right side.
-        let add_row =
-            |J: &mut Mat<f64>, rhs: &mut Mat<f64>, row: usize, ap: &dyn Fn(usize) -> f64, aq: &dyn Fn(usize) -> f64| {
-                for j in 0..m {
-                    let (a_p, a_q) = (ap(j), aq(j));
-                    let cp = a_p + a_q * q_pcoef[j];
-                    rhs[(row, 0)] -= cp * p_const[j] + a_q * q_const[j];
-                    if let Some(c) = p_col[j] {
-                        J[(row, c)] += cp;
-                    }
-                    if let Some(c) = q_col[j] {
-                        J[(row, c)] += a_q;
-                    }
-                }
-            };
-        // The elastic rows r_i (A_p Δp + A_q Δq)_i, filled column by column: faer stores the
-        // flexibilities and J by columns, so a column j of both is read and written in order.
-        // Known parts (Δp_j, Δq_j fixed at open or slipping nodes) move to the right side.
-        let fill_elastic = |J: &mut Mat<f64>,
-                            rhs: &mut Mat<f64>,
-                            first: usize,
-                            rows: &[usize],
-                            r: &[f64],
-                            a_p: &Mat<f64>,
-                            a_q: &Mat<f64>| {
-            let end = first + rows.len();
-            for j in 0..m {
-                let (col_p, col_q) = (a_p.col_as_slice(j), a_q.col_as_slice(j));
-                let coef = q_pcoef[j];
-                let (known_p, known_q) = (p_const[j], q_const[j]);
-                if known_p != 0.0 || known_q != 0.0 {
-                    let out = &mut rhs.col_as_slice_mut(0)[first..end];
-                    for (o, &i) in out.iter_mut().zip(rows) {
-                        let (ap, aq) = (r[i] * col_p[i], r[i] * col_q[i]);
-                        *o -= (ap + aq * coef) * known_p + aq * known_q;
-                    }
-                }
-                if let Some(c) = p_col[j] {
-                    let out = &mut J.col_as_slice_mut(c)[first..end];
-                    for (o, &i) in out.iter_mut().zip(rows) {
-                        let (ap, aq) = (r[i] * col_p[i], r[i] * col_q[i]);
-                        *o += ap + aq * coef;
-                    }
-                }
-                if let Some(c) = q_col[j] {
-                    let out = &mut J.col_as_slice_mut(c)[first..end];
-                    for (o, &i) in out.iter_mut().zip(rows) {
-                        *o += r[i] * col_q[i];
-                    }
-                }
-            }
+        let unknowns = Unknowns {
+            p_col: &p_col,
+            p_const: &p_const,
+            q_col: &q_col,
+            q_const: &q_const,
+            q_pcoef: &q_pcoef,
         };
         for (k, &i) in contact_rows.iter().enumerate() {
             rhs[(k, 0)] = -g3[i] + g1[i];
         }
-        fill_elastic(J, rhs, 0, &contact_rows, &self.rn, &pb.flex.hp, &pb.flex.hq);
+        unknowns.fill_elastic(J, rhs, 0, &contact_rows, &self.rn, &pb.flex.hp, &pb.flex.hq);
         if let Some(c) = col_overlap {
             for (k, &i) in contact_rows.iter().enumerate() {
                 J[(k, c)] = -self.rn[i];
@@ -286,7 +228,7 @@ impl System<'_> {
         for (k, &i) in stick_rows.iter().enumerate() {
             rhs[(first + k, 0)] = -g4[i] + g2[i];
         }
-        fill_elastic(J, rhs, first, &stick_rows, &self.rt, &pb.bp, &pb.bq);
+        unknowns.fill_elastic(J, rhs, first, &stick_rows, &self.rt, &pb.bp, &pb.bq);
         if let Some(c) = col_creep {
             for (k, &i) in stick_rows.iter().enumerate() {
                 J[(first + k, c)] = self.rt[i] * pb.flow_sign * pb.slip_operator.creep_weight[i];
@@ -298,12 +240,12 @@ impl System<'_> {
         let k = 4 * m + usize::from(self.free_overlap);
         if free_overlap {
             rhs[(row, 0)] = -self.length * G[4 * m];
-            add_row(J, rhs, row, &|j| w[j], &|_| 0.0);
+            unknowns.add_row(J, rhs, row, &|j| w[j], &|_| 0.0);
             row += 1;
         }
         if let (true, Some((ratio, _))) = (free_creep, self.tangential_load()) {
             rhs[(row, 0)] = -self.length * G[k];
-            add_row(J, rhs, row, &|j| -ratio * mu * w[j], &|j| w[j]);
+            unknowns.add_row(J, rhs, row, &|j| -ratio * mu * w[j], &|j| w[j]);
             row += 1;
         }
         debug_assert_eq!(row, n);
@@ -313,12 +255,7 @@ impl System<'_> {
         }
         let y = &*rhs;
         let singular = (0..n).any(|r| !y[(r, 0)].is_finite());
-        let dp: Vec<f64> = (0..m)
-            .map(|j| p_const[j] + p_col[j].map_or(0.0, |c| y[(c, 0)]))
-            .collect();
-        let dq: Vec<f64> = (0..m)
-            .map(|j| q_const[j] + q_col[j].map_or(0.0, |c| y[(c, 0)]) + q_pcoef[j] * dp[j])
-            .collect();
+        let (dp, dq) = unknowns.tractions(y);
         let d_overlap = col_overlap.map_or(0.0, |c| y[(c, 0)]);
         let d_creep = col_creep.map_or(0.0, |c| y[(c, 0)]);
         // The work vectors go back to the workspace for the next step.
@@ -334,6 +271,17 @@ impl System<'_> {
         if singular {
             return Err(SingularNewtonMatrix { size: n });
         }
+        Ok((self.step_of_tractions(G, dp, dq, d_overlap, d_creep), n))
+    }
+
+    /// The full Newton step from the reduced system's tractions Δp, Δq and the load unknowns
+    /// Δδ0, Δξ: the gap and slip increments follow from the elastic rows (gap and slip in the
+    /// units of the state, the creep along the flow direction `flow_sign`).
+    #[allow(non_snake_case)]
+    fn step_of_tractions(&self, G: &[f64], dp: Vec<f64>, dq: Vec<f64>, d_overlap: f64, d_creep: f64) -> State {
+        let pb = self.pb;
+        let m = self.m();
+        let (g1, g2) = (&G[0..m], &G[m..2 * m]);
         let dh = pb.compression(&dp, &dq);
         let db = mat_vec2(&pb.bp, &dp, &pb.bq, &dq);
         let dg = (0..m).map(|i| -g1[i] / self.rn[i] - d_overlap + dh[i]).collect();
@@ -341,17 +289,111 @@ impl System<'_> {
         let ds = (0..m)
             .map(|i| -g2[i] / self.rt[i] + pb.flow_sign * d_creep * e[i] + db[i])
             .collect();
-        Ok((
-            State {
-                gap: dg,
-                slip: ds,
-                pressure: dp,
-                shear: dq,
-                overlap: d_overlap,
-                creep: d_creep,
-            },
-            n,
-        ))
+        State {
+            gap: dg,
+            slip: ds,
+            pressure: dp,
+            shear: dq,
+            overlap: d_overlap,
+            creep: d_creep,
+        }
+    }
+}
+
+/// `v` as `m` copies of `value`, keeping its allocation.
+fn reset<T: Clone>(v: &mut Vec<T>, m: usize, value: T) {
+    v.clear();
+    v.resize(m, value);
+}
+
+/// The tractions of the reduced system: Δp_j = p_const_j + [column p_col_j] and
+/// Δq_j = q_const_j + [column q_col_j] + q_pcoef_j·Δp_j (a node's known parts in the
+/// constants, its unknowns, if any, in the named columns of the reduced matrix).
+struct Unknowns<'a> {
+    p_col: &'a [Option<usize>],
+    p_const: &'a [f64],
+    q_col: &'a [Option<usize>],
+    q_const: &'a [f64],
+    q_pcoef: &'a [f64],
+}
+
+#[allow(non_snake_case)]
+impl Unknowns<'_> {
+    /// Adds Σ_j (ap_j Δp_j + aq_j Δq_j) to row `row`, moving known parts to the right side.
+    fn add_row(
+        &self,
+        J: &mut Mat<f64>,
+        rhs: &mut Mat<f64>,
+        row: usize,
+        ap: &dyn Fn(usize) -> f64,
+        aq: &dyn Fn(usize) -> f64,
+    ) {
+        for j in 0..self.p_const.len() {
+            let (a_p, a_q) = (ap(j), aq(j));
+            let cp = a_p + a_q * self.q_pcoef[j];
+            rhs[(row, 0)] -= cp * self.p_const[j] + a_q * self.q_const[j];
+            if let Some(c) = self.p_col[j] {
+                J[(row, c)] += cp;
+            }
+            if let Some(c) = self.q_col[j] {
+                J[(row, c)] += a_q;
+            }
+        }
+    }
+
+    /// The elastic rows r_i (A_p Δp + A_q Δq)_i from row `first`, filled column by column:
+    /// faer stores the flexibilities and J by columns, so a column j of both is read and
+    /// written in order. Known parts (Δp_j, Δq_j fixed at open or slipping nodes) move to the
+    /// right side.
+    #[allow(clippy::too_many_arguments)]
+    fn fill_elastic(
+        &self,
+        J: &mut Mat<f64>,
+        rhs: &mut Mat<f64>,
+        first: usize,
+        rows: &[usize],
+        r: &[f64],
+        a_p: &Mat<f64>,
+        a_q: &Mat<f64>,
+    ) {
+        let end = first + rows.len();
+        for j in 0..self.p_const.len() {
+            let (col_p, col_q) = (a_p.col_as_slice(j), a_q.col_as_slice(j));
+            let coef = self.q_pcoef[j];
+            let (known_p, known_q) = (self.p_const[j], self.q_const[j]);
+            if known_p != 0.0 || known_q != 0.0 {
+                let out = &mut rhs.col_as_slice_mut(0)[first..end];
+                for (o, &i) in out.iter_mut().zip(rows) {
+                    let (ap, aq) = (r[i] * col_p[i], r[i] * col_q[i]);
+                    *o -= (ap + aq * coef) * known_p + aq * known_q;
+                }
+            }
+            if let Some(c) = self.p_col[j] {
+                let out = &mut J.col_as_slice_mut(c)[first..end];
+                for (o, &i) in out.iter_mut().zip(rows) {
+                    let (ap, aq) = (r[i] * col_p[i], r[i] * col_q[i]);
+                    *o += ap + aq * coef;
+                }
+            }
+            if let Some(c) = self.q_col[j] {
+                let out = &mut J.col_as_slice_mut(c)[first..end];
+                for (o, &i) in out.iter_mut().zip(rows) {
+                    *o += r[i] * col_q[i];
+                }
+            }
+        }
+    }
+
+    /// Δp and Δq from the reduced system's solution `y`.
+    fn tractions(&self, y: &Mat<f64>) -> (Vec<f64>, Vec<f64>) {
+        let m = self.p_const.len();
+        let dp: Vec<f64> = (0..m)
+            .map(|j| self.p_const[j] + self.p_col[j].map_or(0.0, |c| y[(c, 0)]))
+            .collect();
+        let dq: Vec<f64> = (0..m)
+            .map(|j| self.q_const[j] + self.q_col[j].map_or(0.0, |c| y[(c, 0)]) + self.q_pcoef[j] * dp[j])
+            .collect();
+        (dp, dq)
     }
 }
 

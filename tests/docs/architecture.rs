@@ -213,8 +213,9 @@ fn source_files_stay_small() {
 /// Longest function of `src/` [lines], from its `fn` line to its closing brace.
 const MAX_FUNCTION_LINES: usize = 150;
 
-/// Functions over [`MAX_FUNCTION_LINES`] that are still to be split by concept (file, name).
-const LONG_FUNCTIONS_BEING_SPLIT: [(&str, &str); 1] = [("contact/direction.rs", "newton_direction")];
+/// Functions over [`MAX_FUNCTION_LINES`] that are still to be split by concept (file, name):
+/// none today; a function that must stay longer is named here with its reason.
+const LONG_FUNCTIONS_BEING_SPLIT: [(&str, &str); 0] = [];
 
 /// The functions of a file with their lengths [lines]: from a line that declares a function
 /// to the closing brace at its indentation (declarations without a body are skipped).
