@@ -13,6 +13,7 @@ pub mod norms;
 pub mod regime;
 pub mod rolling_resistance;
 pub mod solution;
+pub mod strength;
 pub mod zones;
 
 use crate::body::BoundaryField;
