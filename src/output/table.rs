@@ -30,9 +30,12 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     line(
         &format!("tangential force Q [{force}]"),
         format!(
-            "{:.6}{}",
-            s.tangential_force,
-            s.load_ratio.map_or(String::new(), |r| format!("  (Q/muP = {r:.4})"))
+            "{}{}",
+            unsigned_zero(format!("{:.6}", s.tangential_force)),
+            s.load_ratio.map_or(String::new(), |r| format!(
+                "  (Q/muP = {})",
+                unsigned_zero(format!("{r:.4}"))
+            ))
         ),
     );
     if s.traction_axes == crate::contact::TractionAxes::Contact {
@@ -131,6 +134,15 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     rows.iter().map(|(k, v)| format!("  {k:<width$}  {v}\n")).collect()
 }
 
+/// A printed number that rounds to zero without its sign: free rolling's Q of −1e-12 prints
+/// 0.000000, not −0.000000.
+fn unsigned_zero(printed: String) -> String {
+    match printed.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => printed,
+    }
+}
+
 /// The rows of the grid, its error estimate and control, the interior field and the times.
 fn grid_rows(s: &Summary, [len, stress]: [&str; 2], rows: &mut Vec<(String, String)>) {
     let mut line = |k: &str, v: String| rows.push((k.to_string(), v));
@@ -210,4 +222,18 @@ fn grid_rows(s: &Summary, [len, stress]: [&str; 2], rows: &mut Vec<(String, Stri
             s.timings.assembly_s, s.timings.condense_s, s.timings.solve_s, s.timings.interior_s, s.timings.total_s
         ),
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::unsigned_zero;
+
+    /// Only a number that rounds to zero loses its minus sign.
+    #[test]
+    fn a_negative_zero_prints_without_its_sign() {
+        assert_eq!(unsigned_zero(format!("{:.6}", -1e-12)), "0.000000");
+        assert_eq!(unsigned_zero(format!("{:.4}", -0.0)), "0.0000");
+        assert_eq!(unsigned_zero(format!("{:.6}", -1e-3)), "-0.001000");
+        assert_eq!(unsigned_zero(format!("{:.6}", 2.5)), "2.500000");
+    }
 }
