@@ -31,15 +31,10 @@ fn squeeze(s: &str) -> String {
 /// The rows of the table of `page` whose header line is `| h1 | h2 | … |`, split into cells
 /// on ` | ` (header cells may contain `|`, row cells do not, except escaped `\|`).
 pub fn table(page: &str, header: &[String]) -> Vec<Vec<String>> {
-    let wanted = squeeze(&format!("| {} |", header.join(" | ")));
     let lines: Vec<&str> = page.lines().collect();
-    let start = lines
+    let (start, end) = rows_span(&lines, header);
+    lines[start..end]
         .iter()
-        .position(|l| squeeze(l) == wanted)
-        .unwrap_or_else(|| panic!("no table with the header\n  {wanted}\nin the page"));
-    lines[start + 2..]
-        .iter()
-        .take_while(|l| l.trim_start().starts_with('|'))
         .map(|l| {
             let inner = l.trim().trim_start_matches('|').trim_end_matches('|');
             inner
@@ -49,6 +44,21 @@ pub fn table(page: &str, header: &[String]) -> Vec<Vec<String>> {
                 .collect()
         })
         .collect()
+}
+
+/// The lines [start, end) of the rows of the table whose header line is `| h1 | h2 | … |`
+/// (after its header and separator lines).
+fn rows_span(lines: &[&str], header: &[String]) -> (usize, usize) {
+    let wanted = squeeze(&format!("| {} |", header.join(" | ")));
+    let at = lines
+        .iter()
+        .position(|l| squeeze(l) == wanted)
+        .unwrap_or_else(|| panic!("no table with the header\n  {wanted}\nin the page"));
+    let rows = lines[at + 2..]
+        .iter()
+        .take_while(|l| l.trim_start().starts_with('|'))
+        .count();
+    (at + 2, at + 2 + rows)
 }
 
 /// A number as printed, with the half unit of its last digit (0 for an integer).
@@ -261,19 +271,9 @@ fn write_table(page_name: &str, printed: &Printed, skip: &[&str], noise: (&[&str
     let below = |c: &str| tokens(c).1.iter().all(|n| n.value.abs() < noise_limit);
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs").join(page_name);
     let text = page(page_name);
-    let wanted = squeeze(&format!("| {} |", printed.header.join(" | ")));
     let lines: Vec<&str> = text.lines().collect();
-    let start = lines
-        .iter()
-        .position(|l| squeeze(l) == wanted)
-        .unwrap_or_else(|| panic!("docs/{page_name}: no table with the header\n  {wanted}\nto write"));
-    let end = start
-        + 2
-        + lines[start + 2..]
-            .iter()
-            .take_while(|l| l.trim_start().starts_with('|'))
-            .count();
-    let mut out: Vec<String> = lines[..start + 2].iter().map(|l| l.to_string()).collect();
+    let (start, end) = rows_span(&lines, printed.header);
+    let mut out: Vec<String> = lines[..start].iter().map(|l| l.to_string()).collect();
     let on_page = table(&text, printed.header);
     for (i, row) in printed.rows.iter().enumerate() {
         // The row in the same place if it is the same case, else the first of that name.

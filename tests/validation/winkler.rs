@@ -77,10 +77,6 @@ impl BodySetup for Winkler {
         None
     }
 
-    fn compliance(&self) -> f64 {
-        0.0
-    }
-
     /// The exact scales under a force; under an overlap δ (from the springs' base),
     /// a = √(2Rδ).
     fn own_contact_scales(
