@@ -157,15 +157,7 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
         summary.converged = false;
     }
     post::finite::check(&case.path, "summary.json", &summary)?;
-    output::write_run(
-        &output_dir,
-        &mut summary,
-        &s.solution,
-        &s.problem,
-        &s.boundary,
-        s.interior.as_ref(),
-        start,
-    )?;
+    output::write_run(&output_dir, &mut summary, &s, start)?;
     if let Some(e) = missed {
         return Err(e);
     }

@@ -4,11 +4,13 @@
 //! archived `serde_yaml`): swapping it is a change to [`parse_yaml`] alone.
 
 pub mod schema;
+pub mod strength;
 pub mod validate;
 
 use crate::material::{Elastic, StandardLinearSolid};
 pub use schema::*;
 use std::path::{Path, PathBuf};
+pub use strength::{StrengthSpec, YieldSpec};
 pub use validate::Violation;
 
 /// Everything that can be wrong with a case before solving.

@@ -40,6 +40,17 @@ pub enum Error {
         #[source]
         source: Box<crate::body::FieldError>,
     },
+    /// The stresses `output.strength` assesses cannot be computed.
+    #[error("{case}: output.strength, body {body}: {source}")]
+    Strength {
+        /// Case file.
+        case: PathBuf,
+        /// The body assessed.
+        body: String,
+        /// Why (boxed like [`Error::Interior`]'s).
+        #[source]
+        source: Box<crate::body::FieldError>,
+    },
     /// A body's contact segment does not cover the contact grid.
     #[error(transparent)]
     Transfer(#[from] crate::body::transfer::TransferError),

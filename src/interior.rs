@@ -98,11 +98,17 @@ pub struct InteriorOptions {
     /// evaluated. Default = 0.05 (docs/validation.md, "Interior stresses", measures
     /// the accuracy down to this distance).
     pub boundary_layer: f64,
+    /// Whether the displacements are wanted (a strength assessment needs the stresses only;
+    /// models may then skip them and return 0). Default = true.
+    pub displacements: bool,
 }
 
 impl Default for InteriorOptions {
     fn default() -> Self {
-        Self { boundary_layer: 0.05 }
+        Self {
+            boundary_layer: 0.05,
+            displacements: true,
+        }
     }
 }
 

@@ -174,3 +174,53 @@ mod tests {
         assert!((lhs - rhs).abs() < 1e-12 * rhs.abs());
     }
 }
+
+/// The yield criterion of a strength assessment (`output.strength.criterion`): which
+/// equivalent shear stress τ_eq reaches the shear yield stress k ([`crate::post::strength`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum YieldCriterion {
+    /// von Mises, τ_eq = σ_vm/√3, k = Y/√3.
+    #[default]
+    VonMises,
+    /// Tresca over the three principal stresses, τ_eq = (σ_max − σ_min)/2, k = Y/2.
+    Tresca,
+}
+
+impl YieldCriterion {
+    /// The name in cases and outputs (`von_mises`, `tresca`).
+    pub fn name(self) -> &'static str {
+        match self {
+            YieldCriterion::VonMises => "von_mises",
+            YieldCriterion::Tresca => "tresca",
+        }
+    }
+
+    /// The shear yield stress k [stress] of a material with uniaxial (tensile) yield stress
+    /// `tensile` Y [stress]: Y/√3 for von Mises, Y/2 for Tresca (Johnson 1985 §1.3).
+    pub fn shear_yield_of_tensile(self, tensile: f64) -> f64 {
+        match self {
+            YieldCriterion::VonMises => tensile / 3f64.sqrt(),
+            YieldCriterion::Tresca => 0.5 * tensile,
+        }
+    }
+}
+
+/// A material's yield stress as the case gives it (`materials.NAME.yield`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum YieldStress {
+    /// The shear yield stress k [stress], used as given by either criterion.
+    Shear(f64),
+    /// The uniaxial (tensile) yield stress Y [stress], turned into k by the criterion.
+    Tensile(f64),
+}
+
+impl YieldStress {
+    /// The shear yield stress k [stress] under `criterion`.
+    pub fn shear_yield(self, criterion: YieldCriterion) -> f64 {
+        match self {
+            YieldStress::Shear(k) => k,
+            YieldStress::Tensile(y) => criterion.shear_yield_of_tensile(y),
+        }
+    }
+}

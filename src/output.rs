@@ -15,13 +15,9 @@ mod table;
 pub mod units;
 pub mod vtk;
 
-use crate::body::BoundaryField;
-use crate::contact::ContactProblem;
 use crate::error::Error;
 pub use crate::files as folder;
-use crate::interior::InteriorField;
-use crate::post::ContactSolution;
-pub use csv_files::{number, write_csv, write_interior_csv, CSV_COLUMNS};
+pub use csv_files::{number, write_csv, write_interior_csv, write_residual_stress_csv, CSV_COLUMNS};
 use std::path::Path;
 use std::time::Instant;
 pub use summary::{summary, Summary};
@@ -29,21 +25,18 @@ pub use table::render_table;
 
 /// Writes all outputs of a run atomically into `dir` and fills in the total time.
 /// A non-converged run writes summary.json only.
-pub fn write_run(
-    dir: &Path,
-    summary: &mut Summary,
-    sol: &ContactSolution,
-    pb: &ContactProblem,
-    boundary: &[Option<BoundaryField>; 2],
-    interior: Option<&InteriorField>,
-    start: Instant,
-) -> Result<(), Error> {
+pub fn write_run(dir: &Path, summary: &mut Summary, solved: &crate::post::Solved, start: Instant) -> Result<(), Error> {
+    let (sol, pb, boundary) = (&solved.solution, &solved.problem, &solved.boundary);
+    let interior = solved.interior.as_ref();
     log::info!(target: crate::logging::PROGRESS, "writing the results to {}", dir.display());
     write_atomically(dir, folder::Kind::Run, |tmp| {
         if summary.converged {
             write_csv(&tmp.join("contact.csv"), sol, pb)?;
             if let Some(f) = interior {
                 write_interior_csv(&tmp.join(format!("interior_{}.csv", f.body)), f)?;
+            }
+            for b in &solved.strength {
+                write_residual_stress_csv(&tmp.join(format!("residual_stress_{}.csv", b.body)), b)?;
             }
             let unit = |key: &str| summary.units.get(key).map_or("", String::as_str);
             let plot = svg::ContactPlot {

@@ -40,6 +40,8 @@ pub struct Timings {
     pub solve_s: f64,
     /// Interior fields of `output.interior` (post-processing; 0 when not asked).
     pub interior_s: f64,
+    /// First yield and shakedown of `output.strength` (post-processing; 0 when not asked).
+    pub strength_s: f64,
     /// Whole run including output.
     pub total_s: f64,
 }
@@ -79,6 +81,9 @@ pub struct Solved {
     pub boundary: [Option<BoundaryField>; 2],
     /// Interior displacements and stresses, when `output.interior` asks for them.
     pub interior: Option<InteriorField>,
+    /// First yield and shakedown of the bodies `output.strength` assesses (empty when not
+    /// asked).
+    pub strength: Vec<strength::assess::BodyStrength>,
     /// Notices for the user (e.g. mesh loops turned round, interior points not evaluated).
     pub notices: Vec<String>,
     /// Where the inputs leave the models' validity ([`crate::scene::validity`]).
@@ -143,6 +148,15 @@ pub fn process(
     timings.interior_s = t_interior.elapsed().as_secs_f64();
     finite::check_fields(&scene.case.path, interior.as_ref(), &boundary)?;
     notices.extend(interior.as_ref().and_then(fields::unevaluated_points_notice));
+    let t_strength = Instant::now();
+    let strength = match (&output.strength, report.converged) {
+        (Some(spec), true) => {
+            log::info!(target: crate::logging::PROGRESS, "strength: first yield and shakedown");
+            strength::assess::assess(&scene, spec, models, &problem.grid, &problem.frame, &solution)?
+        }
+        _ => Vec::new(),
+    };
+    timings.strength_s = t_strength.elapsed().as_secs_f64();
     let mut warnings = crate::scene::validity::warnings(&scene.bodies, &scene.estimates);
     warnings.extend(crate::scene::validity::traction_axes_warning(
         &scene.case,
@@ -158,6 +172,7 @@ pub fn process(
         friction_check,
         boundary,
         interior,
+        strength,
         notices,
         warnings,
         adaptation: None,

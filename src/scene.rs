@@ -92,6 +92,8 @@ pub struct FieldRequests {
     pub vtk: bool,
     /// The interior grid of one body, if asked for.
     pub interior: Option<crate::case::InteriorSpec>,
+    /// First yield and shakedown of the bodies, if asked for.
+    pub strength: Option<crate::case::StrengthSpec>,
 }
 
 /// What an error-controlled grid must reach, and its limit.
@@ -167,6 +169,7 @@ impl Scene {
         let fields = FieldRequests {
             vtk: c.output.vtk,
             interior: c.output.interior.clone(),
+            strength: c.output.strength.clone(),
         };
         let grid_extent = c.contact.grid.extent;
         Scene {

@@ -282,15 +282,7 @@ fn run_case(source: &Source, overrides: &[String], out: Option<&Path>) -> Result
     let mut summary = output::summary(&s);
     rollbem::post::finite::check(&case.path, "summary.json", &summary)?;
     if let Some(dir) = out {
-        output::write_run(
-            dir,
-            &mut summary,
-            &s.solution,
-            &s.problem,
-            &s.boundary,
-            s.interior.as_ref(),
-            start,
-        )?;
+        output::write_run(dir, &mut summary, &s, start)?;
     }
     RunData::new(&summary, &s.solution, &s.problem, out.map(Path::to_path_buf))
 }

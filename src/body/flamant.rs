@@ -22,10 +22,11 @@
 //! ([`super::half_space::HalfSpace::datum_length`]). Displacements of a half-plane are
 //! defined only up to that datum (a rigid translation); their differences are physical.
 //!
-//! The tractions are the grid's interpolants. The kernels peak over a width ~z around s = x, so
-//! each element is split into pieces no longer than z/2 before 8-point Gauss quadrature:
-//! accurate down to depths of a small fraction of an element (tested against McEwen's closed
-//! form).
+//! The tractions are the grid's interpolants. The kernels vary over a length r = √(d² + z²),
+//! so each element is split into pieces no longer than half the distance from the field point
+//! to the element (at least z/2) before 8-point Gauss quadrature: accurate down to depths of a
+//! small fraction of an element (tested against McEwen's closed form), while the elements far
+//! from the point, where the kernels are smooth, take one piece.
 
 use super::{ContactLoad, Side};
 use crate::grid::ContactGrid;
@@ -34,48 +35,105 @@ use crate::quadrature::gauss_legendre;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
-/// Visits the quadrature points (s, ds) of the contact grid for a field point at depth z, with
-/// the interpolated tractions p(s), q(s) (points where both vanish are skipped).
-fn superpose(grid: &ContactGrid, p: &[f64], q: &[f64], z: f64, mut visit: impl FnMut(f64, f64, f64, f64)) {
-    let (gx, gw) = gauss_legendre(8);
-    for e in 0..grid.n_elements() {
-        let (a, b) = (grid.edges[e], grid.edges[e + 1]);
-        let pieces = ((b - a) / (0.5 * z)).ceil().clamp(1.0, 4096.0) as usize;
-        let h = (b - a) / pieces as f64;
-        for k in 0..pieces {
-            let (lo, hi) = (a + k as f64 * h, a + (k + 1) as f64 * h);
-            for (xi, w) in gx.iter().zip(&gw) {
-                let s = 0.5 * (lo + hi) + 0.5 * (hi - lo) * xi;
-                let ds = 0.5 * (hi - lo) * w;
-                let (ps, qs) = (grid.interpolate(p, s), grid.interpolate(q, s));
-                if ps == 0.0 && qs == 0.0 {
-                    continue;
-                }
-                visit(s, ds, ps, qs);
+/// The tractions of a contact grid at its quadrature points: one 8-point Gauss rule per
+/// element, interpolated once for every field point far from the element; elements near a
+/// field point are subdivided for it ([`TractionQuadrature::visit`]).
+pub struct TractionQuadrature<'a> {
+    grid: &'a ContactGrid,
+    p: &'a [f64],
+    q: &'a [f64],
+    /// Per element: (s, ds, p(s), q(s)) at its 8 Gauss points.
+    whole: Vec<[[f64; 4]; 8]>,
+}
+
+/// The Gauss rule of the superposition: 8 points per element or piece.
+const GAUSS_POINTS: usize = 8;
+
+impl<'a> TractionQuadrature<'a> {
+    /// The quadrature of the nodal pressure `p` and shear `q` on `grid`.
+    pub fn new(grid: &'a ContactGrid, p: &'a [f64], q: &'a [f64]) -> Self {
+        let whole = (0..grid.n_elements())
+            .map(|e| {
+                let mut pts = [[0.0; 4]; 8];
+                Self::piece(grid, p, q, grid.edges[e], grid.edges[e + 1], |k, v| pts[k] = v);
+                pts
+            })
+            .collect();
+        Self { grid, p, q, whole }
+    }
+
+    /// The Gauss points of [lo, hi] as (s, ds, p(s), q(s)), with their index.
+    fn piece(grid: &ContactGrid, p: &[f64], q: &[f64], lo: f64, hi: f64, mut out: impl FnMut(usize, [f64; 4])) {
+        let (gx, gw) = gauss_legendre(GAUSS_POINTS);
+        for (k, (xi, w)) in gx.iter().zip(&gw).enumerate() {
+            let s = 0.5 * (lo + hi) + 0.5 * (hi - lo) * xi;
+            let ds = 0.5 * (hi - lo) * w;
+            out(k, [s, ds, grid.interpolate(p, s), grid.interpolate(q, s)]);
+        }
+    }
+
+    /// Visits the quadrature points (s, ds, p(s), q(s)) for a field point (x, z), z the depth
+    /// (points where both tractions vanish are skipped; module docs for the subdivision).
+    fn visit(&self, x: f64, z: f64, mut visit: impl FnMut(f64, f64, f64, f64)) {
+        let mut take = |v: [f64; 4]| {
+            if v[2] != 0.0 || v[3] != 0.0 {
+                visit(v[0], v[1], v[2], v[3]);
+            }
+        };
+        for (e, whole) in self.whole.iter().enumerate() {
+            let (a, b) = (self.grid.edges[e], self.grid.edges[e + 1]);
+            let distance = (a - x).max(x - b).max(0.0).max(z);
+            let pieces = ((b - a) / (0.5 * distance)).ceil().clamp(1.0, 4096.0) as usize;
+            if pieces == 1 {
+                whole.iter().for_each(|v| take(*v));
+                continue;
+            }
+            let h = (b - a) / pieces as f64;
+            for k in 0..pieces {
+                let lo = a + k as f64 * h;
+                Self::piece(self.grid, self.p, self.q, lo, lo + h, |_, v| take(v));
             }
         }
+    }
+
+    /// Stress at (x, z), z > 0 the depth into the body, Poisson's ratio `nu` (sheet §7).
+    pub fn stress(&self, nu: f64, x: f64, z: f64) -> PlaneStress {
+        let (mut sx, mut sz, mut t) = (0.0, 0.0, 0.0);
+        self.visit(x, z, |s, ds, ps, qs| {
+            let d = x - s;
+            let r4 = (d * d + z * z).powi(2);
+            sx += (ps * d * d * z + qs * d * d * d) / r4 * ds;
+            sz += (ps * z * z * z + qs * d * z * z) / r4 * ds;
+            t += (ps * d * z * z + qs * d * d * z) / r4 * ds;
+        });
+        let c = -2.0 / PI;
+        let (sxx, szz, txz) = (c * sx, c * sz, c * t);
+        PlaneStress {
+            sxx,
+            szz,
+            txz,
+            syy: nu * (sxx + szz),
+        }
+    }
+
+    /// Displacement (u_x, u_z) [length] at (x, z) of a half-plane of shear modulus `shear`
+    /// and Poisson's ratio `nu`, from the datum length `datum` (Eq. H1–H2).
+    pub fn displacement(&self, shear: f64, nu: f64, datum: f64, x: f64, z: f64) -> [f64; 2] {
+        let (mut ux, mut uz) = (0.0, 0.0);
+        self.visit(x, z, |s, ds, ps, qs| {
+            let [kp, kq] = line_load_displacement(x - s, z, nu, datum);
+            ux += (ps * kp[0] + qs * kq[0]) * ds;
+            uz += (ps * kp[1] + qs * kq[1]) * ds;
+        });
+        let c = 1.0 / (2.0 * PI * shear);
+        [c * ux, c * uz]
     }
 }
 
 /// Stress at (x, z), z > 0 the depth into the body, under the nodal pressure `p` and shear `q`
 /// acting on the body (its own +x), interpolated on `grid`; Poisson's ratio `nu`.
 pub fn halfplane_stress(grid: &ContactGrid, p: &[f64], q: &[f64], nu: f64, x: f64, z: f64) -> PlaneStress {
-    let (mut sx, mut sz, mut t) = (0.0, 0.0, 0.0);
-    superpose(grid, p, q, z, |s, ds, ps, qs| {
-        let d = x - s;
-        let r4 = (d * d + z * z).powi(2);
-        sx += (ps * d * d * z + qs * d * d * d) / r4 * ds;
-        sz += (ps * z * z * z + qs * d * z * z) / r4 * ds;
-        t += (ps * d * z * z + qs * d * d * z) / r4 * ds;
-    });
-    let c = -2.0 / PI;
-    let (sxx, szz, txz) = (c * sx, c * sz, c * t);
-    PlaneStress {
-        sxx,
-        szz,
-        txz,
-        syy: nu * (sxx + szz),
-    }
+    TractionQuadrature::new(grid, p, q).stress(nu, x, z)
 }
 
 /// The line-load displacement kernels of Eq. H1–H2 without the factor 1/(2πG):
@@ -105,14 +163,7 @@ pub fn halfplane_displacement(
     x: f64,
     z: f64,
 ) -> [f64; 2] {
-    let (mut ux, mut uz) = (0.0, 0.0);
-    superpose(grid, p, q, z, |s, ds, ps, qs| {
-        let [kp, kq] = line_load_displacement(x - s, z, nu, datum);
-        ux += (ps * kp[0] + qs * kq[0]) * ds;
-        uz += (ps * kp[1] + qs * kq[1]) * ds;
-    });
-    let c = 1.0 / (2.0 * PI * shear);
-    [c * ux, c * uz]
+    TractionQuadrature::new(grid, p, q).displacement(shear, nu, datum, x, z)
 }
 
 /// Fields of a half-plane body at `points` of the contact frame (y > 0 inside A, y < 0 inside
@@ -137,6 +188,7 @@ pub fn halfplane_interior(
     let sign = side.sign();
     let q_body: Vec<f64> = q.iter().map(|v| sign * v).collect();
     let layer = options.boundary_layer * grid.element_length();
+    let tractions = TractionQuadrature::new(grid, p, &q_body);
     points
         .par_iter()
         .map(|&[x, y]| {
@@ -147,8 +199,12 @@ pub fn halfplane_interior(
             if z <= layer {
                 return InteriorSample::Boundary;
             }
-            let s = halfplane_stress(grid, p, &q_body, nu, x, z);
-            let [ux, uz] = halfplane_displacement(grid, p, &q_body, shear, nu, datum, x, z);
+            let s = tractions.stress(nu, x, z);
+            let [ux, uz] = if options.displacements {
+                tractions.displacement(shear, nu, datum, x, z)
+            } else {
+                [0.0; 2]
+            };
             InteriorSample::Inside(InteriorValue {
                 displacement: [ux, sign * uz],
                 stress: [s.sxx, s.szz, s.syy, sign * s.txz],

@@ -1,6 +1,7 @@
 //! The case file schema (cases/README.md documents every key). Every struct rejects unknown keys; each field documents its
 //! unit and default. Lengths, forces and stresses are in the case's consistent units.
 
+use super::strength::{StrengthSpec, YieldSpec};
 pub use crate::contact::Formulation;
 pub use crate::contact::Method;
 use crate::contact::{RollingDirection, SlipDerivative, TractionAxes};
@@ -106,6 +107,9 @@ pub struct MaterialSpec {
     /// (instantaneous) modulus and these keys give its rubbery modulus and creep time.
     #[serde(default)]
     pub viscoelastic: Option<ViscoelasticSpec>,
+    /// The yield stress, for `output.strength`: exactly one of `shear` (k) and `tensile` (Y).
+    #[serde(rename = "yield", default)]
+    pub yield_stress: Option<YieldSpec>,
 }
 
 /// The keys under `materials.NAME.viscoelastic`: exactly one of `E_rubbery` and `G_rubbery`
@@ -646,6 +650,10 @@ pub struct OutputSpec {
     /// Interior displacement and stress grid (interior_<body>.csv / .vtu). Default = null.
     #[serde(default)]
     pub interior: Option<InteriorSpec>,
+    /// First yield and shakedown of the bodies (summary.json `strength`,
+    /// residual_stress_<body>.csv). Default = null.
+    #[serde(default)]
+    pub strength: Option<StrengthSpec>,
 }
 
 impl Default for OutputSpec {
@@ -654,6 +662,7 @@ impl Default for OutputSpec {
             dir: None,
             vtk: true,
             interior: None,
+            strength: None,
         }
     }
 }

@@ -6,6 +6,7 @@ use geometry::geometry_violations;
 use viscoelastic::{rolling_speed_problems, viscoelastic_problems};
 
 mod geometry;
+mod strength;
 mod viscoelastic;
 
 /// Magnitudes that a dimensional input (a length, force per length or stress) may take, in any
@@ -116,6 +117,9 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     load_problems(case, &mut found);
     solver_problems(case, &mut found);
     interior_problems(case, &mut found);
+    for (key, message) in strength::strength_problems(case) {
+        found.bad(key, message);
+    }
     found.0
 }
 

@@ -96,6 +96,32 @@ pub fn write_interior_csv(path: &Path, f: &InteriorField) -> Result<(), Error> {
     w.flush().map_err(|e| io(&e))
 }
 
+/// Writes residual_stress_<body>.csv: per depth row of a strength assessment, the depth z,
+/// the row's own shakedown factor λ_sd(z) and the residual stresses (σx^r, σy^r) that keep the
+/// stresses times λ_sd within yield (docs/strength.md).
+pub fn write_residual_stress_csv(path: &Path, b: &crate::post::strength::assess::BodyStrength) -> Result<(), Error> {
+    let io = |e: csv::Error| Error::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    let mut w = csv::Writer::from_path(path).map_err(io)?;
+    w.write_record(["z", "row_factor", "residual_sxx", "residual_szz_out_of_plane"])
+        .map_err(io)?;
+    for r in &b.shakedown.rows {
+        w.write_record([
+            number(r.z),
+            number(r.factor),
+            number(r.residual[0]),
+            number(r.residual[1]),
+        ])
+        .map_err(io)?;
+    }
+    w.flush().map_err(|e| Error::Output {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })
+}
+
 /// A number as the CSV files write it: the shortest digits that read back to the same f64
 /// (Rust's formatting of f64 is shortest round-trip), plainly written where that is short
 /// (`470.805575`, `0.0123`) and with an exponent otherwise (`1.25e-7`, `3e20`), as Python's

@@ -132,6 +132,9 @@ pub struct Summary {
     /// The interior grid of `output.interior` (null when not asked): body, model, point
     /// counts by status, and the maxima of the principal shear and von Mises stress.
     pub interior: Option<crate::interior::InteriorSummary>,
+    /// First yield and shakedown of each body `output.strength` assesses (empty when not
+    /// asked; docs/strength.md).
+    pub strength: Vec<crate::post::strength::assess::StrengthSummary>,
     /// Whether VTK files (contact.vtu, result.pvd) were requested.
     pub vtk: bool,
     /// The unit of every number above, by key path (`.` between keys, `[]` for array items),
@@ -256,6 +259,7 @@ pub fn summary(s: &Solved) -> Summary {
         notices: s.notices.clone(),
         warnings: s.warnings.clone(),
         interior: s.interior.as_ref().map(crate::interior::InteriorField::summary),
+        strength: s.strength.iter().map(|b| b.summary()).collect(),
         vtk: case.case.output.vtk,
         units: super::units::summary_units(&case.case.units),
         case: case.resolved.clone(),

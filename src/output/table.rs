@@ -215,10 +215,33 @@ fn grid_rows(s: &Summary, [len, stress]: [&str; 2], rows: &mut Vec<(String, Stri
             ),
         );
     }
+    for b in &s.strength {
+        line(
+            &format!("strength {} ({})", b.body, b.model),
+            format!(
+                "{}, k = {:.6} {stress}: first yield at {:.4} x the stresses, at ({:.4}, {:.4}) {len} ({}); \
+                 shakedown limit {:.4} x, governed at depth {:.4} {len} ({})",
+                b.criterion,
+                b.shear_yield,
+                b.first_yield.factor,
+                b.first_yield.x,
+                b.first_yield.z,
+                b.first_yield.site,
+                b.shakedown.factor,
+                b.shakedown.z,
+                b.shakedown.mode
+            ),
+        );
+    }
+    let strength = if s.strength.is_empty() {
+        String::new()
+    } else {
+        format!("  strength {:.4}", s.timings.strength_s)
+    };
     line(
         "time [s]",
         format!(
-            "assembly {:.4}  condense {:.4}  solve {:.4}  interior {:.4}  total {:.4}",
+            "assembly {:.4}  condense {:.4}  solve {:.4}  interior {:.4}{strength}  total {:.4}",
             s.timings.assembly_s, s.timings.condense_s, s.timings.solve_s, s.timings.interior_s, s.timings.total_s
         ),
     );

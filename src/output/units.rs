@@ -96,6 +96,7 @@ pub const SUMMARY_KEYS: &[(&str, Dimension)] = &[
     ("timings.condense_s", Seconds),
     ("timings.solve_s", Seconds),
     ("timings.interior_s", Seconds),
+    ("timings.strength_s", Seconds),
     ("timings.total_s", Seconds),
     ("estimates.e_star", Stress),
     ("estimates.dundurs_beta", Dimensionless),
@@ -152,6 +153,15 @@ pub const SUMMARY_KEYS: &[(&str, Dimension)] = &[
     ("interior.max_von_mises.value", Stress),
     ("interior.max_von_mises.x", Length),
     ("interior.max_von_mises.y", Length),
+    ("strength[].shear_yield", Stress),
+    ("strength[].first_yield.factor", Dimensionless),
+    ("strength[].first_yield.x", Length),
+    ("strength[].first_yield.z", Length),
+    ("strength[].shakedown.factor", Dimensionless),
+    ("strength[].shakedown.z", Length),
+    ("strength[].grid.spacing_x", Length),
+    ("strength[].grid.spacing_z", Length),
+    ("strength[].grid.half_length", Length),
 ];
 
 /// The `units` block of summary.json: the unit of every number of [`SUMMARY_KEYS`].

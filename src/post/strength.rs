@@ -29,17 +29,11 @@
 //! For a frictionless Hertz contact σx^r absorbs the direct stresses and the limit is set by
 //! |τxz|max = 0.250 p0 at z = 0.50a: p0 = 4.0k for both criteria.
 
+pub mod assess;
+
 use crate::interior::{InteriorField, PlaneStress, PointStatus};
 
-/// The yield criterion.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Criterion {
-    /// von Mises, τ_eq = σ_vm/√3 (k = Y/√3).
-    #[default]
-    VonMises,
-    /// Tresca over the three principal stresses, τ_eq = (σ_max − σ_min)/2 (k = Y/2).
-    Tresca,
-}
+pub use crate::material::YieldCriterion as Criterion;
 
 impl Criterion {
     /// The equivalent shear stress τ_eq of `s` [stress]: yield when τ_eq = k.
@@ -52,14 +46,6 @@ impl Criterion {
                 let (hi, lo) = ((c + t).max(s.syy), (c - t).min(s.syy));
                 0.5 * (hi - lo)
             }
-        }
-    }
-
-    /// The name in cases and outputs (`von_mises`, `tresca`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Criterion::VonMises => "von_mises",
-            Criterion::Tresca => "tresca",
         }
     }
 }
@@ -106,12 +92,13 @@ pub struct RowShakedown {
     pub residual: [f64; 2],
 }
 
-/// Golden-section minimum of a convex `f` on [lo, hi]: (argument, value).
+/// Golden-section minimum of a convex `f` on [lo, hi]: (argument, value). 48 reductions by
+/// the golden ratio leave 1e-10 of the interval, far below the interior fields' accuracy.
 fn golden(mut lo: f64, mut hi: f64, f: &mut dyn FnMut(f64) -> f64) -> (f64, f64) {
     const G: f64 = 0.618_033_988_749_894_8;
     let (mut c, mut d) = (hi - G * (hi - lo), lo + G * (hi - lo));
     let (mut fc, mut fd) = (f(c), f(d));
-    for _ in 0..90 {
+    for _ in 0..48 {
         if fc <= fd {
             hi = d;
             (d, fd) = (c, fc);
@@ -131,32 +118,89 @@ fn golden(mut lo: f64, mut hi: f64, f: &mut dyn FnMut(f64) -> f64) -> (f64, f64)
     }
 }
 
+/// max_x τ_eq(σ^e + r) of one row as a function of the residual r = (r_x, r_y), minimised
+/// over r_y in closed form or by a golden section: (best r_y, value).
+///
+/// von Mises: 6 J2(σ + r) = q(r) + l·r + c with q(r) = r_x² + r_y² + (r_y − r_x)² the same for
+/// every point, l = 2(2A − C, 2C − A), c = A² + C² + (C − A)² + 6τ², A = σx − σz,
+/// C = σy − σz; so the row's maximum is q(r) + max_i(l_i·r + c_i), and τ_eq = √J2.
+/// Tresca: for a given r_x the in-plane principal stresses c ± t are fixed; σy + r_y enters only
+/// through |c ± t − σy − r_y|/2, whose maximum over the row is least at the mid-range of the
+/// α = c ± t − σy: max(max t, (max α − min α)/4).
+struct RowResidual {
+    criterion: Criterion,
+    row: Vec<PlaneStress>,
+    /// von Mises: (l_x, l_y, c) of each point.
+    affine: Vec<[f64; 3]>,
+    /// Bounds of the residual search [stress].
+    range: f64,
+}
+
+impl RowResidual {
+    fn new(row: &[PlaneStress], criterion: Criterion) -> Option<Self> {
+        let range = 2.0
+            * row
+                .iter()
+                .map(|s| s.sxx.abs() + s.szz.abs() + s.syy.abs() + s.txz.abs())
+                .fold(0.0, f64::max);
+        let affine = row
+            .iter()
+            .map(|s| {
+                let (a, c) = (s.sxx - s.szz, s.syy - s.szz);
+                [
+                    2.0 * (2.0 * a - c),
+                    2.0 * (2.0 * c - a),
+                    a * a + c * c + (c - a) * (c - a) + 6.0 * s.txz * s.txz,
+                ]
+            })
+            .collect();
+        (range > 0.0).then(|| Self {
+            criterion,
+            row: row.to_vec(),
+            affine,
+            range,
+        })
+    }
+
+    /// (r_y, min over r_y of max_x τ_eq) for the residual r_x.
+    fn best_over_ry(&self, rx: f64) -> (f64, f64) {
+        match self.criterion {
+            Criterion::VonMises => {
+                let six_j2 = |ry: f64| {
+                    let q = rx * rx + ry * ry + (ry - rx) * (ry - rx);
+                    let m = self
+                        .affine
+                        .iter()
+                        .map(|a| a[0] * rx + a[1] * ry + a[2])
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    q + m
+                };
+                let (ry, v) = golden(-self.range, self.range, &mut |ry| six_j2(ry));
+                (ry, (v / 6.0).max(0.0).sqrt())
+            }
+            Criterion::Tresca => {
+                let (mut t_max, mut lo, mut hi) = (0.0f64, f64::INFINITY, f64::NEG_INFINITY);
+                for s in &self.row {
+                    let c = 0.5 * (s.sxx + rx + s.szz);
+                    let t = (0.25 * (s.sxx + rx - s.szz).powi(2) + s.txz * s.txz).sqrt();
+                    t_max = t_max.max(t);
+                    for alpha in [c + t - s.syy, c - t - s.syy] {
+                        lo = lo.min(alpha);
+                        hi = hi.max(alpha);
+                    }
+                }
+                (0.5 * (lo + hi), t_max.max(0.25 * (hi - lo)))
+            }
+        }
+    }
+}
+
 /// Shakedown limit of one depth row `z` with the elastic stresses `row` along x (module
 /// docs): λ_sd(z) = k / min_r max_x τ_eq(σ^e + r). None for an empty or unstressed row.
 pub fn row_shakedown(z: f64, row: &[PlaneStress], k: f64, criterion: Criterion) -> Option<RowShakedown> {
-    let scale = row
-        .iter()
-        .map(|s| s.sxx.abs() + s.szz.abs() + s.syy.abs() + s.txz.abs())
-        .fold(0.0, f64::max);
-    if scale == 0.0 {
-        return None;
-    }
-    let (lo, hi) = (-2.0 * scale, 2.0 * scale);
-    let worst = |rx: f64, ry: f64| {
-        row.iter()
-            .map(|s| {
-                let t = PlaneStress {
-                    sxx: s.sxx + rx,
-                    syy: s.syy + ry,
-                    ..*s
-                };
-                criterion.equivalent_shear(&t)
-            })
-            .fold(0.0, f64::max)
-    };
-    let inner = |rx: f64| golden(lo, hi, &mut |ry| worst(rx, ry));
-    let (rx, _) = golden(lo, hi, &mut |rx| inner(rx).1);
-    let (ry, t) = inner(rx);
+    let r = RowResidual::new(row, criterion)?;
+    let (rx, _) = golden(-r.range, r.range, &mut |rx| r.best_over_ry(rx).1);
+    let (ry, t) = r.best_over_ry(rx);
     if t <= 0.0 {
         return None;
     }

@@ -157,7 +157,15 @@ fn lame_errors_at(model: &BemModel, sol: &rollbem::bem::BemSolution, n: usize, f
             }
         }
     }
-    let samples = interior_fields(model, sol, &points, &InteriorOptions { boundary_layer: 0.01 });
+    let samples = interior_fields(
+        model,
+        sol,
+        &points,
+        &InteriorOptions {
+            boundary_layer: 0.01,
+            ..Default::default()
+        },
+    );
     let (mut es, mut eu) = (0.0f64, 0.0f64);
     let u_scale = lame::u_scale(&model.material);
     for (x, s) in points.iter().zip(&samples) {

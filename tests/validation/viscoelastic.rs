@@ -379,7 +379,10 @@ fn interior_displacements_meet_the_surface_ones() {
                     side: Side::B,
                     load,
                     points: &points,
-                    options: InteriorOptions { boundary_layer: 0.01 },
+                    options: InteriorOptions {
+                        boundary_layer: 0.01,
+                        ..Default::default()
+                    },
                 };
                 let InteriorSample::Inside(v) = body.fields().interior(&query).unwrap()[0] else {
                     panic!("inside B")

@@ -193,7 +193,10 @@ fn interior_displacement_meets_the_half_space_surface_displacement() {
             hs.datum_length(),
             side,
             &points,
-            &InteriorOptions { boundary_layer: 1e-4 },
+            &InteriorOptions {
+                boundary_layer: 1e-4,
+                ..Default::default()
+            },
         );
         for (i, s) in samples.iter().enumerate() {
             let InteriorSample::Inside(v) = s else {
