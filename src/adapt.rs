@@ -416,9 +416,10 @@ fn body_mesh_check_grid(start: &DyadicGrid, tolerance: f64) -> ContactGrid {
     stand_ins::level(start, tolerance).bisected().grid()
 }
 
-/// Whether the case asks for interior fields, which only the bodies themselves give.
+/// Whether the case asks for interior fields (`output.interior`, or the stresses of
+/// `output.strength`), which only the bodies themselves give.
 fn asks_interior_fields(scene: &Scene) -> bool {
-    scene.case.case.output.interior.is_some()
+    scene.case.case.output.interior.is_some() || scene.case.case.output.strength.is_some()
 }
 
 /// The Hertz contact that sets the units of the error estimate (p0) and the a-priori element

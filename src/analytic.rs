@@ -6,6 +6,7 @@
 
 pub mod conformal;
 pub mod creepage;
+pub mod mcewen;
 pub mod michell;
 
 use std::f64::consts::PI;

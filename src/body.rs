@@ -39,7 +39,7 @@ pub mod transfer;
 pub mod viscoelastic;
 
 use crate::grid::ContactGrid;
-use crate::interior::{InteriorOptions, InteriorSample};
+use crate::interior::{InteriorOptions, InteriorSample, PlaneStress};
 use crate::linalg::mat_vec2;
 use faer::{Mat, MatRef};
 use serde::Serialize;
@@ -223,6 +223,23 @@ pub trait BodyFields {
     /// within the boundary layer of the query's options). Models without an interior field
     /// (rigid) return [`FieldError::NoInteriorField`].
     fn interior(&self, query: &InteriorQuery) -> InteriorResult;
+
+    /// The stresses at the body's surface under the load at the abscissae `xs` (the grid's
+    /// nodes, or points outside the grid; not an element end), in the body's own frame (x along
+    /// the contact, z into the body; σz = −p), for models that give them in closed form; None
+    /// for the others, whose surface is then approached by their interior field (a strength
+    /// assessment uses them: the surface governs at high friction).
+    fn surface_stress(&self, _load: &ContactLoad, _side: Side, _xs: &[f64]) -> Option<Vec<PlaneStress>> {
+        None
+    }
+
+    /// Where the interior field puts the body's undeformed surface at abscissa x: its distance
+    /// [length] from the common tangent line, away from the other body (the convention of
+    /// [`BodyModel::profile`]). A depth z below the surface is then the point at
+    /// y = ±(surface + z) of the contact frame. 0 for a model whose field is a flat half-plane.
+    fn field_surface(&self, _x: f64) -> f64 {
+        0.0
+    }
 }
 
 /// A body of a run: a [`BodyModel`] for the solver and its [`BodyFields`] for post-processing.
@@ -357,6 +374,14 @@ impl BodyFields for WithCircularProfile {
 
     fn interior(&self, query: &InteriorQuery) -> InteriorResult {
         self.inner.interior(query)
+    }
+
+    fn surface_stress(&self, load: &ContactLoad, side: Side, xs: &[f64]) -> Option<Vec<PlaneStress>> {
+        self.inner.surface_stress(load, side, xs)
+    }
+
+    fn field_surface(&self, x: f64) -> f64 {
+        self.inner.field_surface(x)
     }
 }
 

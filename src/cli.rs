@@ -45,7 +45,9 @@ impl Cli {
             Command::Run { case, .. } | Command::Check { case, .. } | Command::Mesh { case, .. } => Some(case),
             Command::Sweep { case, .. } => case.as_deref(),
             Command::Study { study } => match study {
-                StudyCommand::Accuracy { case, .. } | StudyCommand::Stability { case, .. } => Some(case),
+                StudyCommand::Accuracy { case, .. }
+                | StudyCommand::Stability { case, .. }
+                | StudyCommand::Shakedown { case, .. } => Some(case),
             },
             Command::Validate => None,
         }
@@ -219,6 +221,36 @@ pub enum StudyCommand {
         /// Runs at once (default: one per core). --jobs 1 gives undisturbed timings.
         #[arg(long, default_value_t = 0)]
         jobs: usize,
+    },
+    /// Johnson's shakedown map for the case's criterion, with the case's points on it.
+    ///
+    /// The map: first yield and the shakedown limit (Melan) of a Hertz line contact under a
+    /// sliding traction q = μp, as p0/k against the traction coefficient 0 … 0.5, from
+    /// McEwen's closed-form stresses (Johnson, Contact Mechanics, 1985, §9.4, Fig. 9.12): below
+    /// first yield the contact stays elastic, between the curves it shakes down, above the
+    /// limit it ratchets (at the surface where the surface governs) or, for a hardening
+    /// material, shakes down plastically. The case is solved with its strength assessment
+    /// (`output.strength`; von Mises if the case has none, its materials need `yield:`) and each
+    /// body is drawn at its |Q|/P and p_max/k, with the loads of its own first yield and
+    /// shakedown limit from its own stresses (partial slip, dissimilar bodies and the true
+    /// geometry move them off the map's curves).
+    ///
+    /// Example: rollbem study shakedown cases/carter_051.yaml --vary load.tangential.ratio=0.3,0.6,0.9
+    ///
+    /// Writes shakedown_map.csv, shakedown_points.csv and shakedown.svg; docs/strength.md.
+    Shakedown {
+        /// Case file (e.g. cases/carter_051.yaml).
+        case: PathBuf,
+        /// Output folder (default: the case's output folder with `_shakedown` appended).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Override a case value (as for `run`). Repeatable.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Solve the case once per value of one key, e.g. load.tangential.ratio=0.3,0.6,0.9:
+        /// one point per value and body.
+        #[arg(long, value_name = "KEY.PATH=V1,V2,...")]
+        vary: Option<String>,
     },
     /// Convergence map of every solution method: newton (Φ), newton_psi, newton_plain,
     /// norm_tang, gauss_seidel, over 2D slices through the case.

@@ -78,6 +78,9 @@ pub enum Kind {
     /// `rollbem mesh`: the generated meshes of a case's `geometry:` bodies.
     #[serde(rename = "mesh")]
     Mesh,
+    /// `rollbem study shakedown`.
+    #[serde(rename = "study shakedown")]
+    StudyShakedown,
 }
 
 impl Kind {
@@ -89,6 +92,7 @@ impl Kind {
             Kind::StudyAccuracy => "study accuracy",
             Kind::StudyStability => "study stability",
             Kind::Mesh => "mesh",
+            Kind::StudyShakedown => "study shakedown",
         }
     }
 }

@@ -341,6 +341,16 @@ fn run_study(study: StudyCommand) -> Result<i32> {
                 EXIT_NOT_CONVERGED
             })
         }
+        StudyCommand::Shakedown { case, out, set, vary } => {
+            let out = match out {
+                Some(o) => o,
+                None => default_output_dir(&rollbem::case::load(&case, &set)?, "shakedown"),
+            };
+            let study = rollbem::study::shakedown::run(&case, &set, vary.as_deref(), &out)?;
+            print!("{}", rollbem::study::shakedown::render_summary(&study));
+            println!("results in {}", study.dir.display());
+            Ok(0)
+        }
         StudyCommand::Stability { case, quick, out, set } => {
             let out = match out {
                 Some(o) => o,

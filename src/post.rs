@@ -157,6 +157,11 @@ pub fn process(
         _ => Vec::new(),
     };
     timings.strength_s = t_strength.elapsed().as_secs_f64();
+    notices.extend(strength::assess::notices(
+        &strength,
+        &solution,
+        scene.grid_control.is_some(),
+    ));
     let mut warnings = crate::scene::validity::warnings(&scene.bodies, &scene.estimates);
     warnings.extend(crate::scene::validity::traction_axes_warning(
         &scene.case,

@@ -7,8 +7,10 @@
 //! * [`accuracy`] — `rollbem study accuracy`: each body model the scene allows at a ladder of
 //!   discretizations, its error against the reference and its wall time (accuracy.csv/.svg).
 //! * [`stability`] — `rollbem study stability`: where each solution method converges.
+//! * [`shakedown`] — `rollbem study shakedown`: Johnson's shakedown map with the case's points.
 
 pub mod accuracy;
+pub mod shakedown;
 pub mod stability;
 
 use indicatif::{ProgressBar, ProgressStyle};

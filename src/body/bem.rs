@@ -449,6 +449,11 @@ impl BodyFields for BemBody {
         }
         Ok(self.interior_samples(load.grid, load.pressure, load.shear, query.points, &query.options)?)
     }
+
+    /// The mesh's undeformed contact surface ([`BodyModel::profile`]).
+    fn field_surface(&self, x: f64) -> f64 {
+        self.profile(x)
+    }
 }
 
 /// A `bem` body's stand-in for the passes of an error-controlled grid

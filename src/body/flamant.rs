@@ -44,6 +44,10 @@ pub struct TractionQuadrature<'a> {
     q: &'a [f64],
     /// Per element: (s, ds, p(s), q(s)) at its 8 Gauss points.
     whole: Vec<[[f64; 4]; 8]>,
+    /// Per element with its mid node at its centre: p and q as polynomials c0 + c1 ξ + c2 ξ²
+    /// of the element's ξ ∈ [−1, 1] (the pieces of a subdivided element read them instead of
+    /// searching the grid for every Gauss point).
+    polynomials: Vec<Option<[[f64; 3]; 2]>>,
 }
 
 /// The Gauss rule of the superposition: 8 points per element or piece.
@@ -52,23 +56,54 @@ const GAUSS_POINTS: usize = 8;
 impl<'a> TractionQuadrature<'a> {
     /// The quadrature of the nodal pressure `p` and shear `q` on `grid`.
     pub fn new(grid: &'a ContactGrid, p: &'a [f64], q: &'a [f64]) -> Self {
-        let whole = (0..grid.n_elements())
+        let polynomials: Vec<_> = (0..grid.n_elements())
+            .map(|e| {
+                let centred = grid.mids[e] == 0.5 * (grid.edges[e] + grid.edges[e + 1]);
+                centred.then(|| {
+                    let mut c = [[0.0; 3]; 2];
+                    for a in 0..grid.kind.nodes_per_element() {
+                        let (n, j) = (grid.kind.shape_polynomial(a), grid.global_node(e, a));
+                        for k in 0..3 {
+                            c[0][k] += n[k] * p[j];
+                            c[1][k] += n[k] * q[j];
+                        }
+                    }
+                    c
+                })
+            })
+            .collect();
+        let mut out = Self {
+            grid,
+            p,
+            q,
+            whole: Vec::new(),
+            polynomials,
+        };
+        out.whole = (0..grid.n_elements())
             .map(|e| {
                 let mut pts = [[0.0; 4]; 8];
-                Self::piece(grid, p, q, grid.edges[e], grid.edges[e + 1], |k, v| pts[k] = v);
+                out.piece(e, grid.edges[e], grid.edges[e + 1], |k, v| pts[k] = v);
                 pts
             })
             .collect();
-        Self { grid, p, q, whole }
+        out
     }
 
-    /// The Gauss points of [lo, hi] as (s, ds, p(s), q(s)), with their index.
-    fn piece(grid: &ContactGrid, p: &[f64], q: &[f64], lo: f64, hi: f64, mut out: impl FnMut(usize, [f64; 4])) {
+    /// The Gauss points of [lo, hi] ⊂ element `e` as (s, ds, p(s), q(s)), with their index.
+    fn piece(&self, e: usize, lo: f64, hi: f64, mut out: impl FnMut(usize, [f64; 4])) {
         let (gx, gw) = gauss_legendre(GAUSS_POINTS);
+        let (a, b) = (self.grid.edges[e], self.grid.edges[e + 1]);
         for (k, (xi, w)) in gx.iter().zip(&gw).enumerate() {
             let s = 0.5 * (lo + hi) + 0.5 * (hi - lo) * xi;
             let ds = 0.5 * (hi - lo) * w;
-            out(k, [s, ds, grid.interpolate(p, s), grid.interpolate(q, s)]);
+            let (ps, qs) = match &self.polynomials[e] {
+                Some([cp, cq]) => {
+                    let t = (2.0 * s - a - b) / (b - a);
+                    (cp[0] + t * (cp[1] + t * cp[2]), cq[0] + t * (cq[1] + t * cq[2]))
+                }
+                None => (self.grid.interpolate(self.p, s), self.grid.interpolate(self.q, s)),
+            };
+            out(k, [s, ds, ps, qs]);
         }
     }
 
@@ -91,7 +126,7 @@ impl<'a> TractionQuadrature<'a> {
             let h = (b - a) / pieces as f64;
             for k in 0..pieces {
                 let lo = a + k as f64 * h;
-                Self::piece(self.grid, self.p, self.q, lo, lo + h, |_, v| take(v));
+                self.piece(e, lo, lo + h, |_, v| take(v));
             }
         }
     }

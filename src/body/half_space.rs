@@ -29,8 +29,12 @@ pub mod setup;
 
 use super::flamant::halfplane_interior;
 use super::pair_influence::{joined, shared_or_computed, Family, InfluenceKey, PairInfluence};
-use super::{circle_profile, BodyFields, BodyModel, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator};
+use super::{
+    circle_profile, BodyFields, BodyModel, ContactLoad, Flexibility, InteriorQuery, InteriorResult, Side,
+    StrainOperator,
+};
 use crate::grid::{ContactGrid, ElementKind};
+use crate::interior::PlaneStress;
 use crate::material::Elastic;
 use crate::quadrature::gauss_legendre;
 use faer::{Mat, MatRef};
@@ -540,6 +544,34 @@ impl BodyFields for HalfSpace {
             query.points,
             &query.options,
         ))
+    }
+
+    /// σz = −p, τxz = −q and σx = −p − (2/π) PV∫ q(s)/(x − s) ds with the body's own shear q
+    /// (q on A, −q on B): the Flamant fields at z = 0 (Johnson 1985 §2.2; McEwen's σx = −p − 2μx
+    /// under q = μp of a Hertz pressure), plane strain σy = ν(σx + σz).
+    fn surface_stress(&self, load: &ContactLoad, side: Side, xs: &[f64]) -> Option<Vec<PlaneStress>> {
+        let grid = load.grid;
+        let q = Mat::from_fn(grid.n_nodes(), 1, |i, _| side.sign() * load.shear[i]);
+        let cauchy = applied::influence_times_at(grid, Kernel::Cauchy, q.as_ref(), xs);
+        let nu = self.material.poisson;
+        Some(
+            xs.iter()
+                .enumerate()
+                .map(|(i, &x)| {
+                    let (p, q) = (
+                        grid.interpolate(load.pressure, x),
+                        side.sign() * grid.interpolate(load.shear, x),
+                    );
+                    let sxx = -p - 2.0 / std::f64::consts::PI * cauchy[(i, 0)];
+                    PlaneStress {
+                        sxx,
+                        szz: -p,
+                        txz: -q,
+                        syy: nu * (sxx - p),
+                    }
+                })
+                .collect(),
+        )
     }
 }
 

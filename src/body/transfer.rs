@@ -311,6 +311,10 @@ impl BodyFields for Transferred {
         };
         self.inner.interior(&InteriorQuery { load, ..*query })
     }
+
+    fn field_surface(&self, x: f64) -> f64 {
+        self.inner.field_surface(x)
+    }
 }
 
 impl Transferred {

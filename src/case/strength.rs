@@ -24,8 +24,8 @@ pub struct StrengthSpec {
     /// `von_mises` or `tresca`. Default = von_mises.
     #[serde(default)]
     pub criterion: crate::material::YieldCriterion,
-    /// The bodies to assess, `[A]`, `[B]` or `[A, B]`. Default = every body that deforms
-    /// (rigid bodies have no stresses).
+    /// The bodies to assess, `[A]`, `[B]` or `[A, B]`. Default = every body whose material
+    /// has a yield stress.
     #[serde(default)]
     pub bodies: Option<Vec<String>>,
     /// [nx, nz]: points of the interior grid along the surface and in depth, over 4 contact

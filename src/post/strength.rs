@@ -127,6 +127,7 @@ fn golden(mut lo: f64, mut hi: f64, f: &mut dyn FnMut(f64) -> f64) -> (f64, f64)
 /// Tresca: for a given r_x the in-plane principal stresses c ± t are fixed; σy + r_y enters only
 /// through |c ± t − σy − r_y|/2, whose maximum over the row is least at the mid-range of the
 /// α = c ± t − σy: max(max t, (max α − min α)/4).
+#[derive(Clone)]
 struct RowResidual {
     criterion: Criterion,
     row: Vec<PlaneStress>,
@@ -195,12 +196,61 @@ impl RowResidual {
     }
 }
 
+/// min_r max_x τ_eq(σ^e + r) of a row: (r_x, r_y, the value), by an active set. The min–max
+/// of a few points (the worst at r = 0 first) is solved by [`RowResidual`], the whole row
+/// checked at its optimum, and the points above it join the set until none is: the optimum of
+/// a subset that the whole row does not exceed is the whole row's (a few rounds of a dozen
+/// points instead of the whole row in every step of the nested searches).
+fn row_min_max(row: &[PlaneStress], criterion: Criterion) -> Option<(f64, f64, f64)> {
+    const BATCH: usize = 12;
+    let full = RowResidual::new(row, criterion)?;
+    let shifted = |s: &PlaneStress, rx: f64, ry: f64| PlaneStress {
+        sxx: s.sxx + rx,
+        syy: s.syy + ry,
+        ..*s
+    };
+    let worst_first = |rx: f64, ry: f64, t: f64, active: &[bool]| {
+        let mut above: Vec<(f64, usize)> = row
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !active[*i])
+            .map(|(i, s)| (criterion.equivalent_shear(&shifted(s, rx, ry)), i))
+            .filter(|(v, _)| *v > t)
+            .collect();
+        above.sort_by(|a, b| b.0.total_cmp(&a.0));
+        above.into_iter().take(BATCH).map(|(_, i)| i).collect::<Vec<_>>()
+    };
+    let mut active = vec![false; row.len()];
+    let mut chosen = worst_first(0.0, 0.0, -1.0, &active);
+    loop {
+        for &i in &chosen {
+            active[i] = true;
+        }
+        let subset: Vec<PlaneStress> = (0..row.len()).filter(|&i| active[i]).map(|i| row[i]).collect();
+        let mut sub = RowResidual::new(&subset, criterion).unwrap_or_else(|| RowResidual { ..full.clone() });
+        sub.range = full.range;
+        let (rx, _) = golden(-sub.range, sub.range, &mut |rx| sub.best_over_ry(rx).1);
+        let (ry, t) = sub.best_over_ry(rx);
+        chosen = worst_first(rx, ry, t * (1.0 + 1e-12) + 1e-12 * full.range, &active);
+        if chosen.is_empty() {
+            return Some((rx, ry, t));
+        }
+    }
+}
+
 /// Shakedown limit of one depth row `z` with the elastic stresses `row` along x (module
 /// docs): λ_sd(z) = k / min_r max_x τ_eq(σ^e + r). None for an empty or unstressed row.
 pub fn row_shakedown(z: f64, row: &[PlaneStress], k: f64, criterion: Criterion) -> Option<RowShakedown> {
-    let r = RowResidual::new(row, criterion)?;
-    let (rx, _) = golden(-r.range, r.range, &mut |rx| r.best_over_ry(rx).1);
-    let (ry, t) = r.best_over_ry(rx);
+    // Far from the contact the elastic stresses vanish, so the residual alone must lie within
+    // yield there too: the row gets the point of zero stress wherever its sampled span ends.
+    let far = PlaneStress {
+        sxx: 0.0,
+        szz: 0.0,
+        txz: 0.0,
+        syy: 0.0,
+    };
+    let row: Vec<PlaneStress> = row.iter().copied().chain(std::iter::once(far)).collect();
+    let (rx, ry, t) = row_min_max(&row, criterion)?;
     if t <= 0.0 {
         return None;
     }
@@ -251,8 +301,9 @@ pub type Rows = Vec<(f64, Vec<PlaneStress>)>;
 
 /// Shakedown over `rows` of (depth, stresses along x) with the shear yield stress `k`.
 pub fn shakedown(rows: &[(f64, Vec<PlaneStress>)], k: f64, criterion: Criterion) -> Option<Shakedown> {
+    use rayon::prelude::*;
     let mut out: Vec<RowShakedown> = rows
-        .iter()
+        .par_iter()
         .filter_map(|(z, r)| row_shakedown(*z, r, k, criterion))
         .collect();
     out.sort_by(|a, b| a.z.abs().total_cmp(&b.z.abs()));

@@ -433,7 +433,10 @@ fn jobs(case_path: &Path, base_set: &[String], slices: &[Slice], methods: &[Meth
                         }
                     ));
                     o.push(format!("solver.max_iterations={}", m.max_iterations));
+                    // The map measures the solver: no post-processing inside the bodies.
                     o.push("output.vtk=false".into());
+                    o.push("output.interior=null".into());
+                    o.push("output.strength=null".into());
                     o.push(s.x.key.set(x));
                     o.push(s.y.key.set(y));
                     let out_of_domain = ratio_out_of_domain(s.x.key, x)

@@ -265,3 +265,49 @@ fn study_accuracy_runs_on_a_roller_in_a_ring_bore() {
         }
     }
 }
+
+/// `rollbem study shakedown`: the map of the case's criterion has Johnson's values at its ends
+/// (von Mises: first yield 3.10, shakedown 4.0 at μ = 0, the limit governed at the surface at
+/// μ = 0.5), and each run of `--vary` puts both bodies on it at the run's |Q|/P and p_max/k, with
+/// their own limits the run's factors times that load.
+#[test]
+fn shakedown_study_draws_the_map_and_the_case() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sd");
+    let (code, stdout, stderr) = rollbem(&[
+        "study",
+        "shakedown",
+        crate::common::case_path("carter_051").to_str().unwrap(),
+        "--set",
+        "contact.friction=0.3",
+        "--vary",
+        "load.tangential.ratio=0.3,0.9",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("elastic"), "{stdout}");
+    for f in ["shakedown_map.csv", "shakedown_points.csv", "shakedown.svg"] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+    let map = std::fs::read_to_string(out.join("shakedown_map.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = map.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    let num = |s: &str| s.parse::<f64>().unwrap();
+    assert_eq!(rows.len(), 26);
+    assert!(
+        (num(rows[0][1]) - 3.107).abs() < 3e-3 && (num(rows[0][2]) - 4.0).abs() < 2e-3,
+        "{:?}",
+        rows[0]
+    );
+    assert_eq!(rows[25][3], "surface");
+    let points = std::fs::read_to_string(out.join("shakedown_points.csv")).unwrap();
+    let points: Vec<Vec<&str>> = points.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert_eq!(points.len(), 4, "two runs, two bodies");
+    // Q/μP 0.3 and 0.9 at μ = 0.3: |Q|/P = 0.09 and 0.27; p_max/k = 1153.83/866.03.
+    assert!((num(points[0][2]) - 0.09).abs() < 1e-9 && (num(points[2][2]) - 0.27).abs() < 1e-9);
+    assert!(
+        (num(points[0][3]) - 1153.826441 / 866.025404).abs() < 1e-5,
+        "{:?}",
+        points[0]
+    );
+}

@@ -58,6 +58,9 @@ mod parametric_report;
 mod perf_report;
 mod readme;
 #[allow(dead_code)]
+#[path = "../../examples/strength_report.rs"]
+mod strength_report;
+#[allow(dead_code)]
 #[path = "../../examples/validation_report.rs"]
 mod validation_report;
 #[allow(dead_code)]
@@ -92,6 +95,24 @@ fn cell<'a>(header: &[String], rows: &'a [Vec<String>], row: &str, column: &str)
 /// The number of a percentage cell ("1.46 %" → "1.46").
 fn percent(cell: &str) -> &str {
     cell.trim().trim_end_matches('%').trim()
+}
+
+/// docs/strength.md: the sliding Hertz contact against McEwen, Tresca in-plane against three
+/// principal stresses, and Carter's partial slip on the half-space and the true geometry.
+#[test]
+fn strength_tables() {
+    let rows = strength_report::sliding_rows();
+    for t in [
+        strength_report::sliding_table(&rows),
+        strength_report::tresca_table(),
+        strength_report::partial_slip_table(),
+    ] {
+        let printed = Printed {
+            header: &t.header,
+            rows: &t.rows,
+        };
+        assert_table("strength.md", printed, Rows::All, &[], (&[], 0.0));
+    }
 }
 
 #[test]

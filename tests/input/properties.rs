@@ -449,3 +449,73 @@ proptest! {
         );
     }
 }
+
+/// `materials.NAME.yield` and `output.strength`: every bad value refused by its key, with what
+/// to do (docs/strength.md).
+#[test]
+fn strength_inputs_are_refused_by_key() {
+    use crate::common::rollbem;
+    let dir = tempfile::tempdir().unwrap();
+    let case = crate::common::case_path("hertz");
+    let case = case.to_str().unwrap();
+    let out = dir.path().join("o");
+    let out = out.to_str().unwrap();
+    let refused = |set: &[&str], key: &str, says: &str| {
+        let mut args = vec!["run", case, "--out", out];
+        for s in set {
+            args.extend(["--set", s]);
+        }
+        let (code, _, stderr) = rollbem(&args);
+        assert_eq!(code, 1, "{set:?}: {stderr}");
+        assert!(stderr.contains(key) && stderr.contains(says), "{set:?}: {stderr}");
+        assert!(!std::path::Path::new(out).exists(), "{set:?} wrote its folder");
+    };
+    let ask = "output.strength.criterion=von_mises";
+    refused(
+        &["materials.steel.yield.shear=0", ask],
+        "materials.steel.yield.shear",
+        "positive",
+    );
+    refused(
+        &["materials.steel.yield.tensile=-5", ask],
+        "materials.steel.yield.tensile",
+        "positive",
+    );
+    refused(
+        &["materials.steel.yield={shear: 300, tensile: 500}", ask],
+        "materials.steel.yield",
+        "exactly one",
+    );
+    refused(&[ask], "output.strength.bodies", "no body to assess");
+    refused(
+        &["materials.steel.yield.shear=300", "output.strength.criterion=rankine"],
+        "output.strength.criterion",
+        "von_mises",
+    );
+    refused(
+        &[
+            "materials.steel.yield.shear=300",
+            ask,
+            "bodies.B={model: rigid, radius: 100.0}",
+            "output.strength.bodies=[A, B]",
+        ],
+        "output.strength.bodies",
+        "body B is rigid",
+    );
+    refused(
+        &["materials.steel.yield.shear=300", ask, "output.strength.grid=[1, 100]"],
+        "output.strength.grid",
+        "2..2000",
+    );
+    refused(
+        &[
+            "materials.other={E: 1000.0, nu: 0.3}",
+            "bodies.B.material=other",
+            "materials.steel.yield.shear=300",
+            ask,
+            "output.strength.bodies=[A, B]",
+        ],
+        "materials.other.yield",
+        "missing",
+    );
+}

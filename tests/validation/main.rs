@@ -42,6 +42,10 @@ mod parametric_report;
 mod slip_end;
 mod solver;
 mod stand_in;
+mod strength;
+#[allow(dead_code)]
+#[path = "../../examples/strength_report.rs"]
+mod strength_report;
 mod transient;
 mod true_geometry;
 mod tyre;

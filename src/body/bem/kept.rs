@@ -101,4 +101,8 @@ impl BodyFields for Kept {
     fn interior(&self, query: &InteriorQuery) -> InteriorResult {
         self.0.interior(query)
     }
+
+    fn field_surface(&self, x: f64) -> f64 {
+        self.0.field_surface(x)
+    }
 }

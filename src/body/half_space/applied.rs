@@ -17,12 +17,17 @@ use rayon::prelude::*;
 /// the loads V (m × k, one load per column), row by row (module docs). Units: those of K's
 /// integrals (length times the kernel's) times V's.
 pub fn influence_times(grid: &ContactGrid, kernel: Kernel, v: MatRef<'_, f64>) -> Mat<f64> {
-    let (m, k) = (grid.n_nodes(), v.ncols());
-    assert_eq!(v.nrows(), m, "one load value per node");
+    influence_times_at(grid, kernel, v, &grid.nodes)
+}
+
+/// [`influence_times`] at the points `xs` instead of the nodes (one row per point; for the
+/// Cauchy kernel no point may lie on an element end where the load jumps).
+pub fn influence_times_at(grid: &ContactGrid, kernel: Kernel, v: MatRef<'_, f64>, xs: &[f64]) -> Mat<f64> {
+    let (m, k) = (xs.len(), v.ncols());
+    assert_eq!(v.nrows(), grid.n_nodes(), "one load value per node");
     let npe = grid.kind.nodes_per_element();
     let far_field = FarField::new(grid.kind);
-    let rows: Vec<Vec<f64>> = grid
-        .nodes
+    let rows: Vec<Vec<f64>> = xs
         .par_iter()
         .map(|&x| {
             let mut row = vec![0.0; k];

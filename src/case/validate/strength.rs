@@ -37,22 +37,29 @@ pub(super) fn strength_problems(case: &Case) -> Vec<(String, String)> {
     out
 }
 
-/// The bodies `output.strength` assesses: named A or B, deforming, with an interior model and
-/// a yield stress.
+/// The bodies `output.strength` assesses (`bodies`, else those whose material has a yield
+/// stress): named A or B, deforming, with an interior model and a yield stress.
 fn assessed_body_problems(case: &Case, s: &StrengthSpec) -> Vec<(String, String)> {
     let mut out = Vec::new();
     let key = "output.strength.bodies".to_string();
+    let has_yield = |b: &BodySpec| {
+        b.material_name()
+            .and_then(|m| case.materials.get(m))
+            .is_some_and(|m| m.yield_stress.is_some())
+    };
     let named = s.bodies.clone().unwrap_or_else(|| {
         [("A", &case.bodies.a), ("B", &case.bodies.b)]
             .into_iter()
-            .filter(|(_, b)| !matches!(b, BodySpec::Rigid { .. }))
+            .filter(|(_, b)| has_yield(b))
             .map(|(n, _)| n.to_string())
             .collect()
     });
     if named.is_empty() {
         out.push((
             key.clone(),
-            "no body to assess: both bodies are rigid, and a rigid body has no stresses".into(),
+            "no body to assess: give the material of a body that deforms a yield stress \
+             (materials.NAME.yield), or list the bodies in output.strength.bodies"
+                .into(),
         ));
     }
     for name in &named {

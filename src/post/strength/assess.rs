@@ -63,6 +63,12 @@ pub struct BodyStrength {
     pub spacing: [f64; 2],
     /// The half-length a of the loaded zone the grid is built on [length].
     pub half_length: f64,
+    /// The depth of the shallowest row [length]: 0 where the model gives its surface stresses
+    /// in closed form (the half-space), else its shallowest interior row.
+    pub shallowest: f64,
+    /// Whether the body's material is viscoelastic: its factors are those of the stresses of
+    /// the solved steady state.
+    pub viscoelastic: bool,
 }
 
 /// The depths of the grid's rows below a loaded zone of half-length `a`: z_j = 2a (j/nz)²,
@@ -77,6 +83,58 @@ fn row_depths(a: f64, nz: usize) -> Vec<f64> {
 fn depth_spacing(a: f64, nz: usize, z: f64) -> f64 {
     let j = nz as f64 * (z / (2.0 * a)).max(0.0).sqrt();
     (4.0 * a * j.max(1.0) / (nz * nz) as f64).max(f64::MIN_POSITIVE)
+}
+
+/// The boundary layer of the strength grid's interior queries, in element lengths: twice the
+/// default. A BEM body's Somigliana stresses amplify the boundary data's error like h/d near
+/// its boundary; on fig14_true_geometry at Q/μP = 0.9 its row at 0.058 element lengths gave a
+/// shakedown factor 5 % off the half-space's, its rows from 0.1 on agree with it to 1 %
+/// (docs/strength.md).
+const STRENGTH_BOUNDARY_LAYER: f64 = 0.1;
+
+/// How close to an element's end the surface row may come, as a fraction of the element: the
+/// Cauchy integral of a load that jumps between discontinuous elements grows like the
+/// logarithm of the distance to the jump, and a sixth keeps the points as far from the ends as
+/// the nodes of a discontinuous quadratic element (ξ = ±2/3), where the run's spikes stay below
+/// the discretisation error (docs/strength.md).
+const END_CLEARANCE: f64 = 1.0 / 6.0 - 1e-9;
+
+/// Where the surface row is evaluated: ten points per spacing of the interior rows `xs` and
+/// the contact grid's nodes, except points closer to an element end than [`END_CLEARANCE`]. The surface stresses have square-root cusps at the contact
+/// edges (McEwen's σx = 2μp0 at the trailing edge, falling off like √|x + a| on both sides)
+/// and kinks at the stick–slip points: a sampling of spacing h under-reads a cusp by about
+/// √(h/a) p0, so the surface, which costs little, is sampled ten times finer than the rows.
+fn surface_abscissae(grid: &ContactGrid, xs: &[f64]) -> Vec<f64> {
+    let (lo, hi) = (xs[0], xs[xs.len() - 1]);
+    let n = 10 * (xs.len() - 1);
+    let clear_of_ends = |x: f64| {
+        let e = grid.edges.partition_point(|&edge| edge <= x);
+        if e == 0 || e == grid.edges.len() {
+            return true;
+        }
+        let (a, b) = (grid.edges[e - 1], grid.edges[e]);
+        (x - a).min(b - x) >= END_CLEARANCE * (b - a)
+    };
+    let mut out: Vec<f64> = (0..=n)
+        .map(|i| lo + (hi - lo) * i as f64 / n as f64)
+        .filter(|&x| clear_of_ends(x))
+        .collect();
+    out.extend(grid.nodes.iter().copied().filter(|&x| (lo..=hi).contains(&x)));
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    out
+}
+
+/// Whether body `k` (0 = A) is made of a viscoelastic material.
+fn viscoelastic_body(scene: &Scene, k: usize) -> bool {
+    let case = &scene.case;
+    let body = if k == 0 {
+        &case.case.bodies.a
+    } else {
+        &case.case.bodies.b
+    };
+    body.material_name()
+        .is_some_and(|m| case.viscoelastic_material(m).is_some())
 }
 
 /// The loaded zone of the solution: (centre, half-length) [length].
@@ -141,15 +199,19 @@ pub fn assess(
             source: Box::new(source),
         };
         let sample = |points: &[[f64; 2]]| {
-            // Depth z below the surface is +y in A and −y in B (contact frame).
-            let points: Vec<[f64; 2]> = points.iter().map(|p| [p[0], sign * p[1]]).collect();
+            // Depth z below the surface is +y in A and −y in B (contact frame), measured from
+            // the surface the model's field has (a BEM body's curves away from the contact).
+            let points: Vec<[f64; 2]> = points
+                .iter()
+                .map(|p| [p[0], sign * (model.field_surface(p[0]) + p[1])])
+                .collect();
             let query = InteriorQuery {
                 side,
                 load: ContactLoad { ..load },
                 points: &points,
                 options: InteriorOptions {
+                    boundary_layer: STRENGTH_BOUNDARY_LAYER,
                     displacements: false,
-                    ..Default::default()
                 },
             };
             model.interior(&query).map_err(fail)
@@ -163,12 +225,22 @@ pub fn assess(
         let samples = sample(&points)?;
         let field = InteriorField::from_samples(&body, model.model_name(), [nx, nz], points, &samples);
         let k_shear = stress.shear_yield(spec.criterion);
-        let rows = field_rows(&field);
+        let mut rows = field_rows(&field);
         let inside: Vec<usize> = (0..field.points.len())
             .filter(|&i| field.status[i] == crate::interior::PointStatus::Inside)
             .collect();
-        let pts: Vec<[f64; 2]> = inside.iter().map(|&i| field.points[i]).collect();
-        let sts: Vec<_> = inside.iter().map(|&i| super::plane_stress(&field.stress[i])).collect();
+        let mut pts: Vec<[f64; 2]> = inside.iter().map(|&i| field.points[i]).collect();
+        let mut sts: Vec<_> = inside.iter().map(|&i| super::plane_stress(&field.stress[i])).collect();
+        let shallowest = rows.first().map_or(depths[0], |r| r.0);
+        // The surface itself, where the model has it in closed form: at high friction it
+        // governs, and the interior rows stop at the boundary layer above it.
+        let surface_xs = surface_abscissae(grid, &xs);
+        if let Some(surface) = model.surface_stress(&load, side, &surface_xs) {
+            let row: Vec<_> = surface_xs.iter().zip(surface).map(|(&x, s)| ([x, 0.0], s)).collect();
+            pts.extend(row.iter().map(|r| r.0));
+            sts.extend(row.iter().map(|r| r.1));
+            rows.insert(0, (0.0, row.into_iter().map(|r| r.1).collect()));
+        }
         let (Some(coarse), Some(sd)) = (
             first_yield(&pts, &sts, k_shear, spec.criterion),
             shakedown(&rows, k_shear, spec.criterion),
@@ -178,7 +250,6 @@ pub fn assess(
         let dx = 4.0 * a / (nx - 1) as f64;
         let local_dz = |z: f64| depth_spacing(a, nz, z);
         let first = refine_first_yield(coarse, [dx, local_dz(coarse.z)], k_shear, spec.criterion, &sample)?;
-        let shallowest = rows.first().map_or(depths[0], |r| r.0);
         let spacing = [dx, local_dz(sd.z)];
         out.push(BodyStrength {
             body,
@@ -194,6 +265,8 @@ pub fn assess(
             shakedown: sd,
             spacing,
             half_length: a,
+            shallowest: rows.first().map_or(0.0, |r| r.0),
+            viscoelastic: viscoelastic_body(scene, k),
         });
     }
     Ok(out)
@@ -317,4 +390,46 @@ impl BodyStrength {
             },
         }
     }
+}
+
+/// The notices of a strength assessment, where first yield lies at the surface: for a model
+/// without closed-form surface stresses (bem, viscoelastic), that the surface itself was not
+/// evaluated; for a contact in partial slip on a grid without error control, that the surface
+/// maximum sits on the square-root cusp of σx at a stick–slip point, which the contact grid
+/// resolves only to O(√(h/a)) (3 % on 21 elements of Carter's contact at Q/μP = 0.9,
+/// under-read: the factor is high; docs/strength.md).
+pub fn notices(strength: &[BodyStrength], solution: &ContactSolution, error_controlled: bool) -> Vec<String> {
+    use crate::post::NodeState;
+    let has = |s: NodeState| solution.state.contains(&s);
+    let partial_slip = has(NodeState::Stick) && has(NodeState::Slip);
+    let mut out: Vec<String> = strength
+        .iter()
+        .filter(|b| b.viscoelastic)
+        .map(|b| {
+            format!(
+                "output.strength: body {} is viscoelastic: its factors are those of the stresses of the solved \
+                 steady state (Melan's theorem is that of an elastic body; docs/strength.md, \"Limits\")",
+                b.body
+            )
+        })
+        .collect();
+    for b in strength.iter().filter(|b| b.first_yield_site == YieldSite::Surface) {
+        if b.shallowest > 0.0 {
+            out.push(format!(
+                "output.strength: first yield of body {} lies in its shallowest row (depth {:.4e}), {} element \
+                 lengths below the surface, which the {} model does not evaluate closer: at the surface itself the \
+                 factor may be a few per cent lower (docs/strength.md, \"Limits\")",
+                b.body, b.shallowest, STRENGTH_BOUNDARY_LAYER, b.model
+            ));
+        } else if partial_slip && !error_controlled {
+            out.push(format!(
+                "output.strength: first yield of body {} lies at the surface (x = {:.4}) of a contact in partial \
+                 slip, whose surface stresses have cusps at the stick–slip point that a fixed contact grid \
+                 resolves only to a few per cent (the factor reads high); set contact.grid.tolerance (1e-4: \
+                 within 0.5 %) for the surface value",
+                b.body, b.first_yield.x
+            ));
+        }
+    }
+    out
 }

@@ -94,6 +94,7 @@ pub(super) fn solve_model_of(
     let mut c = case.clone();
     c.case.contact.grid.elements = n;
     c.case.output.interior = None;
+    c.case.output.strength = None;
     c.case.output.vtk = false;
     let mut run = half_space_scene(&c, scene);
     let mut boundary_elements = 0;
@@ -168,6 +169,7 @@ pub(super) fn solve_adaptive_of(case: &LoadedCase, scene: &[SceneBody; 2], toler
     let mut c = case.clone();
     c.case.contact.grid.tolerance = Some(tolerance);
     c.case.output.interior = None;
+    c.case.output.strength = None;
     c.case.output.vtk = false;
     let solved = app::solve_scene(half_space_scene(&c, scene), start)?;
     Ok(Outcome {
