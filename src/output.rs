@@ -37,6 +37,11 @@ pub fn write_run(dir: &Path, summary: &mut Summary, solved: &crate::post::Solved
             }
             for b in &solved.strength {
                 write_residual_stress_csv(&tmp.join(format!("residual_stress_{}.csv", b.body)), b)?;
+                let units = ["overlap", "max_pressure"].map(|k| summary.units.get(k).cloned().unwrap_or_default());
+                charts::residual::write(
+                    &tmp.join(format!("strength_{}.svg", b.body)),
+                    &residual_picture(b, units),
+                )?;
             }
             let unit = |key: &str| summary.units.get(key).map_or("", String::as_str);
             let plot = svg::ContactPlot {
@@ -90,6 +95,36 @@ pub fn write_run(dir: &Path, summary: &mut Summary, solved: &crate::post::Solved
         let json = serde_json::to_string_pretty(summary).map_err(|e| err(tmp, &e))?;
         std::fs::write(tmp.join("summary.json"), json).map_err(|e| err(tmp, &e))
     })
+}
+
+/// The strength picture of one body.
+fn residual_picture(
+    b: &crate::post::strength::assess::BodyStrength,
+    units: [String; 2],
+) -> charts::residual::ResidualPicture {
+    charts::residual::ResidualPicture {
+        title: format!(
+            "body {} ({}), {}: shakedown limit {:.4} x the stresses at depth {:.4}",
+            b.body,
+            b.model,
+            b.criterion.name(),
+            b.shakedown.factor,
+            b.shakedown.z
+        ),
+        factor: b.shakedown.factor,
+        governing_depth: b.shakedown.z,
+        units,
+        rows: b
+            .shakedown
+            .rows
+            .iter()
+            .map(|r| charts::residual::Row {
+                z: r.z,
+                factor: r.factor,
+                residual: r.residual,
+            })
+            .collect(),
+    }
 }
 
 /// Writes a result of `kind` atomically into `dir` through a temporary sibling folder, replacing

@@ -3,4 +3,5 @@
 
 pub mod accuracy;
 pub mod heatmap;
+pub mod residual;
 pub mod shakedown;

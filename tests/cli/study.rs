@@ -311,3 +311,36 @@ fn shakedown_study_draws_the_map_and_the_case() {
         points[0]
     );
 }
+
+/// A run with `output.strength` (cases/carter_051.yaml ships with it) writes summary.json's
+/// `strength` for both bodies, each proved by its residual-stress table (whose least row factor
+/// is the body's) and drawn in strength_<body>.svg.
+#[test]
+fn a_strength_run_writes_its_factors_and_their_proof() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let case = crate::common::case_path("carter_051");
+    let (code, stdout, stderr) = rollbem(&["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("strength A (half_space)"), "{stdout}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let strength = summary["strength"].as_array().unwrap();
+    assert_eq!(strength.len(), 2);
+    for s in strength {
+        let body = s["body"].as_str().unwrap();
+        let factor = s["shakedown"]["factor"].as_f64().unwrap();
+        assert!(
+            s["first_yield"]["factor"].as_f64().unwrap() < factor,
+            "first yield comes first: {s}"
+        );
+        let csv = std::fs::read_to_string(out.join(format!("residual_stress_{body}.csv"))).unwrap();
+        let least = csv
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(1).unwrap().parse::<f64>().unwrap())
+            .fold(f64::INFINITY, f64::min);
+        assert!((least - factor).abs() < 1e-12 * factor, "{body}: {least} {factor}");
+        assert!(out.join(format!("strength_{body}.svg")).exists());
+    }
+}

@@ -137,7 +137,7 @@ fn draw(path: &Path, s: &ShakedownChart) -> Result<(), Box<dyn std::error::Error
                 pts.iter()
                     .map(|p| TriangleMarker::new((p.traction, p.first_yield), 6, BLUE)),
             )?
-            .label(format!("body {body}: its own first yield, shakedown"))
+            .label(format!("body {body}: its own first yield (blue), shakedown (red)"))
             .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 5, colour));
         chart.draw_series(
             pts.iter()
