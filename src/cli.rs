@@ -262,7 +262,7 @@ pub enum StudyCommand {
     /// penalty and ripple slices use a ±4a grid of 65 elements (large μβ moves the contact).
     /// Cells with |Q/μP| ≥ 1 have no steady rolling solution: marked n/a, not solved. Each
     /// method gets its budget: 100 Newton steps (per restart), 100 NORM/TANG pairs, 20 000
-    /// Gauss–Seidel sweeps. About 3 minutes on 2 cores (--quick: seconds).
+    /// Gauss–Seidel sweeps. About a minute and a half on 2 cores (--quick: 2 s; docs/stability.md).
     ///
     /// Example: rollbem study stability cases/carter_051.yaml --quick
     ///

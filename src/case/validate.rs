@@ -172,6 +172,8 @@ fn body_problems(case: &Case, found: &mut Problems) {
     let mut rigid = 0;
     // The profile radii the case gives (None where a mesh gives it), for the pair rule below.
     let mut given = [None, None];
+    // The key that gives each profile radius: `radius`, or the `geometry:` it comes from.
+    let mut radius_keys = ["bodies.A.radius".to_string(), "bodies.B.radius".to_string()];
     for (k, (side, body)) in [("A", &case.bodies.a), ("B", &case.bodies.b)].into_iter().enumerate() {
         let radius = match body {
             BodySpec::HalfSpace { material, radius } => {
@@ -276,6 +278,9 @@ fn body_problems(case: &Case, found: &mut Problems) {
                         .map(|g| g.shape().profile_radius())
                         .filter(|r| r.is_finite() && *r != 0.0)
                 });
+                if radius.is_none() && geometry.is_some() {
+                    radius_keys[k] = format!("bodies.{side}.geometry");
+                }
                 radius.unwrap_or(1.0)
             }
         };
@@ -294,9 +299,14 @@ fn body_problems(case: &Case, found: &mut Problems) {
             );
         }
     }
-    if let [Some(ra), Some(rb)] = given {
+    // A pair whose radii are already refused one by one says nothing more.
+    let refused_before = found
+        .0
+        .iter()
+        .any(|v| v.key.contains(".radius") || v.key.contains(".geometry"));
+    if let ([Some(ra), Some(rb)], false) = (given, refused_before) {
         if let Some(message) = radius_pair_problem(ra, rb) {
-            found.bad("bodies.A.radius, bodies.B.radius".into(), message);
+            found.bad(format!("{}, {}", radius_keys[0], radius_keys[1]), message);
         }
     }
     if rigid == 2 {

@@ -138,3 +138,37 @@ fn a_huge_generated_contact_segment_is_refused_before_it_is_built() {
         &["contact.grid.elements", "at most 20000"],
     );
 }
+
+/// A profile radius that a `geometry:` body implies is blamed on the key the user wrote: a
+/// ring bore smaller than the roller names `bodies.A.geometry`, not a `radius` the case does
+/// not have; a radius refused on its own is not blamed again on the pair.
+#[test]
+fn radius_messages_name_the_keys_the_case_has() {
+    let case = crate::common::case_path("fig14_geometry");
+    let case = case.to_str().unwrap();
+    let (code, _, stderr) = crate::common::rollbem(&[
+        "check",
+        case,
+        "--set",
+        "bodies.A.geometry={ring: {bore: 150, rim: 200}}",
+        "--set",
+        "bodies.A.boundaries={rim: fixed, bore: free}",
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("bodies.A.geometry, bodies.B.geometry: internal contact"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("bodies.A.radius"), "{stderr}");
+    let (code, _, stderr) = crate::common::rollbem(&[
+        "check",
+        case,
+        "--set",
+        "bodies.A.geometry={roller: {radius: -150, shaft: 15}}",
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("bodies.A.geometry.roller.radius") && !stderr.contains("internal contact"),
+        "{stderr}"
+    );
+}
