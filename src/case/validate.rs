@@ -191,27 +191,7 @@ fn body_problems(case: &Case, found: &mut Problems) {
                 if let Some(v) = undefined_material(side, material) {
                     found.bad(v.key, v.message);
                 }
-                if let Some(why) = positive_quantity(*thickness) {
-                    found.bad(format!("bodies.{side}.thickness"), format!("cover thickness {why}"));
-                } else if radius.is_finite() && *thickness >= 0.5 * radius.abs() {
-                    // The true geometry of a cover is a bem body, which is elastic only.
-                    let instead = if case.materials.get(material).is_some_and(|m| m.viscoelastic.is_some()) {
-                        "no model of rollbem takes a viscoelastic cover this thick (the bem body that models \
-                         a thick cover is elastic): make the cover thinner than R/2, or give an elastic \
-                         material and model the body by `bem` with `geometry: {covered_roller: ...}`"
-                    } else {
-                        "model the body by `bem` with `geometry: {covered_roller: ...}`"
-                    };
-                    found.bad(
-                        format!("bodies.{side}.thickness"),
-                        format!(
-                            "the layer model takes the cover flat (thickness b << radius R); b = {} is not below \
-                             R/2 = {}: {instead}",
-                            shown(*thickness),
-                            shown(0.5 * radius.abs())
-                        ),
-                    );
-                }
+                layer_thickness_problems(case, side, material, *radius, *thickness, found);
                 given[k] = Some(*radius);
                 *radius
             }
@@ -313,6 +293,39 @@ fn body_problems(case: &Case, found: &mut Problems) {
         found.bad(
             "bodies".into(),
             "both bodies are rigid: at least one must be elastic".into(),
+        );
+    }
+}
+
+/// A layer's cover thickness: positive, and thin against the radius (the layer model takes the
+/// cover flat); a thick cover is a bem body.
+fn layer_thickness_problems(
+    case: &Case,
+    side: &str,
+    material: &str,
+    radius: f64,
+    thickness: f64,
+    found: &mut Problems,
+) {
+    if let Some(why) = positive_quantity(thickness) {
+        found.bad(format!("bodies.{side}.thickness"), format!("cover thickness {why}"));
+    } else if radius.is_finite() && thickness >= 0.5 * radius.abs() {
+        // The true geometry of a cover is a bem body, which is elastic only.
+        let instead = if case.materials.get(material).is_some_and(|m| m.viscoelastic.is_some()) {
+            "no model of rollbem takes a viscoelastic cover this thick (the bem body that models \
+                 a thick cover is elastic): make the cover thinner than R/2, or give an elastic \
+                 material and model the body by `bem` with `geometry: {covered_roller: ...}`"
+        } else {
+            "model the body by `bem` with `geometry: {covered_roller: ...}`"
+        };
+        found.bad(
+            format!("bodies.{side}.thickness"),
+            format!(
+                "the layer model takes the cover flat (thickness b << radius R); b = {} is not below \
+                     R/2 = {}: {instead}",
+                shown(thickness),
+                shown(0.5 * radius.abs())
+            ),
         );
     }
 }
