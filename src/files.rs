@@ -54,7 +54,7 @@ mod stamp;
 pub use claim::{inject_fault, write_atomically, write_atomically_with, Claim, WriteOptions};
 pub use contents::{check_run_folder, clean_stale_siblings, remove_owned, shard_file_name, sweep_owns, SweepEntry};
 pub use lock::{Access, FileLock};
-pub use stamp::{check_unchanged, fnv1a64, Stamp};
+pub use stamp::{check_unchanged, fnv1a64, xxh64, Stamp};
 
 /// File name of the manifest in every folder rollbem writes.
 pub const MANIFEST: &str = ".rollbem-manifest";
@@ -565,7 +565,7 @@ mod tests {
         write_atomically(&out, Kind::Run, write("one")).unwrap();
         let stamp = Stamp {
             size: 3,
-            hash: format!("fnv1a64:{:016x}", fnv1a64(b"one")),
+            hash: format!("xxh64:{:016x}", xxh64(b"one")),
         };
         assert_eq!(read_manifest(&out).unwrap().stamps["summary.json"], stamp);
         fs::write(out.join("summary.json"), "two").unwrap();

@@ -100,8 +100,12 @@ impl Claim {
                 })
             }
         }
-        // Again under the lock: the folder may have changed since the first look.
+        // Again under the lock: the folder may have changed since the first look. Its files
+        // are read for their hashes only now, once (a sweep's when it is replaced).
         check_replaceable(&claim.target, kind, &claim.options)?;
+        if kind != Kind::Sweep {
+            check_edits(&claim.target, &claim.options)?;
+        }
         if access == Access::Exclusive {
             clean_stale_siblings(&claim.target);
         }
@@ -149,10 +153,7 @@ impl Claim {
     /// every kind but a sweep, which is written in place unless it is replaced: a sweep that
     /// replaces its folder asks before running.
     pub fn check_unchanged(&self) -> Result<(), FolderError> {
-        if self.options.force {
-            return Ok(());
-        }
-        check_unchanged(&self.target)
+        check_edits(&self.target, &self.options)
     }
 
     /// Writes the result through [`write_atomically`] (the lock is already held).
@@ -175,9 +176,8 @@ impl Drop for Claim {
 }
 
 /// Whether `target` may receive a result of `kind`: absent, empty, or holding only an earlier
-/// rollbem result of that kind (unchanged since, unless `options.force`; a sweep's results are
-/// checked when it is replaced); never a run folder of another's sweep, nor a folder holding an
-/// input of the case.
+/// rollbem result of that kind; never a run folder of another's sweep, nor a folder holding an
+/// input of the case. Whether the result's files were edited is [`check_edits`].
 fn check_replaceable(target: &Path, kind: Kind, options: &WriteOptions) -> Result<(), FolderError> {
     check_not_a_sweeps_run(target, kind)?;
     // Not followed: [`resolve`] resolved a link that points somewhere; one that is left points
@@ -197,12 +197,7 @@ fn check_replaceable(target: &Path, kind: Kind, options: &WriteOptions) -> Resul
         Contents::Result { kind: found, .. } if found == kind => {
             // An input that rollbem did not write is foreign (refused above, by that name); one
             // that it wrote (a mesh of an earlier `rollbem mesh`) is refused here.
-            check_inputs(target, &options.inputs)?;
-            if options.force || kind == Kind::Sweep {
-                Ok(())
-            } else {
-                check_unchanged(target)
-            }
+            check_inputs(target, &options.inputs)
         }
         Contents::Result { kind: found, .. } => Err(FolderError::OtherKind {
             dir: target.to_path_buf(),
@@ -210,6 +205,15 @@ fn check_replaceable(target: &Path, kind: Kind, options: &WriteOptions) -> Resul
             kind: kind.name(),
         }),
     }
+}
+
+/// Whether the files of the earlier result in `target` are as rollbem wrote them
+/// ([`check_unchanged`]), unless `options.force`.
+fn check_edits(target: &Path, options: &WriteOptions) -> Result<(), FolderError> {
+    if options.force {
+        return Ok(());
+    }
+    check_unchanged(target)
 }
 
 /// Refuses a claim of kind run on a run folder `run_NNNN` of a sweep folder that this process
@@ -315,9 +319,7 @@ impl Drop for TempFolder {
 /// rollbem's files, unchanged unless `options.force`) that is then removed file by file.
 fn replace(target: &Path, kind: Kind, options: &WriteOptions, tmp: &Path) -> Result<(), FolderError> {
     check_replaceable(target, kind, options)?;
-    if kind == Kind::Sweep && !options.force {
-        check_unchanged(target)?;
-    }
+    check_edits(target, options)?;
     if read_manifest(target).is_some_and(|m| unstamped(&m)) {
         log::warn!(
             "{}: its manifest was written by an older rollbem, which recorded no sizes or hashes, so \
