@@ -139,14 +139,23 @@ pub struct RunReport {
 /// converge writes only summary.json (with `converged: false` and the residual history) and
 /// returns `Ok` with `summary.converged == false`.
 pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result<RunReport, Error> {
+    run_with(case_path, overrides, out, false)
+}
+
+/// [`run`]; with `force`, files of an earlier result in the output folder that were changed
+/// since rollbem wrote them are replaced too (`rollbem run --force`). The case's own inputs
+/// never are.
+pub fn run_with(case_path: &Path, overrides: &[String], out: Option<&Path>, force: bool) -> Result<RunReport, Error> {
     let start = Instant::now();
     let case = case::load(case_path, overrides)?;
     let output_dir = out.map(Path::to_path_buf).unwrap_or_else(|| case.output_dir());
-    // Lock and check the output folder before solving: a foreign or busy folder fails at once.
-    let _claim = output::folder::Claim::acquire(
+    // Lock and check the output folder before solving: a foreign, busy or edited folder, or one
+    // that holds an input of the case, fails at once.
+    let _claim = output::folder::Claim::acquire_with(
         &output_dir,
         output::folder::Kind::Run,
         output::folder::Access::Exclusive,
+        write_options(&case, force),
     )?;
     let s = solve_scene_best(Scene::from_case(&case)?, start)?;
     let missed = tolerance_not_reached(&s);
@@ -172,11 +181,22 @@ pub fn run(case_path: &Path, overrides: &[String], out: Option<&Path>) -> Result
     })
 }
 
+/// What the output folder of `case` may not hold (its inputs) and whether edited results are
+/// replaced (`force`).
+fn write_options(case: &LoadedCase, force: bool) -> output::folder::WriteOptions {
+    output::folder::WriteOptions {
+        force,
+        inputs: case.input_files(),
+    }
+}
+
 /// Writes the meshes rollbem generates for the `geometry:` bodies of a case (with `--set`
 /// overrides) into `out` as `A.msh`, `B.msh` (Gmsh MSH 4.1 ASCII; [`crate::mesh::write_msh41_ascii`]),
 /// atomically like a run's results. Returns the files written. A case without a `geometry:`
-/// body is bad input.
-pub fn write_meshes(case_path: &Path, overrides: &[String], out: &Path) -> Result<Vec<PathBuf>, Error> {
+/// body is bad input; so is an `out` that holds an input of the case (a mesh its `mesh:` body
+/// reads). With `force`, files of an earlier result changed since rollbem wrote them are
+/// replaced too.
+pub fn write_meshes(case_path: &Path, overrides: &[String], out: &Path, force: bool) -> Result<Vec<PathBuf>, Error> {
     let case = case::load(case_path, overrides)?;
     let meshes = crate::scene::registry::generated_meshes(&case)?;
     if meshes.is_empty() {
@@ -191,7 +211,7 @@ pub fn write_meshes(case_path: &Path, overrides: &[String], out: &Path) -> Resul
         }));
     }
     let files: Vec<PathBuf> = meshes.iter().map(|(side, _)| out.join(format!("{side}.msh"))).collect();
-    output::write_atomically(out, output::folder::Kind::Mesh, |tmp| {
+    output::folder::write_atomically_with(out, output::folder::Kind::Mesh, write_options(&case, force), |tmp| {
         for (side, mesh) in &meshes {
             let path = tmp.join(format!("{side}.msh"));
             std::fs::write(&path, crate::mesh::write_msh41_ascii(mesh)).map_err(|e| Error::Output {
@@ -199,7 +219,7 @@ pub fn write_meshes(case_path: &Path, overrides: &[String], out: &Path) -> Resul
                 message: e.to_string(),
             })?;
         }
-        Ok(())
+        Ok::<(), Error>(())
     })?;
     Ok(files)
 }

@@ -92,6 +92,20 @@ impl LoadedCase {
         normalize(&dir)
     }
 
+    /// The files the case reads: the case file and the Gmsh meshes of its bodies (`mesh:` of
+    /// a `bem` or `rigid` body), as paths relative to the working folder. A command never
+    /// removes or replaces them ([`crate::files::WriteOptions::inputs`]).
+    pub fn input_files(&self) -> Vec<PathBuf> {
+        let meshes = [&self.case.bodies.a, &self.case.bodies.b]
+            .into_iter()
+            .filter_map(|body| match body {
+                BodySpec::Bem { mesh: Some(m), .. } | BodySpec::Rigid { mesh: Some(m), .. } => Some(m),
+                _ => None,
+            })
+            .map(|m| self.base_dir().join(m));
+        std::iter::once(self.path.clone()).chain(meshes).collect()
+    }
+
     /// Material by name (validated to exist).
     pub fn material(&self, name: &str) -> Elastic {
         material_of(&self.case.materials[name])

@@ -70,6 +70,11 @@ pub enum Command {
         /// or --set contact.grid.elements=81. Repeatable.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
+        /// Replace an earlier result in the output folder even if files of it were changed
+        /// since rollbem wrote them (without it, such a file stops the run before it solves).
+        /// The case's own inputs (case file, meshes) are never replaced.
+        #[arg(long)]
+        force: bool,
     },
     /// Run a case over the Cartesian product of parameter values, in parallel.
     ///
@@ -170,6 +175,10 @@ pub enum Command {
         /// Override a case value (as for `run`), e.g. --set load.normal.force=800. Repeatable.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
+        /// Replace earlier meshes in the output folder even if they were changed since rollbem
+        /// wrote them. A mesh the case reads (`mesh:`) is never replaced.
+        #[arg(long)]
+        force: bool,
     },
 }
 

@@ -11,7 +11,16 @@
 //!   file by file as its manifest lists them;
 //! * any other folder is refused before anything is solved ([`FolderError::Foreign`],
 //!   [`FolderError::OtherKind`]; exit code 1), naming the folder and the first entry rollbem
-//!   did not write.
+//!   did not write;
+//! * so is an earlier result with a file changed since rollbem wrote it: the manifest records
+//!   each file's size and hash ([`Stamp`]), and a file that differs stops the write
+//!   ([`FolderError::Changed`]) unless the writer was given `--force`
+//!   ([`WriteOptions::force`]). A manifest of an older rollbem lists names only: its folder is
+//!   replaced as before, with a warning;
+//! * and, `--force` or not, a folder that holds an input of the case being written (the case
+//!   file, a mesh it reads: [`WriteOptions::inputs`]; [`FolderError::Input`]), and a run folder
+//!   `run_NNNN` of a sweep folder claimed by anything but its sweep ([`FolderError::SweepRun`]:
+//!   the sweep's table describes it).
 //!
 //! A sweep folder is written in place, run by run, and its manifest lists no files: it owns the
 //! names of a sweep's layout ([`sweep_owns`]): `run_NNNN/` folders (each a run result with its
@@ -32,6 +41,7 @@
 //! Nothing else reads it.
 
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::fs;
 use std::io;
 use std::path::{Component, Path, PathBuf};
@@ -39,10 +49,12 @@ use std::path::{Component, Path, PathBuf};
 mod claim;
 mod contents;
 mod lock;
+mod stamp;
 
-pub use claim::{inject_fault, write_atomically, Claim};
+pub use claim::{inject_fault, write_atomically, write_atomically_with, Claim, WriteOptions};
 pub use contents::{check_run_folder, clean_stale_siblings, remove_owned, shard_file_name, sweep_owns, SweepEntry};
 pub use lock::{Access, FileLock};
+pub use stamp::{check_unchanged, fnv1a64, xxh64, Stamp};
 
 /// File name of the manifest in every folder rollbem writes.
 pub const MANIFEST: &str = ".rollbem-manifest";
@@ -111,15 +123,22 @@ pub struct Manifest {
     /// `/`. Empty for sweep folders, which own names by their layout ([`sweep_owns`]).
     #[serde(default)]
     pub files: Vec<String>,
+    /// The size and hash of every file of `files` as written, by name, so that a file edited
+    /// since is not replaced without a word ([`check_unchanged`]). Absent from the manifests of
+    /// sweep folders and of an older rollbem, which did not record them: such files are replaced
+    /// as before, their edits cannot be told.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub stamps: BTreeMap<String, Stamp>,
 }
 
 impl Manifest {
-    fn new(kind: Kind, partial: bool, files: Vec<String>) -> Self {
+    fn new(kind: Kind, partial: bool, files: Vec<String>, stamps: BTreeMap<String, Stamp>) -> Self {
         Self {
             written_by: format!("rollbem {}", env!("CARGO_PKG_VERSION")),
             kind,
             partial,
             files,
+            stamps,
         }
     }
 }
@@ -174,14 +193,50 @@ pub enum FolderError {
     /// A file at a lock file's path that rollbem did not create (no marker, a symbolic link).
     #[error(
         "{path} is named like a rollbem lock file but is {what} (rollbem's lock files start with \
-         `rollbem lock file`); rollbem neither locks through it nor removes it: move it away (if a \
-         rollbem process was killed while creating it, delete it)"
+         `rollbem lock file`); rollbem neither locks through it nor removes it: move it away (an empty \
+         one, left by a rollbem process that could not write it, is taken over)"
     )]
     NotALock {
         /// The file.
         path: PathBuf,
         /// What it is.
         what: &'static str,
+    },
+    /// A file rollbem wrote was changed since (its size or hash differs from the manifest).
+    #[error(
+        "{path} was changed since rollbem wrote it (its size or contents differ from what the \
+         folder's manifest records), and replacing the folder would lose that; move it away or \
+         pass --force to replace it (rollbem run, rollbem mesh). Nothing was solved or written"
+    )]
+    Changed {
+        /// The file.
+        path: PathBuf,
+    },
+    /// An input of the case (the case file, a mesh it reads) lies in the folder to be replaced.
+    #[error(
+        "{file} is an input of the case (the case file or a mesh it reads), and it lies in the \
+         output folder {dir}, which this command would replace; rollbem never removes or replaces a case's own inputs (not \
+         even with --force): write to another folder (--out NEW_FOLDER). Nothing was solved or \
+         written"
+    )]
+    Input {
+        /// The input file.
+        file: PathBuf,
+        /// The output folder.
+        dir: PathBuf,
+    },
+    /// A run folder of a sweep folder, claimed by something other than that sweep.
+    #[error(
+        "{dir} is a run folder of the sweep in {sweep}: the sweep's table (sweep.csv) describes \
+         what it holds, so only the sweep writes it (rollbem sweep --resume re-runs its failed \
+         runs), not even with --force; give another folder (--out NEW_FOLDER). Nothing was \
+         solved or written"
+    )]
+    SweepRun {
+        /// The run folder.
+        dir: PathBuf,
+        /// The sweep folder holding it.
+        sweep: PathBuf,
     },
     /// The path exists and is not a folder.
     #[error("{path} exists and is not a folder; give a folder for the results (--out)")]
@@ -499,6 +554,42 @@ mod tests {
         fs::remove_file(out.join("img/notes.txt")).unwrap();
         remove_owned(&out).unwrap();
         assert!(!out.exists());
+    }
+
+    #[test]
+    fn an_edited_file_stops_the_write_unless_forced_and_old_manifests_are_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let write = |text: &'static str| {
+            move |tmp: &Path| {
+                fs::write(tmp.join("summary.json"), text).unwrap();
+                Ok::<(), Error>(())
+            }
+        };
+        write_atomically(&out, Kind::Run, write("one")).unwrap();
+        let stamp = Stamp {
+            size: 3,
+            hash: format!("xxh64:{:016x}", xxh64(b"one")),
+        };
+        assert_eq!(read_manifest(&out).unwrap().stamps["summary.json"], stamp);
+        fs::write(out.join("summary.json"), "two").unwrap();
+        assert!(matches!(
+            write_atomically(&out, Kind::Run, write("three")),
+            Err(Error::Folder(FolderError::Changed { .. }))
+        ));
+        assert_eq!(fs::read_to_string(out.join("summary.json")).unwrap(), "two");
+        let force = WriteOptions {
+            force: true,
+            inputs: Vec::new(),
+        };
+        write_atomically_with(&out, Kind::Run, force, write("four")).unwrap();
+        assert_eq!(fs::read_to_string(out.join("summary.json")).unwrap(), "four");
+        // The manifest of an older rollbem lists names only: replaced as before.
+        let old = r#"{"written_by": "rollbem 0.1.0", "kind": "run", "partial": false, "files": ["summary.json"]}"#;
+        fs::write(out.join(MANIFEST), old).unwrap();
+        fs::write(out.join("summary.json"), "edited").unwrap();
+        write_atomically(&out, Kind::Run, write("five")).unwrap();
+        assert_eq!(fs::read_to_string(out.join("summary.json")).unwrap(), "five");
     }
 
     #[test]

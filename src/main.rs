@@ -160,7 +160,7 @@ fn not_converged_message(report: &rollbem::app::RunReport) -> String {
 fn dispatch(cli: Cli) -> Result<i32> {
     let quiet = cli.quiet;
     match cli.command {
-        Command::Run { case, out, set } => run_case(&case, out.as_deref(), &set, quiet),
+        Command::Run { case, out, set, force } => run_case(&case, out.as_deref(), &set, force, quiet),
         Command::Sweep {
             case,
             vary,
@@ -180,12 +180,12 @@ fn dispatch(cli: Cli) -> Result<i32> {
             })
         }
         Command::Study { study } => run_study(study),
-        Command::Mesh { case, out, set } => {
+        Command::Mesh { case, out, set, force } => {
             let out = match out {
                 Some(o) => o,
                 None => default_output_dir(&rollbem::case::load(&case, &set)?, "mesh"),
             };
-            for file in rollbem::app::write_meshes(&case, &set, &out)? {
+            for file in rollbem::app::write_meshes(&case, &set, &out, force)? {
                 println!("wrote {}", file.display());
             }
             Ok(0)
@@ -201,8 +201,14 @@ fn dispatch(cli: Cli) -> Result<i32> {
 }
 
 /// `rollbem run`: solves a case, writes its folder and prints its table.
-fn run_case(case: &std::path::Path, out: Option<&std::path::Path>, set: &[String], quiet: bool) -> Result<i32> {
-    let report = rollbem::app::run(case, set, out)?;
+fn run_case(
+    case: &std::path::Path,
+    out: Option<&std::path::Path>,
+    set: &[String],
+    force: bool,
+    quiet: bool,
+) -> Result<i32> {
+    let report = rollbem::app::run_with(case, set, out, force)?;
     rollbem::logging::finish();
     // --quiet says nothing on stderr but errors, as its help promises: the notices and the
     // warnings that qualify the result stay in summary.json (`notices`, `warnings`).

@@ -380,7 +380,9 @@ pub fn run(
     };
     let holds_sweep = folder::read_manifest(&dir).is_some();
     let (rows, resumed) = if shard.is_none() && holds_sweep && !resume {
-        // Replace the earlier sweep atomically: run into a temporary sibling, renamed at the end.
+        // Replace the earlier sweep atomically: run into a temporary sibling, renamed at the end;
+        // a file of its runs edited since stops it before anything runs.
+        claim.check_unchanged()?;
         let mut done = None;
         claim.write(|tmp| {
             done = Some(job.run_in(tmp, false)?);

@@ -1,11 +1,15 @@
 //! Claims on output folders and the atomic replacement of a result.
 
-use super::contents::{clean_stale_siblings, contents, is_dir, list, remove_owned, written_entries, Contents};
+use super::contents::{
+    clean_stale_siblings, contents, is_dir, list, remove_owned, sweep_owns, written_entries, Contents, SweepEntry,
+};
 use super::lock::{Access, FileLock};
+use super::stamp::{check_unchanged, stamps_of, unstamped};
 use super::{
     create_dirs, io_err, lock_path, name_of, old_path, parent_of, partial_path, read_manifest, remove_empty_dirs,
     resolve, write_manifest, FolderError, Kind, Manifest, FAULT_ENV,
 };
+use std::collections::BTreeMap;
 use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -14,11 +18,27 @@ use std::sync::Mutex;
 // ---------------------------------------------------------------------------------------------
 // Claims
 
-/// Folders this process holds the lock of (so that the writer does not lock them twice).
-static HELD: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// What a writer may replace, besides an earlier result of its kind that rollbem wrote and
+/// nobody changed since.
+#[derive(Debug, Clone, Default)]
+pub struct WriteOptions {
+    /// Replace files of the earlier result that were changed since rollbem wrote them
+    /// (`--force`); without it such a file stops the write ([`FolderError::Changed`]).
+    pub force: bool,
+    /// The inputs of the case being written (the case file, the meshes it reads): never removed
+    /// or replaced, `force` or not, so a folder that holds one is refused
+    /// ([`FolderError::Input`]).
+    pub inputs: Vec<PathBuf>,
+}
 
-fn held(target: &Path) -> bool {
-    HELD.lock().map(|h| h.iter().any(|p| p == target)).unwrap_or(false)
+/// Folders this process holds the lock of, with the claim's options (so that the writer does
+/// not lock them twice, and writes under the claim's rules).
+static HELD: Mutex<Vec<(PathBuf, WriteOptions)>> = Mutex::new(Vec::new());
+
+/// The options of this process's claim on `target`, if it holds one.
+fn held(target: &Path) -> Option<WriteOptions> {
+    let h = HELD.lock().ok()?;
+    h.iter().find(|(p, _)| p == target).map(|(_, o)| o.clone())
 }
 
 /// The right to write one output folder: locked, checked (empty, new, or an earlier rollbem
@@ -28,6 +48,7 @@ fn held(target: &Path) -> bool {
 pub struct Claim {
     target: PathBuf,
     kind: Kind,
+    options: WriteOptions,
     lock: Option<FileLock>,
     created: Vec<PathBuf>,
 }
@@ -37,9 +58,16 @@ impl Claim {
     /// it (exclusively, or shared for the shards of one sweep) without waiting, and checks that
     /// it holds nothing but an earlier rollbem result of the same kind.
     pub fn acquire(dir: &Path, kind: Kind, access: Access) -> Result<Claim, FolderError> {
+        Self::acquire_with(dir, kind, access, WriteOptions::default())
+    }
+
+    /// [`Claim::acquire`] with `options`: the case's inputs, which the folder must not hold,
+    /// and whether files changed since rollbem wrote them may be replaced. A run folder of a
+    /// sweep folder is refused to any claim but the sweep's ([`FolderError::SweepRun`]).
+    pub fn acquire_with(dir: &Path, kind: Kind, access: Access, options: WriteOptions) -> Result<Claim, FolderError> {
         let target = resolve(dir)?;
         // Refuse a foreign folder before creating anything (the lock's parent, the lock).
-        if let Err(e) = check_replaceable(&target, kind) {
+        if let Err(e) = check_replaceable(&target, kind, &options) {
             // A folder that another process is writing changes under the look (a run's
             // temporary folder just created, its manifest not yet in it): busy, not foreign.
             let lock_file = lock_path(&target);
@@ -58,6 +86,7 @@ impl Claim {
         let mut claim = Claim {
             target,
             kind,
+            options,
             lock: None,
             created,
         };
@@ -71,13 +100,17 @@ impl Claim {
                 })
             }
         }
-        // Again under the lock: the folder may have changed since the first look.
-        check_replaceable(&claim.target, kind)?;
+        // Again under the lock: the folder may have changed since the first look. Its files
+        // are read for their hashes only now, once (a sweep's when it is replaced).
+        check_replaceable(&claim.target, kind, &claim.options)?;
+        if kind != Kind::Sweep {
+            check_edits(&claim.target, &claim.options)?;
+        }
         if access == Access::Exclusive {
             clean_stale_siblings(&claim.target);
         }
         if let Ok(mut h) = HELD.lock() {
-            h.push(claim.target.clone());
+            h.push((claim.target.clone(), claim.options.clone()));
         }
         Ok(claim)
     }
@@ -108,20 +141,31 @@ impl Claim {
         }
         match read_manifest(&self.target) {
             Some(m) if m.kind == self.kind && !m.partial => Ok(()),
-            _ => write_manifest(&self.target, &Manifest::new(self.kind, false, Vec::new())),
+            _ => write_manifest(
+                &self.target,
+                &Manifest::new(self.kind, false, Vec::new(), BTreeMap::new()),
+            ),
         }
+    }
+
+    /// Whether the earlier result in the folder may be replaced as far as edits go: its files
+    /// are as rollbem wrote them, or the claim may replace changed ones. Checked on claiming for
+    /// every kind but a sweep, which is written in place unless it is replaced: a sweep that
+    /// replaces its folder asks before running.
+    pub fn check_unchanged(&self) -> Result<(), FolderError> {
+        check_edits(&self.target, &self.options)
     }
 
     /// Writes the result through [`write_atomically`] (the lock is already held).
     pub fn write<E: From<FolderError>>(&self, write: impl FnOnce(&Path) -> Result<(), E>) -> Result<(), E> {
-        swap_in(&self.target, self.kind, write)
+        swap_in(&self.target, self.kind, &self.options, write)
     }
 }
 
 impl Drop for Claim {
     fn drop(&mut self) {
         if let Ok(mut h) = HELD.lock() {
-            if let Some(i) = h.iter().position(|p| p == &self.target) {
+            if let Some(i) = h.iter().position(|(p, _)| p == &self.target) {
                 h.swap_remove(i);
             }
         }
@@ -132,8 +176,10 @@ impl Drop for Claim {
 }
 
 /// Whether `target` may receive a result of `kind`: absent, empty, or holding only an earlier
-/// rollbem result of that kind.
-fn check_replaceable(target: &Path, kind: Kind) -> Result<(), FolderError> {
+/// rollbem result of that kind; never a run folder of another's sweep, nor a folder holding an
+/// input of the case. Whether the result's files were edited is [`check_edits`].
+fn check_replaceable(target: &Path, kind: Kind, options: &WriteOptions) -> Result<(), FolderError> {
+    check_not_a_sweeps_run(target, kind)?;
     // Not followed: [`resolve`] resolved a link that points somewhere; one that is left points
     // nowhere, and renaming onto it would replace the user's link.
     match fs::symlink_metadata(target) {
@@ -148,13 +194,57 @@ fn check_replaceable(target: &Path, kind: Kind) -> Result<(), FolderError> {
     }
     match contents(target)? {
         Contents::Empty => Ok(()),
-        Contents::Result { kind: found, .. } if found == kind => Ok(()),
+        Contents::Result { kind: found, .. } if found == kind => {
+            // An input that rollbem did not write is foreign (refused above, by that name); one
+            // that it wrote (a mesh of an earlier `rollbem mesh`) is refused here.
+            check_inputs(target, &options.inputs)
+        }
         Contents::Result { kind: found, .. } => Err(FolderError::OtherKind {
             dir: target.to_path_buf(),
             found: found.name(),
             kind: kind.name(),
         }),
     }
+}
+
+/// Whether the files of the earlier result in `target` are as rollbem wrote them
+/// ([`check_unchanged`]), unless `options.force`.
+fn check_edits(target: &Path, options: &WriteOptions) -> Result<(), FolderError> {
+    if options.force {
+        return Ok(());
+    }
+    check_unchanged(target)
+}
+
+/// Refuses a claim of kind run on a run folder `run_NNNN` of a sweep folder that this process
+/// does not hold (the sweep's own runs are written while it holds it, or into its temporary
+/// folder, whose manifest says it is still being written).
+fn check_not_a_sweeps_run(target: &Path, kind: Kind) -> Result<(), FolderError> {
+    if kind != Kind::Run || sweep_owns(&name_of(target)) != Some(SweepEntry::Run) {
+        return Ok(());
+    }
+    let sweep = parent_of(target);
+    match read_manifest(sweep) {
+        Some(m) if m.kind == Kind::Sweep && !m.partial && held(sweep).is_none() => Err(FolderError::SweepRun {
+            dir: target.to_path_buf(),
+            sweep: sweep.to_path_buf(),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Refuses the folder `target` if one of the case's `inputs` lies in it.
+fn check_inputs(target: &Path, inputs: &[PathBuf]) -> Result<(), FolderError> {
+    for input in inputs {
+        let file = fs::canonicalize(input).unwrap_or_else(|_| super::normalize(input));
+        if file.starts_with(target) {
+            return Err(FolderError::Input {
+                file,
+                dir: target.to_path_buf(),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Writes a result of `kind` into the folder `dir`: `write` fills a fresh temporary sibling,
@@ -166,17 +256,28 @@ pub fn write_atomically<E: From<FolderError>>(
     kind: Kind,
     write: impl FnOnce(&Path) -> Result<(), E>,
 ) -> Result<(), E> {
+    write_atomically_with(dir, kind, WriteOptions::default(), write)
+}
+
+/// [`write_atomically`] with `options` ([`Claim::acquire_with`]); under a claim this process
+/// holds on `dir`, the claim's options apply instead.
+pub fn write_atomically_with<E: From<FolderError>>(
+    dir: &Path,
+    kind: Kind,
+    options: WriteOptions,
+    write: impl FnOnce(&Path) -> Result<(), E>,
+) -> Result<(), E> {
     let target = resolve(dir)?;
-    if held(&target) {
-        swap_in(&target, kind, write)
-    } else {
-        Claim::acquire(dir, kind, Access::Exclusive)?.write(write)
+    match held(&target) {
+        Some(held) => swap_in(&target, kind, &held, write),
+        None => Claim::acquire_with(dir, kind, Access::Exclusive, options)?.write(write),
     }
 }
 
 fn swap_in<E: From<FolderError>>(
     target: &Path,
     kind: Kind,
+    options: &WriteOptions,
     write: impl FnOnce(&Path) -> Result<(), E>,
 ) -> Result<(), E> {
     let tmp = partial_path(target);
@@ -187,7 +288,7 @@ fn swap_in<E: From<FolderError>>(
     fs::create_dir(&tmp).map_err(|e| io_err(&tmp, e))?;
     // Removes the temporary folder on every way out but success, a panic included.
     let guard = TempFolder(tmp.clone());
-    write_manifest(&tmp, &Manifest::new(kind, true, Vec::new()))?;
+    write_manifest(&tmp, &Manifest::new(kind, true, Vec::new(), BTreeMap::new()))?;
     write(&tmp)?;
     inject_fault(&name_of(target));
     let mut files = Vec::new();
@@ -195,8 +296,9 @@ fn swap_in<E: From<FolderError>>(
         // A sweep folder owns the names of its layout, and its run folders list their own files.
         written_entries(&tmp, "", &mut files)?;
     }
-    write_manifest(&tmp, &Manifest::new(kind, false, files))?;
-    replace(target, kind, &tmp)?;
+    let stamps = stamps_of(&tmp, &files)?;
+    write_manifest(&tmp, &Manifest::new(kind, false, files, stamps))?;
+    replace(target, kind, options, &tmp)?;
     // Renamed into place: the guard finds nothing left to remove.
     drop(guard);
     Ok(())
@@ -214,9 +316,17 @@ impl Drop for TempFolder {
 }
 
 /// Renames the complete `tmp` onto `target`, replacing an earlier result (checked again: only
-/// rollbem's files) that is then removed file by file.
-fn replace(target: &Path, kind: Kind, tmp: &Path) -> Result<(), FolderError> {
-    check_replaceable(target, kind)?;
+/// rollbem's files, unchanged unless `options.force`) that is then removed file by file.
+fn replace(target: &Path, kind: Kind, options: &WriteOptions, tmp: &Path) -> Result<(), FolderError> {
+    check_replaceable(target, kind, options)?;
+    check_edits(target, options)?;
+    if read_manifest(target).is_some_and(|m| unstamped(&m)) {
+        log::warn!(
+            "{}: its manifest was written by an older rollbem, which recorded no sizes or hashes, so \
+             rollbem cannot tell whether its files were edited since; replacing it",
+            target.display()
+        );
+    }
     if !target.exists() {
         return fs::rename(tmp, target).map_err(|e| io_err(target, e));
     }

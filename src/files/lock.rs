@@ -1,8 +1,11 @@
 //! Advisory locks on lock files: exclusive for one writer, shared for the shards of a sweep.
 //!
 //! A lock file holds [`MARKER`], written by the process that created it: a file of that name
-//! without it (the user's file, a symbolic link, a folder) is not rollbem's, and is neither
-//! locked through nor removed ([`FolderError::NotALock`]).
+//! that holds something else (the user's file, a symbolic link, a folder) is not rollbem's, and
+//! is neither locked through nor removed ([`FolderError::NotALock`]). An empty one (or one
+//! holding a beginning of the marker) is a lock file whose creator could not write it (a full
+//! disk) or was killed first: once locked, it is taken over with a warning (the advisory lock
+//! tells whether a process holds it; the kernel releases it when its holder dies).
 
 use super::{io_err, FolderError};
 use std::fs::{self, File, OpenOptions};
@@ -71,21 +74,41 @@ fn open_lock_file(path: &Path) -> Result<(File, bool), FolderError> {
     Err(io_err(path, "the lock file keeps being replaced by other processes"))
 }
 
-/// Whether the open lock file holds [`MARKER`]. Its creator writes it right after creating and
-/// locking the file, so an empty file is read again for a moment before it counts as foreign.
-fn holds_marker(mut file: &File) -> bool {
+/// What an existing lock file holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum LockText {
+    /// [`MARKER`]: rollbem's.
+    Marker,
+    /// Nothing, or a beginning of [`MARKER`]: a lock file whose creator could not write its
+    /// marker (a full disk) or was killed before it did.
+    Stale,
+    /// Anything else: not rollbem's.
+    Foreign,
+}
+
+/// What the open lock file holds. Its creator writes [`MARKER`] right after creating and
+/// locking the file, so an empty (or partly written) file is read again for a moment before it
+/// counts as stale.
+fn read_lock_text(mut file: &File) -> LockText {
     for _ in 0..20 {
-        let mut text = String::new();
+        let mut text = Vec::new();
         let read = file
             .rewind()
-            .and_then(|()| file.take(MARKER.len() as u64).read_to_string(&mut text));
+            .and_then(|()| file.take(MARKER.len() as u64 + 1).read_to_end(&mut text));
         match read {
-            Ok(_) if text == MARKER => return true,
-            Ok(0) => std::thread::sleep(std::time::Duration::from_millis(10)),
-            _ => return false,
+            Ok(_) if text.starts_with(MARKER.as_bytes()) => return LockText::Marker,
+            Ok(_) if MARKER.as_bytes().starts_with(&text) => std::thread::sleep(std::time::Duration::from_millis(10)),
+            _ => return LockText::Foreign,
         }
     }
-    false
+    LockText::Stale
+}
+
+/// Writes [`MARKER`] as the whole content of the lock file (created, or stale and taken over).
+fn write_marker(mut file: &File) -> std::io::Result<()> {
+    file.set_len(0)?;
+    file.rewind()?;
+    file.write_all(MARKER.as_bytes())
 }
 
 impl FileLock {
@@ -93,7 +116,7 @@ impl FileLock {
     /// `Err(NotALock)` when something at `path` is not a lock file rollbem created.
     pub fn try_acquire(path: &Path, access: Access) -> Result<Option<FileLock>, FolderError> {
         for _ in 0..16 {
-            let (mut file, created) = open_lock_file(path)?;
+            let (file, created) = open_lock_file(path)?;
             // Fully qualified: std's inherent File::try_lock (Rust 1.89) has another error type.
             let taken = match access {
                 Access::Exclusive => fs4::FileExt::try_lock(&file),
@@ -107,11 +130,33 @@ impl FileLock {
             if !names_file(path, &file) {
                 continue;
             }
-            if created {
-                file.write_all(MARKER.as_bytes()).map_err(|e| io_err(path, e))?;
-            } else if !holds_marker(&file) {
+            let text = if created {
+                LockText::Stale
+            } else {
+                read_lock_text(&file)
+            };
+            if text == LockText::Foreign {
                 let _ = fs4::FileExt::unlock(&file);
                 return Err(not_ours(path, "a file rollbem did not create"));
+            }
+            if text == LockText::Stale {
+                if let Err(e) = write_marker(&file) {
+                    // A full disk: the lock file this call created goes, or it would block the
+                    // folder once space is freed.
+                    if created && names_file(path, &file) {
+                        let _ = fs::remove_file(path);
+                    }
+                    let _ = fs4::FileExt::unlock(&file);
+                    return Err(io_err(path, e));
+                }
+                if !created {
+                    log::warn!(
+                        "{} was an empty (or partly written) rollbem lock file, left behind by a rollbem \
+                         process that could not write it (a full disk) or was killed while creating it, \
+                         and no process holds it: taken over",
+                        path.display()
+                    );
+                }
             }
             return Ok(Some(FileLock {
                 file,

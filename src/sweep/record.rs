@@ -112,13 +112,7 @@ impl SweepRecord {
     }
 }
 
-/// FNV-1a, 64 bits (Fowler, Noll, Vo): a fast content hash to tell case files apart (not a
-/// cryptographic one: it guards against mistakes, not against forgery).
-pub fn fnv1a64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    })
-}
+pub use crate::files::fnv1a64;
 
 pub(super) fn read_record(path: &Path) -> Result<SweepRecord, Error> {
     let text = std::fs::read_to_string(path).map_err(|e| sweep_err(format!("{}: {e}", path.display())))?;

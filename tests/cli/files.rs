@@ -456,3 +456,99 @@ fn the_users_folder_keeps_its_mode() {
         assert!(mine.join("summary.json").is_file());
     }
 }
+
+/// A result file the user edited since rollbem wrote it (the manifest records each file's size
+/// and hash) stops the next run before it solves, whether the edit changed its size or not, and
+/// is kept; `--force` replaces it.
+#[test]
+fn an_edited_result_is_kept_unless_forced() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "case.yaml", CASE);
+    let (code, _, stderr) = rollbem(dir.path(), &["run", "case.yaml", "--out", "res"]);
+    assert_eq!(code, 0, "{stderr}");
+    let csv = dir.path().join("res/contact.csv");
+    let written = std::fs::read(&csv).unwrap();
+    // The same size, one byte changed; then a line appended.
+    let mut same_size = written.clone();
+    same_size[0] ^= 1;
+    let mut appended = written.clone();
+    appended.extend_from_slice(b"# my notes\n");
+    for edited in [same_size, appended] {
+        std::fs::write(&csv, &edited).unwrap();
+        let before = snapshot(dir.path());
+        let (code, stdout, stderr) = rollbem(dir.path(), &["run", "case.yaml", "--out", "res"]);
+        assert_eq!(code, 1, "{stdout}{stderr}");
+        assert!(
+            stderr.contains("contact.csv was changed since rollbem wrote it") && stderr.contains("--force"),
+            "{stderr}"
+        );
+        assert!(!stdout.contains("converged"), "it solved before refusing: {stdout}");
+        assert_eq!(snapshot(dir.path()), before);
+    }
+    let (code, _, stderr) = rollbem(dir.path(), &["run", "case.yaml", "--out", "res", "--force"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(std::fs::read(&csv).unwrap(), written);
+}
+
+/// A run folder of a sweep belongs to the sweep (its table describes it): `rollbem run --out
+/// SWEEP/run_0000` is refused, `--force` or not, and leaves the sweep as it was (it replaced the
+/// folder, and `--resume` kept it: the table then described another case); the sweep itself
+/// still resumes and replaces it, but not over an edited run file.
+#[test]
+fn a_sweeps_run_folder_is_written_by_its_sweep_only() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "case.yaml", CASE);
+    let sweep = [
+        "sweep",
+        "case.yaml",
+        "--vary",
+        "contact.friction=0.1,0.2",
+        "--out",
+        "sw",
+    ];
+    let (code, _, stderr) = rollbem(dir.path(), &sweep);
+    assert_eq!(code, 0, "{stderr}");
+    let before = snapshot(dir.path());
+    for run in ["sw/run_0000", "sw/run_0007"] {
+        for force in [&[][..], &["--force"][..]] {
+            let mut args = vec!["run", "case.yaml", "--out", run, "--set", "contact.friction=0.3"];
+            args.extend(force);
+            let (code, stdout, stderr) = rollbem(dir.path(), &args);
+            assert_eq!(code, 1, "{args:?}: {stdout}{stderr}");
+            assert!(stderr.contains("is a run folder of the sweep in"), "{stderr}");
+            assert_eq!(snapshot(dir.path()), before);
+        }
+    }
+    let (code, _, stderr) = rollbem(dir.path(), &[&sweep[..], &["--resume"]].concat());
+    assert_eq!(code, 0, "{stderr}");
+    let (code, _, stderr) = rollbem(dir.path(), &sweep);
+    assert_eq!(code, 0, "{stderr}");
+    let summary = dir.path().join("sw/run_0001/summary.json");
+    let mut text = std::fs::read_to_string(&summary).unwrap();
+    text.push('\n');
+    std::fs::write(&summary, &text).unwrap();
+    let (code, _, stderr) = rollbem(dir.path(), &sweep);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("run_0001/summary.json was changed"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(&summary).unwrap(), text);
+}
+
+/// A lock file that is empty (or holds a beginning of rollbem's marker) was left by a rollbem
+/// process that could not write it, a full disk: it blocked the folder for good ("a file rollbem
+/// did not create") after space was freed. It is taken over with a warning and removed after.
+#[test]
+fn an_empty_lock_file_is_taken_over() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "case.yaml", CASE);
+    let lock = dir.path().join(".res.rollbem-lock");
+    for left in ["", "rollbem lo"] {
+        std::fs::write(&lock, left).unwrap();
+        let (code, _, stderr) = rollbem(dir.path(), &["run", "case.yaml", "--out", "res"]);
+        assert_eq!(code, 0, "{left:?}: {stderr}");
+        assert!(
+            stderr.contains(".res.rollbem-lock") && stderr.contains("taken over"),
+            "{stderr}"
+        );
+        assert!(hidden_in(dir.path()).is_empty(), "{:?}", hidden_in(dir.path()));
+    }
+}

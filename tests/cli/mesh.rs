@@ -56,3 +56,63 @@ fn mesh_of_a_case_without_geometry_is_refused() {
     );
     assert!(!out.exists());
 }
+
+/// A case whose body A reads a mesh that an earlier `rollbem mesh` wrote into `--out M`, and
+/// whose body B is `geometry:`: meshing it into M again deleted M/A.msh (exit 0), the mesh the
+/// case reads. A folder holding an input of the case is refused, `--force` or not, naming the
+/// file; another `--out` is written.
+#[test]
+fn mesh_never_removes_a_mesh_the_case_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_path("fig14_geometry");
+    let m = dir.path().join("M");
+    let (code, _, stderr) = rollbem(&["mesh", case.to_str().unwrap(), "--out", m.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    let text = std::fs::read_to_string(&case).unwrap();
+    let geometry_a = "geometry: {roller: {radius: 150, shaft: 15}}";
+    assert!(text.contains(geometry_a));
+    let mixed = dir.path().join("mixed.yaml");
+    std::fs::write(&mixed, text.replacen(geometry_a, "mesh: M/A.msh", 1)).unwrap();
+    let a_msh = std::fs::read(m.join("A.msh")).unwrap();
+    for force in [&[][..], &["--force"][..]] {
+        let mut args = vec!["mesh", mixed.to_str().unwrap(), "--out", m.to_str().unwrap()];
+        args.extend(force);
+        let (code, _, stderr) = rollbem(&args);
+        assert_eq!(code, 1, "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("A.msh is an input of the case") && stderr.contains("--out NEW_FOLDER"),
+            "{stderr}"
+        );
+        assert_eq!(std::fs::read(m.join("A.msh")).unwrap(), a_msh);
+        assert!(m.join("B.msh").is_file());
+    }
+    let other = dir.path().join("other");
+    let (code, stdout, stderr) = rollbem(&["mesh", mixed.to_str().unwrap(), "--out", other.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("B.msh") && !stdout.contains("A.msh"), "{stdout}");
+}
+
+/// A mesh edited since rollbem wrote it was replaced without a word; now the write stops,
+/// naming it, and keeps it; `--force` replaces it.
+#[test]
+fn an_edited_mesh_is_kept_unless_forced() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_path("fig14_geometry");
+    let e = dir.path().join("e");
+    let args = ["mesh", case.to_str().unwrap(), "--out", e.to_str().unwrap()];
+    let (code, _, stderr) = rollbem(&args);
+    assert_eq!(code, 0, "{stderr}");
+    let written = std::fs::read_to_string(e.join("A.msh")).unwrap();
+    let edited = format!("{written}// my edits\n");
+    std::fs::write(e.join("A.msh"), &edited).unwrap();
+    let (code, _, stderr) = rollbem(&args);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("A.msh was changed since rollbem wrote it") && stderr.contains("--force"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_to_string(e.join("A.msh")).unwrap(), edited);
+    let (code, _, stderr) = rollbem(&[&args[..], &["--force"]].concat());
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(std::fs::read_to_string(e.join("A.msh")).unwrap(), written);
+}
