@@ -149,15 +149,53 @@ pub fn bem_builds_fit_side_by_side(nodes: [Option<usize>; 2]) -> bool {
 }
 
 /// Memory the run may use [bytes]: `MemAvailable` of /proc/meminfo, lowered to what the control
-/// group (a container, a batch job) still allows. `None` where neither can be read.
+/// group (a container, a batch job) still allows and to the address space the process may
+/// still reserve under its own limit (`ulimit -v`, [`address_space_left`]). `None` where none
+/// can be read.
 pub fn available_memory() -> Option<f64> {
+    let system = system_memory_available();
+    match (system, address_space_left()) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// What the process may still reserve under its address-space limit [bytes]: the soft limit of
+/// /proc/self/limits ("Max address space", `ulimit -v`, as batch schedulers set it) less the
+/// address space it holds now (`VmSize` of /proc/self/status). Reserved address space is what
+/// the limit counts, not resident memory: a matrix is refused by the allocator the moment it
+/// does not fit, touched or not. `None` without a limit (or where the files cannot be read).
+pub fn address_space_left() -> Option<f64> {
+    let limits = std::fs::read_to_string("/proc/self/limits").ok()?;
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let limit = address_space_limit(&limits)?;
+    let held = status_kilobytes(&status, "VmSize:")? * 1024.0;
+    Some((limit - held).max(0.0))
+}
+
+/// The soft "Max address space" limit of a /proc/self/limits text [bytes]; `None` when it is
+/// "unlimited" or absent.
+fn address_space_limit(limits: &str) -> Option<f64> {
+    let line = limits.lines().find(|l| l.starts_with("Max address space"))?;
+    let soft = line.trim_start_matches("Max address space").split_whitespace().next()?;
+    soft.parse::<f64>().ok()
+}
+
+/// A "Name:   123 kB" field of a /proc status text [kB].
+fn status_kilobytes(status: &str, field: &str) -> Option<f64> {
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix(field))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
+}
+
+/// `MemAvailable` of /proc/meminfo, lowered to what the control group allows [bytes].
+fn system_memory_available() -> Option<f64> {
     let meminfo = std::fs::read_to_string("/proc/meminfo").ok();
-    let available = meminfo.as_deref().and_then(|text| {
-        text.lines()
-            .find_map(|l| l.strip_prefix("MemAvailable:"))
-            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
-            .map(|kb| kb * 1024.0)
-    });
+    let available = meminfo
+        .as_deref()
+        .and_then(|text| status_kilobytes(text, "MemAvailable:"))
+        .map(|kb| kb * 1024.0);
     let read = |p: &str| {
         std::fs::read_to_string(p)
             .ok()
@@ -226,5 +264,21 @@ mod tests {
         assert!(bem_builds_fit_side_by_side([None, None]));
         assert!(bem_builds_fit_side_by_side([Some(400), Some(500)]));
         assert!(!bem_builds_fit_side_by_side([Some(1_000_000), Some(1_000_000)]));
+    }
+
+    /// The limit is read from the soft column of /proc/self/limits, "unlimited" is no limit,
+    /// and the kB fields of /proc texts parse (texts as Linux 6 writes them).
+    #[test]
+    fn the_address_space_limit_and_the_held_size_are_read_from_proc() {
+        let header = "Limit                     Soft Limit           Hard Limit           Units     \n";
+        let limited =
+            format!("{header}Max address space         2048000000           unlimited            bytes     \n");
+        assert_eq!(address_space_limit(&limited), Some(2.048e9));
+        let unlimited =
+            format!("{header}Max address space         unlimited            unlimited            bytes     \n");
+        assert_eq!(address_space_limit(&unlimited), None);
+        let status = "Name:\trollbem\nVmPeak:\t  123456 kB\nVmSize:\t   98304 kB\n";
+        assert_eq!(status_kilobytes(status, "VmSize:"), Some(98304.0));
+        assert_eq!(status_kilobytes(status, "VmRSS:"), None);
     }
 }

@@ -9,6 +9,7 @@ mod common;
 
 mod commands;
 mod files;
+mod memory_limit;
 mod mesh;
 mod stability;
 mod stall;
