@@ -396,7 +396,9 @@ fn refine(
         };
         let next = coarse.refined(&marked);
         log::debug!("singular points {singular:?}; next grid {} elements", next.len());
-        if 2 * next.len() > max_elements || steps.len() - first_step >= MAX_PASSES {
+        let finer = 2 * next.len();
+        let ends = finer > max_elements || steps.len() - first_step >= MAX_PASSES;
+        if ends || !crate::scene::preflight::finer_grid_fits(&scene.case, &scene.bodies, finer) {
             // The best solution reached, marked: the driver reports it as not converged.
             return Ok(Refined::Ended(h, false));
         }

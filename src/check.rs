@@ -259,13 +259,23 @@ fn cost_lines(case: &LoadedCase, scene: &Scene, t: &mut String) -> Result<(), Er
     line("cost of this run", this);
     line("cost with the other model", other);
     let memory = crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
+    let available = crate::limits::available_memory().map_or("unknown".into(), crate::limits::human_bytes);
+    let grid = &scene.case.case.contact.grid;
     line(
         "memory estimate",
-        format!(
-            "{} at most (the bound that refuses cases larger than the memory available: {})",
-            crate::limits::human_bytes(memory.bytes()),
-            crate::limits::available_memory().map_or("unknown".into(), crate::limits::human_bytes)
-        ),
+        match grid.tolerance {
+            None => format!(
+                "{} at most (the bound that refuses cases larger than the memory available: {available})",
+                crate::limits::human_bytes(memory.bytes()),
+            ),
+            Some(tolerance) => format!(
+                "{} for the grid of about {} elements the tolerance is expected to need (the bound that \
+                 refuses cases; the run stops refining before a grid larger than the memory available: \
+                 {available})",
+                crate::limits::human_bytes(memory.bytes()),
+                crate::scene::preflight::expected_elements(tolerance, grid.max_elements)
+            ),
+        },
     );
     Ok(())
 }

@@ -266,26 +266,68 @@ fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &BodySetups) -
     out
 }
 
-/// The problem sizes of a case with its bodies resolved.
+/// The problem sizes of a case with its bodies resolved: on its grid, or for an error-controlled
+/// grid on the grid its tolerance is expected to need ([`expected_elements`]).
 pub fn problem_sizes(case: &LoadedCase, bodies: &BodySetups) -> ProblemSizes {
     let c = &case.case;
-    // An error-controlled grid may grow to its limit: the mesh's contact group is then cut
-    // into that many elements.
-    let limit = c.contact.grid.tolerance.map(|_| c.contact.grid.max_elements);
+    let expected = c
+        .contact
+        .grid
+        .tolerance
+        .map(|tol| expected_elements(tol, c.contact.grid.max_elements));
+    problem_sizes_on(case, bodies, expected)
+}
+
+/// The elements an error-controlled contact grid is expected to reach at `tolerance` (capped by
+/// `max_elements`): 115 at 1e-3, twice as many a decade of the tolerance lower (∝ TOL^(−0.3)).
+/// Measured final grids of the shipped BEM cases (carter_051_true, fig14_true_geometry,
+/// bore_a020_tractive) at 1e-3 / 1e-4 / 1e-5: 80–152 / 152–336 / 336–454 elements; the
+/// quadratic elements' error falls like h² to h³ between the graded square-root points, and
+/// each decade took 1.9–2.2 times the elements. The run itself stops refining before a grid that
+/// would not fit in memory ([`grid_fits_in_memory`]), so an under-estimate never aborts a run.
+pub fn expected_elements(tolerance: f64, max_elements: usize) -> usize {
+    const AT_1E3: f64 = 115.0;
+    let n = AT_1E3 * (1e-3 / tolerance.clamp(1e-12, 1.0)).powf(0.3);
+    (n.ceil() as usize).min(max_elements)
+}
+
+/// Whether the case's bodies on a contact grid of `elements` elements fit in the memory
+/// available ([`limits::available_memory`]) — what an error-controlled run checks before each
+/// finer grid.
+pub fn grid_fits_in_memory(case: &LoadedCase, bodies: &BodySetups, elements: usize) -> bool {
+    let estimate = MemoryEstimate::of(&problem_sizes_on(case, bodies, Some(elements)));
+    estimate.bytes() <= limits::available_memory().unwrap_or(limits::FALLBACK_AVAILABLE_BYTES)
+}
+
+/// [`grid_fits_in_memory`] for the next grid of an error-controlled run, with a warning when it
+/// does not (the run then keeps the best solution reached and ends not converged).
+pub fn finer_grid_fits(case: &LoadedCase, bodies: &BodySetups, elements: usize) -> bool {
+    let fits = grid_fits_in_memory(case, bodies, elements);
+    if !fits {
+        log::warn!(
+            "error control stopped before a grid of {elements} elements: its matrices would not fit in the \
+             memory available ({}); the best solution reached is kept",
+            limits::available_memory().map_or("unknown".into(), limits::human_bytes)
+        );
+    }
+    fits
+}
+
+/// The problem sizes of a case with its bodies resolved, its contact grid cut into `elements`
+/// elements where given (the mesh's contact group is then cut into that many), else its own.
+fn problem_sizes_on(case: &LoadedCase, bodies: &BodySetups, elements: Option<usize>) -> ProblemSizes {
+    let c = &case.case;
+    let limit = elements;
     let contact_nodes = match bodies.iter().find_map(|b| b.contact_mesh()) {
         // The mesh's discontinuous quadratic contact elements carry three nodes each.
         Some(own) => {
             let lm = own.mesh;
-            let elements = lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count();
-            3 * limit.map_or(elements, |n| n.max(elements))
+            let mesh_elements = lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count();
+            3 * limit.map_or(mesh_elements, |n| n.max(mesh_elements))
         }
         None => {
             let kind = c.contact.grid.element;
-            // An error-controlled grid may grow to its limit.
-            let n = match c.contact.grid.tolerance {
-                Some(_) => c.contact.grid.max_elements,
-                None => c.contact.grid.elements,
-            };
+            let n = limit.unwrap_or(c.contact.grid.elements);
             kind.node_stride().saturating_mul(n) + usize::from(kind.shares_nodes())
         }
     };
@@ -376,12 +418,17 @@ fn advice(case: &LoadedCase, bodies: &BodySetups, sizes: &ProblemSizes, e: &Memo
             fit.floor()
         );
     }
-    if let (Some(_), true) = (c.contact.grid.tolerance, grid_from_mesh(bodies)) {
-        // The mesh grows with the grid: its limit sets both terms.
+    if let Some(tolerance) = c.contact.grid.tolerance {
+        // The grid (and a mesh's cut contact group) grows as the tolerance asks.
         return format!(
-            "lower contact.grid.max_elements (now {}): an error-controlled grid cuts the mesh's contact \
-             group into up to that many elements, and the estimate is for the grid at its limit",
-            c.contact.grid.max_elements
+            "raise contact.grid.tolerance (now {tolerance:e}): the estimate is for the grid of about {} \
+             elements this tolerance is expected to need{}",
+            expected_elements(tolerance, c.contact.grid.max_elements),
+            if grid_from_mesh(bodies) {
+                ", the mesh's contact group cut into as many"
+            } else {
+                ""
+            }
         );
     }
     if e.bem > e.contact {

@@ -65,3 +65,35 @@ fn a_case_larger_than_the_address_space_limit_is_refused_by_its_estimate() {
     );
     assert!(!out.join("contact.csv").exists(), "nothing is written");
 }
+
+/// An error-controlled BEM run is estimated on the grid its tolerance is expected to need, not
+/// on its element limit: carter_051_true at 1e-4 (a peak of about 100 MB) runs under 1 GB. (It
+/// was estimated at 3.4 GB for max_elements and refused.)
+#[cfg(target_os = "linux")]
+#[test]
+fn an_error_controlled_bem_run_is_estimated_for_its_tolerance_and_runs_under_1_gb() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("true");
+    let case = case_path("carter_051_true");
+    let args = [
+        "run",
+        case.to_str().unwrap(),
+        "--set",
+        "contact.grid.tolerance=1e-4",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let (code, stdout, stderr) = rollbem_limited(1_000_000, &args);
+    assert_eq!(code, 0, "stdout:\n{stdout}\nstderr:\n{stderr}");
+}
+
+/// What the run asks before each finer grid: a grid whose matrices fit, and one that never
+/// could (a million elements: about 10^15 bytes of contact matrices).
+#[test]
+fn a_finer_grid_is_asked_whether_it_fits_in_memory() {
+    let loaded = rollbem::case::load(&case_path("carter_051_true"), &[]).unwrap();
+    let scene = rollbem::scene::Scene::from_case(&loaded).unwrap();
+    let fits = |n| rollbem::scene::preflight::grid_fits_in_memory(&scene.case, &scene.bodies, n);
+    assert!(fits(42));
+    assert!(!fits(1_000_000));
+}
