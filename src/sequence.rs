@@ -63,6 +63,8 @@ pub enum SequenceError {
 /// The assembly a sequence shares: the base scene's body models and contact problem.
 pub struct Shared {
     base: Scene,
+    /// The base case as a tree with the controls' keys (module docs), compared with each run's.
+    base_tree: Option<serde_json::Value>,
     models: BodyModels,
     problem: ContactProblem,
     /// Time [s] the shared assembly took (body models and contact problem, condensation
@@ -81,6 +83,7 @@ impl Shared {
         crate::scene::preflight::check_memory(&base.case, &base.bodies)?;
         let (models, problem) = base.assemble()?;
         Ok(Self {
+            base_tree: serde_json::to_value(&base.case.case).ok(),
             base: base.clone(),
             models,
             problem,
@@ -96,21 +99,40 @@ impl Shared {
     /// Whether `scene` can be solved with this assembly: its case differs from the base's only
     /// in the keys of the module docs, and its contact grid is the base's node for node.
     pub fn shares(&self, scene: &Scene) -> bool {
-        scene.grid_control.is_none()
-            && differs_only_in_controls(&self.base.case.case, &scene.case.case)
-            && same_grid(&self.base, scene)
+        scene.grid_control.is_none() && self.differs_only_in_controls(&scene.case.case) && same_grid(&self.base, scene)
     }
 
     /// The scene of a case that [`Self::shares`] this assembly, with the base's bodies (no
     /// mesh read again); `None` when the case does not share it. The case's load-dependent
     /// checks ([`crate::scene::preflight::check`]) are made as for any run.
     pub fn scene_of(&self, case: crate::case::LoadedCase) -> Result<Option<Scene>, Error> {
-        if !differs_only_in_controls(&self.base.case.case, &case.case) {
+        if !self.differs_only_in_controls(&case.case) {
             return Ok(None);
         }
         crate::scene::preflight::check(&case, &self.base.bodies)?;
         let scene = Scene::new(case, self.base.bodies.clone());
         Ok(self.shares(&scene).then_some(scene))
+    }
+
+    /// Whether a run's case differs from the base's only in loads, friction, solver and output
+    /// settings (and the speed, unless a material is viscoelastic): compared as the case trees
+    /// with those keys of the run's set to the base's.
+    fn differs_only_in_controls(&self, run: &crate::case::Case) -> bool {
+        let base = &self.base.case.case;
+        let speed_matters = run.materials.values().any(|m| m.viscoelastic.is_some());
+        let mut same = run.clone();
+        same.title.clone_from(&base.title);
+        same.load = crate::case::schema::LoadSpec {
+            speed: if speed_matters { run.load.speed } else { base.load.speed },
+            ..base.load.clone()
+        };
+        same.contact.friction = base.contact.friction;
+        same.solver = base.solver.clone();
+        same.output = base.output.clone();
+        match (serde_json::to_value(&same), &self.base_tree) {
+            (Ok(a), Some(b)) => &a == b,
+            _ => false,
+        }
     }
 
     /// A chain of runs solved one after the other on this assembly (one per worker thread).
@@ -121,26 +143,6 @@ impl Shared {
             last: None,
             ws: Workspace::new(),
         }
-    }
-}
-
-/// Whether two cases differ only in loads, friction, solver and output settings (and the
-/// speed, unless a material is viscoelastic): compared as the resolved case trees with those
-/// keys of `run` set to the base's.
-fn differs_only_in_controls(base: &crate::case::Case, run: &crate::case::Case) -> bool {
-    let speed_matters = run.materials.values().any(|m| m.viscoelastic.is_some());
-    let mut same = run.clone();
-    same.title.clone_from(&base.title);
-    same.load = crate::case::schema::LoadSpec {
-        speed: if speed_matters { run.load.speed } else { base.load.speed },
-        ..base.load.clone()
-    };
-    same.contact.friction = base.contact.friction;
-    same.solver = base.solver.clone();
-    same.output = base.output.clone();
-    match (serde_json::to_value(&same), serde_json::to_value(base)) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
     }
 }
 
