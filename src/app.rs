@@ -181,6 +181,27 @@ pub fn run_with(case_path: &Path, overrides: &[String], out: Option<&Path>, forc
     })
 }
 
+/// The summary of a solved run as summary.json holds it, checked finite.
+pub fn checked_summary(s: &Solved) -> Result<Summary, Error> {
+    let summary = output::summary(s);
+    post::finite::check(&s.scene.case.path, "summary.json", &summary)?;
+    Ok(summary)
+}
+
+/// Writes the outputs of a solved run into `out` as [`run`] does (the folder claimed and locked
+/// while it is written); returns its summary. `start` is when the run began.
+pub fn write_solved(s: &Solved, out: &Path, start: Instant) -> Result<Summary, Error> {
+    let _claim = output::folder::Claim::acquire_with(
+        out,
+        output::folder::Kind::Run,
+        output::folder::Access::Exclusive,
+        write_options(&s.scene.case, false),
+    )?;
+    let mut summary = checked_summary(s)?;
+    output::write_run(out, &mut summary, s, start)?;
+    Ok(summary)
+}
+
 /// What the output folder of `case` may not hold (its inputs) and whether edited results are
 /// replaced (`force`).
 fn write_options(case: &LoadedCase, force: bool) -> output::folder::WriteOptions {

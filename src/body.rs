@@ -244,15 +244,16 @@ pub trait BodyFields {
 
 /// A body of a run: a [`BodyModel`] for the solver and its [`BodyFields`] for post-processing.
 /// Implemented for every type that is both (and Send: a scene builds its two bodies side by
-/// side).
-pub trait Body: BodyModel + BodyFields + Send {
+/// side; Sync: the runs of a sequence on several threads read one pair of built bodies,
+/// [`crate::sequence`]).
+pub trait Body: BodyModel + BodyFields + Send + Sync {
     /// The body as the contact problem sees it.
     fn model(&self) -> &dyn BodyModel;
     /// The body as post-processing sees it.
     fn fields(&self) -> &dyn BodyFields;
 }
 
-impl<T: BodyModel + BodyFields + Send> Body for T {
+impl<T: BodyModel + BodyFields + Send + Sync> Body for T {
     fn model(&self) -> &dyn BodyModel {
         self
     }

@@ -81,11 +81,17 @@ pub enum Command {
     /// Example (the paper's variable-friction study, Figs 7–9):
     /// rollbem sweep cases/variable_mu_qp_0075.yaml --vary contact.friction=0.1,0.2,0.3,0.4,0.8
     ///
-    /// Writes one folder per run (run_0000, …), sweep.csv (varied values, status, forces,
-    /// creepage, zones, timings; a row added as each run finishes), sweep.json (what sweep this
-    /// is) and sweep.pvd (the runs' contact lines as ParaView time steps). A failed run is
-    /// recorded as failed and the others go on; exit code 2 if any run failed (3 if one hit an
-    /// internal error). An interrupted sweep is continued with --resume.
+    /// Writes sweep.csv (varied values, status, forces, creepage, zones, timings; a row added as
+    /// each run finishes) and sweep.json (what sweep this is); with --per-run-files also one
+    /// folder per run (run_0000, …, each what `rollbem run` writes) and sweep.pvd (the runs'
+    /// contact lines as ParaView time steps). A failed run is recorded as failed and the others
+    /// go on; exit code 2 if any run failed (3 if one hit an internal error). An interrupted
+    /// sweep is continued with --resume.
+    /// Runs that vary only loads (load.*), contact.friction or solver settings share one
+    /// assembly of the bodies and start from the solution of their neighbour in the varied
+    /// values (runs are ordered by value, each thread taking a contiguous chain); runs that
+    /// change the grid (a normal load on a grid sized by its Hertz contact, contact.grid.*),
+    /// the bodies or the materials, and error-controlled runs, build their own.
     /// Large sweeps: `--shard K/N` runs the K-th of N deterministic slices (one per Slurm array
     /// task), then `rollbem sweep --merge DIR... --out DIR` joins the shards.
     Sweep {
@@ -116,6 +122,10 @@ pub enum Command {
         /// (case, --set, --vary, shards).
         #[arg(long, conflicts_with = "merge")]
         resume: bool,
+        /// Write each run's folder (run_NNNN: summary.json, contact.csv, contact.svg, VTK files)
+        /// and sweep.pvd; by default only the sweep's table and record are written.
+        #[arg(long, conflicts_with = "merge")]
+        per_run_files: bool,
     },
     /// Solve the built-in reference problems (Hertz, Carter, dissimilar regimes, free-rolling
     /// limits) and print each measured error against its closed form and limit; exit code 2 if

@@ -46,6 +46,7 @@ pub mod post;
 pub mod quadrature;
 pub mod reference;
 pub mod scene;
+pub mod sequence;
 pub mod study;
 pub mod sweep;
 pub mod transient;

@@ -169,7 +169,16 @@ fn dispatch(cli: Cli) -> Result<i32> {
             shard,
             merge,
             resume,
-        } => sweep(case, &vary, &set, out, shard.as_deref(), &merge, resume),
+            per_run_files,
+        } => sweep(
+            case,
+            &vary,
+            &set,
+            out,
+            shard.as_deref(),
+            &merge,
+            SweepFlags { resume, per_run_files },
+        ),
         Command::Validate => {
             let checks = rollbem::reference::run()?;
             print!("{}", rollbem::reference::render(&checks));
@@ -231,6 +240,12 @@ fn run_case(
     }
 }
 
+/// `rollbem sweep`'s switches: `--resume` and `--per-run-files`.
+struct SweepFlags {
+    resume: bool,
+    per_run_files: bool,
+}
+
 /// `rollbem sweep`: the runs of a sweep (or a shard of it), or the merge of shards.
 fn sweep(
     case: Option<PathBuf>,
@@ -239,8 +254,9 @@ fn sweep(
     out: Option<PathBuf>,
     shard: Option<&str>,
     merge: &[PathBuf],
-    resume: bool,
+    flags: SweepFlags,
 ) -> Result<i32> {
+    let SweepFlags { resume, per_run_files } = flags;
     if !merge.is_empty() {
         let out = out.unwrap_or_else(|| merge[0].clone());
         let path = rollbem::sweep::merge(merge, &out)?;
@@ -257,7 +273,7 @@ fn sweep(
         Some(o) => o,
         None => default_output_dir(&rollbem::case::load(&case, set)?, "sweep"),
     };
-    let report = rollbem::sweep::run(&case, set, &varies, shard, &out, resume)?;
+    let report = rollbem::sweep::run(&case, set, &varies, shard, &out, resume, per_run_files)?;
     let failed: Vec<&rollbem::sweep::RunRow> = report.rows.iter().filter(|r| r.status != "ok").collect();
     let kept = if report.resumed > 0 {
         format!(" ({} kept from the interrupted sweep)", report.resumed)

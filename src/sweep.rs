@@ -1,6 +1,13 @@
 //! Parameter sweeps: the Cartesian product of `--vary key=v1,v2,…` over a case, run in parallel
-//! (rayon) with a progress bar (indicatif), one sub-folder per run, a `sweep.csv` with the varied
-//! values and the summary numbers of every run, and a `sweep.pvd` that ParaView steps through.
+//! (rayon) with a progress bar (indicatif), a `sweep.csv` with the varied values and the summary
+//! numbers of every run and its record `sweep.json`; with `--per-run-files` also one sub-folder
+//! per run and a `sweep.pvd` that ParaView steps through.
+//!
+//! The runs are ordered so that neighbours in the varied values follow each other and cut into
+//! one contiguous chain per worker thread ([`chains`]); where the varied keys leave the bodies
+//! and the grid as they are, a chain's runs share one assembly and start from the last run's
+//! solution ([`crate::sequence`]), so a run's iteration count (not its result, beyond the Newton
+//! tolerance) depends on its neighbours.
 //!
 //! Runs are numbered in the order of the product (the first `--vary` varies slowest). Sharding
 //! (`--shard K/N`) keeps the runs whose number n satisfies n mod N = K − 1, so N processes on N
@@ -9,11 +16,13 @@
 //! one `sweep.csv` and `sweep.pvd`. A failed run is recorded as failed and does not stop the
 //! others.
 
+mod chains;
 mod merge;
 mod record;
+mod row;
+mod runs;
 mod table;
 
-use crate::app;
 use crate::error::Error;
 use crate::output::folder::{self, Access, Claim, FileLock, FolderError, Kind, SweepEntry};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -21,297 +30,11 @@ pub use merge::merge;
 use rayon::prelude::*;
 pub use record::{fnv1a64, SweepRecord, VaryRecord};
 use record::{read_record, write_record};
+pub use row::{run_folder, RunRow, RESULT_COLUMNS, TIMING_COLUMNS};
+pub use runs::{product, Runs, Shard, Vary, MAX_RUNS};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use table::{read_rows_leniently, write_pvd, write_rows, Appender};
-
-/// One `--vary key=v1,v2,…` argument.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Vary {
-    /// Dotted case key.
-    pub key: String,
-    /// Values as written (each read as YAML, like `--set`).
-    pub values: Vec<String>,
-}
-
-impl Vary {
-    /// Parses `key=v1,v2,…`.
-    pub fn parse(arg: &str) -> Result<Self, Error> {
-        let bad = |m: &str| Error::Sweep {
-            message: format!("--vary {arg}: {m}; write e.g. --vary contact.friction=0.1,0.2,0.4"),
-        };
-        let (key, list) = arg.split_once('=').ok_or_else(|| bad("expected key.path=v1,v2,..."))?;
-        let values: Vec<String> = list.split(',').map(|v| v.trim().to_string()).collect();
-        if key.is_empty() || values.iter().any(|v| v.is_empty()) {
-            return Err(bad("empty key or value"));
-        }
-        Ok(Self {
-            key: key.to_string(),
-            values,
-        })
-    }
-}
-
-/// A shard K of N (1 ≤ K ≤ N).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Shard {
-    /// 1-based shard index.
-    pub index: usize,
-    /// Number of shards.
-    pub count: usize,
-}
-
-impl Shard {
-    /// Parses `K/N`.
-    pub fn parse(arg: &str) -> Result<Self, Error> {
-        let bad = || Error::Sweep {
-            message: format!("--shard {arg}: expected K/N with 1 <= K <= N, e.g. --shard 2/4"),
-        };
-        let (k, n) = arg.split_once('/').ok_or_else(bad)?;
-        let (index, count) = (
-            k.trim().parse().map_err(|_| bad())?,
-            n.trim().parse().map_err(|_| bad())?,
-        );
-        if index == 0 || count == 0 || index > count {
-            return Err(bad());
-        }
-        Ok(Self { index, count })
-    }
-
-    /// Whether run number `run` (0-based) belongs to this shard.
-    pub fn owns(&self, run: usize) -> bool {
-        run % self.count == self.index - 1
-    }
-
-    /// The run numbers of this shard among `total` runs, in order (without visiting the others).
-    pub fn runs(&self, total: usize) -> impl Iterator<Item = usize> {
-        (self.index - 1..total).step_by(self.count)
-    }
-}
-
-/// Most runs one sweep may have: a sweep's table, its run numbers and `--merge` hold a row per
-/// run; beyond this a typo (three `--vary` of 1000 values) is far likelier than intent.
-pub const MAX_RUNS: usize = 10_000_000;
-
-/// The runs of a sweep, generated one at a time (never the whole product in memory): run n's
-/// values are the digits of n in the mixed radix of the value counts, the last `--vary` varying
-/// fastest.
-#[derive(Debug, Clone, Copy)]
-pub struct Runs<'a> {
-    varies: &'a [Vary],
-    count: usize,
-}
-
-impl<'a> Runs<'a> {
-    /// The runs of `varies`; more than [`MAX_RUNS`] (or more than a `usize` counts) is refused
-    /// with the count.
-    pub fn new(varies: &'a [Vary]) -> Result<Self, Error> {
-        let count = varies
-            .iter()
-            .try_fold(1usize, |n, v| n.checked_mul(v.values.len()))
-            .filter(|&n| n <= MAX_RUNS);
-        match count {
-            Some(count) => Ok(Self { varies, count }),
-            None => {
-                let shown = varies
-                    .iter()
-                    .map(|v| v.values.len().to_string())
-                    .collect::<Vec<_>>()
-                    .join(" × ");
-                let total: f64 = varies.iter().map(|v| v.values.len() as f64).product();
-                Err(sweep_err(format!(
-                    "the --vary options make {shown} = {total:.3e} runs; a sweep may have at most \
-                     {MAX_RUNS} runs: vary fewer keys or values (or split the study into several sweeps)"
-                )))
-            }
-        }
-    }
-
-    /// Number of runs.
-    pub fn count(&self) -> usize {
-        self.count
-    }
-
-    /// Index of run `run`'s value of `--vary` number `key` (`run` < [`Self::count`]).
-    fn index(&self, run: usize, key: usize) -> usize {
-        let inner: usize = self.varies[key + 1..].iter().map(|v| v.values.len()).product();
-        (run / inner) % self.varies[key].values.len()
-    }
-
-    /// Run `run`'s value of `--vary` number `key`.
-    pub fn value(&self, run: usize, key: usize) -> &'a str {
-        &self.varies[key].values[self.index(run, key)]
-    }
-
-    /// Run `run`'s overrides: (key, value) per `--vary`, in order.
-    pub fn overrides(&self, run: usize) -> Vec<(String, String)> {
-        (0..self.varies.len())
-            .map(|k| (self.varies[k].key.clone(), self.value(run, k).to_string()))
-            .collect()
-    }
-}
-
-/// The runs of a sweep, all at once: each is a list of (key, value) overrides (for small sweeps;
-/// [`Runs`] generates them one at a time). Refused like [`Runs::new`] beyond [`MAX_RUNS`] runs.
-pub fn product(varies: &[Vary]) -> Result<Vec<Vec<(String, String)>>, Error> {
-    let runs = Runs::new(varies)?;
-    Ok((0..runs.count()).map(|n| runs.overrides(n)).collect())
-}
-
-/// Summary columns of sweep.csv after `run`, `folder`, `status`, the varied keys and `message`.
-pub const RESULT_COLUMNS: [&str; 22] = [
-    "converged",
-    "iterations",
-    "residual",
-    "normal_force",
-    "tangential_force",
-    "load_ratio",
-    "overlap",
-    "creep",
-    "contact_x_min",
-    "contact_x_max",
-    "contact_centre",
-    "half_width",
-    "max_pressure",
-    "slip_regime",
-    "stick_zones",
-    "slip_zones",
-    "pressure_centre",
-    "rolling_resistance",
-    "assembly_s",
-    "condense_s",
-    "solve_s",
-    "total_s",
-];
-
-/// Columns that hold wall-clock times (differ between otherwise identical sweeps).
-pub const TIMING_COLUMNS: [&str; 4] = ["assembly_s", "condense_s", "solve_s", "total_s"];
-
-/// Outcome of one run as a sweep.csv row.
-#[derive(Debug, Clone)]
-pub struct RunRow {
-    /// Run number in the full product.
-    pub run: usize,
-    /// Sub-folder name.
-    pub folder: String,
-    /// `ok`, `not_converged` or `failed`.
-    pub status: String,
-    /// Varied values, in `--vary` order.
-    pub values: Vec<String>,
-    /// Error message of a failed run (empty otherwise).
-    pub message: String,
-    /// Values of [`RESULT_COLUMNS`] (empty strings for a failed run).
-    pub results: Vec<String>,
-    /// Whether the run folder has a contact.vtu.
-    pub has_vtk: bool,
-    /// Whether the run failed on an internal error (a caught panic: a bug, not bad input).
-    pub internal_error: bool,
-}
-
-impl RunRow {
-    /// The CSV record: `run, folder, status`, the values, `message`, the results.
-    fn record(&self) -> Vec<String> {
-        let mut rec = vec![self.run.to_string(), self.folder.clone(), self.status.clone()];
-        rec.extend(self.values.iter().cloned());
-        rec.push(self.message.clone());
-        rec.extend(self.results.iter().cloned());
-        rec
-    }
-}
-
-/// Runs one point of the sweep into `out/run_NNNN`; a panic in it is caught and recorded as an
-/// internal error of that run (the others go on).
-fn run_one(case: &Path, base_set: &[String], out: &Path, run: usize, overrides: &[(String, String)]) -> RunRow {
-    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        run_one_unguarded(case, base_set, out, run, overrides)
-    }));
-    outcome.unwrap_or_else(|payload| {
-        let what = payload
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "panic".into());
-        RunRow {
-            run,
-            folder: run_folder(run),
-            status: "failed".into(),
-            values: overrides.iter().map(|(_, v)| v.clone()).collect(),
-            message: format!("internal error — please report it: {}", what.replace('\n', " ")),
-            results: vec![String::new(); RESULT_COLUMNS.len()],
-            has_vtk: false,
-            internal_error: true,
-        }
-    })
-}
-
-/// Name of the folder of run `run`.
-pub fn run_folder(run: usize) -> String {
-    format!("run_{run:04}")
-}
-
-fn run_one_unguarded(
-    case: &Path,
-    base_set: &[String],
-    out: &Path,
-    run: usize,
-    overrides: &[(String, String)],
-) -> RunRow {
-    let folder = run_folder(run);
-    let mut set = base_set.to_vec();
-    set.extend(overrides.iter().map(|(k, v)| format!("{k}={v}")));
-    let values = overrides.iter().map(|(_, v)| v.clone()).collect();
-    match app::run(case, &set, Some(&out.join(&folder))) {
-        Ok(report) => {
-            let s = &report.summary;
-            let c = s.contact.as_ref();
-            let r = s.rolling_resistance.as_ref();
-            let f = crate::output::number;
-            RunRow {
-                run,
-                status: if s.converged { "ok" } else { "not_converged" }.into(),
-                values,
-                message: String::new(),
-                results: vec![
-                    s.converged.to_string(),
-                    s.iterations.to_string(),
-                    f(s.residual),
-                    f(s.normal_force),
-                    f(s.tangential_force),
-                    s.load_ratio.map_or(String::new(), f),
-                    f(s.overlap),
-                    f(s.creep),
-                    c.map_or(String::new(), |c| f(c.x_min)),
-                    c.map_or(String::new(), |c| f(c.x_max)),
-                    c.map_or(String::new(), |c| f(c.centre)),
-                    c.map_or(String::new(), |c| f(c.half_width)),
-                    f(s.max_pressure),
-                    s.slip_regime.to_string(),
-                    s.stick_zones.len().to_string(),
-                    s.slip_zones.len().to_string(),
-                    r.map_or(String::new(), |r| f(r.pressure_centre)),
-                    r.map_or(String::new(), |r| f(r.coefficient)),
-                    f(s.timings.assembly_s),
-                    f(s.timings.condense_s),
-                    f(s.timings.solve_s),
-                    f(s.timings.total_s),
-                ],
-                has_vtk: s.converged && s.vtk,
-                folder,
-                internal_error: false,
-            }
-        }
-        Err(e) => RunRow {
-            run,
-            folder,
-            status: "failed".into(),
-            values,
-            message: e.to_string().replace('\n', " "),
-            results: vec![String::new(); RESULT_COLUMNS.len()],
-            has_vtk: false,
-            internal_error: false,
-        },
-    }
-}
 
 /// What a sweep did.
 #[derive(Debug, Clone)]
@@ -338,7 +61,9 @@ fn sweep_err(message: String) -> Error {
 /// shards of one sweep share it, each locking its own table. The runs' rows are appended to the
 /// table as they finish (in the order they finish; rewritten in run order at the end), so a
 /// killed sweep leaves the finished ones, and `resume` re-runs only the runs that are missing or
-/// failed (the table must belong to the same sweep). Without `resume`, an unsharded sweep into
+/// failed (the table must belong to the same sweep; with `per_run_files` also those whose folder
+/// is missing or incomplete). With `per_run_files` each run also writes its folder `run_NNNN`
+/// (what `rollbem run` writes) and the sweep a `sweep.pvd`. Without `resume`, an unsharded sweep into
 /// a folder of an earlier sweep replaces it atomically when complete; a shard re-runs its runs.
 pub fn run(
     case: &Path,
@@ -347,6 +72,7 @@ pub fn run(
     shard: Option<Shard>,
     out: &Path,
     resume: bool,
+    per_run_files: bool,
 ) -> Result<SweepReport, Error> {
     if varies.is_empty() {
         return Err(sweep_err(
@@ -377,6 +103,7 @@ pub fn run(
         varies,
         shard,
         record: &record,
+        per_run_files,
     };
     let holds_sweep = folder::read_manifest(&dir).is_some();
     let (rows, resumed) = if shard.is_none() && holds_sweep && !resume {
@@ -517,6 +244,8 @@ struct Job<'a> {
     varies: &'a [Vary],
     shard: Option<Shard>,
     record: &'a SweepRecord,
+    /// Whether each run writes its own folder (`--per-run-files`).
+    per_run_files: bool,
 }
 
 impl Job<'_> {
@@ -539,9 +268,7 @@ impl Job<'_> {
             read_rows_leniently(&csv_path, &keys, &runs)
                 .into_iter()
                 .filter(|r| mine(r.run) && (r.status == "ok" || r.status == "not_converged"))
-                // A row is kept only with its own run's folder, whole (every file its manifest
-                // lists); otherwise the run is done again.
-                .filter(|r| r.folder == run_folder(r.run) && folder::check_run_folder(&dir.join(&r.folder)).is_ok())
+                .filter(|r| self.finished(dir, r))
                 .collect()
         } else {
             Vec::new()
@@ -551,36 +278,76 @@ impl Job<'_> {
         let todo: Vec<usize> = shard.runs(runs.count()).filter(|n| !done.contains(n)).collect();
         write_rows(&csv_path, &keys, &kept)?;
         let table = Mutex::new(Appender::open(&csv_path)?);
-        let bar = ProgressBar::new(todo.len() as u64);
+        let new_rows = self.run_chains(dir, &runs, todo, &table)?;
+        drop(table);
+        let resumed = kept.len();
+        let mut rows = kept;
+        rows.extend(new_rows);
+        rows.sort_by_key(|r| r.run);
+        write_rows(&csv_path, &keys, &rows)?;
+        if self.shard.is_none() && self.per_run_files {
+            write_pvd(&dir.join("sweep.pvd"), dir, &rows)?;
+        }
+        Ok((rows, resumed))
+    }
+
+    /// Whether a row that an earlier sweep recorded as done is kept on `--resume`: a row
+    /// without a folder (a run that wrote no files) when no files are asked for, the table
+    /// being its record; a row with its own run's folder only with that folder whole (every
+    /// file its manifest lists). Any other is done again.
+    fn finished(&self, dir: &Path, r: &RunRow) -> bool {
+        if r.folder.is_empty() {
+            return !self.per_run_files;
+        }
+        r.folder == run_folder(r.run) && folder::check_run_folder(&dir.join(&r.folder)).is_ok()
+    }
+
+    /// Runs `todo` in chains of neighbours (one per worker thread, [`chains`]), their rows
+    /// appended to `table` as they finish.
+    fn run_chains(
+        &self,
+        dir: &Path,
+        runs: &Runs,
+        todo: Vec<usize>,
+        table: &Mutex<Appender>,
+    ) -> Result<Vec<RunRow>, Error> {
+        let order = chains::neighbour_order(runs, self.varies, todo);
+        let text =
+            std::fs::read_to_string(self.case).map_err(|e| sweep_err(format!("{}: {e}", self.case.display())))?;
+        let mut points = chains::Points {
+            case: self.case,
+            text,
+            base_set: self.base_set,
+            out: dir,
+            per_run_files: self.per_run_files,
+            shared: None,
+        };
+        points.share(self.varies, order.first().map(|&n| runs.overrides(n)).as_deref());
+        let bar = ProgressBar::new(order.len() as u64);
         bar.set_style(
             ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, eta {eta} {msg}")
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
-        let new_rows: Vec<Result<RunRow, Error>> = todo
+        let points = &points;
+        let rows: Vec<Result<RunRow, Error>> = chains::contiguous_chains(&order, rayon::current_num_threads())
             .par_iter()
-            .map(|&n| {
-                let row = run_one(self.case, self.base_set, dir, n, &runs.overrides(n));
-                let appended = table
-                    .lock()
-                    .map_err(|_| sweep_err("the table writer failed in another thread".into()))
-                    .and_then(|mut t| t.append(&row));
-                bar.inc(1);
-                appended.map(|()| row)
+            .flat_map_iter(|runs_of_chain| {
+                let mut chain = points.shared.as_ref().map(|s| s.chain());
+                let mut rows = Vec::with_capacity(runs_of_chain.len());
+                for &n in runs_of_chain.iter() {
+                    let row = points.run(chain.as_mut(), n, &runs.overrides(n));
+                    let appended = table
+                        .lock()
+                        .map_err(|_| sweep_err("the table writer failed in another thread".into()))
+                        .and_then(|mut t| t.append(&row));
+                    bar.inc(1);
+                    rows.push(appended.map(|()| row));
+                }
+                rows
             })
             .collect();
         bar.finish_and_clear();
-        drop(table);
-        let resumed = kept.len();
-        let mut rows = kept;
-        for r in new_rows {
-            rows.push(r?);
-        }
-        rows.sort_by_key(|r| r.run);
-        write_rows(&csv_path, &keys, &rows)?;
-        if self.shard.is_none() {
-            write_pvd(&dir.join("sweep.pvd"), dir, &rows)?;
-        }
-        Ok((rows, resumed))
+        rows.into_iter().collect()
     }
 }
 

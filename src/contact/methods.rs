@@ -79,3 +79,26 @@ pub fn solve_from_in(
     report.wall_time_s = start.elapsed().as_secs_f64();
     (state, report)
 }
+
+/// Solves the contact problem from `warm`, the solution of a neighbouring problem on the same
+/// grid (a sequence's last run, [`crate::sequence`]): the default method gives the warm start at
+/// most `budget` Newton iterations, then falls back to its cold start and restarts
+/// ([`super::restart::solve_neighbour`]); the other methods keep their own start.
+pub fn solve_from_neighbour_in(
+    pb: &ContactProblem,
+    settings: &SolverSettings,
+    warm: Option<State>,
+    budget: usize,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let Some(warm) = warm.filter(|_| settings.method == Method::Newton) else {
+        return solve_in(pb, settings, ws);
+    };
+    let start = Instant::now();
+    let measure = ConvergenceMeasure::new(pb);
+    let (state, mut report) = restart::solve_neighbour(pb, &settings.newton, &measure, warm, budget, ws);
+    report.method = settings.method;
+    report.formulation = settings.newton.formulation;
+    report.wall_time_s = start.elapsed().as_secs_f64();
+    (state, report)
+}

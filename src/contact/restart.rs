@@ -219,6 +219,43 @@ pub fn solve_warm(
     (state, report)
 }
 
+/// The line-search Newton from `warm`, the solution of a neighbouring problem on the same grid
+/// (a sequence's last run, [`crate::sequence`]), given at most `budget` iterations: when that
+/// attempt has not converged within them, the cold start and restarts of [`solve`] follow (with
+/// the whole iteration limit), the warm attempt's steps kept in the history.
+///
+/// The warm attempt's first step is taken in full, the line search applies from the second on:
+/// the neighbour's solution has a small merit, so the Armijo rule cuts the first step, which
+/// must move the active sets to the new controls, and the iterate then frees or locks about one
+/// node an iteration (carter2d_contact on 41 elements, Q/μP from 0 to 0.95 in steps of 0.2:
+/// 6–42 iterations a run with the first step searched, 3–7 with it in full, 6–10 cold;
+/// measured 2026-12-05, tests/validation/sequence.rs prints the last two).
+pub fn solve_neighbour(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+    warm: State,
+    budget: usize,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let own = (settings.formulation, settings.penalty_scale);
+    let first = FirstStep::Full;
+    let limited = NewtonSettings {
+        max_iterations: budget.min(settings.max_iterations),
+        ..*settings
+    };
+    let (out, used) = coupled_attempt(pb, own, warm, first, &limited, measure, ws);
+    if out.converged || out.at_roundoff {
+        return newton::report(settings, out, used, measure, Vec::new());
+    }
+    let (state, mut report) = solve(pb, settings, measure, ws);
+    report.iterations += out.history.len();
+    report.inner_iterations += out.history.len();
+    report.history = [out.history, report.history].concat();
+    report.fallbacks.insert(0, "cold start after the warm start".into());
+    (state, report)
+}
+
 /// The line-search Newton with the start and restarts of the module docs (none when
 /// `settings.max_backtracks` is 0: a run without line search is not globalized, and starts from
 /// the paper's start vector), stopping on the common measure. The Newton systems are solved in

@@ -101,7 +101,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<PathBuf, Error> {
     let mut rows: Vec<RunRow> = Vec::with_capacity(runs.count());
     for t in &tables {
         let mut shard_rows = read_table_strictly(t, &keys, &runs)?;
-        for r in &mut shard_rows {
+        for r in shard_rows.iter_mut().filter(|r| !r.folder.is_empty()) {
             let dir = t.dir.join(&r.folder);
             r.has_vtk = r.status == "ok" && dir.join("contact.vtu").is_file();
             r.folder = relative(&out_abs, &dir);
@@ -292,7 +292,8 @@ fn check_shards_complete(tables: &[ShardTable], count: usize) -> Result<(), Erro
 }
 
 /// The rows of one shard table, every one checked: its runs all there, once, and each run
-/// recorded as done (`ok`, `not_converged`) with its own folder whole. A table that lacks some of
+/// recorded as done (`ok`, `not_converged`) with its own folder whole (or with no folder, when
+/// the shard wrote no per-run files). A table that lacks some of
 /// its runs names them.
 fn read_table_strictly(t: &ShardTable, keys: &[String], runs: &Runs) -> Result<Vec<RunRow>, Error> {
     let shown = t.csv.display();
@@ -341,7 +342,8 @@ fn read_table_strictly(t: &ShardTable, keys: &[String], runs: &Runs) -> Result<V
         if !seen.insert(row.run) {
             return Err(bad(format!("line {}: run {} appears twice", line + 2, row.run)));
         }
-        if row.status != "failed" {
+        // A run that wrote no files (a sweep without --per-run-files) has its row as its record.
+        if row.status != "failed" && !row.folder.is_empty() {
             let whole = if row.folder == run_folder(row.run) {
                 folder::check_run_folder(&t.dir.join(&row.folder))
             } else {

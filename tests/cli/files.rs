@@ -500,6 +500,7 @@ fn a_sweeps_run_folder_is_written_by_its_sweep_only() {
     write(dir.path(), "case.yaml", CASE);
     let sweep = [
         "sweep",
+        "--per-run-files",
         "case.yaml",
         "--vary",
         "contact.friction=0.1,0.2",

@@ -20,6 +20,39 @@ fn rows(path: &Path) -> Vec<Vec<String>> {
         .collect()
 }
 
+/// Asserts that two sweep tables hold the same results: the same runs, statuses, values,
+/// regimes and zone counts, and numbers within 1e-7 of their column's largest magnitude. The
+/// runs of a sweep start from their neighbours' solutions, and a sweep's shards or a resumed
+/// sweep chain its runs otherwise: the results agree to the Newton tolerance (1e-10 on the
+/// scaled residual), the iteration counts and residuals differ.
+fn assert_same_results(a: &Path, b: &Path) {
+    let (ra, rb) = (rows(a), rows(b));
+    let mut r = csv::Reader::from_path(a).unwrap();
+    let header: Vec<String> = r
+        .headers()
+        .unwrap()
+        .iter()
+        .filter(|h| !h.ends_with("_s") && *h != "folder")
+        .map(String::from)
+        .collect();
+    assert_eq!(ra.len(), rb.len(), "{} against {}", a.display(), b.display());
+    for (c, name) in header.iter().enumerate() {
+        if name == "iterations" || name == "residual" {
+            continue;
+        }
+        let scale = ra
+            .iter()
+            .filter_map(|row| row[c].parse::<f64>().ok())
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        for (x, y) in ra.iter().zip(&rb) {
+            match (x[c].parse::<f64>(), y[c].parse::<f64>()) {
+                (Ok(u), Ok(v)) => assert!((u - v).abs() <= 1e-7 * scale, "{name}: {x:?} against {y:?}"),
+                _ => assert_eq!(x[c], y[c], "{name}"),
+            }
+        }
+    }
+}
+
 fn pvd_entries(path: &Path) -> usize {
     std::fs::read_to_string(path).unwrap().matches("<DataSet").count()
 }
@@ -31,6 +64,7 @@ const RATIO: &str = "load.tangential.ratio=0.2,0.5,0.75";
 fn full_sweep(out: &Path) -> (i32, String, String) {
     rollbem(&[
         "sweep",
+        "--per-run-files",
         &case(),
         "--vary",
         MU,
@@ -67,6 +101,7 @@ fn a_failing_run_is_recorded_and_the_others_complete() {
     let q = format!("load.tangential.force={},{},{}", 0.01 * p, 0.03 * p, 0.06 * p);
     let (code, _, stderr) = rollbem(&[
         "sweep",
+        "--per-run-files",
         &case(),
         "--set",
         "load.tangential.ratio=null",
@@ -100,6 +135,7 @@ fn four_shards_merged_equal_the_unsharded_sweep() {
             Command::new(env!("CARGO_BIN_EXE_rollbem"))
                 .args([
                     "sweep",
+                    "--per-run-files",
                     &case(),
                     "--vary",
                     MU,
@@ -126,7 +162,7 @@ fn four_shards_merged_equal_the_unsharded_sweep() {
     args.extend(["--out", merged.to_str().unwrap()]);
     let (code, _, stderr) = rollbem(&args);
     assert_eq!(code, 0, "{stderr}");
-    assert_eq!(rows(&merged.join("sweep.csv")), rows(&whole.join("sweep.csv")));
+    assert_same_results(&merged.join("sweep.csv"), &whole.join("sweep.csv"));
     assert_eq!(pvd_entries(&merged.join("sweep.pvd")), 15);
     // The merged .pvd points at the shards' run folders.
     let pvd = std::fs::read_to_string(merged.join("sweep.pvd")).unwrap();
@@ -165,6 +201,7 @@ fn a_killed_sweep_keeps_its_finished_runs_and_resume_runs_only_the_rest() {
     let out = dir.path().join("sw");
     let args = [
         "sweep",
+        "--per-run-files",
         &case(),
         "--vary",
         MU,
@@ -196,13 +233,14 @@ fn a_killed_sweep_keeps_its_finished_runs_and_resume_runs_only_the_rest() {
     let whole = dir.path().join("whole");
     let (code, _, stderr) = full_sweep(&whole);
     assert_eq!(code, 0, "{stderr}");
-    assert_eq!(rows(&out.join("sweep.csv")), rows(&whole.join("sweep.csv")));
+    assert_same_results(&out.join("sweep.csv"), &whole.join("sweep.csv"));
     assert_eq!(pvd_entries(&out.join("sweep.pvd")), 15);
     assert!(hidden(&out).is_empty(), "{:?}", hidden(&out));
     assert!(hidden(dir.path()).is_empty(), "{:?}", hidden(dir.path()));
     // --resume of another sweep into this folder is refused, naming the difference.
     let (code, _, stderr) = rollbem(&[
         "sweep",
+        "--per-run-files",
         &case(),
         "--vary",
         "contact.friction=0.1,0.2",
@@ -218,6 +256,7 @@ fn a_killed_sweep_keeps_its_finished_runs_and_resume_runs_only_the_rest() {
     // Without --resume a new sweep replaces the earlier one whole.
     let (code, _, stderr) = rollbem(&[
         "sweep",
+        "--per-run-files",
         &case(),
         "--vary",
         "contact.friction=0.1,0.2",
@@ -235,7 +274,15 @@ fn a_panicking_run_is_recorded_as_an_internal_error_and_the_sweep_exits_3() {
     let out = dir.path().join("sw");
     let (code, _, stderr) = rollbem_env(
         &[("ROLLBEM_TEST_FAULT", "panic@run_0002")],
-        &["sweep", &case(), "--vary", MU, "--out", out.to_str().unwrap()],
+        &[
+            "sweep",
+            "--per-run-files",
+            &case(),
+            "--vary",
+            MU,
+            "--out",
+            out.to_str().unwrap(),
+        ],
     );
     assert_eq!(code, 3, "{stderr}");
     let r = rows(&out.join("sweep.csv"));
@@ -251,6 +298,7 @@ fn a_panicking_run_is_recorded_as_an_internal_error_and_the_sweep_exits_3() {
 fn shard(values: &str, k: usize, n: usize, out: &Path) -> (i32, String, String) {
     rollbem(&[
         "sweep",
+        "--per-run-files",
         &case(),
         "--vary",
         values,
@@ -329,6 +377,7 @@ fn shards_share_a_folder_and_a_second_writer_is_refused() {
             Command::new(env!("CARGO_BIN_EXE_rollbem"))
                 .args([
                     "sweep",
+                    "--per-run-files",
                     &case(),
                     "--vary",
                     MU,
@@ -359,7 +408,16 @@ fn shards_share_a_folder_and_a_second_writer_is_refused() {
     let busy = dir.path().join("busy");
     let many = "contact.friction=0.1,0.12,0.14,0.16,0.18,0.2,0.25,0.3,0.35,0.4,0.5,0.6,0.7,0.8";
     let mut first = Command::new(env!("CARGO_BIN_EXE_rollbem"))
-        .args(["sweep", &case(), "--vary", many, "--vary", RATIO, "--out"])
+        .args([
+            "sweep",
+            "--per-run-files",
+            &case(),
+            "--vary",
+            many,
+            "--vary",
+            RATIO,
+            "--out",
+        ])
         .arg(&busy)
         .env_remove("ROLLBEM_TEST_FAULT")
         .stdout(std::process::Stdio::null())
@@ -372,6 +430,7 @@ fn shards_share_a_folder_and_a_second_writer_is_refused() {
     }
     let (code, _, stderr) = rollbem(&[
         "sweep",
+        "--per-run-files",
         &case(),
         "--vary",
         many,
@@ -430,6 +489,7 @@ fn vary_keys_are_checked_before_any_run() {
     }
     let (code, _, stderr) = rollbem(&[
         "sweep",
+        "--per-run-files",
         case_str(),
         "--set",
         "contact.friction=0.9",
@@ -490,6 +550,7 @@ fn huge_sweeps_are_refused_and_a_shard_of_a_large_one_costs_its_slice() {
         4 << 20,
         &[
             "sweep",
+            "--per-run-files",
             &case(),
             "--vary",
             &mu,
@@ -518,6 +579,7 @@ fn huge_sweeps_are_refused_and_a_shard_of_a_large_one_costs_its_slice() {
         2 << 20,
         &[
             "sweep",
+            "--per-run-files",
             &case(),
             "--vary",
             &mu,
@@ -545,13 +607,22 @@ fn resume_refuses_a_table_without_its_record() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("sw");
     let o = out.to_str().unwrap();
-    let (code, _, stderr) = rollbem(&["sweep", &case(), "--vary", "contact.friction=0.1,0.2", "--out", o]);
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        "--per-run-files",
+        &case(),
+        "--vary",
+        "contact.friction=0.1,0.2",
+        "--out",
+        o,
+    ]);
     assert_eq!(code, 0, "{stderr}");
     std::fs::remove_file(out.join("sweep.json")).unwrap();
     let before = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
     let other = format!("{}/cases/carter_051.yaml", env!("CARGO_MANIFEST_DIR"));
     let (code, _, stderr) = rollbem(&[
         "sweep",
+        "--per-run-files",
         &other,
         "--vary",
         "contact.friction=0.1,0.2",
@@ -569,6 +640,7 @@ fn resume_refuses_a_table_without_its_record() {
     std::fs::remove_file(sh.join("sweep_shard_1_of_2.json")).unwrap();
     let (code, _, stderr) = rollbem(&[
         "sweep",
+        "--per-run-files",
         &case(),
         "--vary",
         MU,
@@ -609,6 +681,7 @@ fn merge_checks_its_arguments_the_output_folder_and_the_run_folders() {
     let other = dir.path().join("other");
     let (code, _, stderr) = rollbem(&[
         "sweep",
+        "--per-run-files",
         &case(),
         "--vary",
         "contact.friction=0.1,0.2",
@@ -653,6 +726,7 @@ fn merge_checks_its_arguments_the_output_folder_and_the_run_folders() {
     std::fs::write(&table, text.replacen("\n1,run_0001,", "\n1,run_0003,", 1)).unwrap();
     let (code, stdout, stderr) = rollbem(&[
         "sweep",
+        "--per-run-files",
         &case(),
         "--vary",
         MU,
@@ -678,6 +752,7 @@ fn the_table_has_the_contact_centre_and_shortest_numbers() {
     let out = dir.path().join("sw");
     let (code, _, stderr) = rollbem(&[
         "sweep",
+        "--per-run-files",
         &case(),
         "--vary",
         "load.tangential.ratio=-0.74,0.05,0.41",
@@ -748,4 +823,109 @@ fn merge_warns_of_mixed_versions_and_summarises_long_lists() {
         "{stderr}"
     );
     assert!(stderr.len() < 1000, "{} bytes", stderr.len());
+}
+
+/// A sweep writes its table and record only, unless --per-run-files asks for the run folders;
+/// its runs, solved on one assembly from their neighbours' solutions, give the forces and
+/// creepages of the same runs done alone by `rollbem run` (a cold start each) to the Newton
+/// tolerance.
+#[test]
+fn a_sweep_writes_only_its_table_and_its_runs_equal_runs_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let (code, _, stderr) = rollbem(&[
+        "sweep",
+        &case(),
+        "--vary",
+        MU,
+        "--vary",
+        RATIO,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with('.'))
+        .collect();
+    names.sort();
+    assert_eq!(names, ["sweep.csv", "sweep.json"]);
+    let mut table = csv::Reader::from_path(out.join("sweep.csv")).unwrap();
+    let header: Vec<String> = table.headers().unwrap().iter().map(String::from).collect();
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let records: Vec<csv::StringRecord> = table.records().map(Result::unwrap).collect();
+    assert_eq!(records.len(), 15);
+    assert!(records
+        .iter()
+        .all(|r| r[col("folder")].is_empty() && &r[col("status")] == "ok"));
+    for k in [4, 13] {
+        let rec = &records[k];
+        let alone = dir.path().join(format!("alone{k}"));
+        let mu = format!("contact.friction={}", &rec[col("contact.friction")]);
+        let ratio = format!("load.tangential.ratio={}", &rec[col("load.tangential.ratio")]);
+        let args = [
+            "run",
+            &case(),
+            "--set",
+            &mu,
+            "--set",
+            &ratio,
+            "--out",
+            alone.to_str().unwrap(),
+        ];
+        let (code, _, stderr) = rollbem(&args);
+        assert_eq!(code, 0, "{stderr}");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(alone.join("summary.json")).unwrap()).unwrap();
+        for key in ["tangential_force", "creep", "max_pressure"] {
+            let (swept, cold): (f64, f64) = (rec[col(key)].parse().unwrap(), summary[key].as_f64().unwrap());
+            assert!(
+                (swept - cold).abs() <= 1e-8 * cold.abs(),
+                "run {k} {key}: {swept} against {cold}"
+            );
+        }
+    }
+}
+
+/// Without run folders the table is the record of the finished runs: a sweep killed after some
+/// rows (its table cut to them) resumes with those kept and the rest run, to the same results
+/// as a whole sweep.
+#[test]
+fn resume_keeps_the_rows_of_a_sweep_without_run_folders() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let args = [
+        "sweep",
+        &case(),
+        "--vary",
+        MU,
+        "--vary",
+        RATIO,
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let (code, _, stderr) = rollbem(&args);
+    assert_eq!(code, 0, "{stderr}");
+    let whole = dir.path().join("whole.csv");
+    std::fs::copy(out.join("sweep.csv"), &whole).unwrap();
+    let text = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    // The header, four rows and a torn fifth, as a kill leaves them.
+    let cut: Vec<&str> = text.lines().take(6).collect();
+    let torn = format!("{}\n{}", cut[..5].join("\n"), &cut[5][..cut[5].len() / 2]);
+    std::fs::write(out.join("sweep.csv"), torn).unwrap();
+    let (code, stdout, stderr) = rollbem(&[&args[..], &["--resume"]].concat());
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains("(4 kept from the interrupted sweep)"), "{stdout}");
+    assert!(
+        stdout.contains("11 of 15 runs here") || stdout.contains("15 of 15"),
+        "{stdout}"
+    );
+    assert_same_results(&out.join("sweep.csv"), &whole);
+    // Asked for run folders, a resumed sweep redoes the rows that have none.
+    let (code, stdout, stderr) = rollbem(&[&args[..], &["--resume", "--per-run-files"]].concat());
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(!stdout.contains("kept from the interrupted sweep"), "{stdout}");
+    assert!(out.join("run_0014/summary.json").is_file());
+    assert_same_results(&out.join("sweep.csv"), &whole);
 }

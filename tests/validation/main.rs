@@ -39,6 +39,7 @@ mod parametric;
 #[allow(dead_code)]
 #[path = "../../examples/parametric_report.rs"]
 mod parametric_report;
+mod sequence;
 mod slip_end;
 mod solver;
 mod stand_in;

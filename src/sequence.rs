@@ -1,0 +1,249 @@
+//! Sequences of runs of one scene: runs that differ only in their loads, friction coefficient,
+//! rolling speed or solver settings share one assembly of the bodies and each starts from the
+//! solution of the run solved before it.
+//!
+//! A sweep over Q/μP, the normal force, the creepage or μ solves the same contact problem
+//! (paper Eq. 21) with other controls: the bodies' flexibilities at the contact nodes (and a
+//! BEM body's condensation to them), the slip operator, the undeformed gap and the strain
+//! operator depend on the bodies and the grid only. [`Shared`] builds them once from a base
+//! scene; a [`Chain`] (one per worker thread) holds its own copy of the contact problem, sets
+//! each run's controls (μ, the normal and tangential control) in it and solves it warm-started
+//! from the last run it solved.
+//!
+//! **What shares.** A run shares when its case differs from the base's only in `load.*`
+//! (normal and tangential loads, creepage, and `load.speed` unless a material is viscoelastic,
+//! whose kernels age with the speed), `contact.friction`, `solver.*`, `title` and `output.*`,
+//! *and* its scene has the base's contact grid node for node: a normal load sizes the uniform
+//! grid around its Hertz contact (unless `contact.grid.half_length` or a body's mesh fixes it),
+//! so a run of another normal load on such a grid builds its own ([`Shared::shares`] tells).
+//! Error-controlled grids (`contact.grid.tolerance`) build each run's grids themselves and are
+//! refused ([`SequenceError::AdaptiveGrid`]).
+//!
+//! **The warm start.** The Newton method of [`crate::contact`] solves the semismooth equations
+//! of the contact and friction conditions, whose projections fix at each iterate which nodes
+//! are in contact, in stick and in slip (the active sets). Started from the neighbour's
+//! solution (its tractions, gap, slip, overlap and creepage; a prescribed overlap or creepage
+//! set to the run's own), its first step is linearised about the neighbour's active sets and
+//! taken in full, so it moves every node whose state the new controls change at once (a
+//! searched first step would be cut short by the neighbour's small merit and free the nodes one
+//! an iteration); the line search applies from the second step on. Close runs differ in a few
+//! nodes near the contact edges and the stick–slip point, so few iterations remain. The method with line
+//! search is globally convergent, so the start changes the iteration count, not the solution
+//! (to the Newton tolerance). A warm start that has not converged within [`WARM_START_BUDGET`]
+//! iterations falls back to the cold start and its restarts
+//! ([`crate::contact::restart::solve_neighbour`]); only a converged run is the
+//! next one's start.
+
+use crate::contact::methods::{self, Workspace};
+use crate::contact::residual::State;
+use crate::contact::{ContactProblem, NormalControl, TangentialControl};
+use crate::error::Error;
+use crate::post::{self, Solved, Timings};
+use crate::scene::{BodyModels, Scene};
+use std::time::Instant;
+
+/// Most Newton iterations a warm start is given before the run falls back to its cold start
+/// (cold runs of the shipped cases take 5–12; a warm start that needs more is not paying).
+pub const WARM_START_BUDGET: usize = 20;
+
+/// Why a scene cannot start a sequence.
+#[derive(Debug, thiserror::Error)]
+pub enum SequenceError {
+    /// The scene's bodies could not be built or assembled.
+    #[error(transparent)]
+    Scene(#[from] Error),
+    /// An error-controlled grid builds its own grids for every run.
+    #[error(
+        "contact.grid.tolerance: an error-controlled grid builds its own grids for every run, so its runs \
+         share no assembly; give a fixed grid (contact.grid.elements) to share one"
+    )]
+    AdaptiveGrid,
+}
+
+/// The assembly a sequence shares: the base scene's body models and contact problem.
+pub struct Shared {
+    base: Scene,
+    /// The base case as a tree with the controls' keys (module docs), compared with each run's.
+    base_tree: Option<serde_json::Value>,
+    models: BodyModels,
+    problem: ContactProblem,
+    /// Time [s] the shared assembly took (body models and contact problem, condensation
+    /// included).
+    pub assembly_s: f64,
+}
+
+impl Shared {
+    /// Builds the body models of `base` and assembles its contact problem once. An
+    /// error-controlled grid is refused.
+    pub fn new(base: &Scene) -> Result<Self, SequenceError> {
+        if base.grid_control.is_some() {
+            return Err(SequenceError::AdaptiveGrid);
+        }
+        let t = Instant::now();
+        crate::scene::preflight::check_memory(&base.case, &base.bodies)?;
+        let (models, problem) = base.assemble()?;
+        Ok(Self {
+            base_tree: serde_json::to_value(&base.case.case).ok(),
+            base: base.clone(),
+            models,
+            problem,
+            assembly_s: t.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// The base scene.
+    pub fn base(&self) -> &Scene {
+        &self.base
+    }
+
+    /// Whether `scene` can be solved with this assembly: its case differs from the base's only
+    /// in the keys of the module docs, and its contact grid is the base's node for node.
+    pub fn shares(&self, scene: &Scene) -> bool {
+        scene.grid_control.is_none() && self.differs_only_in_controls(&scene.case.case) && same_grid(&self.base, scene)
+    }
+
+    /// The scene of a case that [`Self::shares`] this assembly, with the base's bodies (no
+    /// mesh read again); `None` when the case does not share it. The case's load-dependent
+    /// checks ([`crate::scene::preflight::check`]) are made as for any run.
+    pub fn scene_of(&self, case: crate::case::LoadedCase) -> Result<Option<Scene>, Error> {
+        if !self.differs_only_in_controls(&case.case) {
+            return Ok(None);
+        }
+        crate::scene::preflight::check(&case, &self.base.bodies)?;
+        let scene = Scene::new(case, self.base.bodies.clone());
+        Ok(self.shares(&scene).then_some(scene))
+    }
+
+    /// Whether a run's case differs from the base's only in loads, friction, solver and output
+    /// settings (and the speed, unless a material is viscoelastic): compared as the case trees
+    /// with those keys of the run's set to the base's.
+    fn differs_only_in_controls(&self, run: &crate::case::Case) -> bool {
+        let base = &self.base.case.case;
+        let speed_matters = run.materials.values().any(|m| m.viscoelastic.is_some());
+        let mut same = run.clone();
+        same.title.clone_from(&base.title);
+        same.load = crate::case::schema::LoadSpec {
+            speed: if speed_matters { run.load.speed } else { base.load.speed },
+            ..base.load.clone()
+        };
+        same.contact.friction = base.contact.friction;
+        same.solver = base.solver.clone();
+        same.output = base.output.clone();
+        match (serde_json::to_value(&same), &self.base_tree) {
+            (Ok(a), Some(b)) => &a == b,
+            _ => false,
+        }
+    }
+
+    /// A chain of runs solved one after the other on this assembly (one per worker thread).
+    pub fn chain(&self) -> Chain<'_> {
+        Chain {
+            shared: self,
+            problem: Some(self.problem.clone()),
+            last: None,
+            ws: Workspace::new(),
+        }
+    }
+}
+
+/// Whether two scenes have the same contact grid (kind, edges and nodes bit for bit).
+fn same_grid(a: &Scene, b: &Scene) -> bool {
+    a.grid.kind == b.grid.kind && a.grid.edges == b.grid.edges && a.grid.nodes == b.grid.nodes
+}
+
+/// One worker's runs on a [`Shared`] assembly, each warm-started from the last converged one.
+pub struct Chain<'a> {
+    shared: &'a Shared,
+    /// The contact problem with the last run's controls (taken while post-processing holds it).
+    problem: Option<ContactProblem>,
+    /// The solution of the last converged run.
+    last: Option<State>,
+    ws: Workspace,
+}
+
+/// How a run of a chain was started.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Start {
+    /// From the solver's own start (the first run of a chain, or after one that failed).
+    Cold,
+    /// From the last converged run's solution.
+    Warm,
+}
+
+impl Chain<'_> {
+    /// Forgets the last solution: the next run starts cold.
+    pub fn restart_cold(&mut self) {
+        self.last = None;
+    }
+
+    /// Solves the run of `scene` (which must [`Shared::shares`] the assembly; else an internal
+    /// error) from the last converged run, post-processes it and hands the solved run to
+    /// `read`, whose result is returned with how the run started. `start` is when the run
+    /// began (its timings; the shared assembly counts in no run's). A converged run becomes the
+    /// next one's start.
+    pub fn solve_with<T>(
+        &mut self,
+        scene: Scene,
+        start: Instant,
+        read: impl FnOnce(&Solved) -> T,
+    ) -> Result<(T, Start), Error> {
+        assert!(self.shared.shares(&scene), "a run outside the sequence's assembly");
+        let mut problem = self.problem.take().unwrap_or_else(|| self.shared.problem.clone());
+        set_controls(&mut problem, &scene);
+        let warm = self.last.take().map(|z| with_prescribed(z, &problem));
+        let how = if warm.is_some() { Start::Warm } else { Start::Cold };
+        let t = Instant::now();
+        let (state, report) =
+            methods::solve_from_neighbour_in(&problem, &scene.solver, warm, WARM_START_BUDGET, &mut self.ws);
+        let timings = Timings {
+            assembly_s: t.duration_since(start).as_secs_f64(),
+            solve_s: t.elapsed().as_secs_f64(),
+            total_s: start.elapsed().as_secs_f64(),
+            ..Timings::default()
+        };
+        if report.converged {
+            self.last = Some(state.clone());
+        }
+        let processed = post::process(scene, &self.shared.models, problem, &state, report, timings);
+        match processed {
+            Ok(solved) => {
+                let out = read(&solved);
+                self.problem = Some(solved.problem);
+                Ok((out, how))
+            }
+            Err(e) => {
+                self.last = None;
+                Err(e)
+            }
+        }
+    }
+
+    /// [`Self::solve_with`] keeping the whole solved run.
+    pub fn solve(&mut self, scene: Scene) -> Result<(Solved, Start), Error> {
+        let start = Instant::now();
+        let mut kept = None;
+        let how = self.solve_with(scene, start, |s| kept = Some(s.clone()))?.1;
+        let solved = kept.expect("the solved run was read");
+        Ok((solved, how))
+    }
+}
+
+/// The run's controls in the shared problem: μ and the normal and tangential controls (the
+/// only parts of the problem that the shared keys change).
+fn set_controls(problem: &mut ContactProblem, scene: &Scene) {
+    problem.friction = scene.friction;
+    problem.normal = scene.normal;
+    problem.tangential = scene.tangential;
+}
+
+/// A neighbour's solution as the start of `problem`: a prescribed overlap or creepage takes
+/// the problem's own value (the Newton method keeps a prescribed unknown where it starts).
+fn with_prescribed(mut z: State, problem: &ContactProblem) -> State {
+    if let NormalControl::Overlap(d) = problem.normal {
+        z.overlap = d;
+    }
+    if let TangentialControl::Creep(c) = problem.tangential {
+        z.creep = c;
+    }
+    z
+}

@@ -1,0 +1,179 @@
+//! The runs of a sweep in chains of neighbours: ordered so that each run follows the one
+//! nearest to it in the varied values, split into one contiguous chain per worker thread, and
+//! solved on one shared assembly with warm starts ([`crate::sequence`]) where the varied keys
+//! allow it; every other run is done on its own.
+
+use super::row::{failed_row, guarded, row_of_summary, run_alone, run_folder, RunRow};
+use super::{Runs, Vary};
+use crate::case::LoadedCase;
+use crate::scene::Scene;
+use crate::sequence::{Chain, Shared};
+use std::path::Path;
+use std::time::Instant;
+
+/// Whether a varied key leaves the assembly of the bodies as it is: loads, creepage and speed
+/// (`load.*`), the friction coefficient and the solver settings. Whether a run then shares it
+/// is decided on its scene ([`Shared::shares`]: a normal load may resize the grid).
+pub(super) fn may_share(key: &str) -> bool {
+    key.starts_with("load.") || key == "contact.friction" || key.starts_with("solver.")
+}
+
+/// The ranks of a `--vary`'s values in increasing order: numerically when every value is a
+/// number, else in the order given.
+fn value_ranks(vary: &Vary) -> Vec<usize> {
+    let numbers: Option<Vec<f64>> = vary.values.iter().map(|v| v.parse::<f64>().ok()).collect();
+    let Some(numbers) = numbers else {
+        return (0..vary.values.len()).collect();
+    };
+    let mut order: Vec<usize> = (0..numbers.len()).collect();
+    order.sort_by(|&a, &b| numbers[a].total_cmp(&numbers[b]));
+    let mut ranks = vec![0; numbers.len()];
+    for (rank, &k) in order.iter().enumerate() {
+        ranks[k] = rank;
+    }
+    ranks
+}
+
+/// `todo` ordered so that neighbours follow each other: by the values' ranks, the first
+/// `--vary` slowest, each inner key's direction turned at every step of the outer ones (a
+/// boustrophedon), so that consecutive runs differ in one value by one step.
+pub(super) fn neighbour_order(runs: &Runs, varies: &[Vary], mut todo: Vec<usize>) -> Vec<usize> {
+    let ranks: Vec<Vec<usize>> = varies.iter().map(value_ranks).collect();
+    let position = |n: usize| {
+        let mut pos = 0usize;
+        for (k, v) in varies.iter().enumerate() {
+            let index = v.values.iter().position(|x| x == runs.value(n, k)).unwrap_or(0);
+            let rank = ranks[k][index];
+            let len = v.values.len();
+            let step = if pos % 2 == 1 { len - 1 - rank } else { rank };
+            pos = pos * len + step;
+        }
+        pos
+    };
+    todo.sort_by_key(|&n| position(n));
+    todo
+}
+
+/// `order` cut into at most `workers` contiguous chains of near-equal length.
+pub(super) fn contiguous_chains(order: &[usize], workers: usize) -> Vec<&[usize]> {
+    if order.is_empty() {
+        return Vec::new();
+    }
+    let count = workers.clamp(1, order.len());
+    let size = order.len().div_ceil(count);
+    order.chunks(size).collect()
+}
+
+/// What every run of a sweep shares: the case, the overrides, the folder and the assembly.
+pub(super) struct Points<'a> {
+    /// The case file.
+    pub case: &'a Path,
+    /// Its text, read once.
+    pub text: String,
+    /// The `--set` overrides.
+    pub base_set: &'a [String],
+    /// The sweep's folder.
+    pub out: &'a Path,
+    /// Whether each run writes its own folder.
+    pub per_run_files: bool,
+    /// The shared assembly, when the varied keys allow one.
+    pub shared: Option<Shared>,
+}
+
+impl Points<'_> {
+    /// The case of one run: the `--set` overrides, then the run's.
+    fn case_of(&self, overrides: &[(String, String)]) -> Result<LoadedCase, crate::error::Error> {
+        let mut set = self.base_set.to_vec();
+        set.extend(overrides.iter().map(|(k, v)| format!("{k}={v}")));
+        Ok(crate::case::parse(&self.text, self.case, &set)?)
+    }
+
+    /// The assembly the runs share: that of the scene of `first` (a run of the sweep), when
+    /// every varied key [`may_share`] and that scene can start a sequence; None otherwise (each
+    /// run then builds its own).
+    pub fn share(&mut self, varies: &[Vary], first: Option<&[(String, String)]>) {
+        let Some(first) = first.filter(|_| varies.iter().all(|v| may_share(&v.key))) else {
+            return;
+        };
+        let scene = self.case_of(first).and_then(|c| Scene::from_case(&c));
+        self.shared = match scene.map(|s| Shared::new(&s)) {
+            Ok(Ok(shared)) => Some(shared),
+            Ok(Err(e)) => {
+                log::info!("the runs build their own assemblies: {e}");
+                None
+            }
+            Err(_) => None,
+        };
+    }
+
+    /// Runs one point: on the chain's shared assembly when its scene shares it, else on its own.
+    pub fn run(&self, chain: Option<&mut Chain>, run: usize, overrides: &[(String, String)]) -> RunRow {
+        guarded(run, overrides, || {
+            let start = Instant::now();
+            let (Some(chain), Some(shared)) = (chain, self.shared.as_ref()) else {
+                return self.alone(run, overrides);
+            };
+            let scene = match self.case_of(overrides).and_then(|c| shared.scene_of(c)) {
+                Ok(Some(scene)) => scene,
+                Ok(None) => return self.alone(run, overrides),
+                Err(e) => return failed_row(run, self.folder(run), overrides, e.to_string()),
+            };
+            let folder = self.folder(run);
+            let dir = self.out.join(&folder);
+            let summary = chain.solve_with(scene, start, |solved| {
+                if self.per_run_files {
+                    crate::app::write_solved(solved, &dir, start)
+                } else {
+                    crate::app::checked_summary(solved)
+                }
+            });
+            match summary {
+                Ok((Ok(s), _)) => row_of_summary(run, folder, overrides, &s),
+                Ok((Err(e), _)) | Err(e) => failed_row(run, folder, overrides, e.to_string()),
+            }
+        })
+    }
+
+    fn alone(&self, run: usize, overrides: &[(String, String)]) -> RunRow {
+        run_alone(self.case, self.base_set, self.out, self.per_run_files, run, overrides)
+    }
+
+    /// The folder column of run `run`: its folder with per-run files, else empty.
+    fn folder(&self, run: usize) -> String {
+        if self.per_run_files {
+            run_folder(run)
+        } else {
+            String::new()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn neighbours_follow_each_other_in_a_boustrophedon() {
+        let v = [Vary::parse("a=2,1").unwrap(), Vary::parse("b=0.3,0.1,0.2").unwrap()];
+        let runs = Runs::new(&v).unwrap();
+        let order = neighbour_order(&runs, &v, (0..6).collect());
+        let values: Vec<(String, String)> = order
+            .iter()
+            .map(|&n| (runs.value(n, 0).to_string(), runs.value(n, 1).to_string()))
+            .collect();
+        let expected = [
+            ("1", "0.1"),
+            ("1", "0.2"),
+            ("1", "0.3"),
+            ("2", "0.3"),
+            ("2", "0.2"),
+            ("2", "0.1"),
+        ];
+        assert_eq!(values, expected.map(|(a, b)| (a.to_string(), b.to_string())));
+        let chains = contiguous_chains(&order, 4);
+        assert_eq!(chains.iter().map(|c| c.len()).sum::<usize>(), 6);
+        assert!(chains.len() <= 4 && contiguous_chains(&[], 2).is_empty());
+        assert!(may_share("load.tangential.ratio") && may_share("contact.friction"));
+        assert!(!may_share("contact.grid.elements") && !may_share("bodies.A.radius"));
+    }
+}

@@ -1,0 +1,131 @@
+//! Sequences of runs on one assembly (src/sequence.rs) against the same runs solved cold, one
+//! by one, through the public API: the tractions agree to the Newton tolerance, the shared
+//! flexibilities are bit for bit the per-run ones, and the warm starts take fewer Newton
+//! iterations than the cold ones.
+
+use rollbem::post::Solved;
+use rollbem::scene::Scene;
+use rollbem::sequence::{SequenceError, Shared, Start};
+
+/// The scene of a shipped case with overrides.
+fn scene(name: &str, set: &[String]) -> Scene {
+    let case = rollbem::case::load(&crate::common::case_path(name), set).expect("loads");
+    Scene::from_case(&case).expect("scene")
+}
+
+/// Largest difference of the tractions of two solutions over the peak pressure [-].
+fn traction_difference(a: &Solved, b: &Solved) -> f64 {
+    let p0 = a.solution.pressure.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+    let d = |x: &[f64], y: &[f64]| x.iter().zip(y).fold(0.0f64, |m, (u, v)| m.max((u - v).abs()));
+    d(&a.solution.pressure, &b.solution.pressure).max(d(&a.solution.shear, &b.solution.shear)) / p0
+}
+
+/// The runs of `key` = `values` on case `name` (with `set`), solved in one chain on the
+/// assembly of the first and cold one by one: each pair's tractions agree within `tolerance`
+/// of the peak pressure and their flexibilities are identical; returns the Newton iterations
+/// (warm-chain total, cold total).
+fn compare(name: &str, set: &[&str], key: &str, values: &[&str], tolerance: f64) -> (usize, usize) {
+    let with = |v: &str| {
+        let mut s: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+        s.push(format!("{key}={v}"));
+        s
+    };
+    let shared = Shared::new(&scene(name, &with(values[0]))).expect("shared assembly");
+    let mut chain = shared.chain();
+    let (mut warm_iterations, mut cold_iterations) = (0, 0);
+    for (k, v) in values.iter().enumerate() {
+        let run = scene(name, &with(v));
+        assert!(shared.shares(&run), "{name} {key}={v} shares the assembly");
+        let (warm, start) = chain.solve(run).expect("warm run");
+        assert_eq!(start, if k == 0 { Start::Cold } else { Start::Warm });
+        let cold = rollbem::app::solve_case(crate::common::case_path(name).as_path(), &with(v)).expect("cold run");
+        assert!(warm.report.converged && cold.report.converged, "{name} {key}={v}");
+        let diff = traction_difference(&cold, &warm);
+        assert!(diff <= tolerance, "{name} {key}={v}: tractions differ by {diff:e} p0");
+        let (fw, fc) = (&warm.problem.flex, &cold.problem.flex);
+        assert!(
+            fw.hp == fc.hp && fw.hq == fc.hq && fw.wp == fc.wp && fw.wq == fc.wq && warm.problem.bp == cold.problem.bp,
+            "{name} {key}={v}: the shared assembly is not the per-run one"
+        );
+        assert_eq!(warm.problem.h0, cold.problem.h0);
+        eprintln!(
+            "{name} {key}={v}: {} iterations warm, {} cold, tractions within {diff:.1e} p0",
+            warm.report.iterations, cold.report.iterations
+        );
+        if k > 0 {
+            warm_iterations += warm.report.iterations;
+            cold_iterations += cold.report.iterations;
+        }
+    }
+    (warm_iterations, cold_iterations)
+}
+
+/// Tractions of warm-started runs against cold ones: the Newton tolerance 1e-10 on the scaled
+/// residual bounds both runs' tractions to about 1e-10 p0 of the exact discrete solution;
+/// 1e-8 p0 leaves room for the conditioning of the Newton system.
+const TOLERANCE: f64 = 1e-8;
+
+#[test]
+fn a_ratio_sweep_on_one_assembly_equals_the_cold_runs_in_fewer_iterations() {
+    let values = ["0.0", "0.2", "0.4", "0.6", "0.64", "0.8", "0.95"];
+    let (warm, cold) = compare("carter2d_contact", &[], "load.tangential.ratio", &values, TOLERANCE);
+    assert!(warm < cold, "warm {warm} against cold {cold} iterations");
+}
+
+#[test]
+fn friction_creepage_and_dissimilar_sweeps_equal_the_cold_runs() {
+    let (warm, cold) = compare(
+        "dissimilar_al_steel_075",
+        &[],
+        "contact.friction",
+        &["0.1", "0.15", "0.2", "0.3"],
+        TOLERANCE,
+    );
+    assert!(warm < cold, "friction: warm {warm} against cold {cold} iterations");
+    let creep = ["-0.0002", "-0.00015", "-0.0001", "-0.00005"];
+    let (warm, cold) = compare(
+        "carter_051",
+        &["load.tangential.ratio=null"],
+        "load.tangential.creep",
+        &creep,
+        TOLERANCE,
+    );
+    assert!(warm < cold, "creepage: warm {warm} against cold {cold} iterations");
+}
+
+#[test]
+fn bem_bodies_share_their_condensation() {
+    let (warm, cold) = compare(
+        "carter_051_true",
+        &["contact.grid.elements=16"],
+        "load.tangential.ratio",
+        &["0.4", "0.51", "0.6"],
+        TOLERANCE,
+    );
+    assert!(warm < cold, "warm {warm} against cold {cold} iterations");
+}
+
+#[test]
+fn grids_geometry_and_error_control_do_not_share() {
+    let base = scene("carter2d_contact", &[]);
+    let shared = Shared::new(&base).expect("shared");
+    let other = |set: &str| shared.shares(&scene("carter2d_contact", &[set.to_string()]));
+    assert!(other("load.tangential.ratio=0.3") && other("contact.friction=0.5") && other("solver.tolerance=1e-9"));
+    // A normal load sizes the grid around its Hertz contact: another grid, another assembly.
+    assert!(!other("load.normal.force=100.0"));
+    assert!(!other("contact.grid.elements=40") && !other("bodies.A.radius=900.0"));
+    assert!(!other("materials.steel.G=80000.0"));
+    // With the grid's half-length fixed, the normal load shares.
+    let fixed = |p: &str| {
+        let set = [
+            "contact.grid.half_length=1.5".to_string(),
+            format!("load.normal.force={p}"),
+        ];
+        scene("carter2d_contact", &set)
+    };
+    assert!(Shared::new(&fixed("178.896248"))
+        .expect("shared")
+        .shares(&fixed("120.0")));
+    let adaptive = scene("carter2d_contact", &["contact.grid.tolerance=1e-3".to_string()]);
+    assert!(matches!(Shared::new(&adaptive), Err(SequenceError::AdaptiveGrid)));
+}
