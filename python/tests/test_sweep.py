@@ -49,11 +49,15 @@ def test_rows_are_the_cli_sweep_csv(tmp_path):
     rows = rollbem.sweep("cases/dissimilar_beta0288_075.yaml", vary=vary, jobs=1)
     assert len(rows) == len(expected) == 6
     timing = {"assembly_s", "condense_s", "solve_s", "total_s"}
+    # The CLI's sweep solves each run warm from its neighbour on one shared assembly, this one
+    # each run cold: the same solution to the Newton tolerance (1e-12 of the residual's scale),
+    # reached in other iterations with other round-off.
+    path = {"iterations", "residual"}
     for row, want in zip(rows, expected):
         assert list(row) == [k for k in want if k != "folder"]
         assert (row["run"], row["status"], row["message"]) == (int(want["run"]), want["status"], want["message"])
         for key, value in row.items():
-            if key in timing or key in ("run", "status", "message"):
+            if key in timing or key in path or key in ("run", "status", "message"):
                 continue
             text = want[key]
             if value is None:
@@ -63,7 +67,7 @@ def test_rows_are_the_cli_sweep_csv(tmp_path):
             elif isinstance(value, int):
                 assert int(text) == value, key
             else:
-                assert float(text) == value, key  # bit for bit
+                assert math.isclose(float(text), value, rel_tol=1e-9, abs_tol=1e-15), (key, text, value)
     # Q/(mu P) = 1.5 cannot be carried: a failed row with the CLI's message, the others ran.
     failed = [r for r in rows if r["status"] == "failed"]
     assert [r["load.tangential.ratio"] for r in failed] == [1.5, 1.5]
