@@ -5,12 +5,14 @@
 
 pub mod schema;
 pub mod strength;
+pub mod transient;
 pub mod validate;
 
 use crate::material::{Elastic, StandardLinearSolid};
 pub use schema::*;
 use std::path::{Path, PathBuf};
 pub use strength::{StrengthSpec, YieldSpec};
+pub use transient::{Schedule, TransientSpec};
 pub use validate::Violation;
 
 /// Everything that can be wrong with a case before solving.
