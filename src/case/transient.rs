@@ -5,7 +5,6 @@
 //! control cannot change kind between steps); each value is a [`Schedule`]: a constant, a
 //! table of one value a rolling step, or a piecewise-linear function of the rolled distance.
 
-use super::schema::{LoadSpec, NormalSpec, TangentialSpec};
 use serde::{Deserialize, Serialize};
 
 /// `transient:`: how far the contact rolls each step, how many steps, and what is prescribed.
@@ -212,32 +211,6 @@ impl ShiftKeys {
             (None, Some(q), None) => Ok(ShiftPlan::Force(q)),
             (None, None, Some(s)) => Ok(ShiftPlan::Displacement(s)),
             _ => Err("give exactly one of `ratio` (Q/muP), `force` (Q) or `displacement` (the rigid shift)".into()),
-        }
-    }
-}
-
-impl TransientSpec {
-    /// The normal plan: `transient.normal`, else `load.normal` as a constant (validated cases;
-    /// an invalid one falls back to the load's).
-    pub fn normal_plan(&self, load: &LoadSpec) -> NormalPlan {
-        match self.normal.as_ref().and_then(|n| n.plan().ok()) {
-            Some(plan) => plan,
-            None => match load.normal() {
-                NormalSpec::Force(p) => NormalPlan::Force(Schedule::Constant(p)),
-                NormalSpec::Overlap(d) => NormalPlan::Overlap(Schedule::Constant(d)),
-            },
-        }
-    }
-
-    /// The tangential plan: `transient.tangential`, else `load.tangential` as a constant.
-    pub fn tangential_plan(&self, load: &LoadSpec) -> TangentialPlan {
-        match self.tangential.as_ref().and_then(|t| t.plan().ok()) {
-            Some(plan) => plan,
-            None => match load.tangential() {
-                TangentialSpec::Ratio(r) => TangentialPlan::Ratio(Schedule::Constant(r)),
-                TangentialSpec::Force(q) => TangentialPlan::Force(Schedule::Constant(q)),
-                TangentialSpec::Creep(x) => TangentialPlan::Creep(Schedule::Constant(x)),
-            },
         }
     }
 }

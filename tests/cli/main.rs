@@ -14,6 +14,7 @@ mod stability;
 mod stall;
 mod study;
 mod sweep;
+mod transient;
 mod units;
 mod validity;
 mod verbosity;

@@ -5,6 +5,9 @@ use super::{magnitude, positive_quantity, shown};
 use crate::case::schema::*;
 use crate::case::transient::{NormalPlan, Schedule, ShiftPlan, TangentialPlan, TransientSpec};
 
+/// Why a value of a control is out of range, from the value and μ.
+type ValueRule = fn(f64, f64) -> Option<String>;
+
 /// Largest number of steps of a history: every step's tractions are kept for the outputs.
 pub const MAX_STEPS: usize = 100_000;
 
@@ -70,7 +73,7 @@ fn schedule_problems(case: &Case, t: &TransientSpec) -> Vec<(String, String)> {
     if !out.is_empty() {
         return out;
     }
-    let (key, schedule) = match t.normal_plan(&case.load) {
+    let (key, schedule) = match crate::case::normal_plan(t, &case.load) {
         NormalPlan::Force(s) => ("transient.normal.force", s),
         NormalPlan::Overlap(s) => ("transient.normal.overlap", s),
     };
@@ -83,7 +86,7 @@ fn schedule_problems(case: &Case, t: &TransientSpec) -> Vec<(String, String)> {
             case.contact.friction,
         ));
     }
-    let (key, schedule, rule): (&str, Schedule, fn(f64, f64) -> Option<String>) = match t.tangential_plan(&case.load) {
+    let (key, schedule, rule): (&str, Schedule, ValueRule) = match crate::case::tangential_plan(t, &case.load) {
         TangentialPlan::Ratio(s) => ("transient.tangential.ratio", s, ratio_problem),
         TangentialPlan::Force(s) => ("transient.tangential.force", s, |v, _| magnitude(v)),
         TangentialPlan::Creep(s) => ("transient.tangential.creep", s, creep_problem),
@@ -120,13 +123,7 @@ fn creep_problem(x: f64, _: f64) -> Option<String> {
 
 /// The problems of one schedule under `key`: its shape (a table of `steps` values, points whose
 /// distances increase) and each value by `rule` (value, μ).
-fn value_problems(
-    key: &str,
-    schedule: &Schedule,
-    steps: usize,
-    rule: fn(f64, f64) -> Option<String>,
-    mu: f64,
-) -> Vec<(String, String)> {
+fn value_problems(key: &str, schedule: &Schedule, steps: usize, rule: ValueRule, mu: f64) -> Vec<(String, String)> {
     let mut out = Vec::new();
     match schedule {
         Schedule::Table(v) if v.len() != steps => out.push((
