@@ -111,12 +111,13 @@ fn check_step_length(case: &LoadedCase, plan: &Plan, scene: &Scene) -> Result<()
 }
 
 /// An error of the history as the run's error: the scene's own, else a message naming the case.
-fn history_error(case: &LoadedCase, e: TransientError) -> Error {
+/// `what` names the step, if one.
+fn history_error(case: &LoadedCase, what: &str, e: TransientError) -> Error {
     match e {
         TransientError::Scene(e) => e,
         other => Error::StepNotConverged {
             case: case.path.clone(),
-            message: other.to_string(),
+            message: format!("{what}{other}"),
         },
     }
 }
@@ -146,7 +147,9 @@ fn solve_history(case: &LoadedCase, history: &mut History, plan: &Plan) -> Resul
     let mut iterations = 0;
     let mut last = None;
     for step in plan.step_zero() {
-        let s = history.advance(step).map_err(|e| history_error(case, e))?;
+        let s = history
+            .advance(step)
+            .map_err(|e| history_error(case, "step 0 (the press and shift, without rolling): ", e))?;
         iterations += s.iterations;
         last = Some(s);
     }
@@ -192,7 +195,7 @@ pub(super) fn run(
     let scene = Scene::from_case(case)?;
     let plan = Plan::of(spec, &scene);
     check_step_length(case, &plan, &scene)?;
-    let mut history = History::new(&scene).map_err(|e| history_error(case, e))?;
+    let mut history = History::new(&scene).map_err(|e| history_error(case, "", e))?;
     let assembled = start.elapsed().as_secs_f64();
     let Solved { records, stopped } = solve_history(case, &mut history, &plan)?;
     let last = records.last().expect("step 0 stands");

@@ -105,3 +105,26 @@ fn cattaneo_to_carter_runs_from_the_case_file() {
     let step = std::fs::read_to_string(out.join("steps/step_0400.csv")).unwrap();
     assert!(contact == step, "contact.csv is the last step's");
 }
+
+/// A step that does not converge stops the history with exit code 2 naming it; when it is step
+/// 0 nothing stands, and nothing is written.
+#[test]
+fn a_step_that_does_not_converge_stops_the_history() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c2c");
+    let case = case_path("cattaneo_to_carter");
+    let (code, _, stderr) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "solver.max_iterations=3",
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("step 0") && stderr.contains("did not converge"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+}
