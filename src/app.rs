@@ -11,6 +11,8 @@ use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+mod transient;
+
 /// Where a case comes from: a file, or text in memory that stands for a file.
 #[derive(Debug, Clone, Copy)]
 pub enum CaseSource<'a> {
@@ -157,6 +159,9 @@ pub fn run_with(case_path: &Path, overrides: &[String], out: Option<&Path>, forc
         output::folder::Access::Exclusive,
         write_options(&case, force),
     )?;
+    if let Some(spec) = &case.case.transient {
+        return transient::run(&case, spec, &output_dir, start);
+    }
     let s = solve_scene_best(Scene::from_case(&case)?, start)?;
     let missed = tolerance_not_reached(&s);
     let mut summary = output::summary(&s);

@@ -5,12 +5,14 @@
 
 pub mod schema;
 pub mod strength;
+pub mod transient;
 pub mod validate;
 
 use crate::material::{Elastic, StandardLinearSolid};
 pub use schema::*;
 use std::path::{Path, PathBuf};
 pub use strength::{StrengthSpec, YieldSpec};
+pub use transient::{Schedule, TransientSpec};
 pub use validate::Violation;
 
 /// Everything that can be wrong with a case before solving.
@@ -133,6 +135,30 @@ pub fn viscoelastic_of(spec: &MaterialSpec) -> Option<StandardLinearSolid> {
         rubbery_young,
         creep_time: v.creep_time,
     })
+}
+
+/// The normal plan: `transient.normal`, else `load.normal` as a constant (validated cases;
+/// an invalid one falls back to the load's).
+pub fn normal_plan(spec: &TransientSpec, load: &LoadSpec) -> transient::NormalPlan {
+    match spec.normal.as_ref().and_then(|n| n.plan().ok()) {
+        Some(plan) => plan,
+        None => match load.normal() {
+            NormalSpec::Force(p) => transient::NormalPlan::Force(transient::Schedule::Constant(p)),
+            NormalSpec::Overlap(d) => transient::NormalPlan::Overlap(transient::Schedule::Constant(d)),
+        },
+    }
+}
+
+/// The tangential plan: `transient.tangential`, else `load.tangential` as a constant.
+pub fn tangential_plan(spec: &TransientSpec, load: &LoadSpec) -> transient::TangentialPlan {
+    match spec.tangential.as_ref().and_then(|t| t.plan().ok()) {
+        Some(plan) => plan,
+        None => match load.tangential() {
+            TangentialSpec::Ratio(r) => transient::TangentialPlan::Ratio(transient::Schedule::Constant(r)),
+            TangentialSpec::Force(q) => transient::TangentialPlan::Force(transient::Schedule::Constant(q)),
+            TangentialSpec::Creep(x) => transient::TangentialPlan::Creep(transient::Schedule::Constant(x)),
+        },
+    }
 }
 
 /// The elastic constants of a material spec (validated: exactly one of E and G).

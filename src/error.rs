@@ -148,6 +148,15 @@ pub enum Error {
         /// What is wrong and what to do.
         message: String,
     },
+    /// A step of a transient history did not converge (or could not be taken); the steps
+    /// before it stand.
+    #[error("{case}: {message}")]
+    StepNotConverged {
+        /// Case file.
+        case: PathBuf,
+        /// The step and why.
+        message: String,
+    },
     /// A sweep argument or a merge input is wrong.
     #[error("sweep: {message}")]
     Sweep {
@@ -191,9 +200,10 @@ impl Error {
     /// A solution that broke down (NaN) gives 2, as non-convergence does.
     pub fn exit_code(&self) -> i32 {
         match self {
-            Error::NotFinite { .. } | Error::ToleranceNotReached { .. } | Error::BodyMeshTooCoarse { .. } => {
-                EXIT_NOT_CONVERGED
-            }
+            Error::NotFinite { .. }
+            | Error::ToleranceNotReached { .. }
+            | Error::BodyMeshTooCoarse { .. }
+            | Error::StepNotConverged { .. } => EXIT_NOT_CONVERGED,
             _ => EXIT_BAD_INPUT,
         }
     }

@@ -232,12 +232,48 @@ fn run_case(
     }
     println!("rollbem run {}", case.display());
     print!("{}", rollbem::output::render_table(&report.summary, &report.output_dir));
+    if let Some(t) = &report.summary.transient {
+        print_transient(t, &report.summary);
+        if let Some(why) = &t.stopped {
+            eprintln!("error: the history stopped at {why}; the steps before it are written");
+            return Ok(EXIT_NOT_CONVERGED);
+        }
+    }
     if report.summary.converged {
         Ok(0)
     } else {
         eprintln!("error: {}", not_converged_message(&report));
         Ok(EXIT_NOT_CONVERGED)
     }
+}
+
+/// The console lines of a transient run: its steps, iterations and last step (the table above
+/// shows the last step's contact).
+fn print_transient(t: &rollbem::output::transient::TransientSummary, s: &rollbem::output::Summary) {
+    let unit = |key: &str| s.units.get(key).map_or("", String::as_str);
+    println!(
+        "transient: {} rolling steps of {:.6} {} (rolled {:.6} {}), {} Newton iterations ({:.2} a rolling step)",
+        t.steps,
+        t.step,
+        unit("transient.step"),
+        t.rolled,
+        unit("transient.rolled"),
+        t.iterations,
+        t.mean_iterations
+    );
+    let settled = match t.settled_distance {
+        Some(d) => format!("within 1e-3 of the last step from {d:.6} {}", unit("transient.rolled")),
+        None => "not settled".into(),
+    };
+    println!(
+        "last step: P {:.6} Q {:.6} {}, creepage {:.6e}; change over the step {:.1e} mu*p_max ({}); {settled}",
+        s.normal_force,
+        s.tangential_force,
+        unit("normal_force"),
+        s.creep,
+        t.change,
+        if t.steady { "steady" } else { "not yet steady" }
+    );
 }
 
 /// `rollbem sweep`'s switches: `--resume` and `--per-run-files`.

@@ -12,6 +12,7 @@ mod csv_files;
 pub mod summary;
 pub mod svg;
 mod table;
+pub mod transient;
 pub mod units;
 pub mod vtk;
 
@@ -26,10 +27,23 @@ pub use table::render_table;
 /// Writes all outputs of a run atomically into `dir` and fills in the total time.
 /// A non-converged run writes summary.json only.
 pub fn write_run(dir: &Path, summary: &mut Summary, solved: &crate::post::Solved, start: Instant) -> Result<(), Error> {
-    let (sol, pb, boundary) = (&solved.solution, &solved.problem, &solved.boundary);
-    let interior = solved.interior.as_ref();
     log::info!(target: crate::logging::PROGRESS, "writing the results to {}", dir.display());
     write_atomically(dir, folder::Kind::Run, |tmp| {
+        write_run_files(tmp, summary, solved, start)
+    })
+}
+
+/// Writes the files of a run into the folder `tmp` being filled (summary.json last, with the
+/// total time): [`write_run`]'s, and a transient run's beside its own.
+pub fn write_run_files(
+    tmp: &Path,
+    summary: &mut Summary,
+    solved: &crate::post::Solved,
+    start: Instant,
+) -> Result<(), Error> {
+    let (sol, pb, boundary) = (&solved.solution, &solved.problem, &solved.boundary);
+    let interior = solved.interior.as_ref();
+    {
         if summary.converged {
             write_csv(&tmp.join("contact.csv"), sol, pb)?;
             if let Some(f) = interior {
@@ -94,7 +108,7 @@ pub fn write_run(dir: &Path, summary: &mut Summary, solved: &crate::post::Solved
         };
         let json = serde_json::to_string_pretty(summary).map_err(|e| err(tmp, &e))?;
         std::fs::write(tmp.join("summary.json"), json).map_err(|e| err(tmp, &e))
-    })
+    }
 }
 
 /// The strength picture of one body.

@@ -32,7 +32,7 @@
 //! upstream end (outside the contact on a sensible grid, where it has no traction to act on).
 
 use crate::contact::methods;
-use crate::contact::{ContactProblem, NormalControl, SolverSettings, State, TangentialControl};
+use crate::contact::{ContactProblem, NormalControl, SolveReport, SolverSettings, State, TangentialControl};
 use crate::error::Error;
 
 /// Why a history stops.
@@ -77,7 +77,7 @@ pub enum TransientError {
     },
 }
 use crate::grid::ContactGrid;
-use crate::scene::Scene;
+use crate::scene::{BodyModels, Scene};
 
 /// One step of a history: how far the contact rolls and what is prescribed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -106,6 +106,7 @@ pub struct StepSolution {
 
 /// A history on a scene's grid: its contact problem, assembled once.
 pub struct History {
+    models: BodyModels,
     problem: ContactProblem,
     /// The steady problem's constant slip term k (the rigid slip of the surface speeds).
     rigid_slip: Vec<f64>,
@@ -115,6 +116,8 @@ pub struct History {
     /// The relative tangential displacement w at the end of the last step [length].
     displacement: Vec<f64>,
     state: Option<State>,
+    /// The solver's report of the last step solved.
+    report: Option<SolveReport>,
     rolled: f64,
 }
 
@@ -136,12 +139,14 @@ impl History {
                 });
             }
         }
-        let (_, mut problem) = scene.assemble()?;
+        let (models, mut problem) = scene.assemble()?;
         // Every row carries the rigid shift: the steady problem's datum row (no creepage at
         // the upstream end) has no place in a step, whose w is absolute.
         problem.slip_operator.creep_weight.iter_mut().for_each(|e| *e = 1.0);
         let m = problem.n_nodes();
         Ok(Self {
+            models,
+            report: None,
             rigid_slip: problem.rigid_slip.clone(),
             problem,
             length: None,
@@ -160,6 +165,16 @@ impl History {
     /// The problem of the last step solved (its grid, flexibilities and controls).
     pub fn problem(&self) -> &ContactProblem {
         &self.problem
+    }
+
+    /// The bodies' models, built once for the history.
+    pub fn models(&self) -> &BodyModels {
+        &self.models
+    }
+
+    /// The solver's report of the last step solved (None before the first).
+    pub fn report(&self) -> Option<&SolveReport> {
+        self.report.as_ref()
     }
 
     /// Solves the next step, warm-started from the last (a rolling step; a shift starts cold).
@@ -198,6 +213,7 @@ impl History {
         self.displacement = self.problem.relative_tangential(&state.pressure, &state.shear);
         self.rolled += step.distance;
         self.state = Some(state.clone());
+        self.report = Some(report.clone());
         Ok(StepSolution {
             step,
             rolled: self.rolled,

@@ -260,6 +260,21 @@ fn not_converged_message(summary: &Summary, out: Option<&Path>) -> String {
     )
 }
 
+/// A history (`transient:`) asked of a run without a folder: its steps are files
+/// (transient.csv, steps/), which only a run into a folder writes.
+fn transient_refused(case: &rollbem::case::LoadedCase) -> Error {
+    Error::Case(rollbem::case::CaseError::Invalid {
+        path: case.path.clone(),
+        violations: vec![rollbem::case::Violation {
+            key: "transient".into(),
+            message: "a history's results are its files (transient.csv, steps/): run it into a folder, \
+                      rollbem.run(CASE_FILE, out=FOLDER), or with `rollbem run CASE`; remove the section \
+                      for the steady state"
+                .into(),
+        }],
+    })
+}
+
 /// One run: `app::run` for a case file written to a folder (the CLI's own path), else the same
 /// stages for a case file or text, writing only when `out` is given.
 fn run_case(source: &Source, overrides: &[String], out: Option<&Path>) -> Result<RunData, Error> {
@@ -269,6 +284,9 @@ fn run_case(source: &Source, overrides: &[String], out: Option<&Path>) -> Result
     }
     let start = Instant::now();
     let case = app::load_case(source.case_source(), overrides)?;
+    if case.case.transient.is_some() {
+        return Err(transient_refused(&case));
+    }
     // Lock and check the output folder before solving, as `app::run` does.
     let _claim = match out {
         Some(dir) => Some(folder::Claim::acquire(

@@ -51,6 +51,14 @@ def assert_same_contact_line(columns, result):
 def test_every_shipped_case_gives_the_cli_numbers(case, tmp_path):
     cli("run", case, "--out", tmp_path / "cli")
     expected = read_summary(tmp_path / "cli")
+    if "transient" in expected:
+        # A history's results are its files: without a folder it is refused, with one it is
+        # the CLI's run (its last step's summary).
+        with pytest.raises(rollbem.InputError, match="transient"):
+            rollbem.run(case)
+        result = rollbem.run(case, out=tmp_path / "py")
+        assert differences(expected, result.summary) == []
+        return
     result = rollbem.run(case)
     assert result.output_dir is None
     assert differences(expected, result.summary) == []

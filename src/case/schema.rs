@@ -34,6 +34,9 @@ pub struct Case {
     /// Output settings.
     #[serde(default)]
     pub output: OutputSpec,
+    /// A history of rolling steps instead of the steady state. Default = none (steady).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transient: Option<super::transient::TransientSpec>,
 }
 
 /// Unit labels.

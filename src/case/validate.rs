@@ -7,6 +7,7 @@ use viscoelastic::{rolling_speed_problems, viscoelastic_problems};
 
 mod geometry;
 mod strength;
+mod transient;
 mod viscoelastic;
 
 /// Magnitudes that a dimensional input (a length, force per length or stress) may take, in any
@@ -117,7 +118,10 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     load_problems(case, &mut found);
     solver_problems(case, &mut found);
     interior_problems(case, &mut found);
-    for (key, message) in strength::strength_problems(case) {
+    for (key, message) in strength::strength_problems(case)
+        .into_iter()
+        .chain(transient::transient_problems(case))
+    {
         found.bad(key, message);
     }
     found.0

@@ -140,6 +140,10 @@ pub struct Summary {
     /// The unit of every number above, by key path (`.` between keys, `[]` for array items),
     /// from the case's `units` ([`super::units::SUMMARY_KEYS`]).
     pub units: std::collections::BTreeMap<String, String>,
+    /// The history of a transient case (`transient:`; absent for a steady run): the last step
+    /// is the solution above.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub transient: Option<super::transient::TransientSummary>,
     /// The case as resolved after `--set` overrides.
     pub case: serde_json::Value,
 }
@@ -262,6 +266,7 @@ pub fn summary(s: &Solved) -> Summary {
         strength: s.strength.iter().map(|b| b.summary()).collect(),
         vtk: case.case.output.vtk,
         units: super::units::summary_units(&case.case.units),
+        transient: None,
         case: case.resolved.clone(),
     }
 }

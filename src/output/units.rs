@@ -26,6 +26,8 @@ pub enum Dimension {
     Dimensionless,
     /// Wall-clock time [s].
     Seconds,
+    /// A time of the case's rolling (its `units.time`).
+    Time,
     /// A count (iterations, nodes, points).
     Count,
     /// A direction, +1 or −1 (0 where none).
@@ -46,6 +48,7 @@ impl Dimension {
             Dimension::PowerPerLength => u.power_per_length(),
             Dimension::Dimensionless => "-".into(),
             Dimension::Seconds => "s".into(),
+            Dimension::Time => u.time.clone(),
             Dimension::Count => "count".into(),
             Dimension::Sign => "sign".into(),
         }
@@ -162,6 +165,14 @@ pub const SUMMARY_KEYS: &[(&str, Dimension)] = &[
     ("strength[].grid.spacing_x", Length),
     ("strength[].grid.spacing_z", Length),
     ("strength[].grid.half_length", Length),
+    ("transient.steps", Count),
+    ("transient.step", Length),
+    ("transient.rolled", Length),
+    ("transient.shift", Length),
+    ("transient.iterations", Count),
+    ("transient.mean_iterations", Count),
+    ("transient.change", Dimensionless),
+    ("transient.settled_distance", Length),
 ];
 
 /// The `units` block of summary.json: the unit of every number of [`SUMMARY_KEYS`].

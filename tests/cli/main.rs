@@ -15,6 +15,7 @@ mod stability;
 mod stall;
 mod study;
 mod sweep;
+mod transient;
 mod units;
 mod validity;
 mod verbosity;

@@ -36,6 +36,23 @@ fn every_summary_number_and_contact_column_is_documented_with_its_unit() {
 }
 
 #[test]
+fn every_column_of_transient_csv_is_documented_with_its_unit() {
+    let text = page("outputs.md");
+    let units = Units::default();
+    let missing: Vec<String> = rollbem::output::transient::TRANSIENT_CSV_UNITS
+        .iter()
+        .map(|(c, dim)| (c.to_string(), dim.unit(&units)))
+        .filter(|(key, unit)| !has_row(&text, key, unit))
+        .map(|(key, unit)| format!("| `{key}` | {unit} |"))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "docs/outputs.md lacks the rows\n  {}",
+        missing.join("\n  ")
+    );
+}
+
+#[test]
 fn every_column_of_the_other_tables_is_named() {
     let text = page("outputs.md");
     let interior = [

@@ -12,3 +12,4 @@ mod geometry;
 mod keys;
 mod meshes;
 mod properties;
+mod transient;

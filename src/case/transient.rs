@@ -1,0 +1,233 @@
+//! The `transient:` section of a case: a history of rolling steps instead of the steady state
+//! (cases/README.md, "Transient rolling"; docs/transient.md).
+//!
+//! The controls keep the keys of `load.normal` and `load.tangential` (one key each, so a
+//! control cannot change kind between steps); each value is a [`Schedule`]: a constant, a
+//! table of one value a rolling step, or a piecewise-linear function of the rolled distance.
+
+use serde::{Deserialize, Serialize};
+
+/// `transient:`: how far the contact rolls each step, how many steps, and what is prescribed.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TransientSpec {
+    /// Number of rolling steps N ≥ 1 (after step 0, which presses and optionally shifts).
+    pub steps: usize,
+    /// Rolling distance Δ of each step [length]. Default = the contact grid's node spacing
+    /// (with which a history settles on the first-order steady state; docs/transient.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step: Option<f64>,
+    /// The step as a time [time] instead of `step`: Δ = `load.speed` × `time_step`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_step: Option<f64>,
+    /// Step 0's tangential loading without rolling after the bodies are pressed
+    /// (Cattaneo–Mindlin). Default = none (step 0 only presses, Q = 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shift: Option<ShiftKeys>,
+    /// The normal control of each step: `force` or `overlap`, each a [`Schedule`].
+    /// Default = `load.normal` as a constant.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal: Option<NormalSchedule>,
+    /// The tangential control of each rolling step: `ratio`, `force` or `creep`, each a
+    /// [`Schedule`]. Default = `load.tangential` as a constant.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential: Option<TangentialSchedule>,
+}
+
+/// `transient.shift`: exactly one key, the tangential control of a shift without rolling.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShiftKeys {
+    /// Q/(μP) ∈ (−1, 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio: Option<f64>,
+    /// Tangential force per unit length Q [force/length], |Q| < μP.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force: Option<f64>,
+    /// Rigid tangential shift of A relative to B along +x [length].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub displacement: Option<f64>,
+}
+
+/// `transient.normal`: exactly one key.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct NormalSchedule {
+    /// Normal force per unit length P > 0 [force/length].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force: Option<Schedule>,
+    /// Rigid overlap δ0 > 0 [length].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub overlap: Option<Schedule>,
+}
+
+/// `transient.tangential`: exactly one key.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TangentialSchedule {
+    /// Q/(μP) ∈ (−1, 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio: Option<Schedule>,
+    /// Tangential force per unit length Q [force/length].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force: Option<Schedule>,
+    /// Creepage ξ = (V_A − V_B)/V [-]: the rigid shift of a step over its rolling distance.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub creep: Option<Schedule>,
+}
+
+/// The value of a control along the history.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Schedule {
+    /// The same value at every step: `0.6`.
+    Constant(f64),
+    /// One value a rolling step, in order: `[0.2, 0.4, 0.6]` (as many as `steps`).
+    Table(Vec<f64>),
+    /// Piecewise linear in the rolled distance s [length] at the end of a step, constant
+    /// beyond the first and last points: `[[0, 0.2], [5, 0.6]]` (s strictly increasing).
+    Points(Vec<[f64; 2]>),
+}
+
+impl<'de> Deserialize<'de> for Schedule {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Constant(f64),
+            Table(Vec<f64>),
+            Points(Vec<[f64; 2]>),
+        }
+        Raw::deserialize(d)
+            .map(|r| match r {
+                Raw::Constant(v) => Schedule::Constant(v),
+                Raw::Table(v) => Schedule::Table(v),
+                Raw::Points(v) => Schedule::Points(v),
+            })
+            .map_err(|_| {
+                serde::de::Error::custom(
+                    "expected a number (the same at every step), a list of numbers (one a step) or a list of \
+                     [distance, value] pairs (piecewise linear in the rolled distance)",
+                )
+            })
+    }
+}
+
+impl Schedule {
+    /// The value at rolling step `step` (1-based; 0 is the value at the start, s = 0) whose end
+    /// lies at rolled distance `rolled` [length]. A table gives its first value at step 0.
+    pub fn at(&self, step: usize, rolled: f64) -> f64 {
+        match self {
+            Schedule::Constant(v) => *v,
+            Schedule::Table(v) => v[step.saturating_sub(1).min(v.len() - 1)],
+            Schedule::Points(p) => piecewise_linear(p, rolled),
+        }
+    }
+
+    /// Every value the schedule takes (to check their range).
+    pub fn values(&self) -> Vec<f64> {
+        match self {
+            Schedule::Constant(v) => vec![*v],
+            Schedule::Table(v) => v.clone(),
+            Schedule::Points(p) => p.iter().map(|q| q[1]).collect(),
+        }
+    }
+}
+
+/// The piecewise-linear function through `points` ([s, value], s increasing) at `s`, constant
+/// beyond the ends.
+fn piecewise_linear(points: &[[f64; 2]], s: f64) -> f64 {
+    let (first, last) = (points[0], points[points.len() - 1]);
+    if s <= first[0] {
+        return first[1];
+    }
+    if s >= last[0] {
+        return last[1];
+    }
+    let k = points.windows(2).position(|w| s <= w[1][0]).unwrap_or(0);
+    let ([s0, v0], [s1, v1]) = (points[k], points[k + 1]);
+    v0 + (v1 - v0) * (s - s0) / (s1 - s0)
+}
+
+/// The normal control as a schedule: which key, and its values.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NormalPlan {
+    /// P [force/length].
+    Force(Schedule),
+    /// δ0 [length].
+    Overlap(Schedule),
+}
+
+/// The tangential control as a schedule.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TangentialPlan {
+    /// Q/(μP).
+    Ratio(Schedule),
+    /// Q [force/length].
+    Force(Schedule),
+    /// ξ [-].
+    Creep(Schedule),
+}
+
+impl NormalSchedule {
+    /// The plan, or a message if not exactly one key is given.
+    pub fn plan(&self) -> Result<NormalPlan, String> {
+        match (&self.force, &self.overlap) {
+            (Some(p), None) => Ok(NormalPlan::Force(p.clone())),
+            (None, Some(d)) => Ok(NormalPlan::Overlap(d.clone())),
+            _ => Err("give exactly one of `force` (P) or `overlap` (delta0)".into()),
+        }
+    }
+}
+
+impl TangentialSchedule {
+    /// The plan, or a message if not exactly one key is given.
+    pub fn plan(&self) -> Result<TangentialPlan, String> {
+        match (&self.ratio, &self.force, &self.creep) {
+            (Some(r), None, None) => Ok(TangentialPlan::Ratio(r.clone())),
+            (None, Some(q), None) => Ok(TangentialPlan::Force(q.clone())),
+            (None, None, Some(x)) => Ok(TangentialPlan::Creep(x.clone())),
+            _ => Err("give exactly one of `ratio` (Q/muP), `force` (Q) or `creep` (xi)".into()),
+        }
+    }
+}
+
+/// The shift's control: Q/(μP), Q [force/length] or the rigid shift [length].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ShiftPlan {
+    /// Q/(μP).
+    Ratio(f64),
+    /// Q [force/length].
+    Force(f64),
+    /// The rigid shift [length].
+    Displacement(f64),
+}
+
+impl ShiftKeys {
+    /// The shift's control, or a message if not exactly one key is given.
+    pub fn plan(&self) -> Result<ShiftPlan, String> {
+        match (self.ratio, self.force, self.displacement) {
+            (Some(r), None, None) => Ok(ShiftPlan::Ratio(r)),
+            (None, Some(q), None) => Ok(ShiftPlan::Force(q)),
+            (None, None, Some(s)) => Ok(ShiftPlan::Displacement(s)),
+            _ => Err("give exactly one of `ratio` (Q/muP), `force` (Q) or `displacement` (the rigid shift)".into()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn schedules_give_their_value_at_each_step() {
+        assert_eq!(Schedule::Constant(0.6).at(7, 3.0), 0.6);
+        let table = Schedule::Table(vec![0.1, 0.2, 0.3]);
+        assert_eq!([0, 1, 3, 9].map(|k| table.at(k, 0.0)), [0.1, 0.1, 0.3, 0.3]);
+        let points = Schedule::Points(vec![[0.0, 0.0], [2.0, 1.0], [4.0, 1.0]]);
+        assert_eq!(
+            [-1.0, 0.5, 2.0, 3.0, 9.0].map(|s| points.at(1, s)),
+            [0.0, 0.25, 1.0, 1.0, 1.0]
+        );
+    }
+}

@@ -1,0 +1,130 @@
+//! `rollbem run` of a transient case: cases/cattaneo_to_carter.yaml (Carter's steel pair, a =
+//! 1 mm, μ 0.3, pressed, shifted to Q/μP = 0.6, then rolled 400 steps of one node spacing on 41
+//! elements) against the two closed forms, and the files the run writes.
+
+use crate::common::{case_path, rollbem};
+
+/// Q/(μP) of the case.
+const RATIO: f64 = 0.6;
+
+/// transient.csv as rows of named cells.
+fn read_rows(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut lines = text.lines();
+    let header: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();
+    let rows = lines.map(|l| l.split(',').map(str::to_string).collect()).collect();
+    (header, rows)
+}
+
+/// Step 0 has Cattaneo–Mindlin's stick zone |x| < c = a√(1 − Q/μP) (Johnson, Contact
+/// Mechanics, 1985, §7.1); the last step Carter's, of width 2a√(1 − Q/μP) at the leading edge
+/// x = +a. The zone ends are the nodes' midpoints (as in summary.json), so they resolve a stick
+/// zone to half a node spacing h/2 = 0.0108a on this grid; measured: step 0 ±0.6344a against
+/// ±0.6325a (1.9e-3a), the last step [−0.2688a, 0.9990a] against [−0.2649a, a] (3.9e-3a). The
+/// tolerance is h/2. The history settles (tractions within 1e-3 μp_max of the last step's) after
+/// 4.1a, and rolls at 1.07 Newton iterations a step.
+#[test]
+fn cattaneo_to_carter_runs_from_the_case_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c2c");
+    let case = case_path("cattaneo_to_carter");
+    let (code, stdout, stderr) = rollbem(&["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("transient: 400 rolling steps"), "{stdout}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let t = &summary["transient"];
+    let a = summary["estimates"]["hertz_half_width"].as_f64().unwrap();
+    let h = summary["grid"]["spacing"].as_f64().unwrap();
+    assert_eq!(t["steps"], 400);
+    assert!(
+        (t["step"].as_f64().unwrap() - h).abs() < 1e-12,
+        "the default step: a node spacing"
+    );
+    assert_eq!(t["steady"], true, "{t}");
+    let settled = t["settled_distance"].as_f64().unwrap() / a;
+    assert!((2.0..6.0).contains(&settled), "settled after {settled} a");
+    assert!(t["mean_iterations"].as_f64().unwrap() < 3.0, "{t}");
+
+    let text = std::fs::read_to_string(out.join("transient.csv")).unwrap();
+    assert!(!text.contains("NaN") && !text.contains("inf"));
+    let (header, rows) = read_rows(&text);
+    assert_eq!(rows.len(), 401);
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|c| c == name)
+            .unwrap_or_else(|| panic!("{name}"))
+    };
+    let value = |row: &[String], name: &str| row[col(name)].parse::<f64>().unwrap();
+    for row in &rows {
+        assert!((value(row, "load_ratio") - RATIO).abs() < 1e-9, "{row:?}");
+    }
+    let (first, last) = (&rows[0], &rows[400]);
+    assert!(
+        first[col("creep")].is_empty() && value(first, "shift") > 0.0,
+        "step 0 is a shift"
+    );
+    assert!(last[col("shift")].is_empty() && value(last, "creep") > 0.0);
+    assert!((value(last, "rolled") - 400.0 * h).abs() < 1e-9);
+
+    let c = a * (1.0 - RATIO).sqrt();
+    let stick = |row: &[String]| [value(row, "stick_x_min"), value(row, "stick_x_max")];
+    let [x0, x1] = stick(first);
+    eprintln!(
+        "step 0: stick [{x0:.4}, {x1:.4}] against ±{c:.4} (h/2 = {:.4})",
+        h / 2.0
+    );
+    assert!((x0 + c).abs() < h / 2.0 && (x1 - c).abs() < h / 2.0);
+    let [x0, x1] = stick(last);
+    let carter = [a - 2.0 * c, a];
+    eprintln!(
+        "last step: stick [{x0:.4}, {x1:.4}] against [{:.4}, {:.4}]",
+        carter[0], carter[1]
+    );
+    assert!((x0 - carter[0]).abs() < h / 2.0 && (x1 - carter[1]).abs() < h / 2.0);
+
+    // Every step's contact.csv and VTU, the series over them, and the last step's usual files.
+    for k in [0, 400] {
+        assert!(out.join(format!("steps/step_{k:04}.csv")).is_file());
+        assert!(out.join(format!("steps/step_{k:04}.vtu")).is_file());
+    }
+    let pvd = std::fs::read_to_string(out.join("transient.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 401);
+    for file in [
+        "contact.csv",
+        "contact.svg",
+        "contact.vtu",
+        "result.pvd",
+        ".rollbem-manifest",
+    ] {
+        assert!(out.join(file).is_file(), "{file}");
+    }
+    let manifest = std::fs::read_to_string(out.join(".rollbem-manifest")).unwrap();
+    assert!(manifest.contains("steps/step_0400.csv") && manifest.contains("transient.csv"));
+    let contact = std::fs::read_to_string(out.join("contact.csv")).unwrap();
+    let step = std::fs::read_to_string(out.join("steps/step_0400.csv")).unwrap();
+    assert!(contact == step, "contact.csv is the last step's");
+}
+
+/// A step that does not converge stops the history with exit code 2 naming it; when it is step
+/// 0 nothing stands, and nothing is written.
+#[test]
+fn a_step_that_does_not_converge_stops_the_history() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c2c");
+    let case = case_path("cattaneo_to_carter");
+    let (code, _, stderr) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "solver.max_iterations=3",
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("step 0") && stderr.contains("did not converge"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+}
