@@ -206,17 +206,7 @@ pub fn solve_warm(
     warm: State,
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
-    let own = (settings.formulation, settings.penalty_scale);
-    let (out, used) = coupled_attempt(pb, own, warm, FirstStep::Searched, settings, measure, ws);
-    if out.converged || out.at_roundoff {
-        return newton::report(settings, out, used, measure, Vec::new());
-    }
-    let (state, mut report) = solve(pb, settings, measure, ws);
-    report.iterations += out.history.len();
-    report.inner_iterations += out.history.len();
-    report.history = [out.history, report.history].concat();
-    report.fallbacks.insert(0, "cold start after the warm start".into());
-    (state, report)
+    warm_then_cold(pb, settings, settings, measure, warm, FirstStep::Searched, ws)
 }
 
 /// The line-search Newton from `warm`, the solution of a neighbouring problem on the same grid
@@ -238,13 +228,27 @@ pub fn solve_neighbour(
     budget: usize,
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
-    let own = (settings.formulation, settings.penalty_scale);
-    let first = FirstStep::Full;
     let limited = NewtonSettings {
         max_iterations: budget.min(settings.max_iterations),
         ..*settings
     };
-    let (out, used) = coupled_attempt(pb, own, warm, first, &limited, measure, ws);
+    warm_then_cold(pb, settings, &limited, measure, warm, FirstStep::Full, ws)
+}
+
+/// One warm attempt from `warm` under `attempt`'s settings (its first step `first`); when it
+/// does not converge, the cold start and restarts of [`solve`] under `settings`, the warm
+/// attempt's steps kept in the history.
+fn warm_then_cold(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    attempt: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+    warm: State,
+    first: FirstStep,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let own = (settings.formulation, settings.penalty_scale);
+    let (out, used) = coupled_attempt(pb, own, warm, first, attempt, measure, ws);
     if out.converged || out.at_roundoff {
         return newton::report(settings, out, used, measure, Vec::new());
     }
