@@ -1,6 +1,7 @@
 //! Prints the measured tables of docs/viscoelastic.md (the `docs` test compares them with the
 //! page): CONTACT's `visc_cylindr`, Hunter's rigid cylinder on a standard linear solid against
-//! the exact solution of tools/viscoelastic_reference.py, and the convergence of one case.
+//! the exact solution of tools/viscoelastic_reference.py, the convergence of one case, and the
+//! covered rollers' dissipated power against their dissipation in Fourier space.
 //!
 //! Run: `cargo run --release --example viscoelastic_report` (about half a minute).
 
@@ -220,8 +221,102 @@ pub fn convergence() -> Table {
     t
 }
 
+/// The power a viscoelastic cover dissipates under the steady pressure p of a solved run,
+/// from its Fourier transform P̂(k) = ∫ p e^(−ikx) dx and the cover's complex compliance.
+///
+/// The material flows through the contact at V, so a wavenumber k loads it harmonically at
+/// ω = kV. With the unit-modulus layer compliance C₁(k) (tests of src/body/layer/compliance.rs)
+/// and the SLS compliance J*(k) = 1/G_g + (1/G_r − 1/G_g)/(1 − i d kL), L = Vτc (the ageing of
+/// src/body/viscoelastic/aged_kernels.rs in Fourier space), the surface moves by
+/// ŵ = C₁ J* P̂, and the pressure's power on the flowing material, D = −dV ∫ p ∂w/∂x dx, is by
+/// Parseval (only Im J* survives)
+///
+/// ```text
+/// D = V (1/G_r − 1/G_g) (1/π) ∫_0^∞ C₁(k) k²L/(1 + k²L²) |P̂(k)|² dk.
+/// ```
+pub fn layer_fourier_dissipation(s: &Solved, thickness: f64, nu: f64, shear: [f64; 2], length: f64, speed: f64) -> f64 {
+    use rollbem::body::layer::compliance::layer_compliance;
+    use rollbem::quadrature::gauss_legendre;
+    let grid = &s.problem.grid;
+    let (gx, gw) = gauss_legendre(8);
+    // Gauss points of the grid's elements and the weighted pressure there.
+    let mut points = Vec::new();
+    for e in 0..grid.n_elements() {
+        let (s1, s2) = (grid.edges[e], grid.edges[e + 1]);
+        for (t, w) in gx.iter().zip(&gw) {
+            let x = 0.5 * (s1 + s2) + 0.5 * (s2 - s1) * t;
+            points.push((x, 0.5 * (s2 - s1) * w * grid.interpolate(&s.solution.pressure, x)));
+        }
+    }
+    let [x0, x1] = s.solution.contact_extent().expect("a converged run is in contact");
+    let a = 0.5 * (x1 - x0);
+    let (h, panels) = (0.05 / a, 8000);
+    let mut integral = 0.0;
+    for panel in 0..panels {
+        let k0 = panel as f64 * h;
+        for (t, w) in gx.iter().zip(&gw) {
+            let k = k0 + 0.5 * h * (1.0 + t);
+            let (re, im) = points.iter().fold((0.0, 0.0), |(re, im), &(x, f)| {
+                let (sin, cos) = (k * x).sin_cos();
+                (re + f * cos, im - f * sin)
+            });
+            let c1 = layer_compliance(k, thickness, 1.0, nu).nn;
+            integral += 0.5 * h * w * c1 * k * k * length / (1.0 + (k * length).powi(2)) * (re * re + im * im);
+        }
+    }
+    speed * (1.0 / shear[1] - 1.0 / shear[0]) * integral / std::f64::consts::PI
+}
+
+/// The shipped covered rollers (cases/covered_roller_v_{slow,peak,fast}.yaml: R 50 mm each,
+/// a ≈ 6 mm, a cover b = 5 mm of E 50 → 10 MPa, ν 0.45, τc 0.01 s), frictionless, on 80 (their
+/// own), 160 and 320 elements: summary.json's dissipated power V ∫ p h0′ dx and the parabolic
+/// P·x_p·V/R*, each over the cover's dissipation D in Fourier space
+/// ([`layer_fourier_dissipation`]), less one.
+pub fn covered_roller_energy() -> Table {
+    let mut t = Table::new(&[
+        "case",
+        "elements",
+        "V [mm/s]",
+        "V∫p h0′ dx / D − 1",
+        "P·x_p·V/R* / D − 1",
+    ]);
+    let (g_glassy, g_rubbery, creep_time) = (50.0 / 2.9, 10.0 / 2.9, 0.01);
+    for case in [
+        "covered_roller_v_slow",
+        "covered_roller_v_peak",
+        "covered_roller_v_fast",
+    ] {
+        for n in [80, 160, 320] {
+            let elements = format!("contact.grid.elements={n}");
+            let s = solve(
+                case,
+                &[
+                    "contact.friction=0",
+                    "load.tangential.ratio=null",
+                    "load.tangential.creep=0",
+                    &elements,
+                ],
+            );
+            let speed = s.scene.case.case.load.speed.expect("the case gives a speed");
+            let r = resistance(&s);
+            let power = r.dissipated_power.expect("the case gives a speed");
+            let parabolic = r.moment * speed / s.scene.estimates.effective_radius;
+            let dissipated = layer_fourier_dissipation(&s, 5.0, 0.45, [g_glassy, g_rubbery], speed * creep_time, speed);
+            t.push(vec![
+                case.to_string(),
+                n.to_string(),
+                format!("{speed}"),
+                format!("{:+.1e}", power / dissipated - 1.0),
+                format!("{:+.1e}", parabolic / dissipated - 1.0),
+            ]);
+        }
+    }
+    t
+}
+
 fn main() {
     println!("{}", contact_comparison().markdown());
     println!("{}", hunter().markdown());
     println!("{}", convergence().markdown());
+    println!("{}", covered_roller_energy().markdown());
 }

@@ -161,6 +161,14 @@ pub trait BodyModel {
     /// abscissa x (≥ 0 for a convex body); the two bodies' profiles add up to the initial gap.
     fn profile(&self, x: f64) -> f64;
 
+    /// Slope dh/dx [-] of [`Self::profile`] at x: by default a central difference over a
+    /// millionth of |x| (the profile is smooth at that scale: a mesh's quadratic, a circle);
+    /// a model with a closed-form profile gives its exact slope.
+    fn profile_slope(&self, x: f64) -> f64 {
+        let step = 1e-6 * x.abs().max(f64::MIN_POSITIVE.sqrt());
+        (self.profile(x + step) - self.profile(x - step)) / (2.0 * step)
+    }
+
     /// Surface-strain operator for the boundary-integral re-check of the slip, if the model
     /// has one.
     fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator>;
@@ -353,6 +361,10 @@ impl BodyModel for WithCircularProfile {
 
     fn profile(&self, x: f64) -> f64 {
         circle_profile(self.radius, x)
+    }
+
+    fn profile_slope(&self, x: f64) -> f64 {
+        circle_profile_slope(self.radius, x)
     }
 
     fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {

@@ -115,13 +115,18 @@ fn estimate_lines(case: &LoadedCase, scene: &Scene, t: &mut String) {
     let (l, f) = (&c.units.length, &c.units.force);
     line("effective radius R", format!("{:.6} {l}", est.effective_radius));
     line("contact modulus E*", format!("{:.6} {f}/{l}^2", est.e_star));
+    // β/μ orders the coupling's effect; without friction the tangential problem is empty and
+    // the ratio says nothing (an infinity printed in full would be 300 digits).
+    let per_friction = match c.contact.friction > 0.0 {
+        true => format!("beta/mu = {:.4}", est.dundurs_beta / c.contact.friction),
+        false => "beta/mu undefined (frictionless)".to_string(),
+    };
     line(
         "Dundurs beta (kappa=2beta)",
         format!(
-            "{:.6} ({:.6}); beta/mu = {:.4}",
+            "{:.6} ({:.6}); {per_friction}",
             est.dundurs_beta,
-            2.0 * est.dundurs_beta,
-            est.dundurs_beta / c.contact.friction.max(f64::MIN_POSITIVE)
+            2.0 * est.dundurs_beta
         ),
     );
     let given = matches!(c.load.normal(), NormalSpec::Force(_));

@@ -86,6 +86,11 @@ pub enum TangentialControl {
     Creep(f64),
 }
 
+/// Gauss points per element at which [`ContactProblem::gap_slope`] is given: the pressure is
+/// quadratic on an element and a circle's slope x/√(R² − x²) cubic to within (x/R)⁴, so four
+/// points integrate p·h0′ to round-off on a grid much shorter than the radii.
+pub const GAP_SLOPE_POINTS: usize = 4;
+
 /// The assembled contact problem: everything the solver needs, and nothing about the bodies.
 #[derive(Debug, Clone)]
 pub struct ContactProblem {
@@ -107,6 +112,10 @@ pub struct ContactProblem {
     pub slip_operator: SlipOperator,
     /// Undeformed gap h0(x_i) from the true profiles [length].
     pub h0: Vec<f64>,
+    /// Slope dh0/dx [-] of the undeformed gap (both bodies' exact profiles) at the points of
+    /// [`ContactGrid::gauss_points`]`(`[`GAP_SLOPE_POINTS`]`)`: what the rolling resistance
+    /// integrates the pressure against (src/post/rolling_resistance.rs).
+    pub gap_slope: Vec<f64>,
     /// Coulomb friction coefficient μ ≥ 0.
     pub friction: f64,
     /// σ = sgn(V), see [`RollingDirection::flow_sign`].
@@ -216,6 +225,11 @@ impl ContactProblem {
             .iter()
             .map(|&x| body_a.profile(x) + body_b.profile(x))
             .collect();
+        let gap_slope = grid
+            .gauss_points(GAP_SLOPE_POINTS)
+            .iter()
+            .map(|&(x, _)| body_a.profile_slope(x) + body_b.profile_slope(x))
+            .collect();
         let flow_sign = rolling.flow_sign();
         let slip_operator = SlipOperator::new(&grid, derivative, flow_sign);
         let bp = slip_operator.apply_scaled(&flex.wp, flow_sign);
@@ -234,6 +248,7 @@ impl ContactProblem {
             bq,
             slip_operator,
             h0,
+            gap_slope,
             friction,
             flow_sign,
             normal,
@@ -262,6 +277,7 @@ impl ContactProblem {
             bq,
             slip_operator: self.slip_operator.clone(),
             h0: self.h0.clone(),
+            gap_slope: self.gap_slope.clone(),
             friction: self.friction,
             flow_sign: self.flow_sign,
             normal: self.normal,

@@ -327,6 +327,23 @@ impl ContactGrid {
         self.weights.iter().zip(values).map(|(w, v)| w * v).sum()
     }
 
+    /// The points x [length] and weights [length] of an `n`-point Gauss–Legendre rule on every
+    /// element (straight between its edges), element by element: Σ w f(x) integrates f over
+    /// the grid, exactly for polynomials of degree 2n − 1 on each element.
+    pub fn gauss_points(&self, n: usize) -> Vec<(f64, f64)> {
+        let (gx, gw) = crate::quadrature::gauss_legendre(n);
+        self.edges
+            .windows(2)
+            .flat_map(|e| {
+                let (mid, half) = (0.5 * (e[0] + e[1]), 0.5 * (e[1] - e[0]));
+                gx.iter()
+                    .zip(&gw)
+                    .map(move |(t, w)| (mid + half * t, half * w))
+                    .collect::<Vec<_>>()
+            })
+            .collect()
+    }
+
     /// Value at `x` of the piecewise interpolant of nodal values (zero outside the grid).
     pub fn interpolate(&self, values: &[f64], x: f64) -> f64 {
         self.interpolation_row(x).into_iter().map(|(j, n)| n * values[j]).sum()

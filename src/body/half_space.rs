@@ -30,8 +30,8 @@ pub mod setup;
 use super::flamant::halfplane_interior;
 use super::pair_influence::{joined, shared_or_computed, Family, InfluenceKey, PairInfluence};
 use super::{
-    circle_profile, BodyFields, BodyModel, ContactLoad, Flexibility, InteriorQuery, InteriorResult, Side,
-    StrainOperator,
+    circle_profile, circle_profile_slope, BodyFields, BodyModel, ContactLoad, Flexibility, InteriorQuery,
+    InteriorResult, Side, StrainOperator,
 };
 use crate::grid::{ContactGrid, ElementKind};
 use crate::interior::PlaneStress;
@@ -503,6 +503,10 @@ impl BodyModel for HalfSpace {
 
     fn profile(&self, x: f64) -> f64 {
         circle_profile(self.radius, x)
+    }
+
+    fn profile_slope(&self, x: f64) -> f64 {
+        circle_profile_slope(self.radius, x)
     }
 
     /// ∂w/∂x = −side·2A·p(x) − B·PV∫ q(s)/(x−s) ds, exact for the interpolated tractions.

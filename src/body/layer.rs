@@ -26,7 +26,8 @@ pub mod setup;
 use super::viscoelastic::aged_kernels::Ageing;
 use super::viscoelastic::ViscoelasticHalfSpace;
 use super::{
-    circle_profile, BodyFields, BodyModel, FieldError, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator,
+    circle_profile, circle_profile_slope, BodyFields, BodyModel, FieldError, Flexibility, InteriorQuery,
+    InteriorResult, Side, StrainOperator,
 };
 use crate::grid::ContactGrid;
 use crate::material::StandardLinearSolid;
@@ -111,6 +112,10 @@ impl BodyModel for Layer {
 
     fn profile(&self, x: f64) -> f64 {
         circle_profile(self.radius, x)
+    }
+
+    fn profile_slope(&self, x: f64) -> f64 {
+        circle_profile_slope(self.radius, x)
     }
 
     /// None: the remainder's strain kernel is not assembled (module docs).

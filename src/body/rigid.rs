@@ -3,7 +3,8 @@
 use super::setup::{BodySetup, BuildContext, BuildError, SurfaceAt};
 use super::Body;
 use super::{
-    circle_profile, BodyFields, BodyModel, FieldError, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator,
+    circle_profile, circle_profile_slope, BodyFields, BodyModel, FieldError, Flexibility, InteriorQuery,
+    InteriorResult, Side, StrainOperator,
 };
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
@@ -26,6 +27,10 @@ impl BodyModel for Rigid {
 
     fn profile(&self, x: f64) -> f64 {
         circle_profile(self.radius, x)
+    }
+
+    fn profile_slope(&self, x: f64) -> f64 {
+        circle_profile_slope(self.radius, x)
     }
 
     fn strain_operator(&self, grid: &ContactGrid, _side: Side) -> Option<StrainOperator> {

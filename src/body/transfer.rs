@@ -259,6 +259,10 @@ impl BodyModel for Transferred {
         self.inner.profile(x)
     }
 
+    fn profile_slope(&self, x: f64) -> f64 {
+        self.inner.profile_slope(x)
+    }
+
     fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
         let own = self.inner.strain_operator(&self.own_grid, side)?;
         transfer_strain(&own, &self.own_grid, grid).ok()

@@ -26,7 +26,10 @@ pub mod setup;
 use super::flamant::halfplane_interior;
 use super::half_space::{influence_matrix_of, shared_influence_matrix, Kernel};
 use super::pair_influence::{joined, shared_or_computed, Family, InfluenceKey, PairInfluence};
-use super::{circle_profile, BodyFields, BodyModel, Flexibility, InteriorQuery, InteriorResult, Side, StrainOperator};
+use super::{
+    circle_profile, circle_profile_slope, BodyFields, BodyModel, Flexibility, InteriorQuery, InteriorResult, Side,
+    StrainOperator,
+};
 use crate::grid::ContactGrid;
 use crate::interior::{InteriorSample, InteriorValue};
 use crate::material::StandardLinearSolid;
@@ -139,6 +142,10 @@ impl BodyModel for ViscoelasticHalfSpace {
 
     fn profile(&self, x: f64) -> f64 {
         circle_profile(self.radius, x)
+    }
+
+    fn profile_slope(&self, x: f64) -> f64 {
+        circle_profile_slope(self.radius, x)
     }
 
     /// ∂w/∂x = −side·[2A_g p(x) + (A_r − A_g) ∫ p ∂K^L_sgn/∂x] − [B_g PV∫ q/(x−s) + (B_r − B_g)

@@ -226,7 +226,7 @@ pub fn summary(s: &Solved) -> Summary {
             &sol.pressure,
             sol.contact_extent(),
             scene.leading_edge_sign(),
-            scene.estimates.effective_radius,
+            &pb.gap_slope,
             case.case.load.speed,
         ),
         timings: s.timings,

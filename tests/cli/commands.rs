@@ -191,6 +191,26 @@ fn check_prints_hertz_estimates_and_set_overrides_apply() {
     assert!(stdout.contains("41 discontinuous_quadratic"), "{stdout}");
 }
 
+/// Dissimilar bodies without friction: β/μ has no value, and `check` says so in a few words
+/// (it printed an infinity of about 300 digits).
+#[test]
+fn check_says_beta_over_mu_is_undefined_without_friction() {
+    let case = crate::common::case_path("dissimilar_al_steel_004");
+    let set = ["--set", "contact.friction=0", "--set", "load.tangential={creep: 0}"];
+    let (code, stdout, stderr) = rollbem(&[&["check", case.to_str().unwrap()][..], &set].concat());
+    assert_eq!(code, 0, "{stderr}");
+    let line = stdout
+        .lines()
+        .find(|l| l.contains("Dundurs beta (kappa"))
+        .expect("the Dundurs line");
+    assert!(
+        line.contains("beta/mu undefined (frictionless)") && line.len() < 120,
+        "{line}"
+    );
+    let (_, stdout, _) = rollbem(&["check", case.to_str().unwrap()]);
+    assert!(stdout.contains("beta/mu = "), "{stdout}");
+}
+
 /// A `bem` case: `check` reads both meshes and reports groups, loops, flipped loops and the
 /// overlap of the contact segments; mesh mistakes are input errors naming file and group.
 #[test]

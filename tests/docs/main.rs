@@ -210,6 +210,7 @@ fn viscoelastic_tables() {
         viscoelastic_report::contact_comparison(),
         viscoelastic_report::hunter(),
         viscoelastic_report::convergence(),
+        viscoelastic_report::covered_roller_energy(),
     ] {
         let printed = Printed {
             header: &t.header,

@@ -74,6 +74,10 @@ impl BodyModel for Kept {
         self.0.profile(x)
     }
 
+    fn profile_slope(&self, x: f64) -> f64 {
+        self.0.profile_slope(x)
+    }
+
     fn strain_operator(&self, grid: &ContactGrid, side: Side) -> Option<StrainOperator> {
         self.0.strain_operator(grid, side)
     }
