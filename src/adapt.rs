@@ -53,15 +53,13 @@ pub mod body_mesh;
 pub mod cells;
 mod corrections;
 pub mod estimate;
+pub mod fixed;
 pub mod overlap;
+mod scales;
 mod stand_ins;
 
-use crate::analytic::{hertz_half_width, hertz_peak_pressure};
 use crate::contact::residual::State;
-use crate::contact::{
-    methods, BodyBLoad, BodyBShare, ContactProblem, NormalControl, SolveReport, SolverSettings, TangentialControl,
-    Workspace,
-};
+use crate::contact::{methods, BodyBLoad, BodyBShare, ContactProblem, SolveReport, SolverSettings, Workspace};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::post::adaptation::{AdaptationStep, GridAdaptation};
@@ -69,6 +67,7 @@ use crate::post::{ContactSolution, NodeState, Timings};
 use crate::scene::{BodyModels, Scene};
 use cells::{Action, DyadicGrid};
 use estimate::{Comparison, ErrorEstimator, Pass, Scales};
+use scales::HertzScales;
 use std::time::Instant;
 
 /// Fraction of the tolerance that the refinement aims at, so that the next pass usually meets
@@ -327,14 +326,8 @@ fn refine(
         if !g.report.converged {
             return Ok(Refined::Ended(g, true));
         }
-        let hertz = *hertz.get_or_insert_with(|| HertzScales::of_run(scene, &g));
-        let scales = Scales {
-            peak_pressure: hertz.peak_pressure,
-            friction: scene.friction(),
-            creep_prescribed: matches!(scene.tangential, TangentialControl::Creep(_)),
-            creep_floor: estimate::CREEP_FLOOR * scene.friction() * hertz.half_width
-                / scene.estimates.effective_radius.abs(),
-        };
+        let hertz = *hertz.get_or_insert_with(|| HertzScales::of_run(scene, &g.problem, &g.state));
+        let scales = hertz.scales(scene);
         let mut h = solve_on(
             pass_scene.on_grid(coarse.bisected().grid()),
             Some((&g.problem.grid, &g.state)),
@@ -422,44 +415,6 @@ fn body_mesh_check_grid(start: &DyadicGrid, tolerance: f64) -> ContactGrid {
 /// `output.strength`), which only the bodies themselves give.
 fn asks_interior_fields(scene: &Scene) -> bool {
     scene.case.case.output.interior.is_some() || scene.case.case.output.strength.is_some()
-}
-
-/// The Hertz contact that sets the units of the error estimate (p0) and the a-priori element
-/// lengths at the square-root points (a).
-#[derive(Debug, Clone, Copy)]
-struct HertzScales {
-    /// Hertz peak pressure p0 [stress].
-    peak_pressure: f64,
-    /// Hertz half-width a [length].
-    half_width: f64,
-}
-
-impl HertzScales {
-    /// The case's estimates under force control. Under overlap control, Hertz's contact for the
-    /// normal force of the first grid's solution: the force the case's estimates derive from the
-    /// overlap (half-plane datums, only to size the grid) can be far off, by orders of magnitude
-    /// for a thin layer, and would give the estimate meaningless units. (An overlap that leaves
-    /// the bodies apart, P = 0, keeps the case's estimates.)
-    fn of_run(scene: &Scene, first: &Solve) -> Self {
-        let est = &scene.estimates;
-        let of_estimates = Self {
-            peak_pressure: est.hertz_peak_pressure,
-            half_width: est.hertz_half_width,
-        };
-        // A body's own scales (a cover on its core) do not follow Hertz's law in the force.
-        if matches!(scene.normal, NormalControl::Force(_)) || est.scales_from.is_some() {
-            return of_estimates;
-        }
-        let force = ContactSolution::from_state(&first.problem, &first.state).normal_force;
-        if !(force > 0.0 && force.is_finite()) {
-            return of_estimates;
-        }
-        let a = hertz_half_width(force, est.effective_radius, est.e_star);
-        Self {
-            peak_pressure: hertz_peak_pressure(force, a),
-            half_width: a,
-        }
-    }
 }
 
 /// The result of the loop: the last solve with the tolerance and the passes so far (None for a

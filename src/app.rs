@@ -79,16 +79,43 @@ pub fn solve_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
 /// [`solve_scene`], returning the best solution of an error-controlled grid that did not
 /// reach its tolerance (its `adaptation.reached` false) instead of an error.
 pub fn solve_scene_best(scene: Scene, start: Instant) -> Result<Solved, Error> {
+    solve_adapted(scene, start, false)
+}
+
+/// Solves a loaded case as `rollbem run` does: [`solve`], and a fixed grid's solution gets its
+/// error estimate when the case asks for it (`contact.grid.estimate`, src/adapt/fixed.rs).
+pub fn solve_run(case: &LoadedCase) -> Result<Solved, Error> {
+    let start = Instant::now();
+    let s = solve_run_scene(Scene::from_case(case)?, start)?;
+    match tolerance_not_reached(&s) {
+        Some(e) => Err(e),
+        None => Ok(s),
+    }
+}
+
+/// [`solve_scene_best`] as `rollbem run` solves it (see [`solve_run`]).
+fn solve_run_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
+    let estimate = scene.case.case.contact.grid.estimate;
+    solve_adapted(scene, start, estimate)
+}
+
+/// [`solve_scene_best`], estimating a fixed grid's error when `estimate_fixed`.
+fn solve_adapted(scene: Scene, start: Instant, estimate_fixed: bool) -> Result<Solved, Error> {
     // Scenes of a study's own bodies are not checked by `Scene::from_case`.
     crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
     // Reading the case and the meshes counts as assembly.
     let before = start.elapsed().as_secs_f64();
     let a = crate::adapt::solve(&scene)?;
     let mut timings = a.timings;
+    let fixed_grid_estimate = match estimate_fixed && a.report.converged {
+        true => crate::adapt::fixed::fixed_grid_estimate(&a.scene, &a.problem, &a.state, &mut timings)?,
+        false => None,
+    };
     timings.assembly_s += before;
     timings.total_s = start.elapsed().as_secs_f64();
     let mut solved = post::process(a.scene, &a.models, a.problem, &a.state, a.report, timings)?;
     solved.adaptation = a.adaptation;
+    solved.fixed_grid_estimate = fixed_grid_estimate;
     Ok(solved)
 }
 
@@ -162,7 +189,7 @@ pub fn run_with(case_path: &Path, overrides: &[String], out: Option<&Path>, forc
     if let Some(spec) = &case.case.transient {
         return transient::run(&case, spec, &output_dir, start);
     }
-    let s = solve_scene_best(Scene::from_case(&case)?, start)?;
+    let s = solve_run_scene(Scene::from_case(&case)?, start)?;
     let missed = tolerance_not_reached(&s);
     let mut summary = output::summary(&s);
     if missed.is_some() {

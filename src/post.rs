@@ -90,6 +90,9 @@ pub struct Solved {
     pub warnings: Vec<String>,
     /// How an error-controlled grid was reached (`contact.grid.tolerance`), else none.
     pub adaptation: Option<adaptation::GridAdaptation>,
+    /// The estimated error of a fixed grid's solution (`rollbem run` with
+    /// `contact.grid.estimate`, src/adapt/fixed.rs), else none.
+    pub fixed_grid_estimate: Option<adaptation::ErrorEstimate>,
 }
 
 /// Post-processes a solver state: the user-facing solution, its regime and friction check,
@@ -181,6 +184,7 @@ pub fn process(
         notices,
         warnings,
         adaptation: None,
+        fixed_grid_estimate: None,
     })
 }
 

@@ -296,7 +296,7 @@ fn run_case(source: &Source, overrides: &[String], out: Option<&Path>) -> Result
         )?),
         None => None,
     };
-    let s = app::solve(&case)?;
+    let s = app::solve_run(&case)?;
     let mut summary = output::summary(&s);
     rollbem::post::finite::check(&case.path, "summary.json", &summary)?;
     if let Some(dir) = out {

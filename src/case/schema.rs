@@ -449,6 +449,10 @@ pub struct GridSpec {
     /// once per run) instead of assembling every grid's matrices afresh. The results agree to
     /// the element integrals' accuracy; only the time differs. Default = true.
     pub reuse_far_field: bool,
+    /// Whether `rollbem run` estimates the error of a fixed grid's solution (one more solve on
+    /// the grid with every element halved, compared with it: summary.json `error_estimate`).
+    /// An error-controlled grid always estimates its own. Default = true.
+    pub estimate: bool,
 }
 
 impl Default for GridSpec {
@@ -463,6 +467,7 @@ impl Default for GridSpec {
             max_elements: 1000,
             stand_ins: true,
             reuse_far_field: true,
+            estimate: true,
         }
     }
 }

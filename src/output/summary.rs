@@ -196,7 +196,10 @@ pub fn summary(s: &Solved) -> Summary {
         converged: report.converged,
         iterations: report.iterations,
         residual: report.residual,
-        error_estimate: s.adaptation.as_ref().and_then(|a| a.estimate),
+        error_estimate: match &s.adaptation {
+            Some(a) => a.estimate,
+            None => s.fixed_grid_estimate,
+        },
         normal_force: sol.normal_force,
         tangential_force: sol.tangential_force,
         load_ratio: (mu > 0.0 && sol.normal_force > 0.0).then(|| sol.tangential_force / (mu * sol.normal_force)),

@@ -198,6 +198,24 @@ fn grid_rows(s: &Summary, [len, stress]: [&str; 2], rows: &mut Vec<(String, Stri
             );
         }
     }
+    if let (Some(e), None) = (s.error_estimate, s.grid.tolerance) {
+        line(
+            "estimated error",
+            format!(
+                "pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}{} (relative); fixed grid, \
+                 against its halving{}",
+                e.pressure_rms,
+                e.shear_rms,
+                e.creep_rel,
+                e.overlap_rel.map_or(String::new(), |o| format!(", overlap {o:.2e}")),
+                if e.largest() > crate::post::adaptation::FIXED_GRID_WARNING {
+                    "; above 1 %: set contact.grid.tolerance (e.g. 1e-4) for an error-controlled grid"
+                } else {
+                    ""
+                }
+            ),
+        );
+    }
     if let Some(i) = &s.interior {
         let peak = |p: &Option<crate::interior::Peak>| {
             p.map_or("-".to_string(), |p| {

@@ -3,6 +3,10 @@
 
 use serde::Serialize;
 
+/// A fixed grid whose estimated error (the largest of [`ErrorEstimate`]'s) exceeds this [-] is
+/// reported with a warning and the advice to control the error (`contact.grid.tolerance`).
+pub const FIXED_GRID_WARNING: f64 = 0.01;
+
 /// Estimated discretisation errors of a solution (summary.json `error_estimate`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ErrorEstimate {

@@ -32,7 +32,10 @@ fn verbose_prints_every_newton_step_with_its_residual() {
     assert_eq!(code, 0, "{stderr}");
     let s = summary(&out);
     let history = s["solver"]["history"].as_array().unwrap();
-    let steps: Vec<&str> = stderr.lines().filter(|l| l.contains("Newton step")).collect();
+    // The run's own steps come before the fixed grid's error estimate solves on its halving.
+    let run_lines = stderr.split("error estimate of the fixed grid").next().unwrap();
+    assert!(stderr.contains("error estimate of the fixed grid"), "{stderr}");
+    let steps: Vec<&str> = run_lines.lines().filter(|l| l.contains("Newton step")).collect();
     assert_eq!(steps.len(), history.len(), "one line per Newton step:\n{stderr}");
     // Each line carries the residual after its step: the last one is the run's.
     let last = steps.last().unwrap();

@@ -36,6 +36,9 @@ mod effectivity_matrix;
 #[path = "../../examples/error_vs_time.rs"]
 mod error_vs_time;
 #[allow(dead_code)]
+#[path = "../../examples/fixed_grid_report.rs"]
+mod fixed_grid_report;
+#[allow(dead_code)]
 #[path = "../../examples/friction_limits.rs"]
 mod friction_limits;
 #[allow(dead_code)]
@@ -113,6 +116,17 @@ fn strength_tables() {
         };
         assert_table("strength.md", printed, Rows::All, &[], (&[], 0.0));
     }
+}
+
+/// docs/validation.md: the fixed grids' estimates against the shipped cases' true errors.
+#[test]
+fn validation_fixed_grid_table() {
+    let t = fixed_grid_report::table();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table("validation.md", printed, Rows::All, &[], (&[], 0.0));
 }
 
 #[test]

@@ -29,6 +29,10 @@ mod effectivity;
 #[allow(dead_code)]
 #[path = "../../examples/effectivity_matrix.rs"]
 mod effectivity_matrix;
+mod fixed_estimate;
+#[allow(dead_code)]
+#[path = "../../examples/fixed_grid_report.rs"]
+mod fixed_grid_report;
 mod free_rolling_creepage;
 mod friction_limits;
 mod hertz_carter;

@@ -129,8 +129,9 @@ class Result:
       nothing is in contact)
     * ``stick_zones``, ``slip_zones``: lists of [x0, x1] [length]
     * ``regime``: the slip regime 1-4 of Gonzalez & Abascal (2000) section 5.2, 0 for none
-    * ``error_estimate``: the estimated errors of an error-controlled grid (dict, else None;
-      its ``body_mesh``, where a body has a mesh of its own, is a dict too)
+    * ``error_estimate``: the estimated errors of an error-controlled grid, or of a fixed grid
+      against its halving (dict; None with ``contact.grid.estimate: false``; its
+      ``body_mesh``, where a body has a mesh of its own, is a dict too)
     * ``rolling_resistance``: dict ``leading_edge``, ``trailing_edge``, ``pressure_centre``
       [length], ``moment`` [force*length/length], ``force`` F_r [force/length],
       ``coefficient`` F_r/P [-], ``speed`` [length/time], ``dissipated_power`` (docs/outputs.md;
