@@ -210,6 +210,16 @@ impl Scene {
         -self.case.case.contact.rolling_direction.flow_sign()
     }
 
+    /// The narrowest relaxation layer of the two bodies behind the leading edge [length]
+    /// ([`crate::body::setup::BodySetup::relaxation_layer`]); None when both are elastic.
+    pub fn relaxation_layer(&self) -> Option<f64> {
+        let speed = self.case.case.load.speed;
+        self.bodies
+            .iter()
+            .filter_map(|b| b.relaxation_layer(speed))
+            .reduce(f64::min)
+    }
+
     /// Refuses an error-controlled grid whose `contact.grid.max_elements` is below twice the
     /// start grid's elements when a body's mesh sets that grid: the first pass solves the grid
     /// and its bisection, so the run could only stop at once (the case's own check compares

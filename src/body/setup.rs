@@ -266,6 +266,15 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         None
     }
 
+    /// Width [length] of the layer behind the contact's leading edge over which the body's
+    /// material, entering the contact at `speed` [length/time], relaxes from its instantaneous
+    /// to its long-term response: V·τe (τe the relaxation time) for a standard linear solid, None
+    /// for an elastic body. The error control grades the leading edge to it a priori
+    /// (src/adapt.rs), since an element wider than the layer misplaces the edge's pressure.
+    fn relaxation_layer(&self, _speed: Option<f64>) -> Option<f64> {
+        None
+    }
+
     /// Nodes of the body's own discretisation (a BEM body's boundary nodes, the contact's
     /// field nodes included), for the memory estimate; None for a closed-form model.
     fn discretisation_nodes(&self) -> Option<usize> {

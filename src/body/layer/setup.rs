@@ -108,6 +108,11 @@ impl BodySetup for LayerSetup {
         None
     }
 
+    fn relaxation_layer(&self, speed: Option<f64>) -> Option<f64> {
+        let layer = speed? * self.material.relaxation_time();
+        (layer > 0.0).then_some(layer)
+    }
+
     /// The profile radius, or 20 b where that is smaller: a load's effect on a bonded layer
     /// decays like e^(−c|x|/b), c ≈ 1.3–2 (for the half-plane estimate that sizes the grid).
     fn datum_distance(&self) -> f64 {

@@ -53,6 +53,11 @@ impl BodySetup for ViscoelasticHalfSpaceSetup {
         true
     }
 
+    fn relaxation_layer(&self, speed: Option<f64>) -> Option<f64> {
+        let layer = speed? * self.material.relaxation_time();
+        (layer > 0.0).then_some(layer)
+    }
+
     /// The BEM is elastic: no true-geometry model of a viscoelastic body.
     fn has_true_geometry_model(&self) -> bool {
         false
