@@ -29,6 +29,7 @@ mod effectivity;
 #[allow(dead_code)]
 #[path = "../../examples/effectivity_matrix.rs"]
 mod effectivity_matrix;
+mod falling_friction;
 mod free_rolling_creepage;
 mod friction_limits;
 mod hertz_carter;
