@@ -83,7 +83,7 @@ impl FallingLaw {
 }
 
 /// Solves `pb` under the falling law `law` by the outer fixed point of the module docs, each
-/// solve the line-search Newton of [`restart`] (from `warm` when given, else cold first), the
+/// solve the line-search Newton of [`restart`] stopping on the measure of its frozen problem (from `warm` when given, else cold first), the
 /// Newton systems in the memory of `ws`. The report sums the iterations of every solve; it is
 /// not converged when a solve fails or the nodal μ_i do not settle within
 /// [`MAX_FIXED_POINT_SOLVES`] solves.
@@ -91,7 +91,6 @@ pub fn solve(
     pb: &ContactProblem,
     law: &FallingLaw,
     settings: &NewtonSettings,
-    measure: &ConvergenceMeasure,
     warm: Option<State>,
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
@@ -110,9 +109,12 @@ pub fn solve(
     loop {
         solve += 1;
         own.nodal_friction = Some(mu.clone());
+        // The measure of this pass's problem: its friction rows bound by the frozen μ_i (one of
+        // the unfrozen problem would see the constant μ_s and accept a Ψ iterate that has it).
+        let measure = ConvergenceMeasure::new(&own);
         let (state, mut report) = match start.take() {
-            Some(w) => restart::solve_warm(&own, settings, measure, w, ws),
-            None => restart::solve(&own, settings, measure, ws),
+            Some(w) => restart::solve_warm(&own, settings, &measure, w, ws),
+            None => restart::solve(&own, settings, &measure, ws),
         };
         iterations += report.iterations;
         inner += report.inner_iterations;

@@ -35,7 +35,7 @@ pub fn solve_in(pb: &ContactProblem, settings: &SolverSettings, ws: &mut Workspa
     let measure = ConvergenceMeasure::new(pb);
     let (state, mut report) = match settings.method {
         Method::Newton => match &pb.falling {
-            Some(law) => falling::solve(pb, law, &settings.newton, &measure, None, ws),
+            Some(law) => falling::solve(pb, law, &settings.newton, None, ws),
             None => restart::solve(pb, &settings.newton, &measure, ws),
         },
         Method::NewtonPlain => {
@@ -77,7 +77,7 @@ pub fn solve_from_in(
     let start = Instant::now();
     let measure = ConvergenceMeasure::new(pb);
     let (state, mut report) = match &pb.falling {
-        Some(law) => falling::solve(pb, law, &settings.newton, &measure, Some(warm), ws),
+        Some(law) => falling::solve(pb, law, &settings.newton, Some(warm), ws),
         None => restart::solve_warm(pb, &settings.newton, &measure, warm, ws),
     };
     report.method = settings.method;
@@ -104,7 +104,7 @@ pub fn solve_from_neighbour_in(
     let measure = ConvergenceMeasure::new(pb);
     // A falling law's fixed point gives each of its solves the whole iteration limit.
     let (state, mut report) = match &pb.falling {
-        Some(law) => falling::solve(pb, law, &settings.newton, &measure, Some(warm), ws),
+        Some(law) => falling::solve(pb, law, &settings.newton, Some(warm), ws),
         None => restart::solve_neighbour(pb, &settings.newton, &measure, warm, budget, ws),
     };
     report.method = settings.method;
