@@ -49,6 +49,7 @@
 //! A fixed grid (no `contact.grid.tolerance`) is the same loop stopped after its first solve:
 //! [`solve`] is the one driver of every run.
 
+mod a_priori;
 pub mod body_mesh;
 pub mod cells;
 mod corrections;
@@ -65,6 +66,7 @@ use crate::grid::ContactGrid;
 use crate::post::adaptation::{AdaptationStep, GridAdaptation};
 use crate::post::{ContactSolution, NodeState, Timings};
 use crate::scene::{BodyModels, Scene};
+use a_priori::{resolved, APriori};
 use cells::{Action, DyadicGrid};
 use estimate::{Comparison, ErrorEstimator, Pass, Scales};
 use scales::HertzScales;
@@ -492,55 +494,6 @@ fn singular_points(pb: &ContactProblem, z: &State) -> Vec<f64> {
         })
         .map(|i| 0.5 * (x[i - 1] + x[i]))
         .collect()
-}
-
-/// The a-priori length rule's lengths [length]: [`A_PRIORI_LENGTH`]·tolerance·a at every
-/// square-root point, and at the leading contact edge no more than the bodies' relaxation
-/// layer there (a viscoelastic body: the material relaxes over V·τe behind the edge, and an
-/// element wider than that misplaces the edge's pressure by 1–2 % of p0 at its nodes, which
-/// the comparison of two such grids does not see; docs/theory.md, "Viscoelastic edges").
-struct APriori {
-    /// The length at every square-root point.
-    everywhere: f64,
-    /// The leading edge's square-root point and its length, where a body has a layer.
-    leading_edge: Option<(f64, f64)>,
-}
-
-impl APriori {
-    fn of_pass(scene: &Scene, h: &Solve, singular: &[f64], tolerance: f64, half_width: f64) -> Self {
-        let everywhere = A_PRIORI_LENGTH * tolerance * half_width;
-        let leading_edge = scene.relaxation_layer().and_then(|layer| {
-            let [x0, x1] = ContactSolution::from_state(&h.problem, &h.state).contact_extent()?;
-            let edge = if scene.leading_edge_sign() > 0.0 { x1 } else { x0 };
-            let nearest = singular
-                .iter()
-                .copied()
-                .min_by(|a, b| (a - edge).abs().total_cmp(&(b - edge).abs()))?;
-            Some((nearest, layer.min(everywhere)))
-        });
-        Self {
-            everywhere,
-            leading_edge,
-        }
-    }
-
-    /// The length at the square-root point `x`.
-    fn at(&self, x: f64) -> f64 {
-        match self.leading_edge {
-            Some((edge, length)) if edge == x => length,
-            _ => self.everywhere,
-        }
-    }
-}
-
-/// Whether every element of `grid` that holds a square-root point is at most its a-priori
-/// length long (the rule of [`actions`]).
-fn resolved(grid: &ContactGrid, singular: &[f64], lengths: &APriori) -> bool {
-    singular.iter().all(|&x| {
-        (0..grid.n_elements())
-            .filter(|&e| grid.edges[e] <= x && x <= grid.edges[e + 1])
-            .all(|e| grid.edges[e + 1] - grid.edges[e] <= lengths.at(x))
-    })
 }
 
 /// What to do with each element of `coarse` (module docs, step 4), no element of the bisection

@@ -20,6 +20,7 @@
 
 mod creep_secant;
 pub mod direction;
+pub mod falling;
 pub mod frame;
 pub mod gauss_seidel;
 pub mod methods;
@@ -116,8 +117,15 @@ pub struct ContactProblem {
     /// [`ContactGrid::gauss_points`]`(`[`GAP_SLOPE_POINTS`]`)`: what the rolling resistance
     /// integrates the pressure against (src/post/rolling_resistance.rs).
     pub gap_slope: Vec<f64>,
-    /// Coulomb friction coefficient μ ≥ 0.
+    /// Coulomb friction coefficient μ ≥ 0; the static one μ_s of a falling law (`falling`),
+    /// which also turns a prescribed ratio Q/(μP) into a force.
     pub friction: f64,
+    /// The friction law falling with the slip velocity and the rolling speed it needs; None:
+    /// constant μ = `friction` ([`falling`]).
+    pub falling: Option<falling::FallingLaw>,
+    /// The friction coefficient μ_i [-] at every node, frozen during one solve of the outer
+    /// fixed point of [`falling::solve`]; None: `friction` at every node.
+    pub nodal_friction: Option<Vec<f64>>,
     /// σ = sgn(V), see [`RollingDirection::flow_sign`].
     pub flow_sign: f64,
     /// Normal control.
@@ -250,6 +258,8 @@ impl ContactProblem {
             h0,
             gap_slope,
             friction,
+            falling: None,
+            nodal_friction: None,
             flow_sign,
             normal,
             tangential,
@@ -279,6 +289,8 @@ impl ContactProblem {
             h0: self.h0.clone(),
             gap_slope: self.gap_slope.clone(),
             friction: self.friction,
+            falling: self.falling,
+            nodal_friction: self.nodal_friction.clone(),
             flow_sign: self.flow_sign,
             normal: self.normal,
             tangential: self.tangential,
@@ -328,6 +340,25 @@ impl ContactProblem {
         if self.bp.nrows() != self.n_nodes() {
             self.bp = self.slip_operator.apply_scaled(&self.flex.wp, self.flow_sign);
             self.bq = self.slip_operator.apply_scaled(&self.flex.wq, self.flow_sign);
+        }
+    }
+
+    /// The friction coefficient μ_i [-] that bounds the shear at node `i`: the frozen nodal
+    /// value of a falling law's fixed point, else the constant `friction`.
+    pub fn friction_at(&self, i: usize) -> f64 {
+        match &self.nodal_friction {
+            Some(mu) => mu[i],
+            None => self.friction,
+        }
+    }
+
+    /// The friction coefficient [-] at node `i` of a solution whose slip there is `slip` [-]:
+    /// the falling law at that slip ([`falling::FallingLaw::coefficient`]), else
+    /// [`Self::friction_at`].
+    pub fn friction_of_slip(&self, i: usize, slip: f64) -> f64 {
+        match &self.falling {
+            Some(law) => law.coefficient(slip),
+            None => self.friction_at(i),
         }
     }
 

@@ -21,6 +21,7 @@ pub use crate::body::rigid::RigidSetup;
 pub use crate::body::BodySetup;
 use crate::body::{Body, BodyModel, BuildContext, FlexibilityChange, Rolling, Side};
 use crate::case::{LoadedCase, NormalSpec, TangentialSpec};
+use crate::contact::falling::FallingLaw;
 use crate::contact::{ContactFrame, ContactProblem, NewtonSettings, NormalControl, SolverSettings, TangentialControl};
 use crate::error::Error;
 use crate::grid::ContactGrid;
@@ -74,8 +75,10 @@ pub struct Scene {
     pub tangential: TangentialControl,
     /// Solution method and its settings.
     pub solver: SolverSettings,
-    /// Coulomb friction coefficient μ [-].
+    /// Coulomb friction coefficient μ [-] (the static one under a falling law).
     pub friction: f64,
+    /// The falling friction law of `contact.falling_friction`; None: constant μ.
+    pub falling: Option<FallingLaw>,
     /// The error control of `contact.grid.tolerance`; None for a fixed grid.
     pub grid_control: Option<GridControl>,
     /// The fields post-processing computes besides the contact solution.
@@ -161,6 +164,16 @@ impl Scene {
         let solver = solver_settings(&case);
         let frame = contact_frame::contact_frame(&bodies, &grid, c.contact.traction_axes);
         let friction = c.contact.friction;
+        // Validation asks a falling law for load.speed; without one the law is not built.
+        let falling = c
+            .contact
+            .falling_friction
+            .zip(c.load.speed)
+            .map(|(law, speed)| FallingLaw {
+                law,
+                static_friction: friction,
+                speed,
+            });
         let grid_control = c.contact.grid.tolerance.map(|tolerance| GridControl {
             tolerance,
             max_elements: c.contact.grid.max_elements,
@@ -182,6 +195,7 @@ impl Scene {
             tangential,
             solver,
             friction,
+            falling,
             grid_control,
             fields,
             grid_extent,
@@ -421,7 +435,7 @@ impl Scene {
             "assembling the contact problem: {} contact nodes",
             self.grid.n_nodes()
         );
-        ContactProblem::assemble(
+        let mut problem = ContactProblem::assemble(
             self.grid.clone(),
             a,
             b,
@@ -432,7 +446,9 @@ impl Scene {
             self.tangential,
             self.frame.clone(),
             keep_body_b,
-        )
+        );
+        problem.falling = self.falling;
+        problem
     }
 
     /// Carter's solution for the scene's similar-body estimates, when the case prescribes

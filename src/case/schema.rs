@@ -2,6 +2,7 @@
 //! unit and default. Lengths, forces and stresses are in the case's consistent units.
 
 use super::strength::{StrengthSpec, YieldSpec};
+pub use crate::contact::falling::FallingFriction;
 pub use crate::contact::Formulation;
 pub use crate::contact::Method;
 use crate::contact::{RollingDirection, SlipDerivative, TractionAxes};
@@ -383,8 +384,13 @@ pub struct PrescribedBoundary {
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
-    /// Coulomb friction coefficient μ ≥ 0.
+    /// Coulomb friction coefficient μ ≥ 0; the static one μ_s under `falling_friction`.
     pub friction: f64,
+    /// Friction falling with the local slip velocity from `friction` to `{kinetic: μ_k,
+    /// slip_velocity: s_h}` (src/contact/falling.rs); needs `load.speed` and `solver.method:
+    /// newton`. Default: none (constant μ).
+    #[serde(default)]
+    pub falling_friction: Option<FallingFriction>,
     /// Direction in which the contact moves over the bodies: "+x" or "-x". Default = "+x".
     #[serde(default = "default_rolling")]
     pub rolling_direction: RollingDirection,

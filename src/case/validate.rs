@@ -5,6 +5,7 @@ use super::schema::*;
 use geometry::geometry_violations;
 use viscoelastic::{rolling_speed_problems, viscoelastic_problems};
 
+mod friction;
 mod geometry;
 mod strength;
 mod transient;
@@ -121,6 +122,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
     for (key, message) in strength::strength_problems(case)
         .into_iter()
         .chain(transient::transient_problems(case))
+        .chain(friction::falling_friction_problems(case))
     {
         found.bad(key, message);
     }

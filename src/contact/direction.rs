@@ -75,7 +75,7 @@ impl System<'_> {
     }
 
     fn tangential_state(&self, z: &State, i: usize) -> Tangential {
-        let bound = self.pb.friction * self.bound_pressure(z, i);
+        let bound = self.pb.friction_at(i) * self.bound_pressure(z, i);
         let t = z.shear[i] - self.rt[i] * z.slip[i];
         // A zero bound with t = 0 is the paper's tie (Eq. 72–73, "modified"): take the stick
         // derivative, else the paper's start vector (p = 0) leaves Ψ's Newton matrix singular.
@@ -114,7 +114,7 @@ impl System<'_> {
             return;
         }
         let excess = |i: usize| {
-            let bound = self.pb.friction * self.bound_pressure(z, i);
+            let bound = self.pb.friction_at(i) * self.bound_pressure(z, i);
             if bound > 0.0 {
                 ((z.shear[i] - self.rt[i] * z.slip[i]).abs() - bound) / bound
             } else {
@@ -195,8 +195,9 @@ impl System<'_> {
                         Formulation::Phi => g3[i],
                         Formulation::Psi => 0.0,
                     };
-                    q_const[i] = -g4[i] + mu * sign * shift;
-                    q_pcoef[i] = mu * sign;
+                    let mu_i = pb.friction_at(i);
+                    q_const[i] = -g4[i] + mu_i * sign * shift;
+                    q_pcoef[i] = mu_i * sign;
                 }
             }
         }

@@ -10,7 +10,7 @@
 //!
 //! | method | what it is | its iteration | file |
 //! |---|---|---|---|
-//! | `newton` | generalized Newton with Armijo line search, Φ or Ψ (paper §4), with the restarts of [`super::restart`] | one Newton step | [`super::newton`] |
+//! | `newton` | generalized Newton with Armijo line search, Φ or Ψ (paper §4), with the restarts of [`super::restart`]; under a falling friction law, inside the fixed point of [`super::falling`] (the only method that takes one) | one Newton step | [`super::newton`] |
 //! | `newton_plain` | the same Newton direction, always the full step (no line search) | one Newton step | [`super::newton`] |
 //! | `norm_tang` | Kalker's alternation: normal problem with the shear frozen, then the tangential one with the pressure frozen | one NORM + TANG pair | [`super::norm_tang`] |
 //! | `gauss_seidel` | projected Gauss–Seidel / fixed-point iteration of the projection equations, node by node in the flow direction | one sweep | [`super::gauss_seidel`] |
@@ -18,7 +18,7 @@
 use super::report::{Method, NewtonSettings, SolveReport, SolverSettings};
 use super::residual::{ConvergenceMeasure, State};
 pub use super::workspace::Workspace;
-use super::{gauss_seidel, newton, norm_tang, restart, ContactProblem};
+use super::{falling, gauss_seidel, newton, norm_tang, restart, ContactProblem};
 use std::time::Instant;
 
 /// Solves the contact problem with the chosen method (start and restarts as in the module docs),
@@ -34,7 +34,10 @@ pub fn solve_in(pb: &ContactProblem, settings: &SolverSettings, ws: &mut Workspa
     let start = Instant::now();
     let measure = ConvergenceMeasure::new(pb);
     let (state, mut report) = match settings.method {
-        Method::Newton => restart::solve(pb, &settings.newton, &measure, ws),
+        Method::Newton => match &pb.falling {
+            Some(law) => falling::solve(pb, law, &settings.newton, None, ws),
+            None => restart::solve(pb, &settings.newton, &measure, ws),
+        },
         Method::NewtonPlain => {
             let plain = NewtonSettings {
                 max_backtracks: 0,
@@ -73,7 +76,10 @@ pub fn solve_from_in(
     };
     let start = Instant::now();
     let measure = ConvergenceMeasure::new(pb);
-    let (state, mut report) = restart::solve_warm(pb, &settings.newton, &measure, warm, ws);
+    let (state, mut report) = match &pb.falling {
+        Some(law) => falling::solve(pb, law, &settings.newton, Some(warm), ws),
+        None => restart::solve_warm(pb, &settings.newton, &measure, warm, ws),
+    };
     report.method = settings.method;
     report.formulation = settings.newton.formulation;
     report.wall_time_s = start.elapsed().as_secs_f64();
@@ -96,7 +102,11 @@ pub fn solve_from_neighbour_in(
     };
     let start = Instant::now();
     let measure = ConvergenceMeasure::new(pb);
-    let (state, mut report) = restart::solve_neighbour(pb, &settings.newton, &measure, warm, budget, ws);
+    // A falling law's fixed point gives each of its solves the whole iteration limit.
+    let (state, mut report) = match &pb.falling {
+        Some(law) => falling::solve(pb, law, &settings.newton, Some(warm), ws),
+        None => restart::solve_neighbour(pb, &settings.newton, &measure, warm, budget, ws),
+    };
     report.method = settings.method;
     report.formulation = settings.newton.formulation;
     report.wall_time_s = start.elapsed().as_secs_f64();

@@ -165,7 +165,7 @@ impl<'a> System<'a> {
             });
         }
         for i in 0..m {
-            let bound = pb.friction * self.bound_pressure(z, i);
+            let bound = pb.friction_at(i) * self.bound_pressure(z, i);
             r.push(z.shear[i] - projection(z.shear[i] - self.rt[i] * z.slip[i], bound));
         }
         if let NormalControl::Force(p_total) = pb.normal {

@@ -56,7 +56,8 @@ impl ContactSolution {
                 let p = pressure[i];
                 if p <= 1e-12 * pmax {
                     NodeState::Open
-                } else if z.shear[i].abs() >= pb.friction * p * (1.0 - 1e-9) && pb.friction > 0.0 {
+                } else if z.shear[i].abs() >= pb.friction_of_slip(i, z.slip[i]) * p * (1.0 - 1e-9) && pb.friction > 0.0
+                {
                     NodeState::Slip
                 } else {
                     NodeState::Stick

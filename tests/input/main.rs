@@ -8,6 +8,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod falling_friction;
 mod geometry;
 mod keys;
 mod meshes;

@@ -29,6 +29,7 @@ mod effectivity;
 #[allow(dead_code)]
 #[path = "../../examples/effectivity_matrix.rs"]
 mod effectivity_matrix;
+mod falling_friction;
 mod fixed_estimate;
 #[allow(dead_code)]
 #[path = "../../examples/fixed_grid_report.rs"]

@@ -1,0 +1,160 @@
+//! Friction falling with the slip velocity (src/contact/falling.rs): with μ_k = μ_s the law is
+//! Coulomb's constant friction and the run must equal the constant-μ solver's (Carter 1926)
+//! bit for bit; with μ_k < μ_s every node of the solution must satisfy the falling law
+//! μ(V|s|) = μ_k + (μ_s − μ_k) exp(−V|s|/s_h) (Vollebregt & Schuttelaars 2012, Eq. 2), checked
+//! here from the tractions and the slip recomputed from them, not from the solver's own μ_i.
+
+use crate::common::solve;
+
+/// carter_051 (μ = 0.1, Q/μP = 0.51) with the law and speed set.
+fn falling(kinetic: f64, slip_velocity: f64, speed: f64) -> rollbem::post::Solved {
+    let law = format!("contact.falling_friction={{kinetic: {kinetic}, slip_velocity: {slip_velocity}}}");
+    solve("carter_051", &[&law, &format!("load.speed={speed}")])
+}
+
+/// μ_k = μ_s: the nodal μ_i equal μ_s exactly (the exponential's factor is zero), so the first
+/// frozen solve is the constant-μ solve and the fixed point stops after it: pressure, shear,
+/// overlap and creepage equal bit for bit.
+#[test]
+fn kinetic_equal_to_static_is_carter_bit_for_bit() {
+    let constant = solve("carter_051", &[]);
+    let law = falling(0.1, 0.3, 100.0);
+    let (a, b) = (&constant.solution, &law.solution);
+    assert_eq!(a.pressure, b.pressure);
+    assert_eq!(a.shear, b.shear);
+    assert_eq!(a.creep, b.creep);
+    assert_eq!(a.overlap, b.overlap);
+    assert_eq!(constant.report.iterations, law.report.iterations);
+}
+
+/// μ_s = 0.1 → μ_k = 0.05, s_h = 0.3 mm/s at V = 100 mm/s and 10 mm/s (the largest V|s| is
+/// about 0.1 and 0.01 mm/s: μ falls by up to about a third and 3 % of μ_s − μ_k). At every
+/// contact node |q| ≤ μ(V|s|) p, and at every slipping node (|s| above 1e-6 of the largest)
+/// |q| = μ(V|s|) p within 1e-8 μ_s p0: the fixed point stops when no μ_i moves by more than
+/// 1e-10 μ_s and the Newton residual is 1e-10 p_ref, the slip recomputed from the tractions
+/// carries the round-off of the influence sums (about 1e-12 of the largest slip here).
+#[test]
+fn falling_law_holds_at_every_node() {
+    let (mu_s, mu_k, s_h) = (0.1, 0.05, 0.3);
+    for speed in [100.0, 10.0] {
+        let solved = falling(mu_k, s_h, speed);
+        let (slipping, lowest) = law_holds(&solved, (mu_s, mu_k, s_h, speed));
+        let z = &solved.solution;
+        assert!(slipping >= 5, "V = {speed}: only {slipping} slipping nodes");
+        eprintln!(
+            "V = {speed}: {slipping} slipping nodes, lowest μ {lowest:.6}, creepage {:.6e}",
+            z.creep
+        );
+        // The law acts: at V = 100 the lowest μ lies well below μ_s (else the test checks Coulomb).
+        if speed == 100.0 {
+            assert!(lowest < mu_s - 0.1 * (mu_s - mu_k), "lowest μ {lowest}");
+        }
+    }
+}
+
+/// Every contact node of `solved` satisfies the falling law μ(V|s|) (module docs) with `mu_s`,
+/// `mu_k`, `s_h`, `speed`; returns the number of slipping nodes and the lowest μ among them.
+fn law_holds(solved: &rollbem::post::Solved, (mu_s, mu_k, s_h, speed): (f64, f64, f64, f64)) -> (usize, f64) {
+    let (pb, z) = (&solved.problem, &solved.solution);
+    let slip = pb.slip(&z.pressure, &z.shear, z.creep);
+    let p0 = z.pressure.iter().fold(0.0_f64, |a, &b| a.max(b));
+    let smax = slip.iter().fold(0.0_f64, |a, s| a.max(s.abs()));
+    let (mut slipping, mut lowest) = (0, mu_s);
+    for (i, &s) in slip.iter().enumerate() {
+        let p = z.pressure[i].max(0.0);
+        if p <= 1e-12 * p0 {
+            continue;
+        }
+        let mu = mu_k + (mu_s - mu_k) * (-speed * s.abs() / s_h).exp();
+        let q = z.shear[i].abs();
+        assert!(
+            q <= mu * p + 1e-8 * mu_s * p0,
+            "node {i}: |q| = {q} above μp = {}",
+            mu * p
+        );
+        if s.abs() > 1e-6 * smax {
+            slipping += 1;
+            lowest = lowest.min(mu);
+            assert!(
+                (q - mu * p).abs() <= 1e-8 * mu_s * p0,
+                "node {i}: |q| = {q}, μp = {}",
+                mu * p
+            );
+        }
+    }
+    (slipping, lowest)
+}
+
+/// Q/(μ_s P) of a solved case.
+fn traction_ratio(solved: &rollbem::post::Solved, mu_s: f64) -> f64 {
+    let z = &solved.solution;
+    let grid = &solved.problem.grid;
+    grid.integrate(&z.shear).abs() / (mu_s * grid.integrate(&z.pressure))
+}
+
+/// cases/veldep_fric.yaml (CONTACT's veldep_fric, case 1): the run converges, the falling law
+/// holds at every node, and the same scene at constant μ = μ_s = 0.30 gives Carter's creep
+/// force, |ξ| = (μa/R)(1 − √(1 − Q/μP)) (Carter 1926; Johnson 1985, Eq. 8.39), within 0.5 %: the
+/// measured error of the 81-element grid on this scene (0.6190 against Carter's 0.6197, 0.1 %)
+/// with margin. Measured (printed): falling Q/(μ_s P) = 0.5780, lowest nodal μ 0.2144.
+#[test]
+fn veldep_fric_case_converges_on_the_law_and_its_constant_limit_is_carter() {
+    let mu_s = 0.30;
+    let falling = solve("veldep_fric", &[]);
+    let (slipping, lowest) = law_holds(&falling, (mu_s, 0.18, 100.0, 45000.0));
+    assert!(
+        slipping >= 20 && lowest < 0.25,
+        "{slipping} slipping nodes, lowest μ {lowest}"
+    );
+    let constant = solve("veldep_fric", &["contact.falling_friction=null"]);
+    let a = constant.scene.estimates.hertz_half_width;
+    let xi = constant.solution.creep.abs();
+    let carter = 1.0 - (1.0 - xi * 460.0 / (mu_s * a)).powi(2);
+    let (r_fall, r_const) = (traction_ratio(&falling, mu_s), traction_ratio(&constant, mu_s));
+    eprintln!(
+        "veldep_fric: falling Q/(mu_s P) = {r_fall:.4} (CONTACT 0.5941), constant {r_const:.4}, Carter {carter:.4}, \
+         {slipping} slipping nodes, lowest mu {lowest:.4}"
+    );
+    assert!(
+        (r_const - carter).abs() <= 5e-3 * carter,
+        "constant {r_const}, Carter {carter}"
+    );
+    // Ψ (the paper's Eq. 44) reaches the same solution as Φ: each pass's stopping test is that
+    // of its frozen problem (a measure of the unfrozen one once accepted Ψ's constant-μ_s start).
+    let psi = solve("veldep_fric", &["solver.formulation=psi"]);
+    let qmax = falling.solution.shear.iter().fold(0.0_f64, |a, q| a.max(q.abs()));
+    for (a, b) in falling.solution.shear.iter().zip(&psi.solution.shear) {
+        assert!((a - b).abs() <= 1e-6 * qmax, "Φ {a}, Ψ {b}");
+    }
+    // The falling law lowers the force below the constant static friction's.
+    assert!(r_fall < r_const, "falling {r_fall}, constant {r_const}");
+}
+
+/// CONTACT's creep force of veldep_fric case 1, FX/(μ_s FN) = 0.5941 (its .ref_out), within
+/// 0.5 % (CONTACT's grid of 0.1 mm, 81 elements in contact; the constant-μ limit of this scene
+/// agrees with Carter to 0.1 %). Not met: rollbem gives 0.5780 (2.7 % lower) with the same slip
+/// zone (3.6 mm; CONTACT 36 slip elements of 0.1 mm); docs/friction.md, "Against CONTACT".
+#[test]
+#[ignore = "open: rollbem 0.5780 against CONTACT's 0.5941 (docs/friction.md, Against CONTACT)"]
+fn veldep_fric_creep_force_matches_contact() {
+    let r = traction_ratio(&solve("veldep_fric", &[]), 0.30);
+    assert!((r - 0.5941).abs() <= 5e-3 * 0.5941, "rollbem {r}, CONTACT 0.5941");
+}
+
+/// A law steep over the contact's slip velocities (carter_051, μ_s = 0.1 → μ_k = 0.05,
+/// s_h = 0.3 mm/s, V = 1000 mm/s) defeats the fixed point: the run must say so (not converged,
+/// the reason in the fallbacks), not return an unsettled state as a solution.
+#[test]
+fn a_steep_law_is_reported_not_settled() {
+    let overrides = [
+        "contact.falling_friction={kinetic: 0.05, slip_velocity: 0.3}",
+        "load.speed=1000",
+    ];
+    let solved = rollbem::app::solve_case(&crate::common::case_path("carter_051"), &overrides).unwrap();
+    assert!(!solved.report.converged);
+    assert!(
+        solved.report.fallbacks.iter().any(|f| f.contains("did not settle")),
+        "{:?}",
+        solved.report.fallbacks
+    );
+}
