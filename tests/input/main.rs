@@ -11,5 +11,6 @@ mod common;
 mod geometry;
 mod keys;
 mod meshes;
+mod messages;
 mod properties;
 mod transient;
