@@ -230,7 +230,7 @@ fn advice_lines(case: &LoadedCase, scene: &Scene, tolerance: f64, t: &mut String
         crate::advice::advise_without_alternative(&error)
     };
     line("model advice", advice);
-    for w in crate::scene::validity::warnings(bodies, est) {
+    for w in crate::scene::validity::warnings(bodies, est, None) {
         line("warning", w);
     }
 }

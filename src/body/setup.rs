@@ -128,6 +128,10 @@ pub enum BuildError {
     /// The body's own contact nodes do not cover the grid.
     #[error(transparent)]
     Transfer(#[from] super::transfer::TransferError),
+    /// Building the body would cost far more than the estimates `rollbem check` prints
+    /// (the message names the key to change).
+    #[error("{0}")]
+    Cost(String),
 }
 
 /// A body's stand-in for the passes of an error-controlled grid ([`BodySetup::pass_stand_in`]).
