@@ -264,6 +264,12 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         self.radius().abs()
     }
 
+    /// Kernel evaluations [-] the body's own tables cost on `ctx.grid` (a layer cover's,
+    /// which grow with (grid/b)²), for the cost `rollbem check` estimates; 0 by default.
+    fn kernel_table_evaluations(&self, _ctx: &BuildContext) -> f64 {
+        0.0
+    }
+
     /// Depth [length] of a thin layer of the body under its contact (a cover on a rigid core),
     /// for the model advice; None when the body is not a thin layer.
     fn layer_thickness(&self) -> Option<f64> {

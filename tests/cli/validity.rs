@@ -336,4 +336,10 @@ fn a_cover_far_thinner_than_its_grid_is_refused_at_once() {
     // The shipped cover (b = 5 mm on a 20 mm grid) passes.
     let (code, _, err) = rollbem(&["check", case.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
+    // A cover within the bound: `check`'s cost counts the tables (b = 0.5 mm: ≈ 1.1 s against
+    // 0.6–2.3 s measured; main said 24 ms whatever the thickness).
+    let (code, out, err) = rollbem(&["check", case.to_str().unwrap(), "--set", "bodies.B.thickness=0.5"]);
+    assert_eq!(code, 0, "{err}");
+    let cost = out.lines().find(|l| l.contains("cost of this run")).unwrap_or_default();
+    assert!(cost.contains(" s, ") && !cost.contains(" ms, "), "{cost}");
 }

@@ -154,6 +154,11 @@ impl BodySetup for LayerSetup {
     // `layer_thickness` keeps its default None: the model advice it feeds estimates the error
     // a half-space model makes on a layer, which this model does not make.
 
+    /// The tables' evaluations on the grid ([`Layer::table_work`]).
+    fn kernel_table_evaluations(&self, ctx: &BuildContext) -> f64 {
+        self.model(ctx).table_work(ctx.grid)
+    }
+
     /// The kernel tables' cost on the grid ([`Layer::table_work`]) within [`MAX_TABLE_WORK`].
     fn preflight(&self, ctx: &BuildContext) -> Result<(), BuildError> {
         let work = self.model(ctx).table_work(ctx.grid);
@@ -168,7 +173,7 @@ impl BodySetup for LayerSetup {
         Err(BuildError::Cost(format!(
             "bodies.{side}.thickness: a cover of b = {:e} under a contact grid {reach:.4e} long (grid/b = {:.0}) \
              needs {work:.1e} kernel evaluations for its kernel tables, more than {MAX_TABLE_WORK:.0e} (a few \
-             seconds; the time and memory `rollbem check` estimates leave them out): the aged tables of a \
+             seconds): the aged tables of a \
              viscoelastic cover span the grid and grow with (grid/b)²; give a cover of b = {:.2e} or \
              thicker, or a shorter grid (contact.grid.half_length)",
             self.thickness,
