@@ -27,6 +27,12 @@ Line(301) = {200, 201};
 Line(302) = {201, 202};
 Line(303) = {202, 203};
 Line(304) = {203, 10};
+// Gmsh orients each curve as drawn above; rollbem wants the material on the left of every
+// element (contour counter-clockwise), else it turns the loop round on loading and says so.
+// Body B's contour (s = -1) is drawn clockwise.
+If (s < 0)
+  Reverse Curve{100:100+ne-1, 300:304};
+EndIf
 Physical Curve("contact") = {100:100+ne-1};
 Physical Curve("free") = {300, 301, 303, 304};
 Physical Curve("far") = {302};

@@ -38,6 +38,13 @@ Circle(500) = {400, 1, 401};
 Circle(501) = {401, 1, 402};
 Circle(502) = {402, 1, 403};
 Circle(503) = {403, 1, 400};
+// Gmsh orients each curve as drawn above; rollbem wants the material on the left of every
+// element (outer contour counter-clockwise, the shaft hole clockwise), else it turns the loop
+// round on loading and says so. Body B's contour is drawn clockwise, the hole counter-clockwise.
+If (s < 0)
+  Reverse Curve{100:100+ne-1, 300:303};
+EndIf
+Reverse Curve{500:503};
 Physical Curve("contact") = {100:100+ne-1};
 Physical Curve("free") = {300, 301, 302, 303};
 Physical Curve("shaft") = {500, 501, 502, 503};

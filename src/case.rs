@@ -7,6 +7,7 @@ pub mod schema;
 pub mod strength;
 pub mod transient;
 pub mod validate;
+pub mod words;
 
 use crate::material::{Elastic, StandardLinearSolid};
 pub use schema::*;
@@ -14,6 +15,7 @@ use std::path::{Path, PathBuf};
 pub use strength::{StrengthSpec, YieldSpec};
 pub use transient::{Schedule, TransientSpec};
 pub use validate::Violation;
+pub use words::plain_message;
 
 /// Everything that can be wrong with a case before solving.
 #[derive(Debug, thiserror::Error)]
@@ -183,7 +185,7 @@ fn normalize(path: &Path) -> PathBuf {
 
 /// Parses YAML text into a value tree.
 fn parse_yaml(text: &str) -> Result<serde_norway::Value, String> {
-    serde_norway::from_str(text).map_err(|e| e.to_string())
+    serde_norway::from_str(text).map_err(|e| plain_message(&e.to_string()))
 }
 
 /// The path of a shipped case, `cases/<name>` of the repository (for the library's tests).
@@ -299,35 +301,6 @@ fn blamed_override<'a>(overrides: &'a [String], key: &str) -> Option<&'a String>
         .iter()
         .rev()
         .find(|a| a.split_once('=').is_some_and(|(k, _)| related(k)))
-}
-
-/// Serde's message in the words of a case file: Rust's type names become what a value must
-/// be ("expected f64" → "expected a number"), and the YAML library's name for an enum becomes
-/// what to write.
-pub fn plain_message(message: &str) -> String {
-    let mut out = message.to_string();
-    for (rust, plain) in [
-        ("expected f64", "expected a number"),
-        ("expected f32", "expected a number"),
-        ("expected usize", "expected a whole number (0, 1, 2, …)"),
-        ("expected u64", "expected a whole number (0, 1, 2, …)"),
-        ("expected u32", "expected a whole number (0, 1, 2, …)"),
-        ("expected u16", "expected a whole number (0, 1, 2, …)"),
-        ("expected u8", "expected a whole number (0, 1, 2, …)"),
-        ("expected i64", "expected a whole number"),
-        ("expected i32", "expected a whole number"),
-        ("expected a boolean", "expected true or false"),
-        (
-            "expected a Value::Tagged enum",
-            "expected one of the names this key takes (cases/README.md); leave the key out for its default",
-        ),
-        ("invalid type: unit value", "got null"),
-        ("invalid type: floating point `", "got the number `"),
-        ("invalid type: ", "got "),
-    ] {
-        out = out.replace(rust, plain);
-    }
-    out
 }
 
 /// What the typed schema cannot see in the raw YAML tree: local tags (`friction: !weird 0.1`,

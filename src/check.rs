@@ -235,7 +235,7 @@ fn advice_lines(case: &LoadedCase, scene: &Scene, tolerance: f64, t: &mut String
         crate::advice::advise_without_alternative(&error)
     };
     line("model advice", advice);
-    for w in crate::scene::validity::warnings(bodies, est) {
+    for w in crate::scene::validity::warnings(bodies, est, None) {
         line("warning", w);
     }
 }
@@ -299,6 +299,19 @@ fn costs(scene: &Scene) -> (String, String) {
             .collect(),
         interior_points: output.interior.as_ref().map_or(0, |i| (i.x[2] * i.y[2]) as usize),
         vtk: output.vtk,
+        kernel_evaluations: [crate::body::Side::A, crate::body::Side::B]
+            .into_iter()
+            .zip(&scene.bodies)
+            .map(|(side, b)| {
+                b.kernel_table_evaluations(&crate::body::BuildContext {
+                    grid: &scene.grid,
+                    side,
+                    rolling: scene.rolling(),
+                    pair: None,
+                    responses_only: false,
+                })
+            })
+            .sum(),
     };
     let elements = scene.grid.n_elements();
     let bodies = match sizes.bem_bodies.as_slice() {
@@ -317,6 +330,7 @@ fn costs(scene: &Scene) -> (String, String) {
         let roller = cost::roller_mesh(elements);
         let rollers = cost::Sizes {
             bem_bodies: vec![roller; 2],
+            kernel_evaluations: 0.0,
             ..sizes.clone()
         };
         format!(

@@ -157,6 +157,13 @@ pub enum Error {
         /// The step and why.
         message: String,
     },
+    /// A body would cost far more to build than the estimates say (a viscoelastic cover far
+    /// thinner than the grid is long); the message names the key.
+    #[error("{message}")]
+    BodyCost {
+        /// What is wrong and what to do.
+        message: String,
+    },
     /// A sweep argument or a merge input is wrong.
     #[error("sweep: {message}")]
     Sweep {
@@ -191,6 +198,7 @@ impl From<crate::body::BuildError> for Error {
         match e {
             crate::body::BuildError::Bem(e) => Error::Bem(e),
             crate::body::BuildError::Transfer(e) => Error::Transfer(e),
+            crate::body::BuildError::Cost(message) => Error::BodyCost { message },
         }
     }
 }

@@ -165,7 +165,8 @@ pub fn process(
         &solution,
         scene.grid_control.is_some(),
     ));
-    let mut warnings = crate::scene::validity::warnings(&scene.bodies, &scene.estimates);
+    let solved_peak = solution.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
+    let mut warnings = crate::scene::validity::warnings(&scene.bodies, &scene.estimates, Some(solved_peak));
     warnings.extend(crate::scene::validity::traction_axes_warning(
         &scene.case,
         &scene.bodies,

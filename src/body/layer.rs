@@ -61,6 +61,18 @@ impl Layer {
         }
     }
 
+    /// Kernel evaluations that [`Self::remainder_blocks`] spends on its tables on `grid`
+    /// ([`remainder::tabulation_work`]): the elastic table, and the aged one of a creeping cover.
+    pub fn table_work(&self, grid: &ContactGrid) -> f64 {
+        let reach = grid.edges[grid.edges.len() - 1] - grid.edges[0];
+        let elastic = remainder::tabulation_work(self.thickness, reach, None);
+        elastic
+            + self
+                .ageing
+                .as_ref()
+                .map_or(0.0, |a| remainder::tabulation_work(self.thickness, reach, Some(a)))
+    }
+
     /// The remainder blocks [nn, nt, tt] on the grid [length/stress]: the unit-modulus tables
     /// over 1/G_r (no ageing), or over 1/G_g plus the aged tables times (1/G_r − 1/G_g).
     fn remainder_blocks(&self, grid: &ContactGrid) -> [Mat<f64>; 3] {

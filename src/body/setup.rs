@@ -128,6 +128,10 @@ pub enum BuildError {
     /// The body's own contact nodes do not cover the grid.
     #[error(transparent)]
     Transfer(#[from] super::transfer::TransferError),
+    /// Building the body would cost far more than the estimates `rollbem check` prints
+    /// (the message names the key to change).
+    #[error("{0}")]
+    Cost(String),
 }
 
 /// A body's stand-in for the passes of an error-controlled grid ([`BodySetup::pass_stand_in`]).
@@ -258,6 +262,12 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
     /// estimate of the force an overlap gives (ln(4R_b/a)): its profile radius by default.
     fn datum_distance(&self) -> f64 {
         self.radius().abs()
+    }
+
+    /// Kernel evaluations [-] the body's own tables cost on `ctx.grid` (a layer cover's,
+    /// which grow with (grid/b)²), for the cost `rollbem check` estimates; 0 by default.
+    fn kernel_table_evaluations(&self, _ctx: &BuildContext) -> f64 {
+        0.0
     }
 
     /// Depth [length] of a thin layer of the body under its contact (a cover on a rigid core),

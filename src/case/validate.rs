@@ -2,9 +2,11 @@
 //! value (as CONTACT's input check does), so the user fixes a case in one pass.
 
 use super::schema::*;
+use cover::overlap_through_a_cover;
 use geometry::geometry_violations;
 use viscoelastic::{rolling_speed_problems, viscoelastic_problems};
 
+mod cover;
 mod friction;
 mod geometry;
 mod strength;
@@ -495,6 +497,9 @@ fn load_problems(case: &Case, found: &mut Problems) {
         NormalSpec::Overlap(d) => {
             if let Some(why) = positive_quantity(d) {
                 found.bad("load.normal.overlap".into(), format!("overlap {why}"));
+            }
+            for (key, message) in overlap_through_a_cover(&case.bodies, d) {
+                found.bad(key, message);
             }
             None
         }

@@ -28,6 +28,10 @@ pub const NEWTON_STEPS: f64 = 10.0;
 /// quadrature of the H and G kernels): 1.3e-6–1.9e-6 from the speed–accuracy table's rollers,
 /// 3.3e-6 from the HBEM benchmark's condensation (a loaded machine, the strain included).
 pub const SECONDS_PER_NODE_ELEMENT: f64 = 2.0e-6;
+/// Seconds per kernel evaluation of a layer cover's tables (a wavenumber node at a table
+/// point, the tables built by the estimate and by the run): 2.7e-8–1.1e-7 measured on
+/// cases/covered_roller_v_peak.yaml with b = 0.117–1 mm on a loaded 2-core machine.
+pub const SECONDS_PER_KERNEL_EVALUATION: f64 = 5.0e-8;
 /// The sizes a run's cost depends on.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sizes {
@@ -39,6 +43,9 @@ pub struct Sizes {
     pub interior_points: usize,
     /// Whether VTK files are written.
     pub vtk: bool,
+    /// Kernel evaluations of the bodies' own tables (a layer cover's,
+    /// [`crate::body::BodySetup::kernel_table_evaluations`]).
+    pub kernel_evaluations: f64,
 }
 
 /// Estimated wall time [s] and peak memory [bytes] of a run.
@@ -56,7 +63,9 @@ impl Cost {
         let m = sizes.contact_nodes as f64;
         let reduced = 1.3 * m;
         let step = SECONDS_PER_LU_UNKNOWN_CUBED * reduced.powi(3) + SECONDS_PER_STEP_NODE_SQUARED * m * m;
-        let mut seconds = SECONDS_PER_CONTACT_NODE_SQUARED * m * m + NEWTON_STEPS * step;
+        let mut seconds = SECONDS_PER_CONTACT_NODE_SQUARED * m * m
+            + NEWTON_STEPS * step
+            + SECONDS_PER_KERNEL_EVALUATION * sizes.kernel_evaluations;
         for &(nodes, elements) in &sizes.bem_bodies {
             let n = 2.0 * nodes as f64;
             // The LU's rate per flop ((2/3)n³ flops) applied to the 1 + 2m solves of 2n² flops
@@ -138,6 +147,7 @@ mod tests {
             bem_bodies: Vec::new(),
             interior_points: 0,
             vtk: true,
+            kernel_evaluations: 0.0,
         }
     }
 

@@ -295,3 +295,28 @@ fn crlf_line_ends_read_the_same() {
     let read = |t: &str| mesh::parse_msh_bytes(t.as_bytes(), "plate.msh").unwrap();
     assert_same_mesh(&read(&text), &read(&crlf), "CRLF");
 }
+
+/// Every mesh shipped in meshes/ (the ones the cases under cases/ read) is drawn with the
+/// orientation rollbem wants: material on the left, outer contour counter-clockwise, holes
+/// clockwise. Loading one then gives no "turned N element(s) round" notice, which every run of
+/// a shipped case would otherwise print.
+#[test]
+fn shipped_meshes_are_oriented_and_load_without_notices() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "msh"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 10, "meshes/ holds {} .msh files", paths.len());
+    let noisy: Vec<String> = paths
+        .iter()
+        .flat_map(|p| mesh::load(p).unwrap_or_else(|e| panic!("{}: {e}", p.display())).1)
+        .collect();
+    assert!(
+        noisy.is_empty(),
+        "shipped meshes turned round on loading:\n{}",
+        noisy.join("\n")
+    );
+}

@@ -75,7 +75,7 @@ fn a_ring_whose_rim_is_inside_its_bore_is_refused() {
 fn an_unknown_family_or_key_is_refused() {
     assert_refused(
         &["bodies.A.geometry={disc: {radius: 150}}"],
-        &["bodies.A", "geometry: unknown variant `disc`", "roller"],
+        &["bodies.A", "geometry: unknown name `disc`", "roller"],
     );
     assert_refused(
         &["bodies.A.geometry={roller: {radius: 150, shaft: 15, width: 3}}"],

@@ -12,5 +12,6 @@ mod falling_friction;
 mod geometry;
 mod keys;
 mod meshes;
+mod messages;
 mod properties;
 mod transient;

@@ -105,6 +105,29 @@ fn wavenumber_rule(thickness: f64, reach: f64, ageing: Option<&Ageing>) -> (Vec<
     (nodes, weights)
 }
 
+/// Kernel evaluations (wavenumber nodes × table points) of [`Remainder::tabulate`] with these
+/// arguments, counted without building anything: the table's cost in time (about 1e8 a second
+/// and core) and, through the wavenumber nodes held at once, in memory (40 bytes each). It
+/// grows with (reach/b)² where the table spans the grid (a viscoelastic cover's aged table).
+pub fn tabulation_work(thickness: f64, reach: f64, ageing: Option<&Ageing>) -> f64 {
+    let far = ageing.is_none() && reach > FAR_TAIL * thickness;
+    let reach = if far { (FAR_TAIL + 0.5) * thickness } else { reach };
+    let step = (TABLE_STEP * thickness).min(reach / 64.0).max(reach / MAX_TABLE as f64);
+    let points = 2.0 * ((reach / step).ceil() + 3.0) + 1.0;
+    // The panels of `wavenumber_rule`: a geometric run up to `wide`, then steps of `wide`.
+    let k_reach = reach.max(thickness);
+    let k1 = CUTOFF / thickness;
+    let wide = (0.5 / thickness).min(3.0 / k_reach);
+    let start = ageing.map_or(wide, |a| wide.min(0.1 / a.length));
+    let geometric = if start < wide {
+        (wide / start).log2().ceil() + 1.0
+    } else {
+        0.0
+    };
+    let linear = ((k1 - wide.min(k1)) / wide).ceil() + 1.0;
+    (geometric + linear) * K_POINTS as f64 * points
+}
+
 impl Remainder {
     /// The remainders of a layer of thickness b [length] and Poisson's ratio ν, with the
     /// half-plane datum ℓ [length], on |t| ≤ `reach` [length] (the grid's length), aged when
