@@ -116,7 +116,8 @@ impl BodySetup for LayerSetup {
         // shorter for a cover stiffer than its half-plane): tables too costly there are
         // refused by `preflight` on the run's grid, and the estimate falls back to Hertz's.
         let estimating = 4.0 * 1.3 * hertz_half_width;
-        if !(remainder::tabulation_work(self.thickness, estimating, model.ageing.as_ref()) * 2.0 <= MAX_TABLE_WORK) {
+        let work = 2.0 * remainder::tabulation_work(self.thickness, estimating, model.ageing.as_ref());
+        if work.is_nan() || work > MAX_TABLE_WORK {
             return None;
         }
         let block = crate::body::scales::pressure_block(&model);
