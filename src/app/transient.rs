@@ -6,7 +6,7 @@ use crate::case::transient::{NormalPlan, ShiftPlan, TangentialPlan, TransientSpe
 use crate::case::{CaseError, LoadedCase, Violation};
 use crate::contact::{NormalControl, TangentialControl};
 use crate::error::Error;
-use crate::output::transient::{transient_summary, write_steps, write_transient_csv, StepRecord};
+use crate::output::transient::{transient_summary, write_steps, write_transient_csv, write_transient_svg, StepRecord};
 use crate::output::{self, folder};
 use crate::post::{self, ContactSolution, Timings};
 use crate::scene::Scene;
@@ -226,6 +226,9 @@ pub(super) fn run(
     output::write_atomically(output_dir, folder::Kind::Run, |tmp| {
         write_transient_csv(tmp, &records, friction, speed)?;
         write_steps(tmp, &records, &solved.problem, summary.vtk)?;
+        let unit = |key: &str| summary.units.get(key).map_or("", String::as_str);
+        let units = [unit("overlap"), unit("max_pressure"), unit("normal_force")];
+        write_transient_svg(tmp, &records, friction, &summary.title, units)?;
         output::write_run_files(tmp, &mut summary, &solved, start)
     })?;
     Ok(RunReport {

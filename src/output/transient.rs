@@ -1,8 +1,10 @@
 //! The files of a transient history (docs/outputs.md, "A transient run"): transient.csv (one
 //! row a step), steps/step_NNNN.csv (each step's contact.csv), steps/step_NNNN.vtu and
-//! transient.pvd (the ParaView time series over the rolled distance), and the `transient` block
-//! of summary.json.
+//! transient.pvd (the ParaView time series over the rolled distance), transient.svg (the
+//! tractions at a few steps, Q and ξ against the rolled distance) and the `transient` block of
+//! summary.json.
 
+use super::charts::transient::{profiled_steps, Profile, TransientPicture};
 use super::csv_files::{number, write_csv};
 use super::units::Dimension::{self, *};
 use super::vtk;
@@ -220,4 +222,60 @@ pub fn write_steps(dir: &Path, records: &[StepRecord], pb: &ContactProblem, vtk:
 /// `step_NNNN.EXT`: four digits at least, so that the names sort in step order.
 pub fn step_file(k: usize, ext: &str) -> String {
     format!("step_{k:04}.{ext}")
+}
+
+/// Writes transient.svg into `dir` ([`super::charts::transient`]): x is scaled by half the last
+/// step's contact length, the force axis is Q/(μP) when μ > 0 (Q otherwise); `units` are the
+/// case's length, stress and force-per-length units.
+pub fn write_transient_svg(
+    dir: &Path,
+    records: &[StepRecord],
+    friction: f64,
+    title: &str,
+    units: [&str; 3],
+) -> Result<(), Error> {
+    let last = &records[records.len() - 1].solution;
+    let a = last
+        .contact_extent()
+        .map(|[x0, x1]| 0.5 * (x1 - x0))
+        .filter(|a| *a > 0.0)
+        .unwrap_or(1.0);
+    let profiles = profiled_steps(records.len())
+        .into_iter()
+        .map(|k| {
+            let s = &records[k].solution;
+            Profile {
+                step: k,
+                rolled: number(records[k].step.rolled),
+                x: s.x.iter().map(|x| x / a).collect(),
+                pressure: s.pressure.clone(),
+                shear: s.shear.clone(),
+            }
+        })
+        .collect();
+    let ratio = |s: &ContactSolution| {
+        if friction > 0.0 && s.normal_force > 0.0 {
+            s.tangential_force / (friction * s.normal_force)
+        } else {
+            s.tangential_force
+        }
+    };
+    let picture = TransientPicture {
+        title: title.to_string(),
+        half_width: a,
+        units: [units[0].to_string(), units[1].to_string()],
+        force_label: if friction > 0.0 {
+            "Q/μP [-]".into()
+        } else {
+            format!("Q [{}]", units[2])
+        },
+        profiles,
+        force: records.iter().map(|r| (r.step.rolled, ratio(&r.solution))).collect(),
+        creep: records
+            .iter()
+            .filter(|r| r.step.step.distance > 0.0)
+            .map(|r| (r.step.rolled, r.solution.creep))
+            .collect(),
+    };
+    super::charts::transient::write(&dir.join("transient.svg"), &picture)
 }

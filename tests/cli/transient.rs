@@ -99,6 +99,19 @@ fn cattaneo_to_carter_runs_from_the_case_file() {
     ] {
         assert!(out.join(file).is_file(), "{file}");
     }
+    // transient.svg: a whole SVG whose legend names the profiled steps (0, 100, 200, 300, 400)
+    // with transient.csv's rolled distance, character for character, and both history charts.
+    let svg = std::fs::read_to_string(out.join("transient.svg")).unwrap();
+    assert!(svg.trim_start().starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    assert!(!svg.contains("NaN"));
+    for k in [0, 100, 200, 300, 400] {
+        let label = format!("step {k}, rolled = {} ", rows[k][col("rolled")]);
+        assert!(svg.contains(&label), "{label}");
+    }
+    assert!(!svg.contains("step 1, rolled") && !svg.contains("step 399, rolled"));
+    for text in ["Q/μP", "creepage ξ", "pressure p", "shear q"] {
+        assert!(svg.contains(text), "{text}");
+    }
     let manifest = std::fs::read_to_string(out.join(".rollbem-manifest")).unwrap();
     assert!(manifest.contains("steps/step_0400.csv") && manifest.contains("transient.csv"));
     let contact = std::fs::read_to_string(out.join("contact.csv")).unwrap();
