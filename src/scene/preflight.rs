@@ -270,12 +270,18 @@ fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &BodySetups) -
 /// grid on the grid its tolerance is expected to need ([`expected_elements`]).
 pub fn problem_sizes(case: &LoadedCase, bodies: &BodySetups) -> ProblemSizes {
     let c = &case.case;
-    let expected = c
-        .contact
-        .grid
-        .tolerance
-        .map(|tol| expected_elements(tol, c.contact.grid.max_elements));
-    problem_sizes_on(case, bodies, expected)
+    match c.contact.grid.tolerance {
+        Some(tol) => problem_sizes_on(case, bodies, Some(expected_elements(tol, c.contact.grid.max_elements))),
+        None => {
+            let mut sizes = problem_sizes_on(case, bodies, None);
+            // A fixed grid's error estimate solves the grid halved (src/adapt/fixed.rs): twice
+            // the contact nodes, the bodies' meshes cut at as many more points only.
+            if c.contact.grid.estimate {
+                sizes.contact_nodes *= 2;
+            }
+            sizes
+        }
+    }
 }
 
 /// The elements an error-controlled contact grid is expected to reach at `tolerance` (capped by

@@ -129,10 +129,12 @@ fn bem_roller(free: usize) -> (String, f64, f64) {
         "A: {model: half_space, material: steel, radius: 100.0}",
         "A: {model: bem, mesh: roller.msh, material: steel, boundaries: {shaft: fixed, free: free}}",
     );
+    // Without the fixed grid's error estimate: its halved grid's condensation is not yet in the
+    // estimate's BEM term (measured 130 MB against 112 MB with it).
     point(
         &format!("bem roller of {nodes} nodes on a half_space"),
         &text,
-        &[],
+        &["contact.grid.estimate=false".to_string()],
         &[("roller.msh", mesh)],
     )
 }
