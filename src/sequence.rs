@@ -228,10 +228,12 @@ impl Chain<'_> {
     }
 }
 
-/// The run's controls in the shared problem: μ and the normal and tangential controls (the
-/// only parts of the problem that the shared keys change).
+/// The run's controls in the shared problem: μ (and its falling law), the normal and
+/// tangential controls (the only parts of the problem that the shared keys change).
 fn set_controls(problem: &mut ContactProblem, scene: &Scene) {
     problem.friction = scene.friction;
+    // A falling law carries the static μ and the speed: the run's own.
+    problem.falling = scene.falling;
     problem.normal = scene.normal;
     problem.tangential = scene.tangential;
 }

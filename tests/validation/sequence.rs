@@ -93,6 +93,28 @@ fn friction_creepage_and_dissimilar_sweeps_equal_the_cold_runs() {
     assert!(warm < cold, "creepage: warm {warm} against cold {cold} iterations");
 }
 
+/// Under a falling friction law (cases/veldep_fric.yaml) the static coefficient and the speed
+/// are part of the law: a chain that varies them must solve each run with its own law, not the
+/// first run's (the tolerance of the law's fixed point, 1e-10 μ_s, and the Newton tolerance
+/// bound both to about 1e-8 p0).
+#[test]
+fn a_falling_law_follows_the_friction_and_speed_of_each_run() {
+    compare(
+        "veldep_fric",
+        &[],
+        "contact.friction",
+        &["0.3", "0.33", "0.36"],
+        TOLERANCE,
+    );
+    compare(
+        "veldep_fric",
+        &[],
+        "load.speed",
+        &["45000", "30000", "60000"],
+        TOLERANCE,
+    );
+}
+
 #[test]
 fn bem_bodies_share_their_condensation() {
     let (warm, cold) = compare(
