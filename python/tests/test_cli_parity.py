@@ -47,6 +47,28 @@ def assert_same_contact_line(columns, result):
             assert np.array_equal(got, values), f"{name}: {np.flatnonzero(got != values)[:5]}"
 
 
+def assert_same_history(cli_csv, history):
+    """Result.history against the CLI's own transient.csv, cell for cell: each number equal to
+    the digits the CLI printed (bit for bit after parsing), each empty cell masked."""
+    import csv
+
+    with open(cli_csv, newline="") as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], rows[1:]
+    assert list(history) == header
+    for j, name in enumerate(header):
+        values = history[name]
+        assert len(values) == len(body), name
+        for k, row in enumerate(body):
+            cell = row[j]
+            if cell == "":
+                assert np.ma.is_masked(values[k]), (name, k)
+            elif name in ("step", "iterations"):
+                assert values[k] == int(cell), (name, k)
+            else:
+                assert not np.ma.is_masked(values[k]) and float(values[k]) == float(cell), (name, k, cell)
+
+
 @pytest.mark.parametrize("case", CASES, ids=[c.stem for c in CASES])
 def test_every_shipped_case_gives_the_cli_numbers(case, tmp_path):
     cli("run", case, "--out", tmp_path / "cli")
@@ -58,8 +80,10 @@ def test_every_shipped_case_gives_the_cli_numbers(case, tmp_path):
             rollbem.run(case)
         result = rollbem.run(case, out=tmp_path / "py")
         assert differences(expected, result.summary) == []
+        assert_same_history(tmp_path / "cli" / "transient.csv", result.history)
         return
     result = rollbem.run(case)
+    assert result.history is None
     assert result.output_dir is None
     assert differences(expected, result.summary) == []
     assert result.creepage == expected["creep"] and result.normal_force == expected["normal_force"]

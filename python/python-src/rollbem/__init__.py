@@ -140,6 +140,13 @@ class Result:
     * ``case``: the case as resolved after the overrides (dict)
     * ``summary``: the whole summary.json content (dict)
     * ``output_dir``: the folder written (str), or None when nothing was written
+    * ``history``: of a transient case (``transient:``, run into a folder), transient.csv's
+      columns by name (docs/outputs.md, "A transient run"), one entry a step, step 0 first:
+      ``step`` and ``iterations`` as int64 arrays, the others (``rolled``, ``normal_force``,
+      ``tangential_force``, ``creep``, ``overlap``, ``max_pressure``, ``max_shear``, ...) as
+      numpy masked float64 arrays, masked where transient.csv's cell is empty (``creep`` of
+      step 0, ``shift`` of the rolling steps, ``time`` without ``load.speed``); the values are
+      the file's, parsed from the digits the CLI prints. None for a steady run.
 
     Arrays (numpy, one entry per contact node in increasing x, named like contact.csv's
     columns): ``x`` [length], ``pressure`` p >= 0 [stress], ``shear`` q [stress], ``gap``
@@ -168,6 +175,7 @@ class Result:
     case: Dict[str, Any]
     summary: Dict[str, Any]
     output_dir: Optional[str]
+    history: Optional[Dict[str, np.ndarray]]
     arrays: Dict[str, Optional[np.ndarray]]
     x: np.ndarray
     pressure: np.ndarray
@@ -202,6 +210,9 @@ class Result:
         self.timings = s["timings"]
         self.case = s["case"]
         self.output_dir = None if raw["output_dir"] is None else os.fspath(raw["output_dir"])
+        self.history = None
+        if "transient" in s and self.output_dir is not None:
+            self.history = _read_history(os.path.join(self.output_dir, "transient.csv"))
         columns = raw["columns"]
         arrays: Dict[str, Optional[np.ndarray]] = {}
         for name in CONTACT_COLUMNS:
@@ -227,6 +238,25 @@ class Result:
             f"<rollbem.Result {self.summary.get('title', '')!r}: P={self.normal_force:g} "
             f"Q={self.tangential_force:g} xi={self.creepage:g} converged={self.converged}>"
         )
+
+
+def _read_history(path: str) -> Dict[str, np.ndarray]:
+    """transient.csv's columns (Result.history): counts as int64, the rest as masked float64
+    arrays masked at the empty cells."""
+    import csv
+
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], rows[1:]
+    history: Dict[str, np.ndarray] = {}
+    for j, name in enumerate(header):
+        cells = [r[j] for r in body]
+        if name in ("step", "iterations"):
+            history[name] = np.array([int(c) for c in cells], dtype=np.int64)
+        else:
+            values = np.array([float(c) if c else 0.0 for c in cells], dtype=np.float64)
+            history[name] = np.ma.array(values, mask=[c == "" for c in cells])
+    return history
 
 
 def run(
