@@ -129,6 +129,23 @@ fn warn_restarts(s: &rollbem::output::Summary) {
 fn not_converged_message(report: &rollbem::app::RunReport) -> String {
     use rollbem::contact::stall::{at_roundoff, roundoff_advice};
     let (summary, output_dir) = (&report.summary, &report.output_dir);
+    if let Some(unsettled) = summary
+        .solver
+        .fallbacks
+        .iter()
+        .find(|f| f.starts_with(rollbem::contact::falling::UNSETTLED))
+    {
+        return format!(
+            "{unsettled}: each solve with the nodal mu frozen converged (scaled residual {:.3e}), \
+             but the law falls too steeply over this contact's slip velocities for the fixed \
+             point on the nodal mu (docs/friction.md, \"When it does not settle\"): a smaller \
+             creepage or load, a smaller difference contact.friction - \
+             contact.falling_friction.kinetic or a larger contact.falling_friction.slip_velocity \
+             settles. The history is in {}.",
+            summary.residual,
+            output_dir.join("summary.json").display()
+        );
+    }
     if at_roundoff(summary.residual, summary.grid.nodes) {
         let history = summary.solver.history.iter().map(|h| h.residual);
         let smallest = history.fold(summary.residual, f64::min);
