@@ -219,10 +219,41 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<LoadedCase, CaseError> 
 /// the case in messages, and whose folder resolves the case's relative paths): for cases that
 /// live in memory (built-in references, tests, fuzzing) as well as files.
 pub fn parse(text: &str, path: &Path, overrides: &[String]) -> Result<LoadedCase, CaseError> {
-    let mut value = parse_yaml(text).map_err(|message| CaseError::Yaml {
-        path: path.to_path_buf(),
-        message,
-    })?;
+    ParsedCase::new(text, path).with_overrides(overrides)
+}
+
+/// A case file's text parsed once into its YAML tree, for the many runs of a sweep that apply
+/// their own overrides to it ([`Self::with_overrides`] gives what [`parse`] gives for the text
+/// and the overrides, without reading the YAML again).
+#[derive(Debug, Clone)]
+pub struct ParsedCase {
+    path: PathBuf,
+    tree: Result<serde_norway::Value, String>,
+}
+
+impl ParsedCase {
+    /// The tree of `text`, the case file at `path` (a YAML error is kept and reported by
+    /// [`Self::with_overrides`]).
+    pub fn new(text: &str, path: &Path) -> Self {
+        Self {
+            path: path.to_path_buf(),
+            tree: parse_yaml(text),
+        }
+    }
+
+    /// The case with `overrides` (`KEY.PATH=VALUE`) applied, then validated: [`parse`]'s result.
+    pub fn with_overrides(&self, overrides: &[String]) -> Result<LoadedCase, CaseError> {
+        let value = self.tree.clone().map_err(|message| CaseError::Yaml {
+            path: self.path.clone(),
+            message,
+        })?;
+        from_tree(value, &self.path, overrides)
+    }
+}
+
+/// The case of the YAML tree `value` of the file at `path`, with `overrides` applied, checked
+/// and validated.
+fn from_tree(mut value: serde_norway::Value, path: &Path, overrides: &[String]) -> Result<LoadedCase, CaseError> {
     for argument in overrides {
         apply_override(&mut value, argument)?;
     }

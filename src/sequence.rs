@@ -102,16 +102,23 @@ impl Shared {
         scene.grid_control.is_none() && self.differs_only_in_controls(&scene.case.case) && same_grid(&self.base, scene)
     }
 
+    /// `scene` admitted to this assembly when it [`Self::shares`] it.
+    pub fn admit(&self, scene: Scene) -> Option<SharedScene> {
+        self.shares(&scene).then_some(SharedScene(scene))
+    }
+
     /// The scene of a case that [`Self::shares`] this assembly, with the base's bodies (no
     /// mesh read again); `None` when the case does not share it. The case's load-dependent
-    /// checks ([`crate::scene::preflight::check`]) are made as for any run.
-    pub fn scene_of(&self, case: crate::case::LoadedCase) -> Result<Option<Scene>, Error> {
+    /// checks ([`crate::scene::preflight::check_derived`]) are made as for any run.
+    pub fn scene_of(&self, case: crate::case::LoadedCase) -> Result<Option<SharedScene>, Error> {
         if !self.differs_only_in_controls(&case.case) {
             return Ok(None);
         }
-        crate::scene::preflight::check(&case, &self.base.bodies)?;
+        // The memory was checked for the shared assembly, which a run on the same grid reuses.
+        crate::scene::preflight::check_derived(&case, &self.base.bodies)?;
         let scene = Scene::new(case, self.base.bodies.clone());
-        Ok(self.shares(&scene).then_some(scene))
+        let shares = scene.grid_control.is_none() && same_grid(&self.base, &scene);
+        Ok(shares.then_some(SharedScene(scene)))
     }
 
     /// Whether a run's case differs from the base's only in loads, friction, solver and output
@@ -146,6 +153,17 @@ impl Shared {
     }
 }
 
+/// A scene that shares a [`Shared`] assembly: only [`Shared::admit`] and [`Shared::scene_of`]
+/// make one, so a [`Chain`] solves it without comparing the cases again.
+pub struct SharedScene(Scene);
+
+impl SharedScene {
+    /// The scene.
+    pub fn scene(&self) -> &Scene {
+        &self.0
+    }
+}
+
 /// Whether two scenes have the same contact grid (kind, edges and nodes bit for bit).
 fn same_grid(a: &Scene, b: &Scene) -> bool {
     a.grid.kind == b.grid.kind && a.grid.edges == b.grid.edges && a.grid.nodes == b.grid.nodes
@@ -176,18 +194,21 @@ impl Chain<'_> {
         self.last = None;
     }
 
-    /// Solves the run of `scene` (which must [`Shared::shares`] the assembly; else an internal
-    /// error) from the last converged run, post-processes it and hands the solved run to
+    /// Solves the run of `scene` (admitted to the chain's assembly; a scene admitted to another
+    /// assembly is an internal error) from the last converged run, post-processes it and hands the solved run to
     /// `read`, whose result is returned with how the run started. `start` is when the run
     /// began (its timings; the shared assembly counts in no run's). A converged run becomes the
     /// next one's start.
     pub fn solve_with<T>(
         &mut self,
-        scene: Scene,
+        scene: SharedScene,
         start: Instant,
         read: impl FnOnce(&Solved) -> T,
     ) -> Result<(T, Start), Error> {
-        assert!(self.shared.shares(&scene), "a run outside the sequence's assembly");
+        let SharedScene(scene) = scene;
+        // Admitted by its type; the comparison of the case trees (a fifth of a warm run's
+        // time) is repeated in debug builds only, for a scene admitted to another assembly.
+        debug_assert!(self.shared.shares(&scene), "a run outside the sequence's assembly");
         let mut problem = self.problem.take().unwrap_or_else(|| self.shared.problem.clone());
         set_controls(&mut problem, &scene);
         let warm = self.last.take().map(|z| with_prescribed(z, &problem));
@@ -219,7 +240,7 @@ impl Chain<'_> {
     }
 
     /// [`Self::solve_with`] keeping the whole solved run.
-    pub fn solve(&mut self, scene: Scene) -> Result<(Solved, Start), Error> {
+    pub fn solve(&mut self, scene: SharedScene) -> Result<(Solved, Start), Error> {
         let start = Instant::now();
         let mut kept = None;
         let how = self.solve_with(scene, start, |s| kept = Some(s.clone()))?.1;

@@ -153,6 +153,7 @@ fn check_keys(case: &Path, base_set: &[String], varies: &[Vary]) -> Result<(), E
         }
     }
     let text = std::fs::read_to_string(case).map_err(|e| sweep_err(format!("{}: {e}", case.display())))?;
+    let parsed = crate::case::ParsedCase::new(&text, case);
     for v in varies {
         let mut seen = std::collections::HashSet::new();
         for value in v.values.iter().filter(|x| seen.insert(x.as_str())) {
@@ -162,7 +163,7 @@ fn check_keys(case: &Path, base_set: &[String], varies: &[Vary]) -> Result<(), E
             if let Err(crate::case::CaseError::Override {
                 argument: blamed,
                 message,
-            }) = crate::case::parse(&text, case, &set)
+            }) = parsed.with_overrides(&set)
             {
                 if blamed == argument {
                     return Err(sweep_err(format!(
@@ -316,7 +317,7 @@ impl Job<'_> {
             std::fs::read_to_string(self.case).map_err(|e| sweep_err(format!("{}: {e}", self.case.display())))?;
         let mut points = chains::Points {
             case: self.case,
-            text,
+            parsed: crate::case::ParsedCase::new(&text, self.case),
             base_set: self.base_set,
             out: dir,
             per_run_files: self.per_run_files,

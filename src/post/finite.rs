@@ -76,8 +76,16 @@ fn not_finite(case: &Path, what: &str, value: f64) -> Error {
 /// A serializer that records where the first non-finite float is and otherwise does nothing.
 #[derive(Default)]
 struct Walker {
-    path: Vec<String>,
+    path: Vec<Part>,
     found: Option<(String, f64)>,
+}
+
+/// One step of the path to a number: an index or a key. Built for every element walked, so
+/// only a map's key (rare in rollbem's outputs) allocates; the text is made when a number fails.
+enum Part {
+    Index(usize),
+    Name(&'static str),
+    Key(String),
 }
 
 /// Stops the walk (never shown to the user).
@@ -105,16 +113,17 @@ impl Walker {
         }
         let mut path = String::new();
         for part in &self.path {
-            if !part.starts_with('[') && !path.is_empty() {
-                path.push('.');
+            match part {
+                Part::Index(i) => path.push_str(&format!("[{i}]")),
+                Part::Name(name) => push_name(&mut path, name),
+                Part::Key(name) => push_name(&mut path, name),
             }
-            path.push_str(part);
         }
         self.found = Some((if path.is_empty() { "(value)".into() } else { path }, v));
         Err(Stop)
     }
 
-    fn within<T: Serialize + ?Sized>(&mut self, part: String, value: &T) -> Result<(), Stop> {
+    fn within<T: Serialize + ?Sized>(&mut self, part: Part, value: &T) -> Result<(), Stop> {
         self.path.push(part);
         let result = value.serialize(&mut *self);
         self.path.pop();
@@ -122,11 +131,19 @@ impl Walker {
     }
 }
 
+/// `name` appended to a dotted path.
+fn push_name(path: &mut String, name: &str) {
+    if !path.is_empty() {
+        path.push('.');
+    }
+    path.push_str(name);
+}
+
 /// Sequences, maps and structs: each element under its index or key.
 struct Compound<'a> {
     walker: &'a mut Walker,
     index: usize,
-    key: Option<String>,
+    key: Option<Part>,
 }
 
 /// Serializer methods for values that hold no floating-point number: nothing to check.
@@ -195,7 +212,7 @@ impl<'a> ser::Serializer for &'a mut Walker {
         variant: &'static str,
         value: &T,
     ) -> Result<(), Stop> {
-        self.within(variant.to_string(), value)
+        self.within(Part::Name(variant), value)
     }
     fn serialize_seq(self, _: Option<usize>) -> Result<Compound<'a>, Stop> {
         Ok(Compound {
@@ -218,13 +235,9 @@ impl<'a> ser::Serializer for &'a mut Walker {
 
 impl Compound<'_> {
     fn element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Stop> {
-        let part = format!("[{}]", self.index);
+        let part = Part::Index(self.index);
         self.index += 1;
         self.walker.within(part, value)
-    }
-
-    fn field<T: Serialize + ?Sized>(&mut self, key: &str, value: &T) -> Result<(), Stop> {
-        self.walker.within(key.to_string(), value)
     }
 }
 
@@ -258,15 +271,15 @@ impl ser::SerializeMap for Compound<'_> {
         self.key = Some(
             serde_json::to_value(key)
                 .ok()
-                .and_then(|k| k.as_str().map(str::to_string))
-                .unwrap_or_else(|| format!("[{}]", self.index)),
+                .and_then(|k| k.as_str().map(|k| Part::Key(k.to_string())))
+                .unwrap_or(Part::Index(self.index)),
         );
         Ok(())
     }
     fn serialize_value<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Stop> {
-        let key = self.key.take().unwrap_or_default();
+        let key = self.key.take().unwrap_or(Part::Index(self.index));
         self.index += 1;
-        self.field(&key, value)
+        self.walker.within(key, value)
     }
     fn end(self) -> Result<(), Stop> {
         Ok(())
@@ -280,7 +293,7 @@ macro_rules! named {
             type Ok = ();
             type Error = Stop;
             fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, value: &T) -> Result<(), Stop> {
-                self.field(key, value)
+                self.walker.within(Part::Name(key), value)
             }
             fn end(self) -> Result<(), Stop> {
                 Ok(())

@@ -18,6 +18,13 @@ pub const MIN_HALF_WIDTH_OVER_RADIUS: f64 = 1e-10;
 /// Checks the contact segments, the derived quantities and the memory of a case with its
 /// bodies resolved; returns the memory estimate.
 pub fn check(case: &LoadedCase, bodies: &BodySetups) -> Result<MemoryEstimate, Error> {
+    check_derived(case, bodies)?;
+    check_memory(case, bodies)
+}
+
+/// The checks of [`check`] that depend on the loads (contact segments, derived scales), without
+/// the memory estimate: for a run on an assembly already built and checked (a sequence's).
+pub fn check_derived(case: &LoadedCase, bodies: &BodySetups) -> Result<(), Error> {
     let mut violations = contact_segment_violations(bodies);
     if violations.is_empty() {
         let est = Estimates::of(&case.case, bodies);
@@ -29,7 +36,7 @@ pub fn check(case: &LoadedCase, bodies: &BodySetups) -> Result<MemoryEstimate, E
             violations,
         }));
     }
-    check_memory(case, bodies)
+    Ok(())
 }
 
 /// A derived value, short: exponent form when tiny or huge, else at most six decimals.

@@ -68,8 +68,8 @@ pub(super) fn contiguous_chains(order: &[usize], workers: usize) -> Vec<&[usize]
 pub(super) struct Points<'a> {
     /// The case file.
     pub case: &'a Path,
-    /// Its text, read once.
-    pub text: String,
+    /// Its text, read and parsed once.
+    pub parsed: crate::case::ParsedCase,
     /// The `--set` overrides.
     pub base_set: &'a [String],
     /// The sweep's folder.
@@ -85,7 +85,7 @@ impl Points<'_> {
     fn case_of(&self, overrides: &[(String, String)]) -> Result<LoadedCase, crate::error::Error> {
         let mut set = self.base_set.to_vec();
         set.extend(overrides.iter().map(|(k, v)| format!("{k}={v}")));
-        Ok(crate::case::parse(&self.text, self.case, &set)?)
+        Ok(self.parsed.with_overrides(&set)?)
     }
 
     /// The assembly the runs share: that of the scene of `first` (a run of the sweep), when

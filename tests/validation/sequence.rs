@@ -36,6 +36,7 @@ fn compare(name: &str, set: &[&str], key: &str, values: &[&str], tolerance: f64)
     for (k, v) in values.iter().enumerate() {
         let run = scene(name, &with(v));
         assert!(shared.shares(&run), "{name} {key}={v} shares the assembly");
+        let run = shared.admit(run).expect("admitted");
         let (warm, start) = chain.solve(run).expect("warm run");
         assert_eq!(start, if k == 0 { Start::Cold } else { Start::Warm });
         let cold = rollbem::app::solve_case(crate::common::case_path(name).as_path(), &with(v)).expect("cold run");
