@@ -60,7 +60,9 @@ mod scales;
 mod stand_ins;
 
 use crate::contact::residual::State;
-use crate::contact::{methods, BodyBLoad, BodyBShare, ContactProblem, SolveReport, SolverSettings, Workspace};
+use crate::contact::{
+    methods, BodyBLoad, BodyBShare, ContactProblem, SolveReport, SolverSettings, WithoutSlipBlocks, Workspace,
+};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::post::adaptation::{AdaptationStep, GridAdaptation};
@@ -108,16 +110,47 @@ pub struct Adapted {
     pub adaptation: Option<GridAdaptation>,
 }
 
-/// One grid assembled and solved.
-struct Solve {
+/// One grid assembled and solved; its problem whole, or waiting for its outputs or the
+/// checks without its slip blocks (`Solve<WithoutSlipBlocks>`).
+struct Solve<P = ContactProblem> {
     /// Whether its bodies are the BEM bodies' stand-ins (post-processing then takes the scene
     /// of the bodies themselves, [`finished`]).
     from_stand_ins: bool,
     scene: Scene,
     models: BodyModels,
-    problem: ContactProblem,
+    problem: P,
     state: State,
     report: SolveReport,
+}
+
+impl<P> Solve<P> {
+    /// The same solve with its problem turned by `f`.
+    fn with_problem<Q>(self, f: impl FnOnce(P) -> Q) -> Solve<Q> {
+        Solve {
+            from_stand_ins: self.from_stand_ins,
+            scene: self.scene,
+            models: self.models,
+            problem: f(self.problem),
+            state: self.state,
+            report: self.report,
+        }
+    }
+}
+
+impl Solve {
+    /// The solve with its problem's slip blocks dropped (two m × m blocks), while it waits: its
+    /// solution's outputs come after the check of the bodies' meshes, which solves other
+    /// problems, and the checks of the stand-ins change its problem for their own blocks.
+    fn without_slip_blocks(self) -> Solve<WithoutSlipBlocks> {
+        self.with_problem(ContactProblem::without_slip_blocks)
+    }
+}
+
+impl Solve<WithoutSlipBlocks> {
+    /// The solve with its problem whole again (its slip blocks made from W), for its outputs.
+    fn with_slip_blocks(self) -> Solve {
+        self.with_problem(WithoutSlipBlocks::with_slip_blocks)
+    }
 }
 
 /// Builds the scene's models, assembles and solves (from `warm`, carried from the grid it was
@@ -167,7 +200,7 @@ fn solve_problem(
         problem.n_nodes()
     );
     let t = Instant::now();
-    let warm = warm.map(|(from, z)| carried(problem, from, z));
+    let warm = warm.map(|(from, z)| carried(&problem.grid, from, z));
     let solved = methods::solve_from_in(problem, solver, warm, ws);
     timings.solve_s += t.elapsed().as_secs_f64();
     solved
@@ -183,14 +216,14 @@ fn condensation_share(models: &BodyModels, built: f64) -> f64 {
     Timings::share_of_wall(built, c, a + c)
 }
 
-/// A state of `from`'s grid carried to the problem's grid: tractions, gap and slip interpolated
+/// A state of `from`'s grid carried to `grid`: tractions, gap and slip interpolated
 /// by `from`'s shape functions (p and g clipped at 0). Interpolating the gap and slip too, rather
 /// than recomputing them from the carried tractions, keeps the complementarity of the solution:
 /// a node inside the contact's stick zone starts with g = 0 and s = 0, so the first Newton step
 /// starts from the old active sets instead of from the noise of the tractions' interpolation
 /// error (largest at the very nodes the refinement adds).
-fn carried(pb: &ContactProblem, from: &ContactGrid, z: &State) -> State {
-    let x = &pb.grid.nodes;
+fn carried(grid: &ContactGrid, from: &ContactGrid, z: &State) -> State {
+    let x = &grid.nodes;
     let field = |v: &[f64]| -> Vec<f64> { x.iter().map(|&x| from.interpolate(v, x)).collect() };
     let mut pressure = field(&z.pressure);
     let mut gap = field(&z.gap);
@@ -233,7 +266,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
     let mut resume: Option<(DyadicGrid, ContactGrid, State)> = None;
     for bisections in 0..=body_mesh::MAX_BODY_MESH_BISECTIONS {
         let refined = refine(&scene, resume.take(), estimator, &mut timings, &mut steps, &mut ws)?;
-        let (mut met, scales, last) = match refined {
+        let (met, scales, last) = match refined {
             Refined::Met(met, scales, last) => (met, scales, last),
             Refined::Ended(s, reached) => {
                 let mut best = finished(s, &scene, timings, Some((tolerance, steps)));
@@ -243,10 +276,9 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
                 return Ok(best);
             }
         };
-        // The result's slip blocks wait for its outputs (`finished` makes them again): two
-        // m × m blocks fewer beside the check's bodies (the braking bore's: 31 MB).
-        met.problem.drop_slip_blocks();
-        let warm = (&met.problem.grid, &met.state);
+        // The result waits for its outputs without its slip blocks (`Refined::Met`): two m × m
+        // blocks fewer beside the check's bodies (the braking bore's: 31 MB).
+        let warm = (met.problem.grid(), &met.state);
         let first = bisections == 0;
         // The check solves on a coarser grid than the final one: the final grid's Newton matrix
         // goes before the check's condensations are made (the braking bore's: 25 MB).
@@ -262,7 +294,12 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             &mut ws,
         )?;
         let Some(checked) = checked else {
-            return Ok(finished(met, &scene, timings, Some((tolerance, steps))));
+            return Ok(finished(
+                met.with_slip_blocks(),
+                &scene,
+                timings,
+                Some((tolerance, steps)),
+            ));
         };
         let mut e = checked.estimate;
         e.bisections = bisections;
@@ -272,7 +309,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         let adopt = checked.bisected.filter(|_| e.largest() > tolerance);
         let Some(bisected) = adopt.filter(|_| bisections < body_mesh::MAX_BODY_MESH_BISECTIONS) else {
             let too_coarse = (e.largest() > tolerance).then(|| body_mesh::meshed_bodies(&scene));
-            let mut done = finished(met, &scene, timings, Some((tolerance, steps)));
+            let mut done = finished(met.with_slip_blocks(), &scene, timings, Some((tolerance, steps)));
             if let (Some(a), Some(bodies)) = (done.adaptation.as_mut(), too_coarse) {
                 a.reached = false;
                 a.coarse_body_mesh = Some(bodies);
@@ -288,17 +325,17 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             "error control: the bodies' meshes outside the contact are too coarse for the tolerance; \
              solving again with them bisected"
         );
-        resume = Some((last, met.problem.grid.clone(), met.state.clone()));
+        resume = Some((last, met.problem.grid().clone(), met.state.clone()));
         scene = bisected;
     }
     unreachable!("the loop returns on its last bisection")
 }
 
 /// How the refinement of the contact grid ended: on a grid that meets the tolerance (with the
-/// units of its estimate), or otherwise (a solve that did not converge, `reached` true; the
+/// units of its estimate; the solve waiting for its outputs without its slip blocks), or otherwise (a solve that did not converge, `reached` true; the
 /// element limit or the pass limit, `reached` false).
 enum Refined {
-    Met(Solve, Scales, DyadicGrid),
+    Met(Solve<WithoutSlipBlocks>, Scales, DyadicGrid),
     Ended(Solve, bool),
 }
 
@@ -435,7 +472,6 @@ fn asks_interior_fields(scene: &Scene) -> bool {
 /// (the bodies themselves) on its grid, for their notices, validity and summary.
 fn finished(mut s: Solve, bodies: &Scene, mut timings: Timings, passes: Option<(f64, Vec<AdaptationStep>)>) -> Adapted {
     let t = Instant::now();
-    s.problem.restore_slip_blocks();
     if s.from_stand_ins {
         s.scene = bodies.on_grid(s.problem.grid.clone());
     }

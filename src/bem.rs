@@ -254,3 +254,15 @@ pub enum BemError {
         problem: String,
     },
 }
+
+/// The boundary conditions of the roller on a rigid shaft of cases/fig14_true_geometry.yaml
+/// (meshes/roller_r150_shaft15_A.msh: its surface free, its bore fixed, its contact group
+/// loaded), which the tests of several modules build.
+#[cfg(test)]
+pub(crate) fn fixed_shaft_roller_conditions() -> Vec<(String, BoundaryCondition)> {
+    vec![
+        ("free".into(), BoundaryCondition::Free),
+        ("shaft".into(), BoundaryCondition::Fixed),
+        ("contact".into(), BoundaryCondition::Contact),
+    ]
+}

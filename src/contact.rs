@@ -300,47 +300,13 @@ impl ContactProblem {
         }
     }
 
-    /// `f` of this problem with the bodies' flexibilities changed by `changes` as
-    /// [`Self::with_flexibility_changes`] does, made in this problem's place and taken back
-    /// after: no second copy of the pair's four blocks, nor of the slip operator's two (made
-    /// for the change in place of the problem's own). Taking the change back leaves the
-    /// flexibility within round-off of its values (the sum and difference of the same terms)
-    /// and the slip blocks dropped, as [`Self::drop_slip_blocks`] leaves them: whoever solves
-    /// the problem again calls [`Self::restore_slip_blocks`] first (src/adapt.rs does before
-    /// the outputs; the check of the body mesh's corrections only ever solves it changed).
-    pub fn with_flexibility_changes_in_place<R>(
-        &mut self,
-        changes: [Option<&LowRankFlexibility>; 2],
-        f: impl FnOnce(&Self) -> R,
-    ) -> R {
-        let changes = sided(changes);
-        self.frame.add_low_rank(&mut self.flex, &changes, 1.0);
-        // The problem's own slip blocks go before the changed ones are made (the braking bore's
-        // final grid: two m × m blocks, 31 MB, fewer at the check's peak).
-        self.drop_slip_blocks();
-        self.bp = self.slip_operator.apply_scaled(&self.flex.wp, self.flow_sign);
-        self.bq = self.slip_operator.apply_scaled(&self.flex.wq, self.flow_sign);
-        let result = f(self);
-        self.frame.add_low_rank(&mut self.flex, &changes, -1.0);
-        self.drop_slip_blocks();
-        result
-    }
-
-    /// Drops the slip operator's blocks B_p, B_q (two m × m blocks) while a solved problem
-    /// waits for its outputs (src/adapt.rs: during the check of the bodies' meshes, which
-    /// solves other problems); [`Self::restore_slip_blocks`] makes them again from W.
-    pub fn drop_slip_blocks(&mut self) {
+    /// This problem without its slip operator's blocks B_p, B_q (two m × m blocks, which only a
+    /// solve reads), while it waits: for its outputs, or as the base of changed problems
+    /// ([`WithoutSlipBlocks`]).
+    pub fn without_slip_blocks(mut self) -> WithoutSlipBlocks {
         self.bp = Mat::zeros(0, 0);
         self.bq = Mat::zeros(0, 0);
-    }
-
-    /// B_p = σ D W_p and B_q = σ D W_q made again after [`Self::drop_slip_blocks`] (nothing
-    /// to do when they are there).
-    pub fn restore_slip_blocks(&mut self) {
-        if self.bp.nrows() != self.n_nodes() {
-            self.bp = self.slip_operator.apply_scaled(&self.flex.wp, self.flow_sign);
-            self.bq = self.slip_operator.apply_scaled(&self.flex.wq, self.flow_sign);
-        }
+        WithoutSlipBlocks(self)
     }
 
     /// The friction coefficient μ_i [-] that bounds the shear at node `i`: the frozen nodal
@@ -573,6 +539,63 @@ fn sided(changes: [Option<&LowRankFlexibility>; 2]) -> Vec<(&LowRankFlexibility,
         .zip([Side::A, Side::B])
         .filter_map(|(c, side)| c.map(|c| (c, side)))
         .collect()
+}
+
+/// A contact problem that waits without its slip operator's blocks B_p = σ D W_p and
+/// B_q = σ D W_q: two m × m blocks fewer held. An error-controlled run holds its result so
+/// while the bodies' meshes are checked (the result's outputs come after, src/adapt.rs), and
+/// holds the base of the checks' changed problems so, whose blocks are made for the change
+/// alone. Everything else is the problem's; [`Self::with_slip_blocks`] makes the blocks again
+/// from W and gives the whole problem back, the only way to a problem that can be solved.
+#[derive(Debug, Clone)]
+pub struct WithoutSlipBlocks(ContactProblem);
+
+impl WithoutSlipBlocks {
+    /// The contact grid of the problem.
+    pub fn grid(&self) -> &ContactGrid {
+        &self.0.grid
+    }
+
+    /// The contact's directions at the nodes ([`ContactProblem::frame`]).
+    pub fn frame(&self) -> &ContactFrame {
+        &self.0.frame
+    }
+
+    /// Number of contact nodes m.
+    pub fn n_nodes(&self) -> usize {
+        self.0.n_nodes()
+    }
+
+    /// The whole problem again, its slip blocks B_p = σ D W_p and B_q = σ D W_q made from W.
+    pub fn with_slip_blocks(self) -> ContactProblem {
+        let mut pb = self.0;
+        pb.bp = pb.slip_operator.apply_scaled(&pb.flex.wp, pb.flow_sign);
+        pb.bq = pb.slip_operator.apply_scaled(&pb.flex.wq, pb.flow_sign);
+        pb
+    }
+
+    /// `f` of the problem with the bodies' flexibilities changed by `changes` as
+    /// [`ContactProblem::with_flexibility_changes`] makes it, made in this problem's place and
+    /// taken back after: no second copy of the pair's four blocks, and the slip blocks made for
+    /// the changed flexibility only (dropped again after `f`). Taking the change back leaves
+    /// the flexibility within round-off of its values (the sum and difference of the same
+    /// terms).
+    pub fn with_flexibility_changes<R>(
+        &mut self,
+        changes: [Option<&LowRankFlexibility>; 2],
+        f: impl FnOnce(&ContactProblem) -> R,
+    ) -> R {
+        let changes = sided(changes);
+        let pb = &mut self.0;
+        pb.frame.add_low_rank(&mut pb.flex, &changes, 1.0);
+        pb.bp = pb.slip_operator.apply_scaled(&pb.flex.wp, pb.flow_sign);
+        pb.bq = pb.slip_operator.apply_scaled(&pb.flex.wq, pb.flow_sign);
+        let result = f(pb);
+        pb.frame.add_low_rank(&mut pb.flex, &changes, -1.0);
+        pb.bp = Mat::zeros(0, 0);
+        pb.bq = Mat::zeros(0, 0);
+        result
+    }
 }
 
 #[cfg(test)]

@@ -117,6 +117,22 @@ impl BoundaryMesh {
         self.elements.iter().filter(|e| e.group == group).count()
     }
 
+    /// The x coordinates [length] of the end nodes of group `group`'s elements, sorted, each
+    /// once (coordinates closer than `tolerance` [length] count as one): a built mesh's
+    /// contact edges, which the mesh builders' tests compare with the grid they were given.
+    #[cfg(test)]
+    pub(crate) fn group_end_abscissae(&self, group: usize, tolerance: f64) -> Vec<f64> {
+        let mut xs: Vec<f64> = self
+            .elements
+            .iter()
+            .filter(|e| e.group == group)
+            .flat_map(|e| [self.nodes[e.nodes[0]][0], self.nodes[e.nodes[1]][0]])
+            .collect();
+        xs.sort_by(f64::total_cmp);
+        xs.dedup_by(|a, b| (*a - *b).abs() <= tolerance);
+        xs
+    }
+
     /// Length of the bounding-box diagonal [length]; the scale for geometric tolerances.
     pub fn size(&self) -> f64 {
         let mut lo = [f64::INFINITY; 2];

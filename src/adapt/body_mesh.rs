@@ -151,7 +151,9 @@ pub(super) fn check_on(
         return Ok(None);
     };
     let controlled = overlap::controlled(scene);
-    let mut given = solve_on(scene.on_grid(grid.clone()), Some(warm), false, timings, ws)?;
+    // The given bodies' problem is the base of the changed bodies' problems, whose slip blocks
+    // are made in place of its own (`GivenBodies`).
+    let mut given = solve_on(scene.on_grid(grid.clone()), Some(warm), false, timings, ws)?.without_slip_blocks();
     if !given.report.converged {
         return Ok(unestimated());
     }
@@ -409,7 +411,9 @@ mod tests {
         let scene = Scene::from_case(&case).unwrap();
         let grid = DyadicGrid::new(&scene.grid).bisected().grid();
         let (mut timings, mut ws) = (Timings::default(), Workspace::new());
-        let mut given = solve_on(scene.on_grid(grid.clone()), None, false, &mut timings, &mut ws).unwrap();
+        let mut given = solve_on(scene.on_grid(grid.clone()), None, false, &mut timings, &mut ws)
+            .unwrap()
+            .without_slip_blocks();
         assert!(given.report.converged);
         let scales = Scales {
             peak_pressure: scene.estimates.hertz_peak_pressure,

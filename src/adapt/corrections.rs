@@ -20,14 +20,14 @@
 //! warm-started contact solve. M_k is the change of rank two that maps t_k onto E t_k (per
 //! body, in its global axes: the left factor (δh, δw) = E t_k, the right one t_kᵀ/|t_k|² in the
 //! rows of h and of w), added to the given problem in its place
-//! ([`ContactProblem::with_flexibility_changes_in_place`]) and taken back after: the
+//! ([`WithoutSlipBlocks::with_flexibility_changes`]) and taken back after: the
 //! problem's undeformed gap and frame are the given bodies', whose contact groups the changed
 //! ones share element for element.
 
 use super::{condensation_share, solve_problem};
 use crate::body::{LowRankFlexibility, Side};
 use crate::contact::residual::State;
-use crate::contact::{ContactProblem, SolverSettings, Workspace};
+use crate::contact::{SolverSettings, WithoutSlipBlocks, Workspace};
 use crate::error::Error;
 use crate::post::Timings;
 use crate::scene::{BodyModels, Scene};
@@ -52,8 +52,9 @@ pub const SLOWEST_RATE: f64 = 0.3;
 /// The bodies as given on the check grid: their contact problem and models, the base of the
 /// corrections.
 pub(super) struct GivenBodies<'a> {
-    /// The given bodies' problem (changes are made in its place and taken back).
-    pub problem: &'a mut ContactProblem,
+    /// The given bodies' problem, without its slip blocks (changes are made in its place and
+    /// taken back, with the slip blocks of the changed problem).
+    pub problem: &'a mut WithoutSlipBlocks,
     /// The given bodies.
     pub models: &'a BodyModels,
     /// Their solution on the grid.
@@ -86,12 +87,10 @@ impl GivenBodies<'_> {
             let t = Instant::now();
             let [a, b] = [Side::A, Side::B].map(|side| self.correction(side, &z, &models));
             timings.assembly_s += t.elapsed().as_secs_f64();
-            let grid = self.problem.grid.clone();
-            let (next, report) = self
-                .problem
-                .with_flexibility_changes_in_place([Some(&a), Some(&b)], |pb| {
-                    solve_problem(pb, solver, Some((&grid, &z)), timings, ws)
-                });
+            let grid = self.problem.grid().clone();
+            let (next, report) = self.problem.with_flexibility_changes([Some(&a), Some(&b)], |pb| {
+                solve_problem(pb, solver, Some((&grid, &z)), timings, ws)
+            });
             if !report.converged {
                 return Ok(None);
             }
@@ -131,9 +130,9 @@ impl GivenBodies<'_> {
             Side::A => 0,
             Side::B => 1,
         };
-        let grid = &self.problem.grid;
+        let grid = self.problem.grid();
         let m = grid.n_nodes();
-        let (p, q) = self.problem.frame.global_load_columns(side, &z.pressure, &z.shear);
+        let (p, q) = self.problem.frame().global_load_columns(side, &z.pressure, &z.shear);
         let [h, w] = changed[k].model().displacements(grid, side, p.as_ref(), q.as_ref());
         let [h0, w0] = self.models[k].model().displacements(grid, side, p.as_ref(), q.as_ref());
         let norm2 = p.squared_norm_l2() + q.squared_norm_l2();

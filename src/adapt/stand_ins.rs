@@ -8,7 +8,7 @@ use crate::adapt::cells::DyadicGrid;
 use crate::body::{FlexibilityChange, Side};
 use crate::contact::report::SolveReport;
 use crate::contact::residual::State;
-use crate::contact::{ContactProblem, Workspace};
+use crate::contact::{WithoutSlipBlocks, Workspace};
 use crate::error::Error;
 use crate::grid::ContactGrid;
 use crate::post::adaptation::{AdaptationStep, BodyMeshError, ErrorEstimate};
@@ -71,8 +71,9 @@ pub(super) struct PassStandIns {
 
 /// How the final grid of the passes ended ([`PassStandIns::finish`]).
 pub(super) enum Final {
-    /// Its solution meets the tolerance: the run's result.
-    Met(Solve),
+    /// Its solution meets the tolerance: the run's result, waiting for its outputs without its
+    /// slip blocks.
+    Met(Solve<WithoutSlipBlocks>),
     /// The bodies themselves did not converge on it.
     Ended(Solve),
     /// The bodies themselves on it, whose estimate is above the tolerance: the passes go on
@@ -130,7 +131,7 @@ impl PassStandIns {
         &mut self,
         scene: &Scene,
         g: Solve,
-        mut h: Solve,
+        h: Solve,
         e: ErrorEstimate,
         scales: Scales,
         tolerance: f64,
@@ -138,6 +139,9 @@ impl PassStandIns {
         timings: &mut Timings,
         ws: &mut Workspace,
     ) -> Result<Final, Error> {
+        // H's slip blocks go before the check's are made: its problem is the base of the
+        // check's changed problems, and its solution waits for its outputs.
+        let mut h = h.without_slip_blocks();
         if self.passes.is_none() {
             return Ok(Final::Met(h));
         }
@@ -167,8 +171,8 @@ impl PassStandIns {
             self.check = None;
         }
         let full = solve_on(
-            scene.on_grid(h.problem.grid.clone()),
-            Some((&h.problem.grid, &h.state)),
+            scene.on_grid(h.problem.grid().clone()),
+            Some((h.problem.grid(), &h.state)),
             false,
             timings,
             ws,
@@ -193,7 +197,7 @@ impl PassStandIns {
             last.iterations += full.report.iterations;
         }
         if total.within(tolerance) {
-            return Ok(Final::Met(full));
+            return Ok(Final::Met(full.without_slip_blocks()));
         }
         // Not close enough at this tolerance: the passes go on with the bodies themselves, from
         // this grid.
@@ -233,32 +237,34 @@ fn check_factor(levels: usize) -> f64 {
 ///
 /// With `changes` (how each check body differs from its stand-in, a low-rank change of its
 /// flexibility), the check's problems are `g`'s and `h`'s plus the changes
-/// ([`ContactProblem::with_flexibility_changes`]): the half-plane blocks, the larger part of a
+/// ([`WithoutSlipBlocks::with_flexibility_changes`]): the half-plane blocks, the larger part of a
 /// stand-in's assembly, are the same in both, and are not made again.
 #[allow(clippy::too_many_arguments)]
 fn check_difference(
     check: &Scene,
     changes: Option<&Changes>,
-    mut g: Solve,
-    h: &mut Solve,
+    g: Solve,
+    h: &mut Solve<WithoutSlipBlocks>,
     scales: Scales,
     overlap_controlled: bool,
     timings: &mut Timings,
     ws: &mut Workspace,
 ) -> Result<Option<(BodyMeshError, usize)>, Error> {
-    let solve = |on: &mut Solve, warm: &State, timings: &mut Timings, ws: &mut Workspace| match changes {
-        Some(c) => Ok(solve_changed(&mut on.problem, c, check, warm, timings, ws)),
-        None => solve_on(
-            check.on_grid(on.problem.grid.clone()),
-            Some((&on.problem.grid, warm)),
-            false,
-            timings,
-            ws,
-        )
-        .map(|s| (s.state, s.report)),
-    };
+    let solve =
+        |on: &mut Solve<WithoutSlipBlocks>, warm: &State, timings: &mut Timings, ws: &mut Workspace| match changes {
+            Some(c) => Ok(solve_changed(&mut on.problem, c, check, warm, timings, ws)),
+            None => solve_on(
+                check.on_grid(on.problem.grid().clone()),
+                Some((on.problem.grid(), warm)),
+                false,
+                timings,
+                ws,
+            )
+            .map(|s| (s.state, s.report)),
+        };
     // Only its solution is needed: its matrices, and the passes' problem on G with its
     // models, go before H's are made.
+    let mut g = g.without_slip_blocks();
     let g_start = g.state.clone();
     let (on_g, g_report) = solve(&mut g, &g_start, timings, ws)?;
     let Solve {
@@ -266,17 +272,17 @@ fn check_difference(
         state: g_state,
         ..
     } = g;
-    let g_grid = g_problem.grid.clone();
+    let g_grid = g_problem.grid().clone();
     drop(g_problem);
     let h_start = match g_report.converged {
-        true => moved_by(&h.problem, &h.state, &g_grid, &g_state, &on_g),
+        true => moved_by(h.problem.grid(), &h.state, &g_grid, &g_state, &on_g),
         false => h.state.clone(),
     };
     let (on_h, h_report) = solve(h, &h_start, timings, ws)?;
     if !h_report.converged {
         return Ok(None);
     }
-    let d = body_mesh::difference(&h.problem.grid, &on_h, &h.state, scales, overlap_controlled);
+    let d = body_mesh::difference(h.problem.grid(), &on_h, &h.state, scales, overlap_controlled);
     Ok(Some((d, g_report.iterations + h_report.iterations)))
 }
 
@@ -286,7 +292,7 @@ pub(super) type Changes = [Option<Arc<dyn FlexibilityChange>>; 2];
 /// The check solved on `base`'s grid, its problem `base` (the passes' problem there) plus
 /// `changes`, from `warm` (a solution on that grid); the times added to `timings`.
 fn solve_changed(
-    base: &mut ContactProblem,
+    base: &mut WithoutSlipBlocks,
     changes: &Changes,
     check: &Scene,
     warm: &State,
@@ -299,18 +305,19 @@ fn solve_changed(
         "assembling the contact problem: {} contact nodes (the passes' problem with the check's change)",
         base.n_nodes()
     );
-    let [a, b] = [(0, Side::A), (1, Side::B)].map(|(k, side)| changes[k].as_ref().map(|c| c.on_grid(&base.grid, side)));
-    base.with_flexibility_changes_in_place([a.as_ref(), b.as_ref()], |pb| {
+    let [a, b] =
+        [(0, Side::A), (1, Side::B)].map(|(k, side)| changes[k].as_ref().map(|c| c.on_grid(base.grid(), side)));
+    base.with_flexibility_changes([a.as_ref(), b.as_ref()], |pb| {
         timings.assembly_s += t.elapsed().as_secs_f64();
         solve_problem(pb, &check.solver, Some((&pb.grid, warm)), timings, ws)
     })
 }
 
-/// `z` (a solution on `pb`'s grid) moved by the change from `from` to `to` (two solutions on the
-/// grid `coarse`), carried to `pb`'s grid: the warm start of a solve whose solution differs
+/// `z` (a solution on `grid`) moved by the change from `from` to `to` (two solutions on the
+/// grid `coarse`), carried to `grid`: the warm start of a solve whose solution differs
 /// from `z` as `to` from `from`. Pressure and gap stay ≥ 0.
-fn moved_by(pb: &ContactProblem, z: &State, coarse: &ContactGrid, from: &State, to: &State) -> State {
-    let (a, b) = (carried(pb, coarse, to), carried(pb, coarse, from));
+fn moved_by(grid: &ContactGrid, z: &State, coarse: &ContactGrid, from: &State, to: &State) -> State {
+    let (a, b) = (carried(grid, coarse, to), carried(grid, coarse, from));
     let shift = |z: &[f64], a: &[f64], b: &[f64], floor: f64| -> Vec<f64> {
         z.iter()
             .zip(a)
@@ -358,13 +365,13 @@ mod tests {
         let mut z = uniform_state(m, 5.0, 2e-4);
         z.pressure[0] = 0.5;
         let from = uniform_state(n, 10.0, 1e-4);
-        let same = moved_by(&pb, &z, &coarse, &from, &from);
+        let same = moved_by(&pb.grid, &z, &coarse, &from, &from);
         assert_eq!(
             (same.pressure.clone(), same.shear.clone(), same.creep),
             (z.pressure.clone(), z.shear.clone(), z.creep)
         );
         let to = uniform_state(n, 9.0, 1.5e-4);
-        let moved = moved_by(&pb, &z, &coarse, &from, &to);
+        let moved = moved_by(&pb.grid, &z, &coarse, &from, &to);
         assert_eq!(moved.pressure[0], 0.0, "a pressure moved below zero stays at zero");
         for i in 1..m {
             assert!(

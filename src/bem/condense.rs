@@ -462,11 +462,7 @@ mod tests {
         BemModel::new(
             mesh,
             Elastic::new(60_260.0, 0.31),
-            vec![
-                ("free".into(), BoundaryCondition::Free),
-                ("shaft".into(), BoundaryCondition::Fixed),
-                ("contact".into(), BoundaryCondition::Contact),
-            ],
+            crate::bem::fixed_shaft_roller_conditions(),
             BemOptions::default(),
         )
         .unwrap()

@@ -407,7 +407,7 @@ impl FarFieldCache {
 mod tests {
     use super::*;
     use crate::adapt::cells::{Action, DyadicGrid};
-    use crate::bem::{condense, condense_reusing, BemOptions, BoundaryCondition};
+    use crate::bem::{condense, condense_reusing, BemOptions};
     use crate::material::Elastic;
     use crate::mesh::cuts::cut_along_grid;
     use crate::mesh::LoadedMesh;
@@ -428,11 +428,7 @@ mod tests {
         BemModel::new(
             mesh,
             material,
-            vec![
-                ("free".into(), BoundaryCondition::Free),
-                ("shaft".into(), BoundaryCondition::Fixed),
-                ("contact".into(), BoundaryCondition::Contact),
-            ],
+            crate::bem::fixed_shaft_roller_conditions(),
             BemOptions::default(),
         )
         .unwrap()

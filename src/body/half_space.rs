@@ -496,9 +496,9 @@ impl BodyModel for HalfSpace {
     }
 
     /// The blocks of [`HalfSpace::kernel_blocks`] applied without being made
-    /// ([`applied::displacements`]).
+    /// ([`applied::Applied::displacements`]).
     fn displacements(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> [Mat<f64>; 2] {
-        applied::displacements(self, grid, side, p, q)
+        applied::Applied::new(self, grid, side).displacements(p, q)
     }
 
     fn profile(&self, x: f64) -> f64 {
@@ -528,9 +528,9 @@ impl BodyModel for HalfSpace {
         Some(StrainOperator { p, q })
     }
 
-    /// [`Self::strain_operator`]'s product without its blocks ([`applied::strain`]).
+    /// [`Self::strain_operator`]'s product without its blocks ([`applied::Applied::strain`]).
     fn strain_at(&self, grid: &ContactGrid, side: Side, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Option<Mat<f64>> {
-        Some(applied::strain(self, grid, side, p, q))
+        Some(applied::Applied::new(self, grid, side).strain(p, q))
     }
 }
 

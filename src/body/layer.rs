@@ -80,11 +80,6 @@ impl Layer {
         let nu = self.material.glassy.poisson;
         let datum = self.half_plane().datum_length();
         let (g, r) = (self.material.glassy.shear(), self.material.rubbery().shear());
-        let components = [
-            Component::NormalNormal,
-            Component::NormalTangential,
-            Component::TangentialTangential,
-        ];
         let elastic = Remainder::tabulate(self.thickness, nu, datum, reach, None);
         let (elastic_scale, aged) = match &self.ageing {
             None => (1.0 / r, None),
@@ -93,7 +88,7 @@ impl Layer {
                 Some(Remainder::tabulate(self.thickness, nu, datum, reach, Some(a))),
             ),
         };
-        components.map(|c| {
+        Component::ALL.map(|c| {
             let mut m = elastic.matrix(grid, c) * faer::Scale(elastic_scale);
             if let Some(aged) = &aged {
                 m += aged.matrix(grid, c) * faer::Scale(1.0 / r - 1.0 / g);

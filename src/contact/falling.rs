@@ -36,6 +36,7 @@
 //! reports the branch it found (its creepage and forces); a continuation in the creepage from
 //! below and from above can find different ones for the same load.
 
+use super::newton::NewtonInputs;
 use super::report::{NewtonSettings, SolveReport};
 use super::residual::{ConvergenceMeasure, State};
 use super::workspace::Workspace;
@@ -130,7 +131,7 @@ pub fn solve(
         let measure = ConvergenceMeasure::new(&own);
         let (state, mut report) = match start.take() {
             Some(w) => restart::solve_warm(&own, settings, &measure, w, ws),
-            None => restart::solve(&own, settings, &measure, ws),
+            None => restart::solve(NewtonInputs::new(&own, settings, &measure), ws),
         };
         iterations += report.iterations;
         inner += report.inner_iterations;

@@ -15,6 +15,7 @@
 //! | `norm_tang` | Kalker's alternation: normal problem with the shear frozen, then the tangential one with the pressure frozen | one NORM + TANG pair | [`super::norm_tang`] |
 //! | `gauss_seidel` | projected Gauss–Seidel / fixed-point iteration of the projection equations, node by node in the flow direction | one sweep | [`super::gauss_seidel`] |
 
+use super::newton::NewtonInputs;
 use super::report::{Method, NewtonSettings, SolveReport, SolverSettings};
 use super::residual::{ConvergenceMeasure, State};
 pub use super::workspace::Workspace;
@@ -31,27 +32,58 @@ pub fn solve(pb: &ContactProblem, settings: &SolverSettings) -> (State, SolveRep
 /// to solve allocates its matrix once, at the size of the largest system). The result does not
 /// depend on what `ws` held before.
 pub fn solve_in(pb: &ContactProblem, settings: &SolverSettings, ws: &mut Workspace) -> (State, SolveReport) {
-    let start = Instant::now();
-    let measure = ConvergenceMeasure::new(pb);
-    let (state, mut report) = match settings.method {
+    stamped(pb, settings, |measure| match settings.method {
         Method::Newton => match &pb.falling {
             Some(law) => falling::solve(pb, law, &settings.newton, None, ws),
-            None => restart::solve(pb, &settings.newton, &measure, ws),
+            None => restart::solve(NewtonInputs::new(pb, &settings.newton, measure), ws),
         },
         Method::NewtonPlain => {
             let plain = NewtonSettings {
                 max_backtracks: 0,
                 ..settings.newton
             };
-            newton::solve(pb, &plain, &measure, ws)
+            newton::solve(NewtonInputs::new(pb, &plain, measure), ws)
         }
-        Method::NormTang => norm_tang::solve(pb, &settings.newton, &measure, ws),
-        Method::GaussSeidel => gauss_seidel::solve(pb, &settings.gauss_seidel(), &measure),
-    };
+        Method::NormTang => norm_tang::solve(NewtonInputs::new(pb, &settings.newton, measure), ws),
+        Method::GaussSeidel => gauss_seidel::solve(pb, &settings.gauss_seidel(), measure),
+    })
+}
+
+/// `solve` run on `pb`'s [`ConvergenceMeasure`], its report stamped with the method and
+/// formulation of `settings` and the wall time it took [s]: what every entry point here
+/// returns, whichever method's own report `solve` gives back.
+fn stamped(
+    pb: &ContactProblem,
+    settings: &SolverSettings,
+    solve: impl FnOnce(&ConvergenceMeasure) -> (State, SolveReport),
+) -> (State, SolveReport) {
+    let start = Instant::now();
+    let measure = ConvergenceMeasure::new(pb);
+    let (state, mut report) = solve(&measure);
     report.method = settings.method;
     report.formulation = settings.newton.formulation;
     report.wall_time_s = start.elapsed().as_secs_f64();
     (state, report)
+}
+
+/// The default method from `warm` ([`solve_from_in`], [`solve_from_neighbour_in`]): a falling
+/// law's fixed point from it (each of its solves with the whole iteration limit), else
+/// `restart_from` (the measure, the warm state, the workspace); the other methods from their
+/// own start ([`solve_in`]).
+fn solve_warm_or_own(
+    pb: &ContactProblem,
+    settings: &SolverSettings,
+    warm: Option<State>,
+    ws: &mut Workspace,
+    restart_from: impl FnOnce(&ConvergenceMeasure, State, &mut Workspace) -> (State, SolveReport),
+) -> (State, SolveReport) {
+    let Some(warm) = warm.filter(|_| settings.method == Method::Newton) else {
+        return solve_in(pb, settings, ws);
+    };
+    stamped(pb, settings, |measure| match &pb.falling {
+        Some(law) => falling::solve(pb, law, &settings.newton, Some(warm), ws),
+        None => restart_from(measure, warm, ws),
+    })
 }
 
 /// Solves the contact problem from `warm`, a state of this problem's grid close to the solution
@@ -71,19 +103,9 @@ pub fn solve_from_in(
     warm: Option<State>,
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
-    let Some(warm) = warm.filter(|_| settings.method == Method::Newton) else {
-        return solve_in(pb, settings, ws);
-    };
-    let start = Instant::now();
-    let measure = ConvergenceMeasure::new(pb);
-    let (state, mut report) = match &pb.falling {
-        Some(law) => falling::solve(pb, law, &settings.newton, Some(warm), ws),
-        None => restart::solve_warm(pb, &settings.newton, &measure, warm, ws),
-    };
-    report.method = settings.method;
-    report.formulation = settings.newton.formulation;
-    report.wall_time_s = start.elapsed().as_secs_f64();
-    (state, report)
+    solve_warm_or_own(pb, settings, warm, ws, |measure, warm, ws| {
+        restart::solve_warm(pb, &settings.newton, measure, warm, ws)
+    })
 }
 
 /// Solves the contact problem from `warm`, the solution of a neighbouring problem on the same
@@ -97,18 +119,7 @@ pub fn solve_from_neighbour_in(
     budget: usize,
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
-    let Some(warm) = warm.filter(|_| settings.method == Method::Newton) else {
-        return solve_in(pb, settings, ws);
-    };
-    let start = Instant::now();
-    let measure = ConvergenceMeasure::new(pb);
-    // A falling law's fixed point gives each of its solves the whole iteration limit.
-    let (state, mut report) = match &pb.falling {
-        Some(law) => falling::solve(pb, law, &settings.newton, Some(warm), ws),
-        None => restart::solve_neighbour(pb, &settings.newton, &measure, warm, budget, ws),
-    };
-    report.method = settings.method;
-    report.formulation = settings.newton.formulation;
-    report.wall_time_s = start.elapsed().as_secs_f64();
-    (state, report)
+    solve_warm_or_own(pb, settings, warm, ws, |measure, warm, ws| {
+        restart::solve_neighbour(pb, &settings.newton, measure, warm, budget, ws)
+    })
 }

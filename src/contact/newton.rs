@@ -271,15 +271,31 @@ pub(crate) fn report(
     (out.state, report)
 }
 
+/// What a Newton-based method ([`solve`], [`super::restart::solve`], [`super::norm_tang::solve`])
+/// is given besides its workspace: the problem, the Newton settings, and the measure that judges
+/// convergence (the common measure of [`super::methods`], so that the methods compare).
+#[derive(Clone, Copy)]
+pub struct NewtonInputs<'a> {
+    /// The contact problem solved.
+    pub pb: &'a ContactProblem,
+    /// The Newton settings (iteration limit, tolerance, line search, formulation).
+    pub settings: &'a NewtonSettings,
+    /// The convergence measure of `pb` (‖G_Φ‖∞/p_ref at the automatic penalties).
+    pub measure: &'a ConvergenceMeasure<'a>,
+}
+
+impl<'a> NewtonInputs<'a> {
+    /// The inputs of a solve of `pb` with `settings`, judged by `measure`.
+    pub fn new(pb: &'a ContactProblem, settings: &'a NewtonSettings, measure: &'a ConvergenceMeasure<'a>) -> Self {
+        NewtonInputs { pb, settings, measure }
+    }
+}
+
 /// One attempt of the generalized Newton method from the paper's start vector (line search as
 /// set by `settings.max_backtracks`), stopping on the common measure; no restart. The Newton
 /// systems are solved in the memory of `ws`.
-pub fn solve(
-    pb: &ContactProblem,
-    settings: &NewtonSettings,
-    measure: &ConvergenceMeasure,
-    ws: &mut Workspace,
-) -> (State, SolveReport) {
+pub fn solve(inputs: NewtonInputs<'_>, ws: &mut Workspace) -> (State, SolveReport) {
+    let NewtonInputs { pb, settings, measure } = inputs;
     let (out, penalties) = paper_attempt(pb, settings, measure, ws);
     report(settings, out, penalties, measure, Vec::new())
 }

@@ -33,12 +33,11 @@
 //! pairs).
 
 use super::direction::Block;
-use super::newton::solve_block;
+use super::newton::{solve_block, NewtonInputs};
 use super::report::{IterationRecord, Method, NewtonSettings, SolveReport};
-use super::residual::{automatic_penalties, start_vector, ConvergenceMeasure, State};
+use super::residual::{automatic_penalties, start_vector, State};
 use super::stall::{Progress, NORM_TANG_STALL};
 use super::workspace::Workspace;
-use super::ContactProblem;
 
 /// Newton steps allowed for each NORM or TANG solve.
 pub const INNER_ITERATIONS: usize = 50;
@@ -48,12 +47,8 @@ pub const INNER_TOLERANCE_RATIO: f64 = 0.1;
 
 /// Solves the contact problem by alternating NORM and TANG from the paper's start vector, their
 /// Newton systems in the memory of `ws`.
-pub fn solve(
-    pb: &ContactProblem,
-    settings: &NewtonSettings,
-    measure: &ConvergenceMeasure,
-    ws: &mut Workspace,
-) -> (State, SolveReport) {
+pub fn solve(inputs: NewtonInputs<'_>, ws: &mut Workspace) -> (State, SolveReport) {
+    let NewtonInputs { pb, settings, measure } = inputs;
     let inner = NewtonSettings {
         max_iterations: INNER_ITERATIONS,
         tolerance: INNER_TOLERANCE_RATIO * settings.tolerance,

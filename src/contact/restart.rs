@@ -37,7 +37,7 @@
 //! round-off ([`super::stall::roundoff_level`]: the tolerance is below what double precision
 //! gives) is not stalled: no restart can do better, so none is tried.
 
-use super::newton::{self, coupled_attempt, BlockOutcome, FirstStep};
+use super::newton::{self, coupled_attempt, BlockOutcome, FirstStep, NewtonInputs};
 use super::report::{GaussSeidelSettings, NewtonSettings, SolveReport};
 use super::residual::{automatic_penalties, start_vector, ConvergenceMeasure, Formulation, State};
 use super::start::normal_start;
@@ -252,7 +252,7 @@ fn warm_then_cold(
     if out.converged || out.at_roundoff {
         return newton::report(settings, out, used, measure, Vec::new());
     }
-    let (state, mut report) = solve(pb, settings, measure, ws);
+    let (state, mut report) = solve(NewtonInputs::new(pb, settings, measure), ws);
     report.iterations += out.history.len();
     report.inner_iterations += out.history.len();
     report.history = [out.history, report.history].concat();
@@ -264,14 +264,10 @@ fn warm_then_cold(
 /// `settings.max_backtracks` is 0: a run without line search is not globalized, and starts from
 /// the paper's start vector), stopping on the common measure. The Newton systems are solved in
 /// the memory of `ws`.
-pub fn solve(
-    pb: &ContactProblem,
-    settings: &NewtonSettings,
-    measure: &ConvergenceMeasure,
-    ws: &mut Workspace,
-) -> (State, SolveReport) {
+pub fn solve(inputs: NewtonInputs<'_>, ws: &mut Workspace) -> (State, SolveReport) {
+    let NewtonInputs { pb, settings, measure } = inputs;
     if settings.max_backtracks == 0 {
-        return newton::solve(pb, settings, measure, ws);
+        return newton::solve(inputs, ws);
     }
     let (first, restarts) = chain(pb, settings);
     let mut attempts = Attempts {

@@ -20,49 +20,43 @@ pub struct StallRule {
     pub patience: usize,
 }
 
+impl StallRule {
+    /// The rule of every method's stall test: no 10 % gain on the best residual in `patience`
+    /// iterations (a converging run gains a decade within a few; the methods differ in how long
+    /// they may hover before that, not in what counts as progress).
+    pub const fn tenth_gain_in(patience: usize) -> Self {
+        StallRule { margin: 0.1, patience }
+    }
+}
+
 /// A line-search Newton attempt (the default method's attempts from the paper's start vector and
 /// after restarts, the creepage iteration's solves, the NORM and TANG solves): no 10 % gain of
 /// ‖G‖₂ in 50 steps. Its Armijo search decreases ‖G‖₂ at every accepted step, so what this ends
 /// is an attempt creeping along a kink of G with ever shorter steps, or wandering at round-off.
 /// Hard attempts can spend 20–30 steps at one level before they escape and converge (measured on
 /// the stability map, docs/stability.md): the patience is half the default budget.
-pub const NEWTON_STALL: StallRule = StallRule {
-    margin: 0.1,
-    patience: 50,
-};
+pub const NEWTON_STALL: StallRule = StallRule::tenth_gain_in(50);
 
 /// An attempt from the normal start ([`super::start`]): no 10 % gain in 5 steps. From that start
 /// a converging attempt gains a decade in one or two steps; one that creeps is trapped against
 /// the kink of an edge node's friction bound (at μ ≥ 200, gaining < 1 % per step while its step
 /// length halves towards 10⁻¹²), and the other formulation from the same start follows at once
 /// (docs/performance.md, "Solver cost at the friction limits").
-pub const NORMAL_START_STALL: StallRule = StallRule {
-    margin: 0.1,
-    patience: 5,
-};
+pub const NORMAL_START_STALL: StallRule = StallRule::tenth_gain_in(5);
 
 /// The plain Newton (`newton_plain`, every step in full): no 10 % gain in 100 steps, the default
 /// budget. Without a line search the residual is not monotone: on the stability map converging
 /// runs hover for up to 77 steps before the active sets settle (docs/stability.md), so only a
 /// budget far above the default meets this test (a tolerance below round-off).
-pub const PLAIN_NEWTON_STALL: StallRule = StallRule {
-    margin: 0.1,
-    patience: 100,
-};
+pub const PLAIN_NEWTON_STALL: StallRule = StallRule::tenth_gain_in(100);
 
 /// NORM/TANG pairs: no 10 % gain in 10 pairs (a converging alternation gains a decade in one to
 /// three pairs: at most 2 pairs without a 10 % gain on the stability map).
-pub const NORM_TANG_STALL: StallRule = StallRule {
-    margin: 0.1,
-    patience: 10,
-};
+pub const NORM_TANG_STALL: StallRule = StallRule::tenth_gain_in(10);
 
 /// Gauss–Seidel sweeps: no 10 % gain in 2 500 sweeps (converging runs on the stability map go
 /// up to 1 950 sweeps without one, in bursts around a flipping node).
-pub const GAUSS_SEIDEL_STALL: StallRule = StallRule {
-    margin: 0.1,
-    patience: 2_500,
-};
+pub const GAUSS_SEIDEL_STALL: StallRule = StallRule::tenth_gain_in(2_500);
 
 /// The scaled residual (the common measure ‖G‖∞/p_ref) that double precision reaches on a grid of
 /// `nodes` contact nodes, with a margin: 10 ε max(m, 100) (2.2e-13 up to 100 nodes, 2.1e-12 at

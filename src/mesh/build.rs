@@ -543,14 +543,7 @@ mod tests {
                 );
             }
             let contact = mesh.group_index("contact").unwrap();
-            let mut xs: Vec<f64> = mesh
-                .elements
-                .iter()
-                .filter(|e| e.group == contact)
-                .flat_map(|e| [mesh.nodes[e.nodes[0]][0], mesh.nodes[e.nodes[1]][0]])
-                .collect();
-            xs.sort_by(f64::total_cmp);
-            xs.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+            let xs = mesh.group_end_abscissae(contact, 1e-12);
             assert_eq!(xs.len(), 22);
             for (i, x) in xs.iter().enumerate() {
                 assert!((x - (-1.3 + 2.6 * i as f64 / 21.0)).abs() < 1e-12);

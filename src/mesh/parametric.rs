@@ -387,14 +387,7 @@ mod tests {
                 assert_eq!(loops.len(), expected, "{shape:?}");
                 let contact = mesh.group_index("contact").unwrap();
                 assert_eq!(mesh.count_in_group(contact), 21);
-                let mut xs: Vec<f64> = mesh
-                    .elements
-                    .iter()
-                    .filter(|e| e.group == contact)
-                    .flat_map(|e| [mesh.nodes[e.nodes[0]][0], mesh.nodes[e.nodes[1]][0]])
-                    .collect();
-                xs.sort_by(f64::total_cmp);
-                xs.dedup();
+                let xs = mesh.group_end_abscissae(contact, 0.0);
                 assert_eq!(xs, edges, "{shape:?}");
                 let s = if above { 1.0 } else { -1.0 };
                 for p in &mesh.nodes {

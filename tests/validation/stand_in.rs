@@ -108,7 +108,7 @@ fn a_conformal_contact_in_a_bore_is_the_half_plane_plus_a_smooth_remainder() {
 /// by up to 0.2 rad (the change's factors are turned into it); measured 2.4e-15 at most. The
 /// change itself is far above that rounding (measured 9e-5 and 1.6e-4 of the largest entry), so
 /// a change left out fails the comparison. The same change made in the passes' problem's place
-/// and taken back (`with_flexibility_changes_in_place`, as the run makes it) gives the same
+/// and taken back (`WithoutSlipBlocks::with_flexibility_changes`, as the run makes it) gives the same
 /// problem inside and the passes' problem after (its slip blocks made again), to 1e-15 of each
 /// block's kind.
 #[test]
@@ -164,10 +164,9 @@ fn the_checks_problem_is_the_passes_problem_plus_a_low_rank_change() {
         // Made in the passes' problem's place (what the run solves): the same problem while the
         // change is in, and the passes' problem again after, its flexibility to rounding (the
         // change added and taken away) and its slip blocks, dropped and made again from it.
-        let mut in_place = passes.clone();
-        let inside = in_place.with_flexibility_changes_in_place([a.as_ref(), b.as_ref()], blocks);
-        assert_eq!(in_place.bp.nrows(), 0, "{case}: the slip blocks are left dropped");
-        in_place.restore_slip_blocks();
+        let mut waiting = passes.clone().without_slip_blocks();
+        let inside = waiting.with_flexibility_changes([a.as_ref(), b.as_ref()], blocks);
+        let in_place = waiting.with_slip_blocks();
         for (k, ((inside, changed), (after, before))) in inside
             .iter()
             .zip(blocks(&changed))

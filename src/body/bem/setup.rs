@@ -472,11 +472,7 @@ pub(crate) fn fig14_roller_in(material: Elastic) -> BemSetup {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/roller_r150_shaft15_A.msh");
     let (mesh, notices) = crate::mesh::load(&path).unwrap();
     let mesh = LoadedMesh::new(path, mesh, notices, "contact").unwrap();
-    let conditions = vec![
-        ("free".into(), BoundaryCondition::Free),
-        ("shaft".into(), BoundaryCondition::Fixed),
-        ("contact".into(), BoundaryCondition::Contact),
-    ];
+    let conditions = crate::bem::fixed_shaft_roller_conditions();
     BemSetup::on_start_mesh(mesh, material, "contact".into(), conditions, None, None)
 }
 

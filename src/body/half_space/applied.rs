@@ -52,50 +52,61 @@ pub fn influence_times_at(grid: &ContactGrid, kernel: Kernel, v: MatRef<'_, f64>
     Mat::from_fn(m, k, |i, c| rows[i][c])
 }
 
-/// The half-plane's displacements [h, w] under the loads (p, q) (m × k each) on `grid`:
-/// the blocks of [`HalfSpace::kernel_blocks`] applied without being made,
-/// h = H_p p + H_q q and w = −H_q p + H_p q, with H_p v = −B (K_log v − (wᵀv) ln ℓ) and
-/// H_q v = side·A K_sgn v [length].
-pub(super) fn displacements(
-    half: &HalfSpace,
-    grid: &ContactGrid,
+/// The half-plane's operators on `grid` for body `side`, applied to loads without their blocks
+/// being made: its two coefficients A (sgn kernel) and B (log kernel) [length/stress] taken
+/// once for both products.
+pub(super) struct Applied<'a> {
+    half: &'a HalfSpace,
+    grid: &'a ContactGrid,
     side: Side,
-    p: MatRef<'_, f64>,
-    q: MatRef<'_, f64>,
-) -> [Mat<f64>; 2] {
-    let a_coef = half.material.halfplane_sgn_coefficient();
-    let b_coef = half.material.halfplane_log_coefficient();
-    let ln_datum = half.datum_length().ln();
-    let (m, k) = (p.nrows(), p.ncols());
-    let loads = Mat::from_fn(m, 2 * k, |i, c| if c < k { p[(i, c)] } else { q[(i, c - k)] });
-    let log = influence_times(grid, Kernel::Log, loads.as_ref());
-    let sgn = influence_times(grid, Kernel::Sign, loads.as_ref());
-    let forces: Vec<f64> = (0..2 * k)
-        .map(|c| (0..m).map(|j| grid.weights[j] * loads[(j, c)]).sum())
-        .collect();
-    let hp = |i: usize, c: usize| -b_coef * (log[(i, c)] - forces[c] * ln_datum);
-    let hq = |i: usize, c: usize| side.sign() * a_coef * sgn[(i, c)];
-    [
-        Mat::from_fn(m, k, |i, c| hp(i, c) + hq(i, k + c)),
-        Mat::from_fn(m, k, |i, c| -hq(i, c) + hp(i, k + c)),
-    ]
+    a_coef: f64,
+    b_coef: f64,
 }
 
-/// The half-plane's surface strain ∂w/∂x = −side·2A·p − B·PV∫ q(s)/(x − s) ds at the nodes
-/// under the loads (p, q) (m × k each), its Cauchy integral applied without being made [-].
-pub(super) fn strain(
-    half: &HalfSpace,
-    grid: &ContactGrid,
-    side: Side,
-    p: MatRef<'_, f64>,
-    q: MatRef<'_, f64>,
-) -> Mat<f64> {
-    let a_coef = half.material.halfplane_sgn_coefficient();
-    let b_coef = half.material.halfplane_log_coefficient();
-    let cauchy = influence_times(grid, Kernel::Cauchy, q);
-    Mat::from_fn(p.nrows(), p.ncols(), |i, c| {
-        -side.sign() * 2.0 * a_coef * p[(i, c)] - b_coef * cauchy[(i, c)]
-    })
+impl<'a> Applied<'a> {
+    /// The operators of `half` on `grid` as body `side`.
+    pub(super) fn new(half: &'a HalfSpace, grid: &'a ContactGrid, side: Side) -> Self {
+        let a_coef = half.material.halfplane_sgn_coefficient();
+        let b_coef = half.material.halfplane_log_coefficient();
+        Applied {
+            half,
+            grid,
+            side,
+            a_coef,
+            b_coef,
+        }
+    }
+
+    /// The half-plane's displacements [h, w] under the loads (p, q) (m × k each): the blocks of
+    /// [`HalfSpace::kernel_blocks`] applied without being made, h = H_p p + H_q q and
+    /// w = −H_q p + H_p q, with H_p v = −B (K_log v − (wᵀv) ln ℓ) and H_q v = side·A K_sgn v
+    /// [length].
+    pub(super) fn displacements(&self, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> [Mat<f64>; 2] {
+        let (grid, a_coef, b_coef) = (self.grid, self.a_coef, self.b_coef);
+        let ln_datum = self.half.datum_length().ln();
+        let (m, k) = (p.nrows(), p.ncols());
+        let loads = Mat::from_fn(m, 2 * k, |i, c| if c < k { p[(i, c)] } else { q[(i, c - k)] });
+        let log = influence_times(grid, Kernel::Log, loads.as_ref());
+        let sgn = influence_times(grid, Kernel::Sign, loads.as_ref());
+        let forces: Vec<f64> = (0..2 * k)
+            .map(|c| (0..m).map(|j| grid.weights[j] * loads[(j, c)]).sum())
+            .collect();
+        let hp = |i: usize, c: usize| -b_coef * (log[(i, c)] - forces[c] * ln_datum);
+        let hq = |i: usize, c: usize| self.side.sign() * a_coef * sgn[(i, c)];
+        [
+            Mat::from_fn(m, k, |i, c| hp(i, c) + hq(i, k + c)),
+            Mat::from_fn(m, k, |i, c| -hq(i, c) + hp(i, k + c)),
+        ]
+    }
+
+    /// The half-plane's surface strain ∂w/∂x = −side·2A·p − B·PV∫ q(s)/(x − s) ds at the nodes
+    /// under the loads (p, q) (m × k each), its Cauchy integral applied without being made [-].
+    pub(super) fn strain(&self, p: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Mat<f64> {
+        let cauchy = influence_times(self.grid, Kernel::Cauchy, q);
+        Mat::from_fn(p.nrows(), p.ncols(), |i, c| {
+            -self.side.sign() * 2.0 * self.a_coef * p[(i, c)] - self.b_coef * cauchy[(i, c)]
+        })
+    }
 }
 
 #[cfg(test)]

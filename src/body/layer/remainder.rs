@@ -63,6 +63,16 @@ pub enum Component {
     TangentialTangential,
 }
 
+impl Component {
+    /// The three components in the order of the remainder blocks [nn, nt, tt] (and of the
+    /// tabulated sums' values).
+    pub const ALL: [Component; 3] = [
+        Component::NormalNormal,
+        Component::NormalTangential,
+        Component::TangentialTangential,
+    ];
+}
+
 /// The layer's remainder kernels at unit shear modulus on a table (module docs).
 #[derive(Debug, Clone)]
 pub struct Remainder {
@@ -309,14 +319,7 @@ mod tests {
             let scale = direct.at(0.0)[0].abs().max(b);
             for t in [-5.3, -0.51, -0.013, 0.0071, 0.27, 2.9, 5.97] {
                 let d = direct.at(t);
-                for (c, comp) in [
-                    Component::NormalNormal,
-                    Component::NormalTangential,
-                    Component::TangentialTangential,
-                ]
-                .into_iter()
-                .enumerate()
-                {
+                for (c, comp) in Component::ALL.into_iter().enumerate() {
                     let v = table.value(comp, t);
                     assert!(
                         (v - d[c]).abs() < 1e-9 * scale,
@@ -339,14 +342,7 @@ mod tests {
             assert!(tabled.tail.is_some());
             for t in [-4.3, -3.05, 3.0, 3.9, 4.1, 4.4] {
                 let d = direct.at(t);
-                for (c, comp) in [
-                    Component::NormalNormal,
-                    Component::NormalTangential,
-                    Component::TangentialTangential,
-                ]
-                .into_iter()
-                .enumerate()
-                {
+                for (c, comp) in Component::ALL.into_iter().enumerate() {
                     let v = tabled.value(comp, t);
                     assert!((v - d[c]).abs() < 1e-10, "nu {nu} t {t} {comp:?}: {v} vs {}", d[c]);
                 }

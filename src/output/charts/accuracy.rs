@@ -28,10 +28,7 @@ pub struct Curve {
 /// Writes the chart: `curves` take the colours blue, red, green in order; `front` is the
 /// Pareto front (time, error) in increasing time, drawn when it has two points or more.
 pub fn write(path: &Path, title: &str, caption: &str, curves: &[Curve], front: &[(f64, f64)]) -> Result<(), Error> {
-    draw(path, title, caption, curves, front).map_err(|e| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })
+    super::written(path, draw(path, title, caption, curves, front))
 }
 
 fn draw(
@@ -81,7 +78,7 @@ fn draw(
         chart
             .draw_series(LineSeries::new(series.clone(), colour.stroke_width(2)))?
             .label(curve.name.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
+            .legend(super::line_key(colour.stroke_width(2)));
         chart.draw_series(series.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
         chart.draw_series(curve.points.iter().map(|p| {
             Text::new(
@@ -101,14 +98,9 @@ fn draw(
         chart
             .draw_series(LineSeries::new(steps, BLACK.mix(0.6).stroke_width(1)))?
             .label("Pareto front")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.6)));
+            .legend(super::line_key(BLACK.mix(0.6)));
     }
-    chart
-        .configure_series_labels()
-        .border_style(BLACK)
-        .background_style(WHITE.mix(0.85))
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()?;
+    super::draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present()?;
     Ok(())
 }

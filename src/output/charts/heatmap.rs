@@ -77,10 +77,7 @@ fn panel_size(p: &Panel) -> (i32, i32) {
 
 /// Writes the panels (one column when the x axis is long, else three) under a common title.
 pub fn write(path: &Path, title: &str, panels: &[&Panel]) -> Result<(), Error> {
-    draw(path, title, panels).map_err(|e| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })
+    super::written(path, draw(path, title, panels))
 }
 
 fn mix(a: (u8, u8, u8), b: (u8, u8, u8), t: f64) -> RGBColor {

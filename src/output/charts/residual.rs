@@ -33,10 +33,7 @@ pub struct ResidualPicture {
 
 /// Writes the picture to `path`.
 pub fn write(path: &Path, picture: &ResidualPicture) -> Result<(), Error> {
-    draw(path, picture).map_err(|e| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })
+    super::written(path, draw(path, picture))
 }
 
 fn draw(path: &Path, p: &ResidualPicture) -> Result<(), Box<dyn std::error::Error>> {
@@ -97,14 +94,9 @@ fn draw(path: &Path, p: &ResidualPicture) -> Result<(), Box<dyn std::error::Erro
                 colour.stroke_width(2),
             ))?
             .label(name)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
+            .legend(super::line_key(colour.stroke_width(2)));
     }
-    chart
-        .configure_series_labels()
-        .border_style(BLACK)
-        .background_style(WHITE.mix(0.85))
-        .position(SeriesLabelPosition::LowerRight)
-        .draw()?;
+    super::draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
     root.present()?;
     Ok(())
 }

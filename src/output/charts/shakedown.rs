@@ -49,10 +49,7 @@ pub struct ShakedownChart {
 
 /// Writes the chart to `path`.
 pub fn write(path: &Path, study: &ShakedownChart) -> Result<(), Error> {
-    draw(path, study).map_err(|e| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })
+    super::written(path, draw(path, study))
 }
 
 fn draw(path: &Path, s: &ShakedownChart) -> Result<(), Box<dyn std::error::Error>> {
@@ -94,11 +91,11 @@ fn draw(path: &Path, s: &ShakedownChart) -> Result<(), Box<dyn std::error::Error
     chart
         .draw_series(LineSeries::new(curve(|m| m.first_yield), BLUE.stroke_width(2)))?
         .label("first yield")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+        .legend(super::line_key(BLUE.stroke_width(2)));
     chart
         .draw_series(LineSeries::new(curve(|m| m.shakedown), RED.stroke_width(2)))?
         .label("shakedown limit (elastic-perfectly plastic)")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(2)));
+        .legend(super::line_key(RED.stroke_width(2)));
     let label = |text: &str, x: f64, y: f64| Text::new(text.to_string(), (x, y), ("sans-serif", 13).into_font());
     let at = |mu: f64| {
         s.map
@@ -144,12 +141,7 @@ fn draw(path: &Path, s: &ShakedownChart) -> Result<(), Box<dyn std::error::Error
                 .map(|p| TriangleMarker::new((p.traction, p.shakedown), 6, RED)),
         )?;
     }
-    chart
-        .configure_series_labels()
-        .border_style(BLACK)
-        .background_style(WHITE.mix(0.85))
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()?;
+    super::draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present()?;
     Ok(())
 }

@@ -50,10 +50,7 @@ pub fn profiled_steps(n: usize) -> Vec<usize> {
 
 /// Writes the picture to `path`.
 pub fn write(path: &Path, picture: &TransientPicture) -> Result<(), Error> {
-    draw(path, picture).map_err(|e| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })
+    super::written(path, draw(path, picture))
 }
 
 /// [lo, hi] of `values` padded by 6 % (±1 around a flat or empty range).
@@ -112,16 +109,11 @@ fn profiles(area: &Area, p: &TransientPicture, which: usize) -> Result<(), Box<d
         if which == 0 {
             series
                 .label(format!("step {}, rolled = {} {}", f.step, f.rolled, p.units[0]))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
+                .legend(super::line_key(colour.stroke_width(2)));
         }
     }
     if which == 0 {
-        chart
-            .configure_series_labels()
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.85))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()?;
+        super::draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     }
     Ok(())
 }
