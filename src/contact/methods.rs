@@ -31,6 +31,7 @@ pub fn solve(pb: &ContactProblem, settings: &SolverSettings) -> (State, SolveRep
 /// to solve allocates its matrix once, at the size of the largest system). The result does not
 /// depend on what `ws` held before.
 pub fn solve_in(pb: &ContactProblem, settings: &SolverSettings, ws: &mut Workspace) -> (State, SolveReport) {
+    crate::cancel::checkpoint();
     let start = Instant::now();
     let measure = ConvergenceMeasure::new(pb);
     let (state, mut report) = match settings.method {
