@@ -297,11 +297,13 @@ def run(
         the :class:`Result`.
 
     Raises:
-        InputError: bad input (the CLI's message; nothing written).
+        InputError: bad input (the CLI's message; nothing written), or a bad argument (the
+            message names it: ``case``, ``set['key']``, ``out``).
         NotConverged: the solver did not converge (``error.result`` is the partial result; with
             ``out`` only summary.json is written, as by the CLI), the numerics broke down, or an
             error-controlled grid missed its tolerance (``error.estimate``).
         InternalError: a bug.
+        KeyboardInterrupt: Ctrl-C (in the main thread), within a Newton step of the solve.
     """
     path, text = _case_source(case)
     raw = _rollbem.run(path, text, _overrides(set), _out(out))
@@ -381,8 +383,12 @@ def sweep(
         :class:`Result`. :func:`sweep_frame` makes a pandas DataFrame of them.
 
     Raises:
-        InputError: the case cannot be read, or ``vary`` is empty (a bad value is a failed row).
+        InputError: the case cannot be read, ``vary`` is empty, or an argument is bad (the
+            message names it: ``vary['key']``, ``jobs``, ...); a value the case refuses is a
+            failed row.
         InternalError: a bug outside the runs (a run's own panic is a failed row).
+        KeyboardInterrupt: Ctrl-C (in the main thread): the runs under way stop within a
+            Newton step, the others do not start.
     """
     if not isinstance(vary, Mapping) or not vary:
         raise InputError("sweep: nothing to sweep: give vary={'key.path': [v1, v2, ...]}")
