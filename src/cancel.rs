@@ -108,6 +108,28 @@ mod tests {
     }
 
     #[test]
+    fn a_solve_stops_soon_after_the_token_is_set() {
+        // About 10 s uncancelled (half a second a Newton step); cancelled 0.5 s in.
+        let token = Token::new();
+        let setter = token.clone();
+        let cancel = std::thread::spawn(move || {
+            std::thread::sleep(std::time::Duration::from_millis(500));
+            setter.cancel();
+        });
+        let start = std::time::Instant::now();
+        let outcome = token.run(|| {
+            crate::app::solve_case(
+                std::path::Path::new("cases/carter_051.yaml"),
+                &["contact.grid.elements=701"],
+            )
+            .map(|s| s.report.iterations)
+        });
+        cancel.join().unwrap();
+        assert!(matches!(outcome, Err(Cancelled)), "not cancelled");
+        assert!(start.elapsed().as_secs_f64() < 4.0, "{:?}", start.elapsed());
+    }
+
+    #[test]
     fn other_panics_pass_through() {
         let caught = catch_unwind(|| Token::new().run(|| panic!("a bug")));
         assert!(caught.is_err());
