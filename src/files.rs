@@ -519,6 +519,28 @@ mod tests {
     }
 
     #[test]
+    fn a_second_writer_refused_leaves_the_holders_write_to_it() {
+        // Two threads of one process (Python's): the one refused as busy must not unlist the
+        // folder the other holds, whose write then locks it a second time and fails.
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let first = Claim::acquire(&out, Kind::Run, Access::Exclusive).unwrap();
+        assert!(matches!(
+            Claim::acquire(&out, Kind::Run, Access::Exclusive),
+            Err(FolderError::Busy { .. })
+        ));
+        write_atomically(&out, Kind::Run, |tmp: &Path| {
+            fs::write(tmp.join("summary.json"), "{}").map_err(|e| FolderError::Io {
+                path: tmp.to_path_buf(),
+                message: e.to_string(),
+            })
+        })
+        .unwrap();
+        drop(first);
+        assert!(out.join("summary.json").is_file());
+    }
+
+    #[test]
     fn results_replace_results_and_nothing_else() {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("out");

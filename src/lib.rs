@@ -28,6 +28,7 @@ pub mod analytic;
 pub mod app;
 pub mod bem;
 pub mod body;
+pub mod cancel;
 pub mod case;
 pub mod check;
 pub mod cli;

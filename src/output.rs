@@ -66,6 +66,7 @@ pub fn write_run_files(
                 length_unit: unit("overlap"),
                 stress_unit: unit("max_pressure"),
                 force_unit: unit("normal_force"),
+                rolling_resistance: summary.rolling_resistance.as_ref().filter(|r| r.speed.is_some()),
             };
             svg::write_contact_plot(&tmp.join("contact.svg"), &plot)?;
             if summary.vtk {

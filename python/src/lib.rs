@@ -19,6 +19,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rollbem::app::{self, CaseSource};
+use rollbem::cancel::Token;
 use rollbem::contact::ContactProblem;
 use rollbem::error::{Error, EXIT_NOT_CONVERGED};
 use rollbem::output::{self, folder, Summary};
@@ -26,8 +27,9 @@ use rollbem::post::ContactSolution;
 use std::panic::AssertUnwindSafe;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc::{self, RecvTimeoutError};
 use std::sync::{Mutex, Once, OnceLock};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// A case as the Python layer hands it over: a file, or text that stands for one.
 struct Source {
@@ -47,10 +49,12 @@ impl Source {
     }
 }
 
-/// Why a call failed: the library's error, or a panic (a bug) with its message.
+/// Why a call failed: the library's error, a panic (a bug) with its message, or a cancellation
+/// (Ctrl-C, see [`interruptible`]).
 enum Failure {
     Library(Error),
     Panic(String),
+    Cancelled,
 }
 
 impl From<Error> for Failure {
@@ -106,6 +110,73 @@ fn guarded<T>(f: impl FnOnce() -> Result<T, Failure>) -> Result<T, Failure> {
     })
 }
 
+/// Runs `work` under a cancellation token (`rollbem::cancel`) and `guarded`: a cancelled run is
+/// [`Failure::Cancelled`].
+fn cancellable<T>(token: &Token, work: impl FnOnce() -> Result<T, Failure>) -> Result<T, Failure> {
+    guarded(|| token.run(work).unwrap_or(Err(Failure::Cancelled)))
+}
+
+/// Stack of the thread a call's work runs on: that of a main thread (Linux's default 8 MiB),
+/// not the 2 MiB of a spawned one.
+const WORK_STACK: usize = 8 << 20;
+
+/// How often the calling thread looks for signals while the work runs.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Runs `work` without the GIL on a thread of its own while the calling thread looks at
+/// Python's signals every [`SIGNAL_POLL`] (`Python::check_signals`: Python runs its handlers
+/// in the main thread only, so elsewhere this just waits). When a handler raises (Ctrl-C's
+/// `KeyboardInterrupt`), the token is set, the work stops at the solver's next checkpoint
+/// (within a Newton step) and that exception is returned; otherwise the work's own outcome.
+fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&Token) -> T + Send) -> Result<T, PyErr> {
+    let token = Token::new();
+    // Taken by the thread that runs it: the worker, or this one when no thread can be started.
+    let work = Mutex::new(Some(work));
+    let take = || work.lock().ok().and_then(|mut w| w.take());
+    let (outcome, interrupt) = py.detach(|| {
+        std::thread::scope(|scope| {
+            let (done, finished) = mpsc::channel::<()>();
+            let spawned = std::thread::Builder::new()
+                .name("rollbem".into())
+                .stack_size(WORK_STACK)
+                .spawn_scoped(scope, {
+                    let (take, token) = (&take, &token);
+                    move || {
+                        let outcome = take().map(|work| work(token));
+                        let _ = done.send(());
+                        outcome
+                    }
+                });
+            let Ok(worker) = spawned else {
+                // No thread to spare: the work runs here, without Ctrl-C.
+                return (take().map(|work| work(&token)), None);
+            };
+            let mut interrupt = None;
+            while let Err(RecvTimeoutError::Timeout) = finished.recv_timeout(SIGNAL_POLL) {
+                if interrupt.is_none() {
+                    if let Err(e) = Python::attach(|py| py.check_signals()) {
+                        token.cancel();
+                        interrupt = Some(e);
+                    }
+                }
+            }
+            match worker.join() {
+                Ok(outcome) => (outcome, interrupt),
+                Err(payload) => std::panic::resume_unwind(payload),
+            }
+        })
+    });
+    match (interrupt, outcome) {
+        (Some(e), _) => Err(e),
+        (None, Some(outcome)) => Ok(outcome),
+        (None, None) => Err(exception(
+            py,
+            "InternalError",
+            "internal error — please report it: the work of the call was lost".into(),
+        )),
+    }
+}
+
 /// Resets pyo3-log's cache of Python loggers and their levels, so that a change of the logging
 /// configuration between calls takes effect.
 static LOG_RESET: OnceLock<Option<pyo3_log::ResetHandle>> = OnceLock::new();
@@ -132,6 +203,8 @@ fn exception(py: Python<'_>, class: &str, message: String) -> PyErr {
 /// The Python exception of a failure, chosen by the CLI's exit code (module docs).
 fn to_py_err(py: Python<'_>, case: &Path, failure: Failure) -> PyErr {
     match failure {
+        // Only a signal handler's exception cancels (it is raised instead of this one).
+        Failure::Cancelled => pyo3::exceptions::PyKeyboardInterrupt::new_err("rollbem: the run was cancelled"),
         Failure::Panic(what) => exception(
             py,
             "InternalError",
@@ -321,7 +394,9 @@ fn run<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     refresh_logging();
     let source = Source { path, text };
-    let outcome = py.detach(|| guarded(|| Ok(run_case(&source, &overrides, out.as_deref())?)));
+    let outcome = interruptible(py, |token| {
+        cancellable(token, || Ok(run_case(&source, &overrides, out.as_deref())?))
+    })?;
     outcome.map_err(|f| to_py_err(py, &source.path, f))?.into_py(py)
 }
 
@@ -411,6 +486,7 @@ fn sweep_row(run: usize, outcome: Result<Summary, Failure>) -> serde_json::Value
             let message = match failure {
                 Failure::Library(e) => e.to_string().replace('\n', " "),
                 Failure::Panic(what) => format!("internal error — please report it: {}", what.replace('\n', " ")),
+                Failure::Cancelled => "cancelled".into(),
             };
             row.insert("status".into(), json!("failed"));
             row.insert("message".into(), json!(message));
@@ -447,8 +523,8 @@ fn sweep(
     use rayon::prelude::*;
     refresh_logging();
     let source = Source { path, text };
-    let outcome = py.detach(|| {
-        guarded(|| {
+    let outcome = interruptible(py, |token| {
+        cancellable(token, || {
             if varies.is_empty() || varies.iter().any(|(_, v)| v.is_empty()) {
                 return Err(Error::Sweep {
                     message: "nothing to sweep: give vary={'key.path': [v1, v2, ...]} with at least one value".into(),
@@ -474,10 +550,10 @@ fn sweep(
             let one = |(n, run): (usize, &Vec<(String, String)>)| {
                 let mut set = overrides.clone();
                 set.extend(run.iter().map(|(k, v)| format!("{k}={v}")));
-                sweep_row(n, guarded(|| sweep_run(&source, &set))).to_string()
+                sweep_row(n, cancellable(token, || sweep_run(&source, &set))).to_string()
             };
             let all = || runs.par_iter().enumerate().map(one).collect::<Vec<String>>();
-            Ok(match jobs {
+            let rows = match jobs {
                 None => all(),
                 Some(n) => rayon::ThreadPoolBuilder::new()
                     .num_threads(n)
@@ -486,9 +562,12 @@ fn sweep(
                         message: format!("cannot start {n} threads: {e}"),
                     })?
                     .install(all),
-            })
+            };
+            // A run cancelled is a row like a failed one: the sweep as a whole is cancelled.
+            rollbem::cancel::checkpoint();
+            Ok(rows)
         })
-    });
+    })?;
     outcome.map_err(|f| to_py_err(py, &source.path, f))
 }
 

@@ -1,9 +1,13 @@
 """Each exception class for an input of its kind, with the CLI's message and exit code."""
 
+import math
+from fractions import Fraction
+
+import numpy as np
 import pytest
 
 import rollbem
-from conftest import cli
+from conftest import ROOT as ROOT_DIR, cli
 
 
 def test_a_bad_key_is_an_input_error_with_the_cli_message(tmp_path):
@@ -28,7 +32,7 @@ def test_other_input_errors():
         rollbem.check("cases/carter_051.yaml", tolerance=0)
     with pytest.raises(rollbem.InputError, match="top level|title|missing"):
         rollbem.run({"title": "nothing else"})
-    with pytest.raises(TypeError):
+    with pytest.raises(rollbem.InputError, match="case must be a path"):
         rollbem.run(42)
 
 
@@ -75,3 +79,61 @@ def test_a_panic_is_an_internal_error_not_a_crash():
         rollbem._rollbem._panic_for_tests("deliberate")
     # The module still works afterwards.
     assert rollbem.run("cases/carter_051.yaml").converged
+
+
+def nested(depth):
+    value = 1.0
+    for _ in range(depth):
+        value = [value]
+    return value
+
+
+CARTER = "cases/carter_051.yaml"
+ONE = {"contact.friction": [0.1]}
+
+# (call, what the message names): every bad argument is an InputError (before: ValueError,
+# OverflowError, RecursionError, TypeError).
+BAD_ARGUMENTS = {
+    "jobs=True": (lambda: rollbem.sweep(CARTER, vary=ONE, jobs=True), "jobs"),
+    "jobs=-1": (lambda: rollbem.sweep(CARTER, vary=ONE, jobs=-1), "jobs"),
+    "jobs=2.5": (lambda: rollbem.sweep(CARTER, vary=ONE, jobs=2.5), "jobs"),
+    "jobs='2'": (lambda: rollbem.sweep(CARTER, vary=ONE, jobs="2"), "jobs"),
+    "set nan": (lambda: rollbem.run(CARTER, set={"contact.friction": float("nan")}), "set['contact.friction']"),
+    "set inf": (lambda: rollbem.run(CARTER, set={"contact.friction": math.inf}), "set['contact.friction']"),
+    "set 10**5000": (lambda: rollbem.run(CARTER, set={"contact.grid.elements": 10**5000}), "contact.grid.elements"),
+    "set Fraction 10**400": (lambda: rollbem.run(CARTER, set={"contact.friction": Fraction(10**400, 3)}), "set['contact.friction']"),
+    "set nested 100000": (lambda: rollbem.run(CARTER, set={"contact.grid": nested(100_000)}), "set['contact.grid']"),
+    "set [nan]": (lambda: rollbem.run(CARTER, set={"contact.grid": [np.nan]}), "set['contact.grid']"),
+    "set complex": (lambda: rollbem.run(CARTER, set={"contact.friction": 1j}), "set['contact.friction']"),
+    "set object": (lambda: rollbem.run(CARTER, set={"contact.friction": object()}), "set['contact.friction']"),
+    "set key 1": (lambda: rollbem.run(CARTER, set={1: 0.2}), "set"),
+    "set list": (lambda: rollbem.run(CARTER, set=[("contact.friction", 0.2)]), "set"),
+    "case object": (lambda: rollbem.run(object()), "case"),
+    "case 42": (lambda: rollbem.check(42), "case"),
+    "case nested": (lambda: rollbem.run({"title": nested(100_000)}), "case"),
+    "case nan": (lambda: rollbem.run({"title": "x", "contact": {"friction": math.nan}}), "case"),
+    "case NUL": (lambda: rollbem.run("cases/carter\0.yaml"), "case"),
+    "out=123": (lambda: rollbem.run(CARTER, out=123), "out"),
+    "out NUL": (lambda: rollbem.run(CARTER, out="out/a\0b"), "out"),
+    "tolerance abc": (lambda: rollbem.check(CARTER, tolerance="abc"), "tolerance"),
+    "tolerance None": (lambda: rollbem.check(CARTER, tolerance=None), "tolerance"),
+    "tolerance True": (lambda: rollbem.check(CARTER, tolerance=True), "tolerance"),
+    "tolerance 10**400": (lambda: rollbem.check(CARTER, tolerance=10**400), "tolerance"),
+    "tolerance nan": (lambda: rollbem.check(CARTER, tolerance=math.nan), "tolerance"),
+    "vary None": (lambda: rollbem.sweep(CARTER, vary=None), "vary"),
+    "vary 'abc'": (lambda: rollbem.sweep(CARTER, vary={"contact.friction": "abc"}), "vary['contact.friction']"),
+    "vary [nan]": (lambda: rollbem.sweep(CARTER, vary={"contact.friction": [math.nan]}), "vary['contact.friction']"),
+    "vary [10**5000]": (lambda: rollbem.sweep(CARTER, vary={"contact.grid.elements": [10**5000]}), "contact.grid.elements"),
+    "vary nested": (lambda: rollbem.sweep(CARTER, vary={"contact.grid": [nested(100_000)]}), "vary['contact.grid']"),
+    "vary key 1": (lambda: rollbem.sweep(CARTER, vary={1: [0.1]}), "vary"),
+}
+
+
+@pytest.mark.parametrize("name", list(BAD_ARGUMENTS))
+def test_a_bad_argument_is_an_input_error_naming_it(name, monkeypatch):
+    monkeypatch.chdir(ROOT_DIR)
+    call, argument = BAD_ARGUMENTS[name]
+    with pytest.raises(rollbem.InputError) as caught:
+        call()
+    assert argument in str(caught.value), str(caught.value)
+    assert not (ROOT_DIR / "out" / "a").exists()

@@ -245,6 +245,7 @@ pub fn solve(
     let mut converged = residual <= settings.tolerance;
     let mut progress = Progress::new(GAUSS_SEIDEL_STALL, residual);
     while !converged && history.len() < settings.max_sweeps && !progress.stalled() {
+        crate::cancel::checkpoint();
         history.push(IterationRecord {
             residual,
             step: it.omega,

@@ -32,6 +32,7 @@ pub fn solve(pb: &ContactProblem, settings: &SolverSettings) -> (State, SolveRep
 /// to solve allocates its matrix once, at the size of the largest system). The result does not
 /// depend on what `ws` held before.
 pub fn solve_in(pb: &ContactProblem, settings: &SolverSettings, ws: &mut Workspace) -> (State, SolveReport) {
+    crate::cancel::checkpoint();
     stamped(pb, settings, |measure| match settings.method {
         Method::Newton => match &pb.falling {
             Some(law) => falling::solve(pb, law, &settings.newton, None, ws),

@@ -102,6 +102,7 @@ pub(crate) fn damped_newton(
         && !progress.stalled()
         && !floor.is_some_and(|f| f.stalled())
     {
+        crate::cancel::checkpoint();
         let residual = measure(&g, &z);
         let (dz, size) = match sys.newton_direction(&z, &g, block, ws) {
             Ok(d) => d,

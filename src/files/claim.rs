@@ -51,6 +51,10 @@ pub struct Claim {
     options: WriteOptions,
     lock: Option<FileLock>,
     created: Vec<PathBuf>,
+    /// Whether this claim is listed in [`HELD`]: only then does dropping it take its entry out
+    /// (a claim refused as busy must not unlist the folder that another thread of this process
+    /// holds, or that thread's write would try to lock it a second time, and fail).
+    listed: bool,
 }
 
 impl Claim {
@@ -89,6 +93,7 @@ impl Claim {
             options,
             lock: None,
             created,
+            listed: false,
         };
         let lock_file = lock_path(&claim.target);
         match FileLock::try_acquire(&lock_file, access)? {
@@ -111,6 +116,7 @@ impl Claim {
         }
         if let Ok(mut h) = HELD.lock() {
             h.push((claim.target.clone(), claim.options.clone()));
+            claim.listed = true;
         }
         Ok(claim)
     }
@@ -164,7 +170,7 @@ impl Claim {
 
 impl Drop for Claim {
     fn drop(&mut self) {
-        if let Ok(mut h) = HELD.lock() {
+        if let Some(mut h) = HELD.lock().ok().filter(|_| self.listed) {
             if let Some(i) = h.iter().position(|(p, _)| p == &self.target) {
                 h.swap_remove(i);
             }

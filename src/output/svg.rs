@@ -4,13 +4,16 @@
 //! * tractions: the pressure p on the left axis and the shear q with the friction bounds ±μp on
 //!   the right axis, whose scale is μ times the left one (so q fills the panel at any μ, and
 //!   ±μp lies on p and its mirror image); each slip zone labelled with an arrow for the direction
-//!   in which A slips relative to B; the rolling direction and the leading edge marked;
+//!   in which A slips relative to B; the rolling direction and the leading edge marked; for a
+//!   run with a rolling speed (a viscoelastic body's) also the trailing edge and the pressure
+//!   centre, with F_r and F_r/P in the header;
 //! * slip velocity over |V|: the finite-difference slip and, where the models give it, the
 //!   boundary-integral slip, with a zero line and ticks that include 0.
 //!
 //! Units on every axis, from the case's `units`.
 
 use crate::error::Error;
+use crate::post::rolling_resistance::RollingResistance;
 use crate::post::{ContactSolution, NodeState};
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
 use plotters::coord::types::RangedCoordf64;
@@ -35,7 +38,16 @@ pub struct ContactPlot<'a> {
     pub stress_unit: &'a str,
     /// The force-per-length unit (`N/mm`).
     pub force_unit: &'a str,
+    /// The rolling resistance to show (F_r, F_r/P, the pressure centre and both contact
+    /// edges): that of a run with a rolling speed, where the bodies dissipate; None for an
+    /// elastic run, whose plot stays as it was.
+    pub rolling_resistance: Option<&'a RollingResistance>,
 }
+
+/// Height of the header [px].
+const HEADER: u32 = 104;
+/// What the rolling resistance's line adds to the header and to the image [px].
+const RESISTANCE_LINE: u32 = 20;
 
 /// Writes the plot to `path`.
 pub fn write_contact_plot(path: &Path, plot: &ContactPlot) -> Result<(), Error> {
@@ -209,9 +221,10 @@ fn draw_axes(
 fn draw(path: &Path, plot: &ContactPlot) -> Result<(), Box<dyn std::error::Error>> {
     let sol = plot.solution;
     let (length, stress) = (pretty(plot.length_unit), pretty(plot.stress_unit));
-    let root = SVGBackend::new(path, (1000, 840)).into_drawing_area();
+    let extra = plot.rolling_resistance.map_or(0, |_| RESISTANCE_LINE);
+    let root = SVGBackend::new(path, (1000, 840 + extra)).into_drawing_area();
     root.fill(&WHITE)?;
-    let (head, body) = root.split_vertically(104);
+    let (head, body) = root.split_vertically(HEADER + extra);
     header(&head, plot)?;
     let (top, rest) = body.split_vertically(420);
     let (slip_legend, bottom) = rest.split_vertically(30);
@@ -269,6 +282,9 @@ fn draw(path: &Path, plot: &ContactPlot) -> Result<(), Box<dyn std::error::Error
     chart.draw_secondary_series(LineSeries::new(series(&sol.shear), SHEAR.stroke_width(2)))?;
     label_zones(&mut chart, &zones, (x0, x1), l1)?;
     mark_leading_edge(&mut chart, sol, plot.flow_sign, (l0, l1))?;
+    if let Some(r) = plot.rolling_resistance {
+        mark_asymmetry(&mut chart, r, (l0, l1))?;
+    }
     let mut entries = vec![
         (Sample::Line(PRESSURE, 2), "pressure p (left axis)".to_string()),
         (Sample::Line(SHEAR, 2), "shear q on A (right axis)".to_string()),
@@ -279,7 +295,7 @@ fn draw(path: &Path, plot: &ContactPlot) -> Result<(), Box<dyn std::error::Error
             "±μp, the friction bounds (right axis)".to_string(),
         ));
     }
-    legend_row(&head, (90, 88), &entries)?;
+    legend_row(&head, (90, 88 + extra as i32), &entries)?;
     let mut entries = vec![(
         Sample::Line(SLIP_LINE, 2),
         "slip (finite difference, as solved)".to_string(),
@@ -370,6 +386,19 @@ fn header(
         (20, 58),
         (FONT, 14).into_font().color(&BLACK.mix(0.8)),
     ))?;
+    if let Some(r) = plot.rolling_resistance {
+        let length = pretty(plot.length_unit);
+        let resistance = format!(
+            "F_r = {:.4e} {force},  F_r/P = {:.4e};  pressure centre {:+.4e} {length} towards the leading \
+             edge;  trailing edge {:+.4}, leading edge {:+.4} {length}",
+            r.force, r.coefficient, r.pressure_centre, r.trailing_edge, r.leading_edge
+        );
+        area.draw(&Text::new(
+            resistance,
+            (20, 78),
+            (FONT, 13).into_font().color(&PRESSURE),
+        ))?;
+    }
     let legend = "shaded: stick (blue), slip (orange, arrow: direction in which A slips relative to B)";
     let right = Pos::new(HPos::Right, VPos::Top);
     area.draw(&Text::new(
@@ -440,6 +469,45 @@ fn mark_leading_edge(
         "leading edge ",
         (edge, y),
         (FONT, 12).into_font().color(&BLACK.mix(0.7)).pos(pos),
+    )))?;
+    Ok(())
+}
+
+/// The trailing edge (dotted, like the leading edge) and the pressure centre (dashed, in the
+/// pressure's colour) of a run's rolling resistance, labelled.
+fn mark_asymmetry(
+    chart: &mut Panel<'_, '_>,
+    r: &RollingResistance,
+    (y0, y1): (f64, f64),
+) -> Result<(), Box<dyn std::error::Error>> {
+    // The pressure centre is measured from x = 0 towards the leading edge.
+    let leading = if r.leading_edge >= r.trailing_edge { 1.0 } else { -1.0 };
+    let (inward, outward) = if leading > 0.0 {
+        (HPos::Left, HPos::Right)
+    } else {
+        (HPos::Right, HPos::Left)
+    };
+    let grey = ShapeStyle::from(BLACK.mix(0.55)).stroke_width(1);
+    let edge = r.trailing_edge;
+    chart.draw_series(DashedLineSeries::new([(edge, y0), (edge, y1)], 2, 4, grey))?;
+    chart.draw_series(std::iter::once(Text::new(
+        " trailing edge ",
+        (edge, y0 + 0.88 * (y1 - y0)),
+        (FONT, 12)
+            .into_font()
+            .color(&BLACK.mix(0.7))
+            .pos(Pos::new(inward, VPos::Top)),
+    )))?;
+    let centre = leading * r.pressure_centre;
+    let style = ShapeStyle::from(PRESSURE.mix(0.8)).stroke_width(1);
+    chart.draw_series(DashedLineSeries::new([(centre, y0), (centre, y1)], 8, 4, style))?;
+    chart.draw_series(std::iter::once(Text::new(
+        " pressure centre ",
+        (centre, y0 + 0.80 * (y1 - y0)),
+        (FONT, 12)
+            .into_font()
+            .color(&PRESSURE)
+            .pos(Pos::new(outward, VPos::Top)),
     )))?;
     Ok(())
 }

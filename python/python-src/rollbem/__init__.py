@@ -60,17 +60,50 @@ DICT_CASE_NAME = "<case dict>"
 Case = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 
 
+#: What JSON encoding raises for a value that is no case value: a wrong type (TypeError), NaN, a
+#: circular reference or an integer of more digits than Python prints (ValueError), nesting
+#: deeper than Python's recursion limit (RecursionError).
+_ENCODING_ERRORS = (TypeError, ValueError, RecursionError)
+
+
+def _json(value: Any) -> str:
+    """A case value as JSON text (a YAML flow document); raises one of ``_ENCODING_ERRORS``."""
+    return json.dumps(value, allow_nan=False, default=_plain)
+
+
 def _case_source(case: Case) -> "tuple[str, Optional[str]]":
     """(path, text): a case file's path, or the dict as JSON text (a YAML document) and its name."""
     if isinstance(case, Mapping):
         try:
-            text = json.dumps(case, allow_nan=False, default=_plain)
-        except (TypeError, ValueError) as e:
-            raise InputError(f"{DICT_CASE_NAME}: cannot be written as a case: {e}") from None
+            text = _json(case)
+        except _ENCODING_ERRORS as e:
+            raise InputError(f"case: {DICT_CASE_NAME} cannot be written as a case: {_why(e)}") from None
         return DICT_CASE_NAME, text
-    if isinstance(case, (str, os.PathLike)):
-        return os.fspath(case), None
-    raise TypeError(f"case must be a path (str or os.PathLike) or a dict, not {type(case).__name__}")
+    if isinstance(case, (str, bytes, os.PathLike)):
+        return _path("case", case), None
+    raise InputError(f"case must be a path (str or os.PathLike) or a dict, not {type(case).__name__}")
+
+
+def _path(argument: str, value: Any) -> str:
+    """The path `value` (str, bytes or os.PathLike) as a str; InputError naming `argument` else."""
+    try:
+        path = os.fspath(value)
+    except TypeError:
+        raise InputError(
+            f"{argument} must be a path (str or os.PathLike), not {type(value).__name__}"
+        ) from None
+    if isinstance(path, bytes):
+        path = os.fsdecode(path)
+    if "\0" in path:
+        raise InputError(f"{argument}: the path {path!r} holds a NUL character, which no file name can")
+    return path
+
+
+def _why(e: BaseException) -> str:
+    """What an encoding error says, in words for a case value."""
+    if isinstance(e, RecursionError):
+        return "it is nested deeper than Python can write"
+    return str(e)
 
 
 def _plain(value: Any) -> Any:
@@ -82,38 +115,53 @@ def _plain(value: Any) -> Any:
     raise TypeError(f"{value!r} ({type(value).__name__}) is not a case value")
 
 
-def _value_text(key: str, value: Any) -> str:
+def _value_text(key: str, value: Any, argument: str = "set") -> str:
     """A value as ``--set`` takes it (read as YAML): true/false, null, the shortest round-trip
-    digits of a number, a string as it is, a list or mapping as JSON (a YAML flow collection)."""
+    digits of a number, a string as it is, a list or mapping as JSON (a YAML flow collection).
+    A value that is none of these is an InputError naming ``argument[key]``."""
+    where = f"{argument}[{key!r}]"
     if isinstance(value, np.generic):
         value = value.item()
     if value is None:
         return "null"
     if isinstance(value, bool):
         return "true" if value else "false"
-    if isinstance(value, numbers.Integral):
-        return str(int(value))
-    if isinstance(value, numbers.Real):
-        v = float(value)
-        if not math.isfinite(v):
-            raise InputError(f"--set {key}={v}: must be a finite number")
-        return repr(v)
+    try:
+        if isinstance(value, numbers.Integral):
+            return str(int(value))
+        if isinstance(value, numbers.Real):
+            v = float(value)
+            if not math.isfinite(v):
+                raise InputError(f"{where} = {v}: must be a finite number")
+            return repr(v)
+    except (ValueError, OverflowError) as e:
+        raise InputError(f"{where}: {e}") from None
     if isinstance(value, str):
         return value
     if isinstance(value, (Mapping, list, tuple, np.ndarray)):
         try:
-            return json.dumps(value, allow_nan=False, default=_plain)
-        except (TypeError, ValueError) as e:
-            raise InputError(f"--set {key}: {e}") from None
-    raise InputError(f"--set {key}: {value!r} ({type(value).__name__}) is not a case value")
+            return _json(value)
+        except _ENCODING_ERRORS as e:
+            raise InputError(f"{where}: {_why(e)}") from None
+    raise InputError(f"{where}: {value!r:.80} ({type(value).__name__}) is not a case value")
 
 
 def _overrides(set: Optional[Mapping[str, Any]]) -> List[str]:
     if set is None:
         return []
     if not isinstance(set, Mapping):
-        raise TypeError("set must be a dict {'key.path': value}")
-    return [f"{key}={_value_text(key, value)}" for key, value in set.items()]
+        raise InputError(f"set must be a dict {{'key.path': value}}, not {type(set).__name__}")
+    texts = []
+    for key, value in set.items():
+        if not isinstance(key, str):
+            raise InputError(f"set: the key {key!r:.80} must be a str ('key.path')")
+        texts.append(f"{key}={_value_text(key, value)}")
+    return texts
+
+
+def _out(out: Any) -> Optional[str]:
+    """The output folder as a str, or None."""
+    return None if out is None else _path("out", out)
 
 
 class Result:
@@ -279,14 +327,16 @@ def run(
         the :class:`Result`.
 
     Raises:
-        InputError: bad input (the CLI's message; nothing written).
+        InputError: bad input (the CLI's message; nothing written), or a bad argument (the
+            message names it: ``case``, ``set['key']``, ``out``).
         NotConverged: the solver did not converge (``error.result`` is the partial result; with
             ``out`` only summary.json is written, as by the CLI), the numerics broke down, or an
             error-controlled grid missed its tolerance (``error.estimate``).
         InternalError: a bug.
+        KeyboardInterrupt: Ctrl-C (in the main thread), within a Newton step of the solve.
     """
     path, text = _case_source(case)
-    raw = _rollbem.run(path, text, _overrides(set), None if out is None else os.fspath(out))
+    raw = _rollbem.run(path, text, _overrides(set), _out(out))
     result = Result(raw)
     if raw["not_converged"] is not None:
         estimate = {"residual": result.residual, "iterations": result.iterations}
@@ -313,7 +363,13 @@ def check(case: Case, set: Optional[Mapping[str, Any]] = None, tolerance: float 
         InputError, InternalError: as for :func:`run`.
     """
     path, text = _case_source(case)
-    raw = _rollbem.check(path, text, _overrides(set), float(tolerance))
+    if isinstance(tolerance, bool) or not isinstance(tolerance, numbers.Real):
+        raise InputError(f"tolerance must be a number, e.g. 0.01 for 1 %, not {type(tolerance).__name__}")
+    try:
+        tolerance = float(tolerance)
+    except (ValueError, OverflowError) as e:
+        raise InputError(f"tolerance: {e}") from None
+    raw = _rollbem.check(path, text, _overrides(set), tolerance)
     report = raw["report"]
     items: Dict[str, str] = {}
     for line in report.splitlines()[1:]:
@@ -357,19 +413,25 @@ def sweep(
         :class:`Result`. :func:`sweep_frame` makes a pandas DataFrame of them.
 
     Raises:
-        InputError: the case cannot be read, or ``vary`` is empty (a bad value is a failed row).
+        InputError: the case cannot be read, ``vary`` is empty, or an argument is bad (the
+            message names it: ``vary['key']``, ``jobs``, ...); a value the case refuses is a
+            failed row.
         InternalError: a bug outside the runs (a run's own panic is a failed row).
+        KeyboardInterrupt: Ctrl-C (in the main thread): the runs under way stop within a
+            Newton step, the others do not start.
     """
     if not isinstance(vary, Mapping) or not vary:
         raise InputError("sweep: nothing to sweep: give vary={'key.path': [v1, v2, ...]}")
     keys = list(vary)
     values = []
     for key in keys:
+        if not isinstance(key, str):
+            raise InputError(f"sweep: the key {key!r:.80} of vary must be a str ('key.path')")
         vs = vary[key]
         if isinstance(vs, (str, bytes)) or not isinstance(vs, (Sequence, np.ndarray)):
             raise InputError(f"sweep: vary[{key!r}] must be a list of values")
         values.append(list(vs))
-    texts = [(key, [_value_text(key, v) for v in vs]) for key, vs in zip(keys, values)]
+    texts = [(key, [_value_text(key, v, "vary") for v in vs]) for key, vs in zip(keys, values)]
     if jobs is not None and (
         isinstance(jobs, bool) or not isinstance(jobs, numbers.Integral) or jobs < 1
     ):
