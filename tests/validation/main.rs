@@ -40,6 +40,10 @@ mod hertz_carter;
 mod internal_contact;
 mod layer;
 mod methods;
+mod oscillating;
+#[allow(dead_code)]
+#[path = "../../examples/oscillating_report.rs"]
+mod oscillating_report;
 mod parametric;
 #[allow(dead_code)]
 #[path = "../../examples/parametric_report.rs"]
