@@ -8,16 +8,18 @@
 //!
 //! ```text
 //! S_i = c + σΔk_i + w_i(t) − w(x_i − σΔ, t − 1)
-//! D   = ∫ q·S dx                          (dissipation over the step)
-//! W   = Q·c + σΔ ∫ q·k dx                 (work of the tangential force over the rigid shift)
+//! D   = −∫ q·S dx                         (dissipation over the step, ≥ 0)
+//! W   = −(Q·c + σΔ ∫ q·k dx)              (work of the rigid shift on the bodies)
 //! U   = ½ ∫ q·w dx                        (the tangential part of ½∫(p·u_n + q·u_t) dx)
 //! ```
 //!
-//! c the step's rigid shift of A relative to B [length]. For bodies whose flexibility is a
-//! convolution (half-spaces) the old state shifted to the new material points keeps its
-//! energy, and D − (W − ΔU) = ½⟨q − q̃, W_q(q − q̃)⟩ (q̃ the old shear at the new material
-//! points): the implicit step's own dissipation, quadratic in the change over the step, so
-//! O(Δ²) a step and O(Δ) over a fixed rolled distance. The normal part ½∫p·u_n does no work on
+//! c the step's rigid shift of A relative to B [length]; q, the shear on A, opposes A's slip
+//! relative to B (Coulomb), and the shift's agent pushes A with −Q. The step's slip is formed
+//! with the shear at its end (an implicit step): for bodies whose flexibility is a convolution
+//! (half-spaces) the old state shifted to the new material points keeps its energy, and
+//! W − ΔU − D = ½⟨q − q̃, W_q(q − q̃)⟩ ≥ 0 (q̃ the old shear at the new material points), the
+//! implicit step's own dissipation: quadratic in the change over the step, so O(Δ²) a step and
+//! O(Δ) over a fixed rolled distance or a fixed shift divided into steps. The normal part ½∫p·u_n does no work on
 //! the shear when the bodies are of one material (Dundurs' β = 0, Johnson §5.7), the case
 //! these terms balance; else the coupling's work enters too.
 //!
@@ -28,11 +30,12 @@
 /// The energy terms of one step [force] (energy per unit length of the cylinders).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StepEnergy {
-    /// D = ∫ q·S dx: the shear's work over the slip of the step, the frictional dissipation
-    /// (≥ 0 where the friction law holds: q and S agree in sign in the slip zones) [force].
+    /// D = −∫ q·S dx: minus the shear's work over the slip of the step, the frictional dissipation
+    /// (≥ 0: the shear opposes the slip in the slip zones; the solver's sign) [force].
     pub dissipation: f64,
-    /// W = Q·c + σΔ∫q·k dx: the work of the tangential force over the step's rigid shift c
-    /// (and the rigid slip k of curved bodies' surface speeds) [force].
+    /// W = −(Q·c + σΔ∫q·k dx): the work done on the bodies by the step's rigid shift c of A
+    /// relative to B against the tangential force (and the rigid slip k of curved bodies'
+    /// surface speeds) [force].
     pub work: f64,
     /// ΔU = ½∫q·w dx (now) − ½∫q·w dx (the previous step): the change of the tangential
     /// elastic energy [force].
@@ -40,8 +43,8 @@ pub struct StepEnergy {
 }
 
 impl StepEnergy {
-    /// W − ΔU − D [force]: zero for an exact balance; minus the implicit step's own
-    /// dissipation (≤ 0, O(Δ²) a step) on a convolution flexibility.
+    /// W − ΔU − D [force]: zero for an exact balance; the implicit step's own dissipation
+    /// (≥ 0, O(Δ²) a step) on a convolution flexibility.
     pub fn imbalance(&self) -> f64 {
         self.work - self.stored_change - self.dissipation
     }
@@ -72,8 +75,8 @@ pub fn step_energy(f: &StepFields) -> StepEnergy {
     let integral = |a: &[f64], b: &[f64]| -> f64 { f.weights.iter().zip(a).zip(b).map(|((w, a), b)| w * a * b).sum() };
     let force: f64 = f.weights.iter().zip(f.shear).map(|(w, q)| w * q).sum();
     StepEnergy {
-        dissipation: integral(f.shear, f.slip),
-        work: force * f.shift + integral(f.shear, f.rigid_slip),
+        dissipation: -integral(f.shear, f.slip),
+        work: -(force * f.shift + integral(f.shear, f.rigid_slip)),
         stored_change: 0.5 * (integral(f.shear, f.displacement) - integral(f.previous_shear, f.previous_displacement)),
     }
 }
@@ -82,10 +85,11 @@ pub fn step_energy(f: &StepFields) -> StepEnergy {
 mod tests {
     use super::*;
 
-    /// A rigid slide of a traction that does not change: all the work is dissipated.
+    /// A rigid slide under a traction that does not change (q opposing the slip): all the work
+    /// is dissipated.
     #[test]
     fn a_rigid_slide_dissipates_all_the_work() {
-        let (weights, shear, w) = ([0.5, 1.0, 0.5], [1.0, 2.0, 1.0], [0.1, 0.2, 0.1]);
+        let (weights, shear, w) = ([0.5, 1.0, 0.5], [-1.0, -2.0, -1.0], [0.1, 0.2, 0.1]);
         let e = step_energy(&StepFields {
             weights: &weights,
             shear: &shear,
@@ -96,7 +100,7 @@ mod tests {
             rigid_slip: &[0.0; 3],
             shift: 0.3,
         });
-        assert!((e.work - 1.2).abs() < 1e-15 && (e.dissipation - 1.2).abs() < 1e-15);
+        assert!((e.work - 0.9).abs() < 1e-15 && (e.dissipation - 0.9).abs() < 1e-15);
         assert_eq!(e.stored_change, 0.0);
         assert!(e.imbalance().abs() < 1e-15);
     }

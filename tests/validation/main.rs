@@ -57,6 +57,7 @@ mod strength;
 #[path = "../../examples/strength_report.rs"]
 mod strength_report;
 mod transient;
+mod transient_energy;
 mod true_geometry;
 mod tyre;
 mod viscoelastic;
