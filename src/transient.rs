@@ -13,7 +13,12 @@
 //! ```
 //!
 //! with ξ the step's mean creepage (its rigid shift over Δ) and k the rigid slip of curved
-//! bodies' surface speeds. As the history repeats, w(t) = w(t − 1) and (w_i − w(x_i − σΔ))/Δ
+//! bodies' surface speeds. A rolling step measures w from the material at the grid's upstream
+//! end u (w − w_u in both terms, the datum of the steady problem's creepage): a half-space's
+//! logarithmic displacement has a constant that moves with Q, whose change over a step would
+//! otherwise act as a creepage of its own (under a prescribed ξ the force would settle over
+//! many contact widths instead of one). [`energy`] balances each step's work, stored energy
+//! and dissipation. As the history repeats, w(t) = w(t − 1) and (w_i − w(x_i − σΔ))/Δ
 //! is the upwind difference of σ ∂w/∂x over one step: the steady problem (paper Eq. 7) is the
 //! limit. A step with Δ = 0 is a shift without rolling (tangential loading of bodies pressed
 //! together: Cattaneo–Mindlin); its slip is a distance (S with L = 1 length unit) and its "ξ"
