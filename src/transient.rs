@@ -13,7 +13,12 @@
 //! ```
 //!
 //! with ξ the step's mean creepage (its rigid shift over Δ) and k the rigid slip of curved
-//! bodies' surface speeds. As the history repeats, w(t) = w(t − 1) and (w_i − w(x_i − σΔ))/Δ
+//! bodies' surface speeds. A rolling step measures w from the material at the grid's upstream
+//! end u (w − w_u in both terms, the datum of the steady problem's creepage): a half-space's
+//! logarithmic displacement has a constant that moves with Q, whose change over a step would
+//! otherwise act as a creepage of its own (under a prescribed ξ the force would settle over
+//! many contact widths instead of one). [`energy`] balances each step's work, stored energy
+//! and dissipation. As the history repeats, w(t) = w(t − 1) and (w_i − w(x_i − σΔ))/Δ
 //! is the upwind difference of σ ∂w/∂x over one step: the steady problem (paper Eq. 7) is the
 //! limit. A step with Δ = 0 is a shift without rolling (tangential loading of bodies pressed
 //! together: Cattaneo–Mindlin); its slip is a distance (S with L = 1 length unit) and its "ξ"
@@ -30,6 +35,8 @@
 //! a uniform grid of discontinuous elements onto a node; else an interpolation error O(h³)).
 //! Material that enters the grid from upstream carries the displacement of the grid's
 //! upstream end (outside the contact on a sensible grid, where it has no traction to act on).
+
+pub mod energy;
 
 use crate::contact::methods;
 use crate::contact::{ContactProblem, NormalControl, SolveReport, SolverSettings, State, TangentialControl};
@@ -102,6 +109,9 @@ pub struct StepSolution {
     pub state: State,
     /// Newton iterations the step took.
     pub iterations: usize,
+    /// The step's tangential energy balance: dissipation, work over the rigid shift and change
+    /// of the stored energy [force] (energy per unit length; [`energy`]).
+    pub energy: energy::StepEnergy,
 }
 
 /// A history on a scene's grid: its contact problem, assembled once.
@@ -110,8 +120,9 @@ pub struct History {
     problem: ContactProblem,
     /// The steady problem's constant slip term k (the rigid slip of the surface speeds).
     rigid_slip: Vec<f64>,
-    /// The slip length L of the problem's blocks: Δ, or 1 for a shift; None before the first.
-    length: Option<f64>,
+    /// The slip length L of the problem's blocks (Δ, or 1 for a shift) and their datum node
+    /// (a rolling step's upstream end); None before the first step.
+    length: Option<(f64, Option<usize>)>,
     settings: SolverSettings,
     /// The relative tangential displacement w at the end of the last step [length].
     displacement: Vec<f64>,
@@ -184,24 +195,39 @@ impl History {
         if !(step.distance >= 0.0 && step.distance.is_finite()) {
             return Err(TransientError::StepDistance(step.distance));
         }
-        let length = if step.distance > 0.0 { step.distance } else { 1.0 };
-        if self.length != Some(length) {
-            let scale = faer::Scale(1.0 / length);
-            self.problem.bp = &self.problem.flex.wp * scale;
-            self.problem.bq = &self.problem.flex.wq * scale;
-            self.length = Some(length);
+        let rolling = step.distance > 0.0;
+        let length = if rolling { step.distance } else { 1.0 };
+        // A rolling step measures w from the material at the grid's upstream end (the datum
+        // node u): w − w_u, whose change over the step does not depend on the constant of a
+        // half-space's logarithmic displacement (which moves with Q).
+        let datum = rolling.then_some(self.problem.slip_operator.upstream_end);
+        if self.length != Some((length, datum)) {
+            self.problem.bp = blocks(&self.problem.flex.wp, length, datum);
+            self.problem.bq = blocks(&self.problem.flex.wq, length, datum);
+            self.length = Some((length, datum));
         }
         let sigma = self.problem.flow_sign;
         let earlier = displacement_upstream(&self.problem.grid, &self.displacement, sigma * step.distance);
+        let before = datum.map_or(0.0, |u| self.displacement[u]);
         for ((k, k0), w) in self.problem.rigid_slip.iter_mut().zip(&self.rigid_slip).zip(&earlier) {
-            *k = k0 - sigma * w / length;
+            *k = k0 - sigma * (w - before) / length;
         }
         self.problem.normal = step.normal;
         self.problem.tangential = step.tangential;
         // A shift starts from the solver's own start vector: from the pressed state every node
         // sticks and the Newton method frees the slip zones about one node an iteration (the
         // Cattaneo shift on 81 elements: 56 iterations warm, 9 cold).
-        let warm = if step.distance > 0.0 { self.state.clone() } else { None };
+        let mut warm = if step.distance > 0.0 { self.state.clone() } else { None };
+        // A prescribed overlap or creepage is not an unknown of the solver: it reads it from the
+        // start vector, so the warm start carries the step's own value, not the last step's.
+        if let Some(w) = warm.as_mut() {
+            if let NormalControl::Overlap(d) = step.normal {
+                w.overlap = d;
+            }
+            if let TangentialControl::Creep(c) = step.tangential {
+                w.creep = c;
+            }
+        }
         let (state, report) = methods::solve_from(&self.problem, &self.settings, warm);
         if !report.converged {
             return Err(TransientError::NotConverged {
@@ -210,7 +236,9 @@ impl History {
                 residual: report.residual,
             });
         }
-        self.displacement = self.problem.relative_tangential(&state.pressure, &state.shear);
+        let displacement = self.problem.relative_tangential(&state.pressure, &state.shear);
+        let energy = self.energy(&state, &displacement, length, datum);
+        self.displacement = displacement;
         self.rolled += step.distance;
         self.state = Some(state.clone());
         self.report = Some(report.clone());
@@ -219,8 +247,43 @@ impl History {
             rolled: self.rolled,
             state,
             iterations: report.iterations,
+            energy,
         })
     }
+
+    /// The energy balance of the step just solved into `state` (w = `displacement` at its end)
+    /// against the last step's (still in `self`), its slip length `length` and datum node.
+    fn energy(&self, state: &State, displacement: &[f64], length: f64, datum: Option<usize>) -> energy::StepEnergy {
+        let pb = &self.problem;
+        let sigma = pb.flow_sign;
+        let slip: Vec<f64> = pb
+            .slip(&state.pressure, &state.shear, state.creep)
+            .iter()
+            .map(|s| s * length)
+            .collect();
+        let rigid: Vec<f64> = self.rigid_slip.iter().map(|k| sigma * length * k).collect();
+        let zero = vec![0.0; pb.n_nodes()];
+        let previous_shear = self.state.as_ref().map_or(&zero, |s| &s.shear);
+        let moved = datum.map_or(0.0, |u| displacement[u] - self.displacement[u]);
+        energy::step_energy(&energy::StepFields {
+            weights: &pb.grid.weights,
+            shear: &state.shear,
+            slip: &slip,
+            displacement,
+            previous_shear,
+            previous_displacement: &self.displacement,
+            rigid_slip: &rigid,
+            shift: sigma * length * state.creep - moved,
+        })
+    }
+}
+
+/// The slip blocks (W − 1·W_u)/L of a flexibility block W [length/stress]: each row less the
+/// datum node u's row (none for a shift), over the slip length L [length].
+fn blocks(w: &faer::Mat<f64>, length: f64, datum: Option<usize>) -> faer::Mat<f64> {
+    faer::Mat::from_fn(w.nrows(), w.ncols(), |i, j| {
+        (w[(i, j)] - datum.map_or(0.0, |u| w[(u, j)])) / length
+    })
 }
 
 /// w at x_i − `shift` for every node x_i [length]: the grid's interpolation of the nodal

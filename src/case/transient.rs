@@ -87,6 +87,35 @@ pub enum Schedule {
     /// Piecewise linear in the rolled distance s [length] at the end of a step, constant
     /// beyond the first and last points: `[[0, 0.2], [5, 0.6]]` (s strictly increasing).
     Points(Vec<[f64; 2]>),
+    /// A sine of the rolled distance s [length] at the end of a step:
+    /// `{sine: {mean: 1812.5, amplitude: 181.2, wavelength: 50.0}}` gives
+    /// mean + amplitude·sin(2πs/wavelength + phase), e.g. an oscillating normal load.
+    Sine {
+        /// The wave's parameters.
+        sine: SineWave,
+    },
+}
+
+/// `{sine: {...}}`: v(s) = mean + amplitude·sin(2πs/λ + phase), s the rolled distance [length].
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SineWave {
+    /// The mean value, in the control's unit (P [force/length], δ0 [length], Q/μP, Q, ξ).
+    pub mean: f64,
+    /// The amplitude, in the control's unit (its sign flips the phase by π).
+    pub amplitude: f64,
+    /// The wavelength λ > 0 in rolled distance [length].
+    pub wavelength: f64,
+    /// The phase at s = 0 [rad] (default 0: the value starts at the mean, rising).
+    #[serde(default)]
+    pub phase: f64,
+}
+
+impl SineWave {
+    /// The value at rolled distance `s` [length].
+    pub fn at(&self, s: f64) -> f64 {
+        self.mean + self.amplitude * (std::f64::consts::TAU * s / self.wavelength + self.phase).sin()
+    }
 }
 
 impl<'de> Deserialize<'de> for Schedule {
@@ -97,17 +126,20 @@ impl<'de> Deserialize<'de> for Schedule {
             Constant(f64),
             Table(Vec<f64>),
             Points(Vec<[f64; 2]>),
+            Sine { sine: SineWave },
         }
         Raw::deserialize(d)
             .map(|r| match r {
                 Raw::Constant(v) => Schedule::Constant(v),
                 Raw::Table(v) => Schedule::Table(v),
                 Raw::Points(v) => Schedule::Points(v),
+                Raw::Sine { sine } => Schedule::Sine { sine },
             })
             .map_err(|_| {
                 serde::de::Error::custom(
-                    "expected a number (the same at every step), a list of numbers (one a step) or a list of \
-                     [distance, value] pairs (piecewise linear in the rolled distance)",
+                    "expected a number (the same at every step), a list of numbers (one a step), a list of \
+                     [distance, value] pairs (piecewise linear in the rolled distance) or {sine: {mean, \
+                     amplitude, wavelength, phase}} (a sine of the rolled distance)",
                 )
             })
     }
@@ -121,15 +153,17 @@ impl Schedule {
             Schedule::Constant(v) => *v,
             Schedule::Table(v) => v[step.saturating_sub(1).min(v.len() - 1)],
             Schedule::Points(p) => piecewise_linear(p, rolled),
+            Schedule::Sine { sine } => sine.at(rolled),
         }
     }
 
-    /// Every value the schedule takes (to check their range).
+    /// Every value the schedule takes (to check their range; a sine's extremes).
     pub fn values(&self) -> Vec<f64> {
         match self {
             Schedule::Constant(v) => vec![*v],
             Schedule::Table(v) => v.clone(),
             Schedule::Points(p) => p.iter().map(|q| q[1]).collect(),
+            Schedule::Sine { sine } => vec![sine.mean - sine.amplitude.abs(), sine.mean + sine.amplitude.abs()],
         }
     }
 }
@@ -229,5 +263,19 @@ mod tests {
             [-1.0, 0.5, 2.0, 3.0, 9.0].map(|s| points.at(1, s)),
             [0.0, 0.25, 1.0, 1.0, 1.0]
         );
+        let sine = Schedule::Sine {
+            sine: SineWave {
+                mean: 2.0,
+                amplitude: 0.5,
+                wavelength: 4.0,
+                phase: 0.0,
+            },
+        };
+        let at = [0.0, 1.0, 2.0, 3.0].map(|s| sine.at(1, s));
+        assert!(
+            at.iter().zip([2.0, 2.5, 2.0, 1.5]).all(|(a, b)| (a - b).abs() < 1e-12),
+            "{at:?}"
+        );
+        assert_eq!(sine.values(), vec![1.5, 2.5]);
     }
 }

@@ -52,6 +52,9 @@ mod methods_perf;
 #[path = "../../examples/model_error_table.rs"]
 mod model_error_table;
 mod no_external_references;
+#[allow(dead_code)]
+#[path = "../../examples/oscillating_report.rs"]
+mod oscillating_report;
 mod outputs;
 #[allow(dead_code)]
 #[path = "../../examples/parametric_report.rs"]
@@ -467,4 +470,15 @@ fn performance_friction_limits_table() {
         rows: &t.rows,
     };
     assert_table("performance.md", printed, Rows::All, &["solve [s]"], (&[], 0.0));
+}
+
+/// docs/transient.md, "Oscillating normal load": amplitude and phase of Q(s) against λ/a.
+#[test]
+fn transient_oscillating_table() {
+    let t = oscillating_report::table();
+    let printed = Printed {
+        header: &t.header,
+        rows: &t.rows,
+    };
+    assert_table("transient.md", printed, Rows::All, &[], (&[], 0.0));
 }

@@ -66,6 +66,11 @@ fn a_history_with_good_keys_runs() {
         "transient.normal={overlap: 0.05}",
     ]);
     assert_eq!(code, 0, "{stderr}");
+    let (code, stderr, _) = run(&[
+        "transient.normal={force: {sine: {mean: 1812.4573, amplitude: 181.2, wavelength: 0.5, phase: 0.3}}}",
+        "transient.tangential={creep: 0.001}",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
 }
 
 #[test]
@@ -115,6 +120,26 @@ fn bad_controls_are_refused_by_key() {
         &["a list of numbers"],
     );
     assert_refused(&["transient.shift={ratio: -1}"], "transient.shift.ratio", &["< 1"]);
+    assert_refused(
+        &["transient.normal={force: {sine: {mean: 1800, amplitude: 180, wavelength: 0}}}"],
+        "transient.normal.force",
+        &["wavelength", "positive"],
+    );
+    assert_refused(
+        &["transient.normal={force: {sine: {mean: 100, amplitude: 150, wavelength: 5}}}"],
+        "transient.normal.force",
+        &["positive"],
+    );
+    assert_refused(
+        &["transient.tangential={ratio: {sine: {mean: 0.5, amplitude: 0.6, wavelength: 5}}}"],
+        "transient.tangential.ratio",
+        &["< 1"],
+    );
+    assert_refused(
+        &["transient.normal={force: {sine: {mean: 1800, amplitude: 180}}}"],
+        "transient.normal.force",
+        &["sine"],
+    );
     assert_refused(&["transient.shift={}"], "transient.shift", &["exactly one"]);
 }
 

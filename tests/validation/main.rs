@@ -40,6 +40,10 @@ mod hertz_carter;
 mod internal_contact;
 mod layer;
 mod methods;
+mod oscillating;
+#[allow(dead_code)]
+#[path = "../../examples/oscillating_report.rs"]
+mod oscillating_report;
 mod parametric;
 #[allow(dead_code)]
 #[path = "../../examples/parametric_report.rs"]
@@ -53,6 +57,7 @@ mod strength;
 #[path = "../../examples/strength_report.rs"]
 mod strength_report;
 mod transient;
+mod transient_energy;
 mod true_geometry;
 mod tyre;
 mod viscoelastic;

@@ -147,6 +147,20 @@ fn value_problems(key: &str, schedule: &Schedule, steps: usize, rule: ValueRule,
                 ));
             }
         }
+        Schedule::Sine { sine } => {
+            if let Some(w) = positive_quantity(sine.wavelength) {
+                out.push((key.to_string(), format!("a sine's wavelength {w}")));
+            }
+            for (name, v) in [
+                ("mean", sine.mean),
+                ("amplitude", sine.amplitude),
+                ("phase", sine.phase),
+            ] {
+                if let Some(w) = magnitude(v) {
+                    out.push((key.to_string(), format!("a sine's {name} {w}")));
+                }
+            }
+        }
         _ => {}
     }
     if let Some(w) = schedule.values().into_iter().find_map(|v| rule(v, mu)) {
