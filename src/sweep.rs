@@ -177,6 +177,54 @@ fn check_keys(case: &Path, base_set: &[String], varies: &[Vary]) -> Result<(), E
     Ok(())
 }
 
+/// The summaries of the runs of a sweep of `varies` over the case `source` with the overrides
+/// `base_set`, nothing written (the Python module's `sweep`): solved as `rollbem sweep` solves
+/// them, in chains of neighbours on one shared assembly where the varied keys allow it, each
+/// warm-started from the run before it, one chain per thread of the current rayon pool. Each
+/// run's solve is handed to `guard` (the caller's cancellation or panic guard), whose results
+/// come back in run order. A case that cannot be read is an error before any run.
+pub fn summaries<R: Send>(
+    source: crate::app::CaseSource<'_>,
+    base_set: &[String],
+    varies: &[Vary],
+    guard: impl Fn(&mut dyn FnMut() -> Result<crate::output::Summary, Error>) -> R + Sync,
+) -> Result<Vec<R>, Error> {
+    let (path, text) = match source {
+        crate::app::CaseSource::File(path) => (
+            path,
+            std::fs::read_to_string(path).map_err(|e| sweep_err(format!("{}: {e}", path.display())))?,
+        ),
+        crate::app::CaseSource::Text { text, path } => (path, text.to_string()),
+    };
+    let runs = Runs::new(varies)?;
+    let order = chains::neighbour_order(&runs, varies, (0..runs.count()).collect());
+    let mut points = chains::Points {
+        case: path,
+        parsed: crate::case::ParsedCase::new(&text, path),
+        base_set,
+        out: Path::new(""),
+        per_run_files: false,
+        shared: None,
+    };
+    points.share(varies, order.first().map(|&n| runs.overrides(n)).as_deref());
+    let points = &points;
+    let mut solved: Vec<(usize, R)> = chains::contiguous_chains(&order, rayon::current_num_threads())
+        .par_iter()
+        .flat_map_iter(|runs_of_chain| {
+            let mut chain = points.shared.as_ref().map(|s| s.chain());
+            runs_of_chain
+                .iter()
+                .map(|&n| {
+                    let overrides = runs.overrides(n);
+                    (n, guard(&mut || points.summary(chain.as_mut(), &overrides)))
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    solved.sort_by_key(|(n, _)| *n);
+    Ok(solved.into_iter().map(|(_, r)| r).collect())
+}
+
 /// Locks a shard's table in `dir` (two processes must not run the same shard).
 fn lock_table(dir: &Path, record: &SweepRecord) -> Result<FileLock, Error> {
     let lock = dir.join(format!(".{}.rollbem-lock", record.csv_name()));

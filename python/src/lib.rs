@@ -498,17 +498,10 @@ fn sweep_row(run: usize, outcome: Result<Summary, Failure>) -> serde_json::Value
     Value::Object(row)
 }
 
-/// One run of a sweep, nothing written: the summary as the CLI's sweep reads it.
-fn sweep_run(source: &Source, set: &[String]) -> Result<Summary, Failure> {
-    let s = app::solve_case(source.case_source(), set)?;
-    let summary = output::summary(&s);
-    rollbem::post::finite::check(&s.scene.case.path, "summary.json", &summary)?;
-    Ok(summary)
-}
-
 /// `rollbem sweep` without files: the Cartesian product of `varies` (the first varies slowest)
-/// over the case with `overrides`, run in parallel on a rayon pool of `jobs` threads (all cores
-/// when None). Returns one JSON row per run, in run order (see [`sweep_row`]). A bad case file
+/// over the case with `overrides`, solved as the CLI's sweep solves it (chains of neighbours on
+/// one shared assembly, warm-started; `rollbem::sweep::summaries`) on a rayon pool of `jobs`
+/// threads (all cores when None). Returns one JSON row per run, in run order (see [`sweep_row`]). A bad case file
 /// fails at once; a run that fails is a row with status `failed` and its message.
 #[pyfunction]
 #[pyo3(signature = (path, text, overrides, varies, jobs=None))]
@@ -520,7 +513,6 @@ fn sweep(
     varies: Vec<(String, Vec<String>)>,
     jobs: Option<usize>,
 ) -> PyResult<Vec<String>> {
-    use rayon::prelude::*;
     refresh_logging();
     let source = Source { path, text };
     let outcome = interruptible(py, |token| {
@@ -546,13 +538,18 @@ fn sweep(
                     values: values.clone(),
                 })
                 .collect();
-            let runs = rollbem::sweep::product(&varies)?;
-            let one = |(n, run): (usize, &Vec<(String, String)>)| {
-                let mut set = overrides.clone();
-                set.extend(run.iter().map(|(k, v)| format!("{k}={v}")));
-                sweep_row(n, cancellable(token, || sweep_run(&source, &set))).to_string()
+            // Solved as the CLI's sweep solves them: chains of neighbours on one shared assembly,
+            // each run warm-started from the one before it.
+            let all = || -> Result<Vec<String>, Error> {
+                let outcomes = rollbem::sweep::summaries(source.case_source(), &overrides, &varies, |solve| {
+                    cancellable(token, || Ok(solve()?))
+                })?;
+                Ok(outcomes
+                    .into_iter()
+                    .enumerate()
+                    .map(|(n, r)| sweep_row(n, r).to_string())
+                    .collect())
             };
-            let all = || runs.par_iter().enumerate().map(one).collect::<Vec<String>>();
             let rows = match jobs {
                 None => all(),
                 Some(n) => rayon::ThreadPoolBuilder::new()
@@ -562,7 +559,7 @@ fn sweep(
                         message: format!("cannot start {n} threads: {e}"),
                     })?
                     .install(all),
-            };
+            }?;
             // A run cancelled is a row like a failed one: the sweep as a whole is cancelled.
             rollbem::cancel::checkpoint();
             Ok(rows)

@@ -134,6 +134,22 @@ impl Points<'_> {
         })
     }
 
+    /// The summary of one point, nothing written (the library's [`super::summaries`]): on the
+    /// chain's shared assembly when its scene shares it, else solved on its own.
+    pub fn summary(
+        &self,
+        chain: Option<&mut Chain>,
+        overrides: &[(String, String)],
+    ) -> Result<crate::output::Summary, crate::error::Error> {
+        let start = Instant::now();
+        if let (Some(chain), Some(shared)) = (chain, self.shared.as_ref()) {
+            if let Some(scene) = shared.scene_of(self.case_of(overrides)?)? {
+                return chain.solve_with(scene, start, crate::app::checked_summary)?.0;
+            }
+        }
+        crate::app::solve(&self.case_of(overrides)?).and_then(|s| crate::app::checked_summary(&s))
+    }
+
     fn alone(&self, run: usize, overrides: &[(String, String)]) -> RunRow {
         run_alone(self.case, self.base_set, self.out, self.per_run_files, run, overrides)
     }
