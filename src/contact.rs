@@ -323,7 +323,7 @@ impl ContactProblem {
     /// [`Self::friction_at`].
     pub fn friction_of_slip(&self, i: usize, slip: f64) -> f64 {
         match &self.falling {
-            Some(law) => law.coefficient(slip),
+            Some(law) => law.coefficient(self.friction, slip),
             None => self.friction_at(i),
         }
     }

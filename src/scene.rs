@@ -169,11 +169,7 @@ impl Scene {
             .contact
             .falling_friction
             .zip(c.load.speed)
-            .map(|(law, speed)| FallingLaw {
-                law,
-                static_friction: friction,
-                speed,
-            });
+            .map(|(law, speed)| FallingLaw { law, speed });
         let grid_control = c.contact.grid.tolerance.map(|tolerance| GridControl {
             tolerance,
             max_elements: c.contact.grid.max_elements,

@@ -253,7 +253,7 @@ impl Chain<'_> {
 /// tangential controls (the only parts of the problem that the shared keys change).
 fn set_controls(problem: &mut ContactProblem, scene: &Scene) {
     problem.friction = scene.friction;
-    // A falling law carries the static μ and the speed: the run's own.
+    // A falling law carries the speed (its static μ is the problem's friction): the run's own.
     problem.falling = scene.falling;
     problem.normal = scene.normal;
     problem.tangential = scene.tangential;

@@ -72,29 +72,30 @@ pub struct FallingFriction {
     pub slip_velocity: f64,
 }
 
-/// A falling law with what it needs from the case: the static coefficient and the speed.
+/// A falling law with the speed it needs from the case. The static coefficient μ_s is the
+/// problem's own `friction` ([`ContactProblem::friction`]), passed to each evaluation, so that
+/// a run that changes μ (a sweep's) cannot leave the law with another.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FallingLaw {
     /// The law's keys.
     pub law: FallingFriction,
-    /// Static friction coefficient μ_s [-] (`contact.friction`).
-    pub static_friction: f64,
     /// Rolling speed V > 0 [length/time] (`load.speed`): slip velocity = V × slip.
     pub speed: f64,
 }
 
 impl FallingLaw {
-    /// μ(V s) for the dimensionless slip `slip` at a node [-] (module docs); μ_s exactly when
-    /// μ_k = μ_s (the factor of the exponential is then zero).
-    pub fn coefficient(&self, slip: f64) -> f64 {
+    /// μ(V s) for the static coefficient `mu_s` [-] and the dimensionless slip `slip` at a node
+    /// [-] (module docs); μ_s exactly when μ_k = μ_s (the factor of the exponential is then
+    /// zero).
+    pub fn coefficient(&self, mu_s: f64, slip: f64) -> f64 {
         let v = self.speed * slip.abs();
-        let (mu_s, mu_k) = (self.static_friction, self.law.kinetic);
+        let mu_k = self.law.kinetic;
         mu_k + (mu_s - mu_k) * (-v / self.law.slip_velocity).exp()
     }
 
-    /// μ at every node of the slip `slip` [-].
-    pub fn nodal(&self, slip: &[f64]) -> Vec<f64> {
-        slip.iter().map(|&s| self.coefficient(s)).collect()
+    /// μ at every node of the slip `slip` [-], for the static coefficient `mu_s` [-].
+    pub fn nodal(&self, mu_s: f64, slip: &[f64]) -> Vec<f64> {
+        slip.iter().map(|&s| self.coefficient(mu_s, s)).collect()
     }
 }
 
@@ -111,16 +112,17 @@ pub fn solve(
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
     let mut own = pb.clone();
+    let mu_s = pb.friction;
     own.falling = None;
     let m = pb.n_nodes();
     let mut mu = match &warm {
-        Some(z) => law.nodal(&z.slip),
-        None => vec![law.static_friction; m],
+        Some(z) => law.nodal(mu_s, &z.slip),
+        None => vec![mu_s; m],
     };
     let mut start = warm;
     let (mut relaxation, mut last_change) = (1.0_f64, f64::INFINITY);
     let (mut iterations, mut inner, mut history) = (0, 0, Vec::new());
-    let scale = law.static_friction.max(f64::MIN_POSITIVE);
+    let scale = mu_s.max(f64::MIN_POSITIVE);
     let mut solve = 0;
     let mut mixing = Anderson::new(ANDERSON_DEPTH);
     loop {
@@ -136,7 +138,7 @@ pub fn solve(
         iterations += report.iterations;
         inner += report.inner_iterations;
         history.append(&mut report.history);
-        let target = law.nodal(&state.slip);
+        let target = law.nodal(mu_s, &state.slip);
         // Only where the bound μ_i p̂_i can act: out of contact μ_i bounds nothing.
         let change = (0..m)
             .filter(|&i| state.pressure[i] > 0.0)
@@ -165,7 +167,7 @@ pub fn solve(
         }
         last_change = change;
         mu = mixing.next(&mu, &target, relaxation);
-        let (lo, hi) = (law.law.kinetic.min(law.static_friction), law.static_friction);
+        let (lo, hi) = (law.law.kinetic.min(mu_s), mu_s);
         mu.iter_mut().for_each(|u| *u = u.clamp(lo, hi));
         start = Some(state);
     }
@@ -239,7 +241,6 @@ mod tests {
                 kinetic,
                 slip_velocity: 0.5,
             },
-            static_friction: 0.3,
             speed: 100.0,
         }
     }
@@ -276,14 +277,14 @@ mod tests {
     #[test]
     fn the_law_falls_from_static_to_kinetic() {
         let l = law(0.1);
-        assert_eq!(l.coefficient(0.0), 0.3);
+        assert_eq!(l.coefficient(0.3, 0.0), 0.3);
         let at_sh = 0.1 + 0.2 * (-1.0_f64).exp();
-        assert!((l.coefficient(0.005) - at_sh).abs() < 1e-15);
-        assert_eq!(l.coefficient(-0.005), l.coefficient(0.005));
-        assert!((l.coefficient(10.0) - 0.1).abs() < 1e-15);
+        assert!((l.coefficient(0.3, 0.005) - at_sh).abs() < 1e-15);
+        assert_eq!(l.coefficient(0.3, -0.005), l.coefficient(0.3, 0.005));
+        assert!((l.coefficient(0.3, 10.0) - 0.1).abs() < 1e-15);
         let flat = law(0.3);
         for s in [0.0, 1e-6, 0.005, -3.0] {
-            assert_eq!(flat.coefficient(s), 0.3);
+            assert_eq!(flat.coefficient(0.3, s), 0.3);
         }
     }
 }
