@@ -24,7 +24,7 @@ pub const STEADY_TOLERANCE: f64 = 1e-6;
 pub const SETTLED_TOLERANCE: f64 = 1e-3;
 
 /// Columns of transient.csv and what each measures (`time` needs `load.speed`).
-pub const TRANSIENT_CSV_UNITS: [(&str, Dimension); 18] = [
+pub const TRANSIENT_CSV_UNITS: [(&str, Dimension); 21] = [
     ("step", Count),
     ("distance", Length),
     ("rolled", Length),
@@ -43,6 +43,9 @@ pub const TRANSIENT_CSV_UNITS: [(&str, Dimension); 18] = [
     ("max_pressure", Stress),
     ("max_shear", Stress),
     ("iterations", Count),
+    ("dissipation", EnergyPerLength),
+    ("shift_work", EnergyPerLength),
+    ("stored_change", EnergyPerLength),
 ];
 
 /// One step of a history as the outputs need it: the solver's step and its user-facing
@@ -174,6 +177,9 @@ fn row(k: usize, r: &StepRecord, friction: f64, speed: Option<f64>) -> Vec<Strin
         number(s.pressure.iter().fold(0.0, |a, &b| a.max(b))),
         number(s.shear.iter().fold(0.0, |a, &b| a.max(b.abs()))),
         r.iterations.to_string(),
+        cell(Some(r.step.energy.dissipation)),
+        cell(Some(r.step.energy.work)),
+        cell(Some(r.step.energy.stored_change)),
     ]
 }
 

@@ -18,6 +18,8 @@ pub enum Dimension {
     StressPerLength,
     /// A moment per unit length of the cylinders [force·length/length = force].
     MomentPerLength,
+    /// An energy per unit length of the cylinders [force·length/length = force].
+    EnergyPerLength,
     /// A speed [length/time].
     Speed,
     /// A power per unit length of the cylinders [force/length · length/time].
@@ -43,7 +45,9 @@ impl Dimension {
             Dimension::ForcePerLength => u.force_per_length(),
             Dimension::Stress => u.stress(),
             Dimension::StressPerLength => u.stress_per_length(),
-            Dimension::MomentPerLength => format!("{}*{}/{}", u.force, u.length, u.length),
+            Dimension::MomentPerLength | Dimension::EnergyPerLength => {
+                format!("{}*{}/{}", u.force, u.length, u.length)
+            }
             Dimension::Speed => u.speed(),
             Dimension::PowerPerLength => u.power_per_length(),
             Dimension::Dimensionless => "-".into(),
