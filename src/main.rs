@@ -105,7 +105,14 @@ fn install_panic_hook() {
 /// The restarts the default method needed, as one warning: a converged run that needed them
 /// took longer than it should, and a different `solver.*` setting may avoid them.
 fn warn_restarts(s: &rollbem::output::Summary) {
-    let fallbacks = &s.solver.fallbacks;
+    // A falling law's fixed point that did not settle is no restart: the error says it.
+    let fallbacks: Vec<&str> = s
+        .solver
+        .fallbacks
+        .iter()
+        .map(String::as_str)
+        .filter(|f| rollbem::contact::falling::is_restart(f))
+        .collect();
     if fallbacks.is_empty() {
         return;
     }

@@ -53,6 +53,12 @@ pub const MAX_FIXED_POINT_SOLVES: usize = 200;
 /// How the fallback of a fixed point that did not settle begins (the CLI's advice keys on it).
 pub const UNSETTLED: &str = "falling friction: the nodal mu did not settle";
 
+/// Whether a report's fallback is a restart of the Newton method (not the note of a falling
+/// law's fixed point that did not settle, [`UNSETTLED`]).
+pub fn is_restart(fallback: &str) -> bool {
+    !fallback.starts_with(UNSETTLED)
+}
+
 /// Smallest relaxation of the μ update (1/16).
 const MIN_RELAXATION: f64 = 1.0 / 16.0;
 

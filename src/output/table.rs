@@ -13,7 +13,13 @@ pub fn render_table(s: &Summary, output_dir: &Path) -> String {
     let status = if s.converged { "converged" } else { "NOT CONVERGED" };
     line("title", s.title.clone());
     line("models (A / B)", format!("{} / {}", s.models.a, s.models.b));
-    let restarts = match s.solver.fallbacks.len() {
+    let restarts = match s
+        .solver
+        .fallbacks
+        .iter()
+        .filter(|f| crate::contact::falling::is_restart(f))
+        .count()
+    {
         0 => String::new(),
         n => format!(" after {n} restart{}", if n == 1 { "" } else { "s" }),
     };
