@@ -12,6 +12,13 @@
 //!
 //! The token belongs to the thread that runs [`Token::run`]: work that fans out to other
 //! threads (the runs of a sweep) calls [`Token::run`] with the same token on each.
+//!
+//! **Scope.** Nothing here is process-wide: each call makes its own token (its flag shared only
+//! with the thread that may set it), [`Token::run`] installs it for the duration of its work on
+//! its thread and restores the previous one after, and a checkpoint never changes what a run
+//! computes, only whether it goes on. The thread-local spares the solver's signatures a
+//! parameter that only a cancelling caller uses; a run context passed down to the solver (the
+//! Newton workspace would carry it) is the explicit alternative, not built.
 
 use std::cell::RefCell;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};

@@ -27,7 +27,6 @@ use crate::error::Error;
 use crate::output::folder::{self, Access, Claim, FileLock, FolderError, Kind, SweepEntry};
 use indicatif::{ProgressBar, ProgressStyle};
 pub use merge::merge;
-use rayon::prelude::*;
 pub use record::{fnv1a64, SweepRecord, VaryRecord};
 use record::{read_record, write_record};
 pub use row::{run_folder, RunRow, RESULT_COLUMNS, TIMING_COLUMNS};
@@ -198,7 +197,7 @@ pub fn summaries<R: Send>(
     };
     let runs = Runs::new(varies)?;
     let order = chains::neighbour_order(&runs, varies, (0..runs.count()).collect());
-    let mut points = chains::Points {
+    let points = chains::Points {
         case: path,
         parsed: crate::case::ParsedCase::new(&text, path),
         base_set,
@@ -206,21 +205,10 @@ pub fn summaries<R: Send>(
         per_run_files: false,
         shared: None,
     };
-    points.share(varies, order.first().map(|&n| runs.overrides(n)).as_deref());
-    let points = &points;
-    let mut solved: Vec<(usize, R)> = chains::contiguous_chains(&order, rayon::current_num_threads())
-        .par_iter()
-        .flat_map_iter(|runs_of_chain| {
-            let mut chain = points.shared.as_ref().map(|s| s.chain());
-            runs_of_chain
-                .iter()
-                .map(|&n| {
-                    let overrides = runs.overrides(n);
-                    (n, guard(&mut || points.summary(chain.as_mut(), &overrides)))
-                })
-                .collect::<Vec<_>>()
-        })
-        .collect();
+    let mut solved = chains::solve_in_chains(points, &runs, varies, &order, |points, mut chain, n| {
+        let overrides = runs.overrides(n);
+        (n, guard(&mut || points.summary(chain.as_deref_mut(), &overrides)))
+    });
     solved.sort_by_key(|(n, _)| *n);
     Ok(solved.into_iter().map(|(_, r)| r).collect())
 }
@@ -363,7 +351,7 @@ impl Job<'_> {
         let order = chains::neighbour_order(runs, self.varies, todo);
         let text =
             std::fs::read_to_string(self.case).map_err(|e| sweep_err(format!("{}: {e}", self.case.display())))?;
-        let mut points = chains::Points {
+        let points = chains::Points {
             case: self.case,
             parsed: crate::case::ParsedCase::new(&text, self.case),
             base_set: self.base_set,
@@ -371,30 +359,20 @@ impl Job<'_> {
             per_run_files: self.per_run_files,
             shared: None,
         };
-        points.share(self.varies, order.first().map(|&n| runs.overrides(n)).as_deref());
         let bar = ProgressBar::new(order.len() as u64);
         bar.set_style(
             ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs, eta {eta} {msg}")
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
-        let points = &points;
-        let rows: Vec<Result<RunRow, Error>> = chains::contiguous_chains(&order, rayon::current_num_threads())
-            .par_iter()
-            .flat_map_iter(|runs_of_chain| {
-                let mut chain = points.shared.as_ref().map(|s| s.chain());
-                let mut rows = Vec::with_capacity(runs_of_chain.len());
-                for &n in runs_of_chain.iter() {
-                    let row = points.run(chain.as_mut(), n, &runs.overrides(n));
-                    let appended = table
-                        .lock()
-                        .map_err(|_| sweep_err("the table writer failed in another thread".into()))
-                        .and_then(|mut t| t.append(&row));
-                    bar.inc(1);
-                    rows.push(appended.map(|()| row));
-                }
-                rows
-            })
-            .collect();
+        let rows = chains::solve_in_chains(points, runs, self.varies, &order, |points, chain, n| {
+            let row = points.run(chain, n, &runs.overrides(n));
+            let appended = table
+                .lock()
+                .map_err(|_| sweep_err("the table writer failed in another thread".into()))
+                .and_then(|mut t| t.append(&row));
+            bar.inc(1);
+            appended.map(|()| row)
+        });
         bar.finish_and_clear();
         rows.into_iter().collect()
     }

@@ -463,12 +463,39 @@ fn mark_leading_edge(
         (a, Pos::new(HPos::Left, VPos::Top))
     };
     let style = ShapeStyle::from(BLACK.mix(0.55)).stroke_width(1);
-    chart.draw_series(DashedLineSeries::new([(edge, y0), (edge, y1)], 2, 4, style))?;
-    let y = y0 + 0.88 * (y1 - y0);
+    let label = Marker {
+        text: "leading edge ",
+        height: 0.88,
+        colour: BLACK.mix(0.7),
+        pos,
+    };
+    vertical_marker(chart, edge, (y0, y1), (2, 4), style, label)
+}
+
+/// A label of a [`vertical_marker`]: its text, its height as a fraction of the panel's, its
+/// colour and its anchor.
+struct Marker<'a, C: Color> {
+    text: &'a str,
+    height: f64,
+    colour: C,
+    pos: Pos,
+}
+
+/// A dashed vertical line at `x` over the panel's height (`dash`: dash and gap lengths [px]),
+/// and its label.
+fn vertical_marker<C: Color>(
+    chart: &mut Panel<'_, '_>,
+    x: f64,
+    (y0, y1): (f64, f64),
+    (dash, gap): (u32, u32),
+    style: ShapeStyle,
+    label: Marker<'_, C>,
+) -> Result<(), Box<dyn std::error::Error>> {
+    chart.draw_series(DashedLineSeries::new([(x, y0), (x, y1)], dash, gap, style))?;
     chart.draw_series(std::iter::once(Text::new(
-        "leading edge ",
-        (edge, y),
-        (FONT, 12).into_font().color(&BLACK.mix(0.7)).pos(pos),
+        label.text.to_string(),
+        (x, y0 + label.height * (y1 - y0)),
+        (FONT, 12).into_font().color(&label.colour).pos(label.pos),
     )))?;
     Ok(())
 }
@@ -488,28 +515,21 @@ fn mark_asymmetry(
         (HPos::Right, HPos::Left)
     };
     let grey = ShapeStyle::from(BLACK.mix(0.55)).stroke_width(1);
-    let edge = r.trailing_edge;
-    chart.draw_series(DashedLineSeries::new([(edge, y0), (edge, y1)], 2, 4, grey))?;
-    chart.draw_series(std::iter::once(Text::new(
-        " trailing edge ",
-        (edge, y0 + 0.88 * (y1 - y0)),
-        (FONT, 12)
-            .into_font()
-            .color(&BLACK.mix(0.7))
-            .pos(Pos::new(inward, VPos::Top)),
-    )))?;
-    let centre = leading * r.pressure_centre;
+    let trailing = Marker {
+        text: " trailing edge ",
+        height: 0.88,
+        colour: BLACK.mix(0.7),
+        pos: Pos::new(inward, VPos::Top),
+    };
+    vertical_marker(chart, r.trailing_edge, (y0, y1), (2, 4), grey, trailing)?;
     let style = ShapeStyle::from(PRESSURE.mix(0.8)).stroke_width(1);
-    chart.draw_series(DashedLineSeries::new([(centre, y0), (centre, y1)], 8, 4, style))?;
-    chart.draw_series(std::iter::once(Text::new(
-        " pressure centre ",
-        (centre, y0 + 0.80 * (y1 - y0)),
-        (FONT, 12)
-            .into_font()
-            .color(&PRESSURE)
-            .pos(Pos::new(outward, VPos::Top)),
-    )))?;
-    Ok(())
+    let centre = Marker {
+        text: " pressure centre ",
+        height: 0.80,
+        colour: PRESSURE,
+        pos: Pos::new(outward, VPos::Top),
+    };
+    vertical_marker(chart, leading * r.pressure_centre, (y0, y1), (8, 4), style, centre)
 }
 
 /// The slip velocity over |V| at the nodes in contact.

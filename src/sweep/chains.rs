@@ -8,6 +8,7 @@ use super::{Runs, Vary};
 use crate::case::LoadedCase;
 use crate::scene::Scene;
 use crate::sequence::{Chain, Shared};
+use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 
@@ -62,6 +63,31 @@ pub(super) fn contiguous_chains(order: &[usize], workers: usize) -> Vec<&[usize]
     let count = workers.clamp(1, order.len());
     let size = order.len().div_ceil(count);
     order.chunks(size).collect()
+}
+
+/// Solves the runs `order` (already in [`neighbour_order`]) of the case text `text` in
+/// contiguous chains, one per thread of the current rayon pool ([`contiguous_chains`]), on one
+/// shared assembly when the varied keys allow it ([`Points::share`]); `each` solves run `n` with
+/// the points and its chain. The results come back in `order`'s order.
+pub(super) fn solve_in_chains<R: Send>(
+    mut points: Points<'_>,
+    runs: &Runs,
+    varies: &[Vary],
+    order: &[usize],
+    each: impl Fn(&Points, Option<&mut Chain>, usize) -> R + Sync,
+) -> Vec<R> {
+    points.share(varies, order.first().map(|&n| runs.overrides(n)).as_deref());
+    let points = &points;
+    contiguous_chains(order, rayon::current_num_threads())
+        .par_iter()
+        .flat_map_iter(|runs_of_chain| {
+            let mut chain = points.shared.as_ref().map(|s| s.chain());
+            runs_of_chain
+                .iter()
+                .map(|&n| each(points, chain.as_mut(), n))
+                .collect::<Vec<_>>()
+        })
+        .collect()
 }
 
 /// What every run of a sweep shares: the case, the overrides, the folder and the assembly.
