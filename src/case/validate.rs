@@ -384,9 +384,11 @@ fn contact_problems(case: &Case, found: &mut Problems) {
             ),
         );
     }
-    let bem_body = [&case.bodies.a, &case.bodies.b]
-        .into_iter()
-        .any(|b| matches!(b, BodySpec::Bem { .. }));
+    // A body meshed in Gmsh brings its own contact elements (the grid follows them); a generated
+    // (`geometry:`) body's contact segment is cut into `elements` like a uniform grid.
+    let bem_bodies = || [&case.bodies.a, &case.bodies.b].into_iter();
+    let meshed_bem = bem_bodies().any(|b| matches!(b, BodySpec::Bem { mesh: Some(_), .. }));
+    let bem_body = bem_bodies().any(|b| matches!(b, BodySpec::Bem { .. }));
     if c.grid.elements == 0 {
         found.bad(
             "contact.grid.elements".into(),
@@ -400,7 +402,7 @@ fn contact_problems(case: &Case, found: &mut Problems) {
                 c.grid.elements
             ),
         );
-    } else if c.grid.elements < MIN_UNIFORM_ELEMENTS && !bem_body {
+    } else if c.grid.elements < MIN_UNIFORM_ELEMENTS && !meshed_bem {
         found.bad(
             "contact.grid.elements".into(),
             format!(

@@ -172,3 +172,61 @@ fn radius_messages_name_the_keys_the_case_has() {
         "{stderr}"
     );
 }
+
+/// A generated contact segment is cut into `contact.grid.elements` like a uniform grid, so it
+/// needs the same 3 elements at least (one or two passed `check`, then `run` blamed the grid's
+/// extent).
+#[test]
+fn a_generated_contact_segment_of_one_element_is_refused() {
+    assert_refused(&["contact.grid.elements=1"], &["contact.grid.elements", "at least 3"]);
+}
+
+/// Proportions the generated mesh cannot represent are refused by the geometry's key with the
+/// reason (they were blamed on "duplicated points", "a boundary that crosses itself" or a
+/// missing support): a shaft or rim at 1e-12 or 1e29 of the other circle, a wall of 1e-4 mm
+/// under a 150 mm roller (with the covered roller that models it), a cover leaving a core of
+/// 1e-6 of its radius.
+#[test]
+fn proportions_the_generated_mesh_cannot_represent_are_refused() {
+    let key = "bodies.A.geometry.roller";
+    assert_refused(
+        &["bodies.A.geometry.roller.shaft=1e-12"],
+        &[key, "below 1e-3 of the outer"],
+    );
+    assert_refused(
+        &["bodies.A.geometry.roller.radius=1e30"],
+        &[key, "below 1e-3 of the outer"],
+    );
+    assert_refused(
+        &["bodies.A.geometry.roller.shaft=149.9999"],
+        &[key, "wall", "covered_roller: {radius: 150, cover_thickness: 0.0001"],
+    );
+    assert_refused(
+        &[
+            "bodies.A.geometry={ring: {bore: 400, rim: 1e29}}",
+            "bodies.A.boundaries={rim: fixed, bore: free}",
+        ],
+        &["bodies.A.geometry.ring", "below 1e-3 of the outer"],
+    );
+    assert_refused(
+        &[
+            "bodies.B.geometry={covered_roller: {radius: 100, cover_thickness: 99.9999}}",
+            "bodies.B.boundaries={bonded: fixed}",
+        ],
+        &["bodies.B.geometry.covered_roller", "below 1e-3 of the outer"],
+    );
+}
+
+/// The thinnest wall accepted runs: a roller of 150 on a shaft of 148 (wall 2 mm, just above a
+/// tenth of its 19.6 mm far elements) is meshed and passes `check`.
+#[test]
+fn a_wall_just_above_the_limit_is_accepted() {
+    let case = case_path("fig14_geometry");
+    let (code, _, stderr) = rollbem(&[
+        "check",
+        case.to_str().unwrap(),
+        "--set",
+        "bodies.A.geometry.roller.shaft=148",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+}

@@ -60,6 +60,19 @@ pub(super) fn geometry_violations(
             ordered = false;
         }
     }
+    if let Some(why) = g.shape().proportion_problem().filter(|_| ordered) {
+        let remedy = match g {
+            GeometrySpec::Roller(r) => format!(
+                "; a thin wall on a rigid shaft is a cover: `geometry: {{covered_roller: {{radius: {}, \
+                 cover_thickness: {}, core: rigid}}}}` grades its elements to the thickness",
+                shown(r.radius),
+                shown(r.radius - r.shaft)
+            ),
+            _ => String::new(),
+        };
+        bad(format!("bodies.{side}.geometry.{family}"), format!("{why}{remedy}"));
+        ordered = false;
+    }
     let far = g.shape().far_elements();
     if ordered && (far > crate::mesh::parametric::MAX_FAR_ELEMENTS || far.is_nan()) {
         bad(
