@@ -344,6 +344,42 @@ impl ContactGrid {
             .collect()
     }
 
+    /// Largest value of the piecewise interpolant of the nodal values `values` over the grid
+    /// [the field's unit]: on each element the largest of its polynomial in ξ ∈ [−1, 1] (at
+    /// the ends or at the vertex of a quadratic), so that a peak between nodes is not missed
+    /// by up to the field's curvature times the squared node spacing, as the nodal maximum is
+    /// (on a graded Hertz grid with spacing 2e-2 a at the centre: 4.2e-5 p0). An element with
+    /// a node at or below zero (a contact edge inside) counts between its outer nodes only.
+    /// Constant elements give their nodal values.
+    pub fn interpolant_max(&self, values: &[f64]) -> f64 {
+        let npe = self.kind.nodes_per_element();
+        (0..self.n_elements())
+            .map(|e| {
+                let mut c = [0.0; 3];
+                for a in 0..npe {
+                    let v = values[self.global_node(e, a)];
+                    for (ck, nk) in c.iter_mut().zip(self.kind.shape_polynomial(a)) {
+                        *ck += v * nk;
+                    }
+                }
+                // An element with an unloaded node holds a contact edge, where the polynomial
+                // through a zero and a steep rise overshoots beyond its nodes: there only the
+                // span of its nodes counts.
+                let loaded = (0..npe).all(|a| values[self.global_node(e, a)] > 0.0);
+                let end = if loaded {
+                    1.0
+                } else {
+                    self.kind.node_coordinates()[npe - 1]
+                };
+                let at = |xi: f64| c[0] + c[1] * xi + c[2] * xi * xi;
+                let vertex = (c[2] < 0.0).then(|| -c[1] / (2.0 * c[2])).filter(|xi| xi.abs() < end);
+                [at(-end), at(end), vertex.map_or(f64::NEG_INFINITY, at)]
+                    .into_iter()
+                    .fold(f64::NEG_INFINITY, f64::max)
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// Value at `x` of the piecewise interpolant of nodal values (zero outside the grid).
     pub fn interpolate(&self, values: &[f64], x: f64) -> f64 {
         self.interpolation_row(x).into_iter().map(|(j, n)| n * values[j]).sum()

@@ -274,8 +274,11 @@ def check_run(d):
     for name, arr in cols.items():
         if not np.all(np.isfinite(arr)):
             fail(d / "contact.csv", f"non-finite values in `{name}`")
-    if not np.isclose(summary["max_pressure"], cols["pressure"].max(), rtol=RTOL, atol=0):
-        fail(d / "summary.json", "max_pressure differs from contact.csv")
+    # max_pressure is the peak of the pressure's interpolant: at or above the largest nodal value,
+    # and above it only by the curvature between nodes (3e-4 at most on the shipped cases).
+    nodal = cols["pressure"].max()
+    if not nodal * (1 - RTOL) <= summary["max_pressure"] <= nodal * (1 + 1e-2):
+        fail(d / "summary.json", f"max_pressure {summary['max_pressure']} is not the peak of contact.csv's {nodal}")
     if summary.get("vtk", True):
         check_vtu(d / "contact.vtu", cols)
         bodies = sorted(d.glob("boundary_*.vtu"))

@@ -105,7 +105,8 @@ pub struct Summary {
     pub zones: Vec<Zone>,
     /// Slip regime 1–4 of González & Abascal §5.2 (written 0 for none of them, e.g. full stick).
     pub slip_regime: SlipRegime,
-    /// Peak pressure [stress].
+    /// Peak pressure [stress]: the largest value of the pressure's interpolant on the contact
+    /// grid ([`crate::grid::ContactGrid::interpolant_max`]), between nodes too.
     pub max_pressure: f64,
     /// The pressure's asymmetry and the rolling resistance it gives (null when nothing is in
     /// contact; [`crate::post::rolling_resistance`]).
@@ -223,7 +224,7 @@ pub fn summary(s: &Solved) -> Summary {
         slip_directions: sol.slip_directions(),
         zones: sol.zones.clone(),
         slip_regime: s.regime,
-        max_pressure: sol.pressure.iter().fold(0.0, |a, &b| a.max(b)),
+        max_pressure: pb.grid.interpolant_max(&sol.pressure).max(0.0),
         rolling_resistance: rolling_resistance(
             &pb.grid,
             &sol.pressure,
