@@ -59,6 +59,7 @@ pub mod overlap;
 mod scales;
 mod stand_ins;
 
+use crate::body::RunCaches;
 use crate::contact::residual::State;
 use crate::contact::{
     methods, BodyBLoad, BodyBShare, ContactProblem, SolveReport, SolverSettings, WithoutSlipBlocks, Workspace,
@@ -158,15 +159,17 @@ impl Solve<WithoutSlipBlocks> {
 /// its solution is the run's result), body B's own flexibility, which only the outputs read, is
 /// dropped before the solve: four m × m blocks fewer held while later grids, the checks of the
 /// stand-ins and of the bodies' meshes are solved ([`finished`] makes it again for the result).
+/// The bodies are built with the caches of `run`, the run the solve is part of, if any.
 fn solve_on(
     scene: Scene,
     warm: Option<(&ContactGrid, &State)>,
     may_be_final: bool,
+    run: Option<&RunCaches>,
     timings: &mut Timings,
     ws: &mut Workspace,
 ) -> Result<Solve, Error> {
     let t = Instant::now();
-    let models = scene.body_models()?;
+    let models = scene.body_models_in(run)?;
     let built = t.elapsed().as_secs_f64();
     // The strain operator serves only the outputs: the final grid's is added by `finished`.
     let problem = scene.contact_problem_without_strain(&models, may_be_final);
@@ -254,18 +257,30 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
     // One solver workspace for every solve of the run: it grows to the largest grid's system.
     let mut ws = Workspace::new();
     let mut timings = Timings::default();
+    // What the run's body builds share (a BEM body's condensation kept for a later build on the
+    // same grid): held here, passed to every build, dropped with what it holds when the run
+    // returns.
+    let run = RunCaches::new();
     let Some(control) = scene.grid_control else {
-        let only = solve_on(scene.clone(), None, true, &mut timings, &mut ws)?;
+        let only = solve_on(scene.clone(), None, true, Some(&run), &mut timings, &mut ws)?;
         return Ok(finished(only, scene, timings, None));
     };
     let tolerance = control.tolerance;
-    let check_grid = body_mesh_check_grid(&DyadicGrid::new(&scene.grid), tolerance);
+    let check_grid = stand_ins::body_mesh_check_grid(&DyadicGrid::new(&scene.grid), tolerance);
     let mut steps: Vec<AdaptationStep> = Vec::new();
     let mut scene = scene.clone();
     // After the bodies' meshes are bisected, the refinement resumes from the last pass's grid.
     let mut resume: Option<(DyadicGrid, ContactGrid, State)> = None;
     for bisections in 0..=body_mesh::MAX_BODY_MESH_BISECTIONS {
-        let refined = refine(&scene, resume.take(), estimator, &mut timings, &mut steps, &mut ws)?;
+        let refined = refine(
+            &scene,
+            resume.take(),
+            estimator,
+            &run,
+            &mut timings,
+            &mut steps,
+            &mut ws,
+        )?;
         let (met, scales, last) = match refined {
             Refined::Met(met, scales, last) => (met, scales, last),
             Refined::Ended(s, reached) => {
@@ -290,6 +305,7 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             scales,
             tolerance,
             first,
+            &run,
             &mut timings,
             &mut ws,
         )?;
@@ -340,11 +356,13 @@ enum Refined {
 }
 
 /// The loop of the module docs on `scene`'s bodies as they are: passes until the contact
-/// grid meets the tolerance (each pass appended to `steps`).
+/// grid meets the tolerance (each pass appended to `steps`), its bodies built with the run's
+/// caches `run`.
 fn refine(
     scene: &Scene,
     resume: Option<(DyadicGrid, ContactGrid, State)>,
     estimator: &mut dyn ErrorEstimator,
+    run: &RunCaches,
     timings: &mut Timings,
     steps: &mut Vec<AdaptationStep>,
     ws: &mut Workspace,
@@ -354,7 +372,7 @@ fn refine(
     let start = DyadicGrid::new(&scene.grid);
     let shortest = scene.shortest_grid_element();
     // The stand-ins are fitted on the levels of the start grid, wherever the passes start.
-    let mut stand_ins = stand_ins::PassStandIns::build(scene, &start, tolerance, timings)?;
+    let mut stand_ins = stand_ins::PassStandIns::build(scene, &start, tolerance, run, timings)?;
     let (mut coarse, mut warm) = match resume {
         Some((grid, from, state)) => (grid, Some((from, state))),
         None => (start, None),
@@ -368,6 +386,7 @@ fn refine(
             pass_scene.on_grid(coarse.grid()),
             warm.as_ref().map(|(g, z)| (g, z)),
             false,
+            Some(run),
             timings,
             ws,
         )?;
@@ -381,6 +400,7 @@ fn refine(
             pass_scene.on_grid(coarse.bisected().grid()),
             Some((&g.problem.grid, &g.state)),
             false,
+            Some(run),
             timings,
             ws,
         )?;
@@ -421,7 +441,7 @@ fn refine(
         let half_width = hertz.half_width;
         let lengths = APriori::of_pass(scene, &h, &singular, tolerance, half_width);
         if e.within(tolerance) && resolved(&h.problem.grid, &singular, &lengths) {
-            match stand_ins.finish(scene, g, h, e, scales, tolerance, steps.last_mut(), timings, ws)? {
+            match stand_ins.finish(scene, g, h, e, scales, tolerance, steps.last_mut(), run, timings, ws)? {
                 stand_ins::Final::Met(s) => return Ok(Refined::Met(s, scales, coarse)),
                 stand_ins::Final::Ended(s) => return Ok(Refined::Ended(s, true)),
                 stand_ins::Final::GoOn(full) => {
@@ -448,23 +468,6 @@ fn refine(
         warm = Some((h.problem.grid, h.state));
         coarse = next;
     }
-}
-
-/// The grid the bodies' meshes are checked on ([`body_mesh::check_on`]): the finer of the
-/// stand-ins' two grids. Bisecting a body's mesh outside the contact changes its flexibility by
-/// a smooth remainder, like the true geometry's against the half-plane, and the solution's
-/// response to that change is set by the contact's size and zones, which this grid resolves
-/// to a few percent; the check costs two condensations on it instead of two on the final grid.
-/// (The coarser stand-in grid is too coarse: on the coarse roller of docs/validation.md the
-/// creepage's estimate fell to 2 % of its true error there.)
-fn body_mesh_check_grid(start: &DyadicGrid, tolerance: f64) -> ContactGrid {
-    stand_ins::level(start, tolerance).bisected().grid()
-}
-
-/// Whether the case asks for interior fields (`output.interior`, or the stresses of
-/// `output.strength`), which only the bodies themselves give.
-fn asks_interior_fields(scene: &Scene) -> bool {
-    scene.case.case.output.interior.is_some() || scene.case.case.output.strength.is_some()
 }
 
 /// The result of the loop: the last solve with the tolerance and the passes so far (None for a

@@ -33,6 +33,7 @@ pub mod half_space;
 pub mod layer;
 pub mod pair_influence;
 pub mod rigid;
+pub mod run_caches;
 pub mod scales;
 pub mod setup;
 pub mod transfer;
@@ -42,6 +43,7 @@ use crate::grid::ContactGrid;
 use crate::interior::{InteriorOptions, InteriorSample, PlaneStress};
 use crate::linalg::mat_vec2;
 use faer::{Mat, MatRef};
+pub use run_caches::{BodyLineage, RunCaches};
 use serde::Serialize;
 pub use setup::{BodySetup, BuildContext, BuildError, ContactMesh, FlexibilityChange, PassStandIn, Rolling, SurfaceAt};
 

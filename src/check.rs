@@ -309,6 +309,7 @@ fn costs(scene: &Scene) -> (String, String) {
                     rolling: scene.rolling(),
                     pair: None,
                     responses_only: false,
+                    run: None,
                 })
             })
             .sum(),

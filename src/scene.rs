@@ -19,7 +19,7 @@ pub use crate::body::half_space::setup::HalfSpaceSetup;
 use crate::body::pair_influence::PairInfluence;
 pub use crate::body::rigid::RigidSetup;
 pub use crate::body::BodySetup;
-use crate::body::{Body, BodyModel, BuildContext, FlexibilityChange, Rolling, Side};
+use crate::body::{Body, BodyModel, BuildContext, FlexibilityChange, Rolling, RunCaches, Side};
 use crate::case::{LoadedCase, NormalSpec, TangentialSpec};
 use crate::contact::falling::FallingLaw;
 use crate::contact::{ContactFrame, ContactProblem, NewtonSettings, NormalControl, SolverSettings, TangentialControl};
@@ -129,6 +129,7 @@ impl Scene {
                 rolling: scene.rolling(),
                 pair: None,
                 responses_only: false,
+                run: None,
             };
             scene.bodies[k].preflight(&ctx)?;
         }
@@ -277,7 +278,12 @@ impl Scene {
     /// stand-in ([`BodySetup::pass_stand_in`], fitted on `levels`, two or three grids, coarsest
     /// first) replaced by it, on the start grid; None when no body offers one. The stand-ins
     /// have no mesh of their own: the pass grids are the scene's to choose ([`Self::on_grid`]).
-    pub fn with_pass_stand_ins(&self, levels: &[&ContactGrid]) -> Result<Option<PassScenes>, Error> {
+    /// The levels' builds share the caches of `run`, the error-controlled run they are part of.
+    pub fn with_pass_stand_ins(
+        &self,
+        levels: &[&ContactGrid],
+        run: Option<&RunCaches>,
+    ) -> Result<Option<PassScenes>, Error> {
         if self.grid_control.is_some_and(|g| !g.stand_ins) {
             return Ok(None);
         }
@@ -288,7 +294,7 @@ impl Scene {
         // condensation is mostly one thread's work, so the second core would idle.
         let build = |k: usize, side: Side| {
             let t = Instant::now();
-            let stand_in = self.bodies[k].pass_stand_in(levels, side, self.rolling());
+            let stand_in = self.bodies[k].pass_stand_in(levels, side, self.rolling(), run);
             (stand_in, t.elapsed().as_secs_f64())
         };
         let finest = levels.last().map(|g| g.n_elements());
@@ -352,17 +358,24 @@ impl Scene {
     /// Builds both body models on the contact grid, as a pair that computes the influence
     /// matrices both need once ([`PairInfluence`]).
     pub fn body_models(&self) -> Result<BodyModels, Error> {
-        self.body_models_built(false)
+        self.body_models_built(false, None)
     }
 
-    /// [`Self::body_models`] for a caller that asks the bodies only for their response to a
+    /// [`Self::body_models`] within a run whose builds share the caches `run`
+    /// ([`crate::body::BuildContext::run`]: the error control's, which keeps a BEM body's
+    /// condensation for a later build on the same grid).
+    pub fn body_models_in(&self, run: Option<&RunCaches>) -> Result<BodyModels, Error> {
+        self.body_models_built(false, run)
+    }
+
+    /// [`Self::body_models_in`] for a caller that asks the bodies only for their response to a
     /// few loads ([`crate::body::BuildContext::responses_only`]: a BEM body factored, not solved
     /// for every unit load).
-    pub fn body_models_for_responses(&self) -> Result<BodyModels, Error> {
-        self.body_models_built(true)
+    pub fn body_models_for_responses(&self, run: Option<&RunCaches>) -> Result<BodyModels, Error> {
+        self.body_models_built(true, run)
     }
 
-    fn body_models_built(&self, responses_only: bool) -> Result<BodyModels, Error> {
+    fn body_models_built(&self, responses_only: bool, run: Option<&RunCaches>) -> Result<BodyModels, Error> {
         let pair = Arc::new(PairInfluence::new());
         let build = |k: usize, side: Side| -> Result<Box<dyn Body>, Error> {
             let ctx = BuildContext {
@@ -371,6 +384,7 @@ impl Scene {
                 rolling: self.rolling(),
                 pair: Some(&pair),
                 responses_only,
+                run,
             };
             Ok(self.bodies[k].build(&ctx)?)
         };

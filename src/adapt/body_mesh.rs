@@ -45,7 +45,7 @@ use super::corrections::GivenBodies;
 use super::estimate::Scales;
 use super::{overlap, solve_on};
 use crate::body::setup::ChangedFor;
-use crate::body::BodySetup;
+use crate::body::{BodySetup, RunCaches};
 use crate::contact::residual::State;
 use crate::contact::Workspace;
 use crate::error::Error;
@@ -134,6 +134,10 @@ pub(super) fn meshed_bodies(scene: &Scene) -> String {
 /// After an adoption the caller passes `try_coarsened` false: the bisected bodies' coarsening
 /// is the bodies checked before, whose estimate was above the tolerance, so a third of their
 /// difference cannot lie five times below it.
+///
+/// The bodies are built with the run's caches `run`: the given bodies take the condensation
+/// their stand-ins made on `grid`, and the bodies bisected for the run
+/// ([`ChangedFor::Run`]) keep theirs for the next stand-ins and check.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn check_on(
     scene: &Scene,
@@ -142,6 +146,7 @@ pub(super) fn check_on(
     scales: Scales,
     tolerance: f64,
     try_coarsened: bool,
+    run: &RunCaches,
     timings: &mut Timings,
     ws: &mut Workspace,
 ) -> Result<Option<Checked>, Error> {
@@ -153,7 +158,8 @@ pub(super) fn check_on(
     let controlled = overlap::controlled(scene);
     // The given bodies' problem is the base of the changed bodies' problems, whose slip blocks
     // are made in place of its own (`GivenBodies`).
-    let mut given = solve_on(scene.on_grid(grid.clone()), Some(warm), false, timings, ws)?.without_slip_blocks();
+    let mut given =
+        solve_on(scene.on_grid(grid.clone()), Some(warm), false, Some(run), timings, ws)?.without_slip_blocks();
     if !given.report.converged {
         return Ok(unestimated());
     }
@@ -166,10 +172,10 @@ pub(super) fn check_on(
     let mut solve = |changed: &Scene, timings: &mut Timings, ws: &mut Workspace| -> Result<Option<State>, Error> {
         let on = changed.on_grid(grid.clone());
         let distance = |a: &State, b: &State| difference(grid, a, b, scales, controlled).largest();
-        if let Some(z) = base.solve_changed(&on, &scene.solver, distance, timings, ws)? {
+        if let Some(z) = base.solve_changed(&on, &scene.solver, distance, Some(run), timings, ws)? {
             return Ok(Some(z));
         }
-        let full = solve_on(on, Some((grid, &given_state)), false, timings, ws)?;
+        let full = solve_on(on, Some((grid, &given_state)), false, Some(run), timings, ws)?;
         Ok(full.report.converged.then_some(full.state))
     };
     if let Some(coarse_scene) = coarsened(scene).filter(|_| try_coarsened) {
@@ -411,7 +417,7 @@ mod tests {
         let scene = Scene::from_case(&case).unwrap();
         let grid = DyadicGrid::new(&scene.grid).bisected().grid();
         let (mut timings, mut ws) = (Timings::default(), Workspace::new());
-        let mut given = solve_on(scene.on_grid(grid.clone()), None, false, &mut timings, &mut ws)
+        let mut given = solve_on(scene.on_grid(grid.clone()), None, false, None, &mut timings, &mut ws)
             .unwrap()
             .without_slip_blocks();
         assert!(given.report.converged);
@@ -434,12 +440,13 @@ mod tests {
                     &on,
                     &scene.solver,
                     |a, b| difference(&grid, a, b, scales, false).largest(),
+                    None,
                     &mut timings,
                     &mut ws,
                 )
                 .unwrap()
                 .expect("the corrections settle");
-            let full = solve_on(on, Some((&grid, &state)), false, &mut timings, &mut ws).unwrap();
+            let full = solve_on(on, Some((&grid, &state)), false, None, &mut timings, &mut ws).unwrap();
             assert!(full.report.converged);
             let apart = difference(&grid, &state, &full.state, scales, false).largest();
             let off = difference(&grid, &corrected, &full.state, scales, false).largest();

@@ -25,7 +25,7 @@
 //! ones share element for element.
 
 use super::{condensation_share, solve_problem};
-use crate::body::{LowRankFlexibility, Side};
+use crate::body::{LowRankFlexibility, RunCaches, Side};
 use crate::contact::residual::State;
 use crate::contact::{SolverSettings, WithoutSlipBlocks, Workspace};
 use crate::error::Error;
@@ -72,11 +72,12 @@ impl GivenBodies<'_> {
         changed: &Scene,
         solver: &SolverSettings,
         distance: impl Fn(&State, &State) -> f64,
+        run: Option<&RunCaches>,
         timings: &mut Timings,
         ws: &mut Workspace,
     ) -> Result<Option<State>, Error> {
         let t = Instant::now();
-        let models = changed.body_models_for_responses()?;
+        let models = changed.body_models_for_responses(run)?;
         let built = t.elapsed().as_secs_f64();
         let condense_s = condensation_share(&models, built);
         timings.condense_s += condense_s;

@@ -57,6 +57,7 @@ pub fn fixed_grid_estimate(
         scene.on_grid(halved),
         Some((&problem.grid, state)),
         false,
+        None,
         timings,
         &mut ws,
     )?;

@@ -458,12 +458,14 @@ impl BodyFields for BemBody {
 
 /// A `bem` body's stand-in for the passes of an error-controlled grid
 /// ([`crate::body::BodySetup::pass_stand_in`]): its half-plane plus the smooth remainder fitted
-/// on `levels` ([`stand_in`]), or None where the remainder cannot follow the body.
+/// on `levels` ([`stand_in`]), or None where the remainder cannot follow the body; its
+/// levels' builds share `run`'s caches when given.
 pub(crate) fn pass_stand_in(
     setup: &setup::BemSetup,
     levels: &[&ContactGrid],
     side: Side,
     rolling: super::setup::Rolling,
+    run: Option<&super::run_caches::RunCaches>,
 ) -> Result<Option<super::setup::PassStandIn>, super::setup::BuildError> {
     // A cover thinner than half the grid's span has a remainder that varies on the scale of
     // its thickness, which the series cannot follow (the shipped tyre layers differ from
@@ -481,7 +483,7 @@ pub(crate) fn pass_stand_in(
     if thin || !covers {
         return Ok(None);
     }
-    let stand_in = stand_in::BemStandIn::of(setup, levels, side, rolling)?;
+    let stand_in = stand_in::BemStandIn::of(setup, levels, side, rolling, run)?;
     let check = stand_in
         .gives_results()
         .then(|| std::sync::Arc::new(stand_in.checking()) as std::sync::Arc<dyn super::setup::BodySetup>);

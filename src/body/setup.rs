@@ -16,6 +16,7 @@
 //! * following a refined grid ([`BodySetup::follow_grid`]): a BEM body cuts its own mesh along
 //!   the grid, a closed-form model has nothing to change.
 
+use super::run_caches::RunCaches;
 use super::{circle_profile, circle_profile_slope, Body, LowRankFlexibility, Side};
 use crate::body::pair_influence::PairInfluence;
 use crate::grid::ContactGrid;
@@ -73,6 +74,10 @@ pub struct BuildContext<'a> {
     /// factored, not solved for every unit load of its contact nodes). Anything else it is
     /// asked still works, at the full cost.
     pub responses_only: bool,
+    /// The caches of the run the build is part of ([`RunCaches`]: a BEM body's condensation
+    /// kept for a later build on the same grid), if the caller runs the error control; None
+    /// (a fixed grid, a sweep's or Python's single build): nothing is kept between builds.
+    pub run: Option<&'a RunCaches>,
 }
 
 /// A body's contact group on its own mesh: a body that has one sets the contact grid (its
@@ -350,12 +355,13 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
     /// the body on each of `levels` (two or three grids, coarsest first, each the bisection of
     /// the one before). None (the default) when the body is cheap already: every pass then
     /// builds the body itself. A BEM body offers the half-plane plus its smooth remainder
-    /// ([`crate::body::bem::stand_in`]).
+    /// ([`crate::body::bem::stand_in`]), its builds sharing `run`'s caches when given.
     fn pass_stand_in(
         &self,
         _levels: &[&ContactGrid],
         _side: Side,
         _rolling: Rolling,
+        _run: Option<&RunCaches>,
     ) -> Result<Option<PassStandIn>, BuildError> {
         Ok(None)
     }

@@ -42,6 +42,7 @@ fn build(setup: &Arc<dyn BodySetup>, grid: &ContactGrid, side: Side, scene: &Sce
         rolling: scene.rolling(),
         pair: None,
         responses_only: false,
+        run: None,
     };
     setup
         .build(&ctx)

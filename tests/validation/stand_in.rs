@@ -48,7 +48,7 @@ fn stand_ins_of(case: &str) -> (rollbem::case::LoadedCase, Scene, DyadicGrid, ro
     let scene = Scene::from_case(&loaded).expect("scene");
     let start = DyadicGrid::new(&scene.grid);
     let stand_ins = scene
-        .with_pass_stand_ins(&[&start.grid(), &start.bisected().grid()])
+        .with_pass_stand_ins(&[&start.grid(), &start.bisected().grid()], None)
         .expect("builds")
         .expect("BEM bodies offer a stand-in");
     (loaded, scene, start, stand_ins)
@@ -211,6 +211,7 @@ impl rollbem::scene::BodySetup for OffersAWrongStandIn {
         _levels: &[&ContactGrid],
         _side: rollbem::body::Side,
         _rolling: rollbem::body::Rolling,
+        _run: Option<&rollbem::body::RunCaches>,
     ) -> Result<Option<rollbem::body::PassStandIn>, rollbem::body::BuildError> {
         let m = self.0.material;
         let stiffer = |factor: f64| {
@@ -331,7 +332,7 @@ fn the_stand_ins_give_the_final_grids_results_within_their_estimate() {
         start.bisected().bisected().grid(),
     ];
     let scenes = scene
-        .with_pass_stand_ins(&levels.iter().collect::<Vec<_>>())
+        .with_pass_stand_ins(&levels.iter().collect::<Vec<_>>(), None)
         .expect("builds")
         .expect("BEM bodies offer a stand-in");
     let check = scenes.check.as_ref().expect("the stand-ins give results");

@@ -351,6 +351,7 @@ fn interior_displacements_meet_the_surface_ones() {
         rolling: s.scene.rolling(),
         pair: None,
         responses_only: false,
+        run: None,
     };
     let body = s.scene.bodies[1].build(&ctx).unwrap();
     let (p, q) = (&s.solution.pressure, &s.solution.shear);

@@ -2,10 +2,10 @@
 //!
 //! An error-controlled run condenses each BEM body on the finer of its stand-in's two grids
 //! ([`super::stand_in`]) and, once the contact grid meets the tolerance, solves the bodies on
-//! that same grid again to check their meshes (src/adapt/body_mesh.rs). The setup keeps the
-//! first condensation ([`KeptBody`], shared by every setup that follows a grid from the same
-//! body, like the far field of [`crate::bem::reuse`]) and the second build takes it: the same
-//! matrices, not a copy computed again.
+//! that same grid again to check their meshes (src/adapt/body_mesh.rs). The first condensation
+//! is kept in the run's caches ([`crate::body::RunCaches`], found by the setup's
+//! [`crate::body::BodyLineage`], its side and its own contact grid) and the second build takes
+//! it: the same matrices, not a copy computed again. [`Kept`] is that body in a build.
 
 use super::BemBody;
 use crate::body::{
@@ -14,44 +14,7 @@ use crate::body::{
 };
 use crate::grid::ContactGrid;
 use faer::{Mat, MatRef};
-use std::sync::{Arc, Mutex};
-
-/// The body kept: its side and the edges of its own contact grid, and the condensed body.
-type Entry = (Side, Vec<f64>, Arc<BemBody>);
-
-/// At most one condensed body, shared by the clones of a setup (cloning shares it).
-#[derive(Clone, Default)]
-pub struct KeptBody(Arc<Mutex<Option<Entry>>>);
-
-impl std::fmt::Debug for KeptBody {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let kept = self
-            .0
-            .lock()
-            .map(|e| e.as_ref().map(|(_, edges, _)| edges.len().saturating_sub(1)));
-        match kept {
-            Ok(Some(elements)) => write!(f, "KeptBody({elements} contact elements)"),
-            _ => write!(f, "KeptBody(empty)"),
-        }
-    }
-}
-
-impl KeptBody {
-    /// The body kept for `side` on a mesh whose own contact grid is `own`, if any.
-    pub fn get(&self, side: Side, own: &ContactGrid) -> Option<Arc<BemBody>> {
-        let kept = self.0.lock().ok()?;
-        let (s, edges, body) = kept.as_ref()?;
-        (*s == side && *edges == own.edges).then(|| body.clone())
-    }
-
-    /// Keeps `body`, built for `side` on the mesh whose own contact grid is `own` (replacing
-    /// what was kept).
-    pub fn keep(&self, side: Side, own: &ContactGrid, body: Arc<BemBody>) {
-        if let Ok(mut kept) = self.0.lock() {
-            *kept = Some((side, own.edges.clone(), body));
-        }
-    }
-}
+use std::sync::Arc;
 
 /// A kept body in a build: the same model, and whether this build condensed it (then it
 /// reports the body's times; a later build takes it without counting them again).

@@ -2,7 +2,7 @@
 //! condensed to the contact grid; on a refined grid its mesh is cut along the grid
 //! ([`crate::mesh::cuts`]).
 
-use super::kept::{Kept, KeptBody};
+use super::kept::Kept;
 use super::BemBody;
 use crate::bem::reuse::FarFieldCache;
 use crate::bem::{BemModel, BemOptions, BoundaryCondition};
@@ -11,7 +11,7 @@ use crate::body::setup::{
     CHECK_QUADRATURE_TOLERANCE,
 };
 use crate::body::transfer::Transferred;
-use crate::body::{Body, Side, WithCircularProfile};
+use crate::body::{Body, BodyLineage, RunCaches, Side, WithCircularProfile};
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
 use crate::mesh::bisect::bisect_outside_group;
@@ -28,6 +28,10 @@ pub const MAX_TRANSITION_RATIO: f64 = 2.0;
 /// at most 2⁻¹² per pass, and a transition follows its neighbour's length within
 /// [`MAX_TRANSITION_RATIO`], so some tens cover the deepest grids.
 pub const MAX_TRANSITION_HALVINGS: usize = 40;
+
+/// A condensed BEM body and its own contact grid (the grid's elements as the body's mesh maps
+/// them), which [`BemSetup::build_keeping`] gives back when asked to keep it.
+pub(super) type CondensedOnOwnGrid = (ContactGrid, Arc<BemBody>);
 
 /// A `bem` body of a scene: its mesh, material and boundary conditions.
 #[derive(Debug, Clone)]
@@ -58,13 +62,15 @@ pub struct BemSetup {
     /// geometry (`geometry:`): the cuts of [`BodySetup::follow_grid`] then place their new nodes
     /// on it rather than on each element's quadratic. None for a mesh file.
     pub contact_circle: Option<Circle>,
-    /// A condensation kept for a later build on the same grid ([`super::kept`]; shared by
-    /// every setup that follows a grid from this one).
-    pub kept: KeptBody,
-    /// Whether [`BodySetup::build`] keeps its condensation in `kept`: set on the body bisected
-    /// outside the contact for the run ([`ChangedFor::Run`]: the error control adopted it,
-    /// src/adapt/body_mesh.rs), whose first build on the finest grid its stand-in is fitted on
-    /// serves the next check of its mesh as its given body.
+    /// The identity of the body's mesh, which its condensation is kept under in the run's
+    /// caches ([`crate::body::RunCaches`], [`super::kept`]): shared by every setup that follows a
+    /// grid from this one (the grid names the cut mesh), fresh for a mesh changed outside the
+    /// contact (the same grid, another flexibility).
+    pub lineage: BodyLineage,
+    /// Whether [`BodySetup::build`] keeps its condensation in the run's caches: set on the body
+    /// bisected outside the contact for the run ([`ChangedFor::Run`]: the error control adopted
+    /// it, src/adapt/body_mesh.rs), whose first build on the finest grid its stand-in is fitted
+    /// on serves the next check of its mesh as its given body.
     pub keep_builds: bool,
     /// Relative accuracy of the element integrals (1e-12; a body changed for the check of the
     /// body mesh's error, [`ChangedFor::Check`], looser).
@@ -121,7 +127,7 @@ impl BemSetup {
             start_mesh: None,
             far_field: Default::default(),
             contact_circle,
-            kept: Default::default(),
+            lineage: BodyLineage::fresh(),
             keep_builds: false,
             quadrature_tolerance: BemOptions::default().quadrature_tolerance,
         }
@@ -185,18 +191,24 @@ impl BemSetup {
     }
 
     /// The body on `ctx.grid`: condensed anew (factored only, when the context asks for
-    /// responses only: [`BuildContext::responses_only`]), or taken from [`KeptBody`] when this
-    /// mesh was condensed for the same side before; with `keep`, a new condensation is kept.
-    /// With `seed_far_field` a start mesh's condensation leaves its far field for the setups
-    /// that follow grids from it (`own_body`).
+    /// responses only: [`BuildContext::responses_only`]), or taken from the run's caches
+    /// ([`BuildContext::run`]) when this mesh was condensed for the same side before in the
+    /// run; with `keep`, a new condensation is kept there. With `seed_far_field` a start mesh's
+    /// condensation leaves its far field for the setups that follow grids from it
+    /// (`own_body`). With `keep` the condensed BEM body comes back too, on its own contact
+    /// grid (the grid's elements as the body's mesh maps them), kept or not.
     pub(super) fn build_keeping(
         &self,
         ctx: &BuildContext,
         keep: bool,
         seed_far_field: bool,
-    ) -> Result<Box<dyn Body>, BuildError> {
+    ) -> Result<(Box<dyn Body>, Option<CondensedOnOwnGrid>), BuildError> {
         let own = self.mesh.contact_grid();
-        let body: Box<dyn Body> = match self.kept.get(ctx.side, &own) {
+        let taken = ctx
+            .run
+            .and_then(|run| run.condensed::<BemBody>(&self.lineage, ctx.side, &own));
+        let mut condensed = None;
+        let body: Box<dyn Body> = match taken {
             Some(kept) => {
                 log::info!(
                     target: crate::logging::PROGRESS,
@@ -208,6 +220,9 @@ impl BemSetup {
                 // runs beside the other body's), rather than when the problem asks for it.
                 if !ctx.responses_only {
                     kept.condensed.matrix();
+                }
+                if keep {
+                    condensed = Some(kept.clone());
                 }
                 Box::new(Kept(kept, false))
             }
@@ -222,13 +237,17 @@ impl BemSetup {
                 let body = self.own_body(ctx.side, seed_far_field, ctx.responses_only)?;
                 if keep {
                     let body = Arc::new(body);
-                    self.kept.keep(ctx.side, &own, body.clone());
+                    if let Some(run) = ctx.run {
+                        run.keep(&self.lineage, ctx.side, &own, body.clone());
+                    }
+                    condensed = Some(body.clone());
                     Box::new(Kept(body, true))
                 } else {
                     Box::new(body)
                 }
             }
         };
+        let condensed = condensed.map(|b| (own.clone(), b));
         let on_grid: Box<dyn Body> = if own.coincides_with(ctx.grid) {
             body
         } else {
@@ -240,13 +259,14 @@ impl BemSetup {
             t.check(ctx.grid)?;
             Box::new(t)
         };
-        Ok(match self.profile_radius {
+        let body: Box<dyn Body> = match self.profile_radius {
             Some(r) => Box::new(WithCircularProfile {
                 inner: on_grid,
                 radius: r,
             }),
             None => on_grid,
-        })
+        };
+        Ok((body, condensed))
     }
 
     /// The mesh with its elements outside the contact group bisected on their own curves
@@ -263,7 +283,7 @@ impl BemSetup {
             mesh,
             start_mesh: None,
             far_field: self.far_field.for_another_mesh(),
-            kept: Default::default(),
+            lineage: BodyLineage::fresh(),
             keep_builds: changed_for == ChangedFor::Run,
             quadrature_tolerance: self.quadrature_tolerance_for(changed_for),
             ..self.clone()
@@ -283,7 +303,7 @@ impl BemSetup {
             mesh,
             start_mesh: None,
             far_field: self.far_field.for_another_mesh(),
-            kept: Default::default(),
+            lineage: BodyLineage::fresh(),
             keep_builds: false,
             quadrature_tolerance: self.quadrature_tolerance_for(changed_for),
             ..self.clone()
@@ -416,18 +436,20 @@ impl BodySetup for BemSetup {
     /// Condensed to its own contact nodes; if those differ from the grid's, its flexibility is
     /// carried over by [`Transferred`]. With `profile_radius`, the gap sees that circle.
     fn build(&self, ctx: &BuildContext) -> Result<Box<dyn Body>, BuildError> {
-        self.build_keeping(ctx, self.keep_builds, false)
+        Ok(self.build_keeping(ctx, self.keep_builds, false)?.0)
     }
-    /// The half-plane plus its smooth remainder, fitted on `levels` ([`super::stand_in`]).
+    /// The half-plane plus its smooth remainder, fitted on `levels` ([`super::stand_in`]),
+    /// the levels' builds sharing `run`'s caches.
     fn pass_stand_in(
         &self,
         levels: &[&ContactGrid],
         side: Side,
         rolling: Rolling,
+        run: Option<&RunCaches>,
     ) -> Result<Option<PassStandIn>, BuildError> {
         // Made by the folder's module, which wires a setup to its stand-in: the stand-in is
         // built from the setup, so the setup does not name it.
-        super::pass_stand_in(self, levels, side, rolling)
+        super::pass_stand_in(self, levels, side, rolling, run)
     }
 
     fn follow_grid(&self, grid: &ContactGrid) -> Option<Arc<dyn BodySetup>> {
@@ -498,6 +520,7 @@ mod tests {
             },
             pair: None,
             responses_only: false,
+            run: None,
         }
     }
 
@@ -543,9 +566,9 @@ mod tests {
         let seeded = fig14_roller();
         let grid = plain.mesh.contact_grid();
         let ctx = side_a_on(&grid);
-        let a = plain.build_keeping(&ctx, false, false).unwrap();
+        let a = plain.build_keeping(&ctx, false, false).unwrap().0;
         assert!(!plain.far_field.is_built(), "a plain build leaves the cache empty");
-        let b = seeded.build_keeping(&ctx, false, true).unwrap();
+        let b = seeded.build_keeping(&ctx, false, true).unwrap().0;
         assert!(seeded.far_field.is_built(), "the seeded build fills the cache");
         let (fa, fb) = (
             a.model().flexibility(&grid, Side::A),

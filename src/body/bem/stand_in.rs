@@ -50,9 +50,10 @@
 
 mod remainder;
 
-use super::setup::BemSetup;
+use super::setup::{BemSetup, CondensedOnOwnGrid};
 use super::BemBody;
 use crate::body::half_space::{influence_matrix, HalfSpace, Kernel};
+use crate::body::run_caches::RunCaches;
 use crate::body::setup::{BodySetup, BuildContext, BuildError, Rolling, SurfaceAt};
 use crate::body::transfer::{carried_weights, transfer_blocks, Transferred};
 use crate::body::{
@@ -144,15 +145,16 @@ fn series_degree(coarsest: &ContactGrid) -> usize {
 }
 
 /// The remainder of `setup`'s BEM condensed on `grid` (the mesh cut along it unless the grid is
-/// the mesh's own; a condensation kept on that grid before is taken), the body built there, and
-/// with `keep` the condensed BEM body kept with its own contact grid (the grid's elements as the
-/// body's mesh maps them).
+/// the mesh's own; a condensation kept in `run` on that grid before is taken), the body built
+/// there, and with `keep` the condensed BEM body with its own contact grid (the grid's elements
+/// as the body's mesh maps them), kept in `run` for the later builds on that grid.
 fn level_fit(
     setup: &BemSetup,
     half: &HalfSpace,
     grid: &ContactGrid,
     place: &Placement,
     keep: bool,
+    run: Option<&RunCaches>,
 ) -> Result<LevelFit, BuildError> {
     let degree = place.degree;
     let side = place.side;
@@ -167,9 +169,10 @@ fn level_fit(
         // The fit asks for the body's response to a few loads (and the finest level's boundary
         // field and mesh check, for a few more).
         responses_only: true,
+        run,
     };
     // The start mesh's own level seeds the far field the levels cut from it reuse.
-    let body = level.build_keeping(&ctx, keep, own)?;
+    let (body, condensed) = level.build_keeping(&ctx, keep, own)?;
     let slope = |x: f64| setup.surface_at(x, side).map_or(0.0, |s| s.slope_angle);
     let flat = arc_half_plane(half, grid, side, &slope)?;
     let fit_factors = FitFactors::on(grid, place.span, degree);
@@ -195,17 +198,12 @@ fn level_fit(
         place.span,
         degree,
     );
-    let kept = keep.then(|| {
-        let own = level.mesh.contact_grid();
-        level.kept.get(side, &own).map(|b| (own, b))
-    });
-    let kept = kept.flatten();
     // Zero for a body condensed on this grid before (that build counted it).
     let (_, condense_s) = body.model().stage_seconds();
     Ok(LevelFit {
         fit,
         body,
-        kept,
+        condensed,
         condense_s,
     })
 }
@@ -214,7 +212,9 @@ fn level_fit(
 struct LevelFit {
     fit: SmoothRemainder,
     body: Box<dyn Body>,
-    kept: Option<(ContactGrid, Arc<BemBody>)>,
+    /// With `keep`: the condensed BEM body on its own contact grid (returned here, not read
+    /// back from the run's caches, which need not be there).
+    condensed: Option<CondensedOnOwnGrid>,
     /// Wall time [s] of the condensation.
     condense_s: f64,
 }
@@ -273,10 +273,16 @@ pub struct BemStandIn {
 impl BemStandIn {
     /// The stand-in of `setup` on `side` from its BEM condensed to each of `levels` (two or
     /// three grids, each the bisection of the one before; the first the start grid or one of
-    /// its bisections), the mesh cut along each. The finest level's condensation is kept: the
-    /// check of the body's mesh solves on the same grid (src/adapt.rs), and the stand-in's
-    /// boundary field comes from it.
-    pub fn of(setup: &BemSetup, levels: &[&ContactGrid], side: Side, rolling: Rolling) -> Result<Self, BuildError> {
+    /// its bisections), the mesh cut along each, their builds sharing `run`'s caches. The
+    /// finest level's condensation is held by the stand-in, whose boundary field comes from it,
+    /// and kept in `run`: the check of the body's mesh solves on the same grid (src/adapt.rs).
+    pub fn of(
+        setup: &BemSetup,
+        levels: &[&ContactGrid],
+        side: Side,
+        rolling: Rolling,
+        run: Option<&RunCaches>,
+    ) -> Result<Self, BuildError> {
         assert!(
             levels.len() == 2 || levels.len() == 3,
             "a stand-in is fitted on two or three levels"
@@ -295,7 +301,7 @@ impl BemStandIn {
         let mut condense_s = 0.0;
         for (k, &grid) in levels.iter().enumerate() {
             let last = k + 1 == levels.len();
-            let level = level_fit(setup, &half, grid, &place, last)?;
+            let level = level_fit(setup, &half, grid, &place, last, run)?;
             condense_s += level.condense_s;
             fits.push(level.fit);
             if k == 0 {
@@ -304,7 +310,7 @@ impl BemStandIn {
             if last {
                 // On its own contact grid: the other body's mesh may map the elements between
                 // the same ends differently.
-                finest = level.kept;
+                finest = level.condensed;
             }
         }
         let n = fits.len();
@@ -529,7 +535,7 @@ mod tests {
                 span,
                 degree: REMAINDER_DEGREE,
             };
-            let level = level_fit(&setup, &half, &grid, &place, false).unwrap();
+            let level = level_fit(&setup, &half, &grid, &place, false, None).unwrap();
             let bem = level.body.model().flexibility(&grid, Side::A);
             let slope = |x: f64| setup.surface_at(x, Side::A).map_or(0.0, |s| s.slope_angle);
             let flat = arc_half_plane(&half, &grid, Side::A, &slope).unwrap();
