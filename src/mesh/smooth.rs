@@ -64,14 +64,14 @@ pub enum ContactCurve {
 /// contact node lies on it within [`CIRCLE_FIT_TOLERANCE`] of the shortest element's sag, else
 /// smooth or kinked by the largest slope jump between its elements.
 pub fn contact_curve(loaded: &LoadedMesh) -> ContactCurve {
-    let fit = loaded.contact_circle().and_then(|(centre, radius)| {
+    let fit = loaded.contact_circle().map(|(centre, radius)| {
         let nodes: Vec<[f64; 2]> = loaded.contact_nodes().collect();
         let circle = refined_fit(&nodes, Circle { centre, radius });
         let residual = nodes
             .iter()
             .map(|p| (distance(*p, circle.centre) - circle.radius).abs())
             .fold(0.0, f64::max);
-        Some((circle, residual))
+        (circle, residual)
     });
     if let Some((circle, residual)) = fit {
         let shortest = loaded
