@@ -26,6 +26,7 @@ pub mod geometry;
 pub mod loaded;
 pub mod msh;
 pub mod parametric;
+pub mod smooth;
 
 pub use check::{boundary_loops, validate_and_orient, BoundaryLoop};
 pub use geometry::ElementGeometry;

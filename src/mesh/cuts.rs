@@ -1,5 +1,9 @@
 //! A body's boundary mesh cut along a contact grid: each contact element cut where the grid's
-//! elements end, the new nodes on the element's own quadratic geometry.
+//! elements end, the new nodes on the contact surface's circle where it has one
+//! ([`cut_along_grid_on`]: a generated body's exact circle, or the circle a mesh file's contact
+//! nodes lie on, [`super::smooth`]), else on the element's own quadratic geometry. A circle
+//! keeps the surface smooth across the original elements' ends, where two quadratics through
+//! points of a circle meet with a slope jump that a fine grid would otherwise resolve as a kink.
 //!
 //! A contact element of the start mesh spans one or more elements of the grid (the grid is the
 //! start mesh's contact grid refined). Its pieces are new quadratic elements whose end nodes lie
@@ -49,7 +53,8 @@ pub fn cut_along_grid(loaded: &LoadedMesh, grid: &ContactGrid, max_ratio: f64) -
     cut_along_grid_on(loaded, grid, max_ratio, None)
 }
 
-/// A circle [length]: the exact contact surface of a generated body.
+/// A circle [length]: the contact surface of a generated body (exact), or of a mesh file whose
+/// contact nodes lie on it (fitted, [`super::smooth::contact_curve`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Circle {
     /// Centre (x, y).
@@ -74,7 +79,8 @@ impl Circle {
 
 /// [`cut_along_grid`] with the new and moved contact nodes placed on `exact` (keeping their
 /// abscissae, which the grid fixes) instead of on each element's quadratic, when the body's
-/// contact surface is known exactly (a generated body).
+/// contact surface is that circle (a generated body's, or the one fitted to a mesh file's
+/// contact nodes).
 pub fn cut_along_grid_on(
     loaded: &LoadedMesh,
     grid: &ContactGrid,

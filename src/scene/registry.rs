@@ -11,6 +11,7 @@ use crate::body::viscoelastic::setup::ViscoelasticHalfSpaceSetup;
 use crate::body::BodySetup;
 use crate::case::{BodySpec, BoundaryKeyword, BoundarySpec, LoadedCase, Shape};
 use crate::error::Error;
+use crate::mesh::smooth::{contact_curve, kink_notice, ContactCurve};
 use crate::mesh::LoadedMesh;
 use std::sync::Arc;
 
@@ -118,13 +119,24 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
             for name in boundaries.keys() {
                 m.group_index(name)?;
             }
-            let loaded = LoadedMesh::new(path, m, notices, contact)?;
+            let mut loaded = LoadedMesh::new(path, m, notices, contact)?;
             let mut conditions: Vec<(String, BoundaryCondition)> = boundaries
                 .iter()
                 .map(|(g, b)| (g.clone(), boundary_condition(b)))
                 .collect();
             conditions.push((contact.clone(), BoundaryCondition::Contact));
-            bem_setup(case, loaded, material, contact, conditions, *radius, None)
+            // The cuts of an error-controlled grid go on the circle the contact nodes lie on,
+            // as a generated body's do; a group on no circle keeps its elements' kinks, which
+            // the user is told of when the grid will be cut (src/mesh/smooth.rs).
+            let circle = match contact_curve(&loaded) {
+                ContactCurve::Circle { circle, .. } => Some(circle),
+                _ => None,
+            };
+            if circle.is_none() && case.case.contact.grid.tolerance.is_some() {
+                let notice = kink_notice(&loaded, contact, &case.case.units.length);
+                loaded.notices.extend(notice);
+            }
+            bem_setup(case, loaded, material, contact, conditions, *radius, circle)
         }
     })
 }

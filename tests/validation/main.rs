@@ -50,6 +50,7 @@ mod parametric;
 mod parametric_report;
 mod sequence;
 mod slip_end;
+mod smooth_cuts;
 mod solver;
 mod stand_in;
 mod strength;

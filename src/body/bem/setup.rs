@@ -58,9 +58,11 @@ pub struct BemSetup {
     /// stand-ins' first level is its own grid) and shared by every setup that follows one from
     /// this one (`Default::default()` when constructing a setup).
     pub far_field: FarFieldCache,
-    /// The exact circle of the contact segment when the body was generated from its
-    /// geometry (`geometry:`): the cuts of [`BodySetup::follow_grid`] then place their new nodes
-    /// on it rather than on each element's quadratic. None for a mesh file.
+    /// The circle of the contact segment: exact when the body was generated from its geometry
+    /// (`geometry:`), fitted to the contact nodes of a mesh file that lie on one circle
+    /// ([`crate::mesh::smooth::contact_curve`]). The cuts of [`BodySetup::follow_grid`] then place
+    /// their new nodes on it rather than on each element's quadratic. None for a mesh file whose
+    /// contact group is no circle.
     pub contact_circle: Option<Circle>,
     /// The identity of the body's mesh, which its condensation is kept under in the run's
     /// caches ([`crate::body::RunCaches`], [`super::kept`]): shared by every setup that follows a

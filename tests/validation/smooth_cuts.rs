@@ -1,0 +1,112 @@
+//! The cuts of an error-controlled grid on Gmsh bodies whose contact groups are circles: the new
+//! contact nodes lie on the circle fitted to each group (as a `geometry:` body's lie on its
+//! exact circle), so the surface has no kink at the original elements' ends and the tractions
+//! no step there. The scene is a close conformity, a roller R 30 in a ring bore R 30.6
+//! (tests/data/bore_c30_tractive.yaml, meshes/bore_c30_{roller,ring}.geo at second order), where
+//! the gap is the small difference of two curvatures and the kinks of the elements' quadratics
+//! showed most (docs/validation.md, "Cuts on the fitted circle").
+
+use rollbem::app::{self, Solved};
+use rollbem::mesh::cuts::Circle;
+use rollbem::mesh::smooth::{contact_curve, ContactCurve};
+
+/// The tolerance of the runs.
+const TOLERANCE: f64 = 1e-4;
+
+/// The Gmsh scene at `contact.grid.tolerance` = [`TOLERANCE`], with `overrides`.
+fn solve(overrides: &[&str]) -> Solved {
+    let tolerance = format!("contact.grid.tolerance={TOLERANCE}");
+    let mut all = vec![tolerance.as_str()];
+    all.extend_from_slice(overrides);
+    let s = app::solve_case(&case_path_in_tests("bore_c30_tractive"), &all).expect("bore_c30_tractive solves");
+    assert!(s.report.converged, "did not converge: {:?}", s.report.history);
+    s
+}
+
+/// The path of a case of tests/data by its stem.
+fn case_path_in_tests(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(format!("{name}.yaml"))
+}
+
+/// The fitted circle of the start mesh of body `side` (its contact group is one).
+fn fitted_circle(s: &Solved, side: usize) -> Circle {
+    let start = s.scene.bodies[side]
+        .contact_mesh()
+        .expect("a bem body")
+        .mesh
+        .path
+        .clone();
+    let (mesh, _) = rollbem::mesh::load(&start).unwrap();
+    let loaded = rollbem::mesh::LoadedMesh::new(start, mesh, Vec::new(), "contact").unwrap();
+    match contact_curve(&loaded) {
+        ContactCurve::Circle { circle, .. } => circle,
+        other => panic!("side {side}: {other:?}"),
+    }
+}
+
+/// Both refined bodies: more contact elements than the 52 of the Gmsh files, and every contact
+/// node within 1e-12 R of the circle fitted to the file's contact nodes (measured 1.9e-16 R;
+/// before, on the elements' quadratics, up to 2.1e-10 R).
+#[test]
+fn the_cut_contact_nodes_lie_on_the_fitted_circle() {
+    let s = solve(&[]);
+    for side in 0..2 {
+        let circle = fitted_circle(&s, side);
+        let mesh = s.scene.bodies[side].contact_mesh().unwrap().mesh;
+        let elements = mesh.contact_elements().count();
+        assert!(
+            elements > 52,
+            "side {side}: {elements} contact elements: the grid was not refined"
+        );
+        let worst = mesh
+            .contact_nodes()
+            .map(|p| ((p[0] - circle.centre[0]).hypot(p[1] - circle.centre[1]) - circle.radius).abs())
+            .fold(0.0, f64::max);
+        eprintln!(
+            "side {side}: {elements} contact elements, nodes up to {:.2e} R off the circle",
+            worst / circle.radius
+        );
+        assert!(
+            worst <= 1e-12 * circle.radius,
+            "side {side}: a contact node {worst:e} off the circle"
+        );
+    }
+}
+
+/// The Gmsh scene's pressure against the same scene given by `geometry:` (rollbem's own meshes
+/// of the same circles, the same 52 contact elements): within the tolerance of p0 at every node
+/// (measured 3.0e-5 p0, 2.1e-6 p0 within 0.05 mm of the Gmsh elements' ends; before, on the
+/// elements' quadratics, 5.7e-4 p0 at x = −3.599, an element end).
+#[test]
+fn the_pressure_has_no_step_at_the_gmsh_element_ends() {
+    let gmsh = solve(&[]);
+    let generated = solve(&[
+        "bodies.A.mesh=null",
+        "bodies.A.geometry={roller: {radius: 30, shaft: 5}}",
+        "bodies.B.mesh=null",
+        "bodies.B.geometry={ring: {bore: 30.6, rim: 42}}",
+        "contact.grid.elements=52",
+        "contact.grid.align_edges=false",
+    ]);
+    let p0 = gmsh.scene.estimates.hertz_peak_pressure;
+    let (g, m) = (&generated.solution, &gmsh.solution);
+    // The element ends of the Gmsh files: x = −11.7 + 0.45 k.
+    let near_end = |x: f64| {
+        let k = ((x + 11.7) / 0.45).round();
+        (x + 11.7 - 0.45 * k).abs() < 0.05
+    };
+    let (mut worst, mut at, mut worst_near_ends) = (0.0_f64, 0.0, 0.0_f64);
+    for (&x, &p) in m.x.iter().zip(&m.pressure) {
+        let d = (p - generated.problem.grid.interpolate(&g.pressure, x)).abs() / p0;
+        if d > worst {
+            (worst, at) = (d, x);
+        }
+        if near_end(x) {
+            worst_near_ends = worst_near_ends.max(d);
+        }
+    }
+    eprintln!("pressure: gmsh − geometry up to {worst:.2e} p0 at x = {at:.4}, {worst_near_ends:.2e} p0 near the Gmsh element ends");
+    assert!(worst <= TOLERANCE, "the pressures differ by {worst:e} p0 at x = {at}");
+}
