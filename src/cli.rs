@@ -126,6 +126,10 @@ pub enum Command {
         /// and sweep.pvd; by default only the sweep's table and record are written.
         #[arg(long, conflicts_with = "merge")]
         per_run_files: bool,
+        /// Runs at once (default 0: one per core). More than the machine's cores are capped to
+        /// them with a warning; more than 1024 is refused (exit 1).
+        #[arg(long, default_value_t = 0, conflicts_with = "merge")]
+        jobs: usize,
     },
     /// Solve the built-in reference problems (Hertz, Carter, dissimilar regimes, free-rolling
     /// limits) and print each measured error against its closed form and limit; exit code 2 if

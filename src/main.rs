@@ -194,6 +194,7 @@ fn dispatch(cli: Cli) -> Result<i32> {
             merge,
             resume,
             per_run_files,
+            jobs,
         } => sweep(
             case,
             &vary,
@@ -201,7 +202,11 @@ fn dispatch(cli: Cli) -> Result<i32> {
             out,
             shard.as_deref(),
             &merge,
-            SweepFlags { resume, per_run_files },
+            SweepFlags {
+                resume,
+                per_run_files,
+                jobs,
+            },
         ),
         Command::Validate => {
             let checks = rollbem::reference::run()?;
@@ -304,6 +309,8 @@ fn print_transient(t: &rollbem::output::transient::TransientSummary, s: &rollbem
 struct SweepFlags {
     resume: bool,
     per_run_files: bool,
+    /// `--jobs` (0: the global pool, one thread per core or `RAYON_NUM_THREADS`).
+    jobs: usize,
 }
 
 /// `rollbem sweep`: the runs of a sweep (or a shard of it), or the merge of shards.
@@ -316,7 +323,16 @@ fn sweep(
     merge: &[PathBuf],
     flags: SweepFlags,
 ) -> Result<i32> {
-    let SweepFlags { resume, per_run_files } = flags;
+    let SweepFlags {
+        resume,
+        per_run_files,
+        jobs,
+    } = flags;
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let (threads, capped) = rollbem::sweep::threads_for(jobs, cores)?;
+    if let Some(warning) = capped {
+        eprintln!("warning: {warning}");
+    }
     if !merge.is_empty() {
         let out = out.unwrap_or_else(|| merge[0].clone());
         let path = rollbem::sweep::merge(merge, &out)?;
@@ -333,7 +349,19 @@ fn sweep(
         Some(o) => o,
         None => default_output_dir(&rollbem::case::load(&case, set)?, "sweep"),
     };
-    let report = rollbem::sweep::run(&case, set, &varies, shard, &out, resume, per_run_files)?;
+    // The runs' chains split over the pool's threads (rayon::current_num_threads).
+    let solve = || rollbem::sweep::run(&case, set, &varies, shard, &out, resume, per_run_files);
+    let report = if jobs == 0 {
+        solve()?
+    } else {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| rollbem::error::Error::Sweep {
+                message: format!("cannot start {threads} threads: {e}"),
+            })?
+            .install(solve)?
+    };
     let failed: Vec<&rollbem::sweep::RunRow> = report.rows.iter().filter(|r| r.status != "ok").collect();
     let kept = if report.resumed > 0 {
         format!(" ({} kept from the interrupted sweep)", report.resumed)

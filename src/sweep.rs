@@ -16,6 +16,36 @@
 //! one `sweep.csv` and `sweep.pvd`. A failed run is recorded as failed and does not stop the
 //! others.
 
+/// Most threads `rollbem sweep --jobs` takes: more than any machine's cores by far; a larger
+/// count is a mistake (a typo, a product of numbers) and is refused.
+pub const MAX_JOBS: usize = 1024;
+
+/// The threads a sweep runs on for `--jobs jobs` (0: one per core) on a machine of `cores`
+/// cores, and a warning when the count asked was capped to them: each run is one thread's
+/// work, so more threads than cores only add switching (and memory per thread). A count above
+/// [`MAX_JOBS`] is refused, naming `--jobs`.
+pub fn threads_for(jobs: usize, cores: usize) -> Result<(usize, Option<String>), Error> {
+    let cores = cores.max(1);
+    if jobs > MAX_JOBS {
+        return Err(Error::Sweep {
+            message: format!(
+                "--jobs {jobs} is more threads than any machine has cores: give at most {MAX_JOBS}, \
+                 or leave --jobs out for one thread per core ({cores} here)"
+            ),
+        });
+    }
+    Ok(match jobs {
+        0 => (cores, None),
+        n if n > cores => (
+            cores,
+            Some(format!(
+                "--jobs {n} exceeds the {cores} cores of this machine; running on {cores} threads"
+            )),
+        ),
+        n => (n, None),
+    })
+}
+
 mod chains;
 mod merge;
 mod record;

@@ -27,15 +27,9 @@ pub(super) fn level(start: &DyadicGrid, tolerance: f64) -> DyadicGrid {
     bisected_times(start, bisections(tolerance))
 }
 
-/// How often [`level`] bisects the start grid.
+/// How often [`level`] bisects the start grid ([`crate::body::bem::stand_in::level_bisections`]).
 fn bisections(tolerance: f64) -> usize {
-    if tolerance >= 3e-4 {
-        0
-    } else if tolerance >= 3e-5 {
-        1
-    } else {
-        2
-    }
+    crate::body::bem::stand_in::level_bisections(tolerance)
 }
 
 /// `start` bisected `times` times.

@@ -303,6 +303,16 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         self.discretisation_nodes()
     }
 
+    /// The boundary nodes the passes of an error-controlled grid condense the body with when it
+    /// offers them a stand-in ([`Self::pass_stand_in`]): its own contact grid bisected
+    /// `bisections` times (the finest level the stand-in is fitted on), its elements outside
+    /// the contact bisected once more for the check of its mesh. None for a body that offers
+    /// no stand-in (the passes condense it on their own grids: [`Self::discretisation_nodes_on`])
+    /// or has no discretisation of its own.
+    fn stand_in_nodes(&self, _bisections: usize) -> Option<usize> {
+        None
+    }
+
     /// Notices of the body's inputs (a mesh loop turned round), for the console.
     fn notices(&self) -> &[String] {
         &[]

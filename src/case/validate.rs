@@ -125,6 +125,7 @@ pub fn validate(case: &Case) -> Vec<Violation> {
         .into_iter()
         .chain(transient::transient_problems(case))
         .chain(friction::falling_friction_problems(case))
+        .chain(friction::ratio_of_a_large_friction(case))
     {
         found.bad(key, message);
     }

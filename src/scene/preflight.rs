@@ -278,7 +278,24 @@ fn derived_violations(case: &LoadedCase, est: &Estimates, bodies: &BodySetups) -
 pub fn problem_sizes(case: &LoadedCase, bodies: &BodySetups) -> ProblemSizes {
     let c = &case.case;
     match c.contact.grid.tolerance {
-        Some(tol) => problem_sizes_on(case, bodies, Some(expected_elements(tol, c.contact.grid.max_elements))),
+        Some(tol) => {
+            let mut sizes = problem_sizes_on(case, bodies, Some(expected_elements(tol, c.contact.grid.max_elements)));
+            // The passes solve BEM bodies through their stand-ins, condensed on the start grid's
+            // coarse levels, so the tolerance's grid costs contact nodes only; the full bodies
+            // on the final grid are built when interior fields are asked (or the stand-ins miss
+            // the tolerance: each finer grid is then asked whether it fits,
+            // [`finer_grid_fits`]).
+            let interior = c.output.interior.is_some() || c.output.strength.is_some();
+            if c.contact.grid.stand_ins && !interior {
+                let finest = crate::body::bem::stand_in::level_bisections(tol) + 1;
+                for (k, nodes) in sizes.bem_nodes.iter_mut().enumerate() {
+                    if let Some(n) = bodies[k].stand_in_nodes(finest) {
+                        *nodes = Some(n);
+                    }
+                }
+            }
+            sizes
+        }
         None => {
             let mut sizes = problem_sizes_on(case, bodies, None);
             // A fixed grid's error estimate solves the grid halved (src/adapt/fixed.rs): twice

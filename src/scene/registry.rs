@@ -141,6 +141,12 @@ fn setup_of(case: &LoadedCase, spec: &BodySpec, side: usize, edges: &[f64]) -> R
     })
 }
 
+/// Whether rollbem meshes the body itself (a `bem` body given by `geometry:`): its mesh is not
+/// the user's to refine, and its contact nodes lie on the exact circle.
+pub fn is_generated(spec: &BodySpec) -> bool {
+    matches!(spec, BodySpec::Bem { geometry: Some(_), .. })
+}
+
 /// A `bem` body on its start mesh with the case's material and run options
 /// (`contact.grid.reuse_far_field`).
 fn bem_setup(

@@ -97,3 +97,33 @@ fn a_finer_grid_is_asked_whether_it_fits_in_memory() {
     assert!(fits(42));
     assert!(!fits(1_000_000));
 }
+
+/// The measured peak [MB] that docs/reliability.md records for an error-controlled case (its
+/// table of error-controlled runs: `| NAME at TOL | expected | estimate | grid | peak | … |`).
+fn documented_peak_mb(row: &str) -> f64 {
+    let docs = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/reliability.md")).unwrap();
+    let line = docs
+        .lines()
+        .find(|l| l.starts_with(&format!("| {row} |")))
+        .unwrap_or_else(|| panic!("docs/reliability.md has no row `{row}`"));
+    let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+    cells[5].parse().unwrap_or_else(|_| panic!("no peak in `{line}`"))
+}
+
+/// The estimate of an error-controlled BEM run is that of the peak its tolerance needs: within
+/// a factor 2 of the peak docs/reliability.md records for carter_051_true at 1e-4 (110 MB;
+/// the estimate was 410 MB, sized as if the rollers' meshes followed the final grid with every
+/// transition and the bisected check at their largest).
+#[test]
+fn the_estimate_of_carter_051_true_at_1e_4_is_within_twice_its_documented_peak() {
+    let set = ["contact.grid.tolerance=1e-4".to_string()];
+    let loaded = rollbem::case::load(&case_path("carter_051_true"), &set).unwrap();
+    let bodies = rollbem::scene::registry::setups_of_case(&loaded).unwrap();
+    let sizes = rollbem::scene::preflight::problem_sizes(&loaded, &bodies);
+    let estimate = rollbem::limits::MemoryEstimate::of(&sizes).bytes() / 1e6;
+    let peak = documented_peak_mb("carter_051_true at 1e-4");
+    assert!(
+        (0.5 * peak..=2.0 * peak).contains(&estimate),
+        "estimate {estimate:.0} MB against the documented peak {peak:.0} MB"
+    );
+}

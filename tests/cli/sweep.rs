@@ -929,3 +929,53 @@ fn resume_keeps_the_rows_of_a_sweep_without_run_folders() {
     assert!(out.join("run_0014/summary.json").is_file());
     assert_same_results(&out.join("sweep.csv"), &whole);
 }
+
+/// `--jobs`: a count beyond the machine's cores runs on the cores with a warning; a count
+/// beyond 1024 (or beyond a whole number of 64 bits) is refused with exit 1 naming `--jobs`,
+/// nothing written. (`rollbem sweep` had no `--jobs`: exit 1 as an unknown flag.)
+#[test]
+fn jobs_beyond_the_cores_are_capped_and_absurd_counts_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = crate::common::case_path("carter_051");
+    let case = case.to_str().unwrap();
+    let out = dir.path().join("capped");
+    let args = |jobs: &'static str, out: &Path| -> Vec<String> {
+        [
+            "sweep",
+            case,
+            "--vary",
+            "contact.friction=0.1,0.2",
+            "--jobs",
+            jobs,
+            "--out",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .chain([out.to_str().unwrap().to_string()])
+        .collect()
+    };
+    let a = args("100000000", &out);
+    let (code, _, stderr) = rollbem(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("--jobs 100000000") && stderr.contains("at most 1024"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+    let a = args("1000000000000000000000000000000", &out);
+    let (code, _, stderr) = rollbem(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("--jobs"), "{stderr}");
+    assert!(!out.exists());
+    let a = args("1024", &out);
+    let (code, _, stderr) = rollbem(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(code, 0, "{stderr}");
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if cores < 1024 {
+        assert!(
+            stderr.contains(&format!("warning: --jobs 1024 exceeds the {cores} cores")),
+            "{stderr}"
+        );
+    }
+    assert!(out.join("sweep.csv").is_file());
+}

@@ -230,3 +230,50 @@ fn a_wall_just_above_the_limit_is_accepted() {
     ]);
     assert_eq!(code, 0, "{stderr}");
 }
+
+/// A generated roller in a generated ring: the ring's contact nodes are carried to the grid by
+/// interpolation, and `check` told the user to mesh its contact group finer (the transfer
+/// "loses accuracy (about 8 % of the creepage)") — advice about a mesh rollbem makes itself,
+/// for a transfer that costs nothing measurable (see the message). It says so instead.
+#[test]
+fn check_does_not_ask_to_remesh_a_generated_body() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case.yaml");
+    std::fs::write(
+        &case,
+        r#"
+materials:
+  steel: {E: 210000.0, nu: 0.3}
+bodies:
+  A:
+    model: bem
+    geometry: {roller: {radius: 40, shaft: 10}}
+    material: steel
+    boundaries: {shaft: fixed, free: free}
+  B:
+    model: bem
+    geometry: {ring: {bore: 50, rim: 65}}
+    material: steel
+    boundaries: {rim: fixed, bore: free}
+contact:
+  friction: 0.2
+load:
+  normal: {force: 28999.316802}
+  tangential: {ratio: 0.5}
+output: {dir: out}
+"#,
+    )
+    .unwrap();
+    let (code, stdout, stderr) = rollbem(&["check", case.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    let line = stdout
+        .lines()
+        .find(|l| l.contains("B: contact nodes"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(line.contains("transferred to the grid by interpolation"), "{line}");
+    assert!(
+        !line.contains("loses accuracy") && !line.contains("mesh the contact group"),
+        "{line}"
+    );
+    assert!(line.contains("meshed by rollbem"), "{line}");
+}

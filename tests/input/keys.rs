@@ -487,3 +487,47 @@ fn constant_elements_with_a_tolerance_are_refused() {
     let (code, stderr, _) = run_base("check", None, &["contact.grid.element=constant"]);
     assert_eq!(code, 0, "a fixed grid of constant elements stays allowed: {stderr}");
 }
+
+/// A friction coefficient far beyond Coulomb's law under a tangential load given as Q/(μP):
+/// the force asked, Q = ratio·μ·P, is hundreds of times the normal load, and the solution broke
+/// down (exit 2, nothing written: an infinite residual for the rubber tyre at μ = 1e3, `slip[0]`
+/// = −inf at 1e5, an infinite residual for the true-geometry rollers at 1e6). Refused by key
+/// before solving; a large μ still stands in for a stuck contact under Q = 0 (the free rolling
+/// of the reference checks), a force or a creepage, and for the closed-form models.
+#[test]
+fn a_large_friction_under_a_tangential_ratio_is_refused() {
+    for (name, mu) in [
+        ("tyre_b05_compressible", "1e3"),
+        ("tyre_b05_compressible", "1e5"),
+        ("fig14_true_geometry", "1e6"),
+        ("fig14_true_geometry", "11"),
+    ] {
+        let case = common::case_path(name);
+        let set = format!("contact.friction={mu}");
+        for verb in ["check", "run"] {
+            let dir = tempfile::tempdir().unwrap();
+            let out = dir.path().join("out");
+            let mut args = vec![verb, case.to_str().unwrap(), "--set", set.as_str()];
+            if verb == "run" {
+                args.extend(["--out", out.to_str().unwrap()]);
+            }
+            let (code, _, stderr) = rollbem(&args);
+            assert_eq!(code, 1, "{verb} {name} {set}: {stderr}");
+            assert!(
+                stderr.contains("contact.friction") && stderr.contains("load.tangential.ratio"),
+                "{stderr}"
+            );
+            assert!(!out.exists(), "{verb} {name} {set}: output written");
+        }
+    }
+    // The half-spaces of Carter's case solve under a ratio at any friction (docs/performance.md).
+    for set in [
+        ["contact.friction=1e3", "load.tangential={ratio: 0.51}"],
+        ["contact.friction=1e3", "load.tangential={ratio: 0}"],
+        ["contact.friction=1e3", "load.tangential={force: 100}"],
+        ["contact.friction=10", "load.tangential={ratio: 0.51}"],
+    ] {
+        let (code, stderr, _) = run_base("check", None, &set);
+        assert_eq!(code, 0, "{set:?}: {stderr}");
+    }
+}

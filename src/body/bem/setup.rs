@@ -421,6 +421,28 @@ impl BodySetup for BemSetup {
         self.discretisation_nodes().map(|n| n + added)
     }
 
+    /// The contact group cut into its elements bisected `bisections` times adds three nodes per
+    /// new element; each bisection halves the contact's end elements, and one more halving of
+    /// each neighbour outside keeps the lengths' ratio within [`MAX_TRANSITION_RATIO`] (one
+    /// element and two nodes a side per bisection: the levels start on the mesh's own grid,
+    /// whose neighbours already meet that ratio). The check of the mesh bisects every element
+    /// outside the contact: two nodes each. A cover thinner than half its contact group's span
+    /// offers no stand-in (src/body/bem.rs `pass_stand_in`): None.
+    fn stand_in_nodes(&self, bisections: usize) -> Option<usize> {
+        let lm = &self.mesh;
+        let grid = lm.contact_grid();
+        let span = grid.edges[grid.n_elements()] - grid.edges[0];
+        if self.layer_thickness().is_some_and(|b| b < 0.5 * span) {
+            return None;
+        }
+        let own = lm.mesh.elements.iter().filter(|e| e.group == lm.contact_group).count();
+        let cut = own.saturating_mul(1usize << bisections.min(30));
+        let transitions = 2 * bisections;
+        let outside = lm.mesh.elements.len() - own + transitions;
+        let added = 3 * cut.saturating_sub(own) + 2 * transitions + 2 * outside;
+        self.discretisation_nodes().map(|n| n + added)
+    }
+
     fn notices(&self) -> &[String] {
         &self.mesh.notices
     }

@@ -75,6 +75,21 @@ use remainder::{FitFactors, SmoothRemainder};
 /// against the full BEM on the final grid); convex rollers need less and lose nothing by it.
 pub const REMAINDER_DEGREE: usize = 8;
 
+/// How often the error control bisects the start grid for the coarser of the two grids the
+/// pass stand-ins' result is extrapolated from (src/adapt/stand_ins.rs `level`): not for
+/// tolerances down to 3e-4, once down to 3e-5, twice below (measured on fig14_true_geometry,
+/// whose remainder converges slowest of the shipped cases). The memory estimate of a tolerance
+/// run condenses the BEM bodies on the finer grid, this level bisected once more.
+pub fn level_bisections(tolerance: f64) -> usize {
+    if tolerance >= 3e-4 {
+        0
+    } else if tolerance >= 3e-5 {
+        1
+    } else {
+        2
+    }
+}
+
 /// The half-plane of the body's material and profile radius on `grid`, its columns scaled to
 /// a load per unit arc (module docs): 1/cos θ_j with θ the body's surface slope at node j. On a
 /// grid of curved elements, which the closed-form element integrals do not cover, its two
