@@ -98,6 +98,7 @@ BAD_ARGUMENTS = {
     "jobs=-1": (lambda: rollbem.sweep(CARTER, vary=ONE, jobs=-1), "jobs"),
     "jobs=2.5": (lambda: rollbem.sweep(CARTER, vary=ONE, jobs=2.5), "jobs"),
     "jobs='2'": (lambda: rollbem.sweep(CARTER, vary=ONE, jobs="2"), "jobs"),
+    "jobs=10**30": (lambda: rollbem.sweep(CARTER, vary=ONE, jobs=10**30), "at most 1024"),
     "set nan": (lambda: rollbem.run(CARTER, set={"contact.friction": float("nan")}), "set['contact.friction']"),
     "set inf": (lambda: rollbem.run(CARTER, set={"contact.friction": math.inf}), "set['contact.friction']"),
     "set 10**5000": (lambda: rollbem.run(CARTER, set={"contact.grid.elements": 10**5000}), "contact.grid.elements"),

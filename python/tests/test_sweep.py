@@ -139,10 +139,13 @@ def test_bad_sweeps():
     # True is an integer to Python, not a thread count.
     with pytest.raises(rollbem.InputError, match="jobs"):
         rollbem.sweep("cases/carter_051.yaml", vary={"contact.friction": [0.1]}, jobs=True)
-    # More threads than cores: capped, with a warning, not a million threads.
+    # More threads than cores: capped, with a warning, not a thousand threads; a million is
+    # refused (as `rollbem sweep --jobs`).
     with pytest.warns(RuntimeWarning, match="cores"):
-        rows = rollbem.sweep("cases/carter_051.yaml", vary={"contact.friction": [0.1]}, jobs=10**6)
+        rows = rollbem.sweep("cases/carter_051.yaml", vary={"contact.friction": [0.1]}, jobs=1000)
     assert rows[0]["status"] == "ok"
+    with pytest.raises(rollbem.InputError, match="at most 1024"):
+        rollbem.sweep("cases/carter_051.yaml", vary={"contact.friction": [0.1]}, jobs=10**6)
     with pytest.raises(rollbem.InputError, match="cannot read case file"):
         rollbem.sweep("cases/none.yaml", vary={"contact.friction": [0.1]})
     rows = rollbem.sweep("cases/carter_051.yaml", vary={"contact.frictio": [0.1]})

@@ -66,6 +66,10 @@ Case = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 _ENCODING_ERRORS = (TypeError, ValueError, RecursionError)
 
 
+# Most threads a sweep takes, as `rollbem sweep --jobs` (src/sweep.rs, MAX_JOBS): a larger count
+# is a mistake (a typo, a product of numbers), refused rather than capped.
+_MAX_JOBS = 1024
+
 def _json(value: Any) -> str:
     """A case value as JSON text (a YAML flow document); raises one of ``_ENCODING_ERRORS``."""
     return json.dumps(value, allow_nan=False, default=_plain)
@@ -398,8 +402,9 @@ def sweep(
         case, set: as for :func:`run` (``set`` applies to every run).
         vary: ``{"key.path": [v1, v2, ...], ...}``; the first key varies slowest, as with
             ``--vary``.
-        jobs: threads (>= 1; more than the machine's cores are capped to them, with a
-            ``RuntimeWarning``), or None for every core.
+        jobs: threads (1 to 1024; more than the machine's cores are capped to them, with a
+            ``RuntimeWarning``; above 1024, as with ``rollbem sweep --jobs``, an
+            :class:`InputError`), or None for every core.
 
     Returns:
         one dict per run in run order, with sweep.csv's columns but ``folder``: ``run``,
@@ -436,6 +441,11 @@ def sweep(
         isinstance(jobs, bool) or not isinstance(jobs, numbers.Integral) or jobs < 1
     ):
         raise InputError(f"sweep: jobs must be a positive whole number or None (value = {jobs!r})")
+    if jobs is not None and jobs > _MAX_JOBS:
+        raise InputError(
+            f"sweep: jobs = {jobs} is more threads than any machine has cores: give at most {_MAX_JOBS}, "
+            "or None for every core"
+        )
     cores = os.cpu_count() or 1
     if jobs is not None and jobs > cores:
         # More threads than cores only add switching: each run is one thread's work.
