@@ -144,7 +144,7 @@ impl Shape {
     /// circle may cross the outer one), or an inner circle below [`MIN_INNER_FRACTION`] of the
     /// outer one (a covered roller's core too). A cover grades its elements to its thickness and a block
     /// has no inner circle.
-    pub fn proportion_problem(&self) -> Option<String> {
+    pub fn proportion_problem(&self) -> Option<ProportionProblem> {
         let (outer, inner, far) = match *self {
             Shape::Roller { radius, shaft } => (radius, shaft, far_size(radius)),
             Shape::Ring { bore, rim } => (rim, bore, far_size(rim)),
@@ -157,15 +157,15 @@ impl Shape {
         };
         let wall = outer - inner;
         if inner < MIN_INNER_FRACTION * outer {
-            Some(format!(
+            Some(ProportionProblem::InnerTooSmall(format!(
                 "the inner circle ({inner:.4e}) is below {MIN_INNER_FRACTION:e} of the outer one ({outer:.4e}): \
                  too small for the generated mesh to hold the body's rotation or to resolve"
-            ))
+            )))
         } else if wall < MIN_WALL_PER_ELEMENT * far {
-            Some(format!(
+            Some(ProportionProblem::WallTooThin(format!(
                 "the wall between the circles ({wall:.4e}) is thinner than {MIN_WALL_PER_ELEMENT} of the \
                  generated elements away from the contact ({far:.4e} long): the mesh cannot represent it"
-            ))
+            )))
         } else {
             None
         }
@@ -292,6 +292,16 @@ impl Shape {
 struct Grading {
     growth: f64,
     scale: f64,
+}
+
+/// Why a generated body's lengths cannot be meshed ([`Shape::proportion_problem`]), in words.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ProportionProblem {
+    /// The inner circle (shaft, bore, core) is below [`MIN_INNER_FRACTION`] of the outer one.
+    InnerTooSmall(String),
+    /// The wall between the circles is thinner than [`MIN_WALL_PER_ELEMENT`] of the far
+    /// elements.
+    WallTooThin(String),
 }
 
 /// Thinnest wall of a roller or ring, as a fraction of its far element length: a cover's

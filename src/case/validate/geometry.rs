@@ -60,15 +60,19 @@ pub(super) fn geometry_violations(
             ordered = false;
         }
     }
-    if let Some(why) = g.shape().proportion_problem().filter(|_| ordered) {
-        let remedy = match g {
-            GeometrySpec::Roller(r) => format!(
-                "; a thin wall on a rigid shaft is a cover: `geometry: {{covered_roller: {{radius: {}, \
+    if let Some(problem) = g.shape().proportion_problem().filter(|_| ordered) {
+        use crate::mesh::parametric::ProportionProblem;
+        let (why, remedy) = match (&problem, g) {
+            (ProportionProblem::WallTooThin(why), GeometrySpec::Roller(r)) => (
+                why,
+                format!(
+                    "; a thin wall on a rigid shaft is a cover: `geometry: {{covered_roller: {{radius: {}, \
                  cover_thickness: {}, core: rigid}}}}` grades its elements to the thickness",
-                shown(r.radius),
-                shown(r.radius - r.shaft)
+                    shown(r.radius),
+                    shown(r.radius - r.shaft)
+                ),
             ),
-            _ => String::new(),
+            (ProportionProblem::WallTooThin(why) | ProportionProblem::InnerTooSmall(why), _) => (why, String::new()),
         };
         bad(format!("bodies.{side}.geometry.{family}"), format!("{why}{remedy}"));
         ordered = false;
