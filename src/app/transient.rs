@@ -224,7 +224,7 @@ pub(super) fn run(
     log::info!(target: crate::logging::PROGRESS, "writing the results to {}", output_dir.display());
     let speed = case.case.load.speed;
     output::write_atomically(output_dir, folder::Kind::Run, |tmp| {
-        write_transient_csv(tmp, &records, friction, speed)?;
+        write_transient_csv(tmp, &records, &solved.problem.grid, friction, speed)?;
         write_steps(tmp, &records, &solved.problem, summary.vtk)?;
         let unit = |key: &str| summary.units.get(key).map_or("", String::as_str);
         let units = [unit("overlap"), unit("max_pressure"), unit("normal_force")];

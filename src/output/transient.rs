@@ -10,6 +10,7 @@ use super::units::Dimension::{self, *};
 use super::vtk;
 use crate::contact::ContactProblem;
 use crate::error::Error;
+use crate::grid::ContactGrid;
 use crate::post::{ContactSolution, NodeState};
 use crate::transient::StepSolution;
 use serde::Serialize;
@@ -148,7 +149,7 @@ fn cell(v: Option<f64>) -> String {
 }
 
 /// The row of transient.csv of step `k`.
-fn row(k: usize, r: &StepRecord, friction: f64, speed: Option<f64>) -> Vec<String> {
+fn row(k: usize, r: &StepRecord, grid: &ContactGrid, friction: f64, speed: Option<f64>) -> Vec<String> {
     let s = &r.solution;
     let rolling = r.step.step.distance > 0.0;
     // The stick zones' ends as summary.json gives them: midway between nodes of different
@@ -174,7 +175,7 @@ fn row(k: usize, r: &StepRecord, friction: f64, speed: Option<f64>) -> Vec<Strin
         cell(stick.first().map(|z| z[0])),
         cell(stick.last().map(|z| z[1])),
         cell((touching > 0).then(|| stuck as f64 / touching as f64)),
-        number(s.pressure.iter().fold(0.0, |a, &b| a.max(b))),
+        number(grid.interpolant_max(&s.pressure).max(0.0)),
         number(s.shear.iter().fold(0.0, |a, &b| a.max(b.abs()))),
         r.iterations.to_string(),
         cell(Some(r.step.energy.dissipation)),
@@ -183,8 +184,15 @@ fn row(k: usize, r: &StepRecord, friction: f64, speed: Option<f64>) -> Vec<Strin
     ]
 }
 
-/// Writes transient.csv into `dir`: one row a step ([`TRANSIENT_CSV_UNITS`]).
-pub fn write_transient_csv(dir: &Path, records: &[StepRecord], friction: f64, speed: Option<f64>) -> Result<(), Error> {
+/// Writes transient.csv into `dir`: one row a step ([`TRANSIENT_CSV_UNITS`]), each step's peak
+/// pressure the largest value of its interpolant on `grid` (as summary.json's `max_pressure`).
+pub fn write_transient_csv(
+    dir: &Path,
+    records: &[StepRecord],
+    grid: &ContactGrid,
+    friction: f64,
+    speed: Option<f64>,
+) -> Result<(), Error> {
     let path = dir.join("transient.csv");
     let io = |e: &dyn std::fmt::Display| Error::Output {
         path: path.clone(),
@@ -193,7 +201,7 @@ pub fn write_transient_csv(dir: &Path, records: &[StepRecord], friction: f64, sp
     let mut w = csv::Writer::from_path(&path).map_err(|e| io(&e))?;
     w.write_record(TRANSIENT_CSV_UNITS.map(|c| c.0)).map_err(|e| io(&e))?;
     for (k, r) in records.iter().enumerate() {
-        w.write_record(row(k, r, friction, speed)).map_err(|e| io(&e))?;
+        w.write_record(row(k, r, grid, friction, speed)).map_err(|e| io(&e))?;
     }
     w.flush().map_err(|e| io(&e))
 }
