@@ -275,9 +275,10 @@ def check_run(d):
         if not np.all(np.isfinite(arr)):
             fail(d / "contact.csv", f"non-finite values in `{name}`")
     # max_pressure is the peak of the pressure's interpolant: at or above the largest nodal value,
-    # and above it only by the curvature between nodes (3e-4 at most on the shipped cases).
+    # and above it only by the curvature between nodes (2.9e-4 at most on the shipped cases and
+    # their error-controlled runs: 1e-3 leaves a margin of three).
     nodal = cols["pressure"].max()
-    if not nodal * (1 - RTOL) <= summary["max_pressure"] <= nodal * (1 + 1e-2):
+    if not nodal * (1 - RTOL) <= summary["max_pressure"] <= nodal * (1 + 1e-3):
         fail(d / "summary.json", f"max_pressure {summary['max_pressure']} is not the peak of contact.csv's {nodal}")
     if summary.get("vtk", True):
         check_vtu(d / "contact.vtu", cols)

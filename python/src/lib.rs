@@ -589,6 +589,8 @@ fn _rollbem(m: &Bound<'_, PyModule>) -> PyResult<()> {
     });
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("RESULT_COLUMNS", rollbem::sweep::RESULT_COLUMNS.to_vec())?;
+    // The most threads a sweep takes, the bound of `rollbem sweep --jobs`.
+    m.add("MAX_JOBS", rollbem::sweep::MAX_JOBS)?;
     // contact.csv's columns, in order, from the writer's own list.
     let contact_columns: Vec<&str> = rollbem::output::units::CONTACT_CSV_UNITS.iter().map(|c| c.0).collect();
     m.add("CONTACT_COLUMNS", contact_columns)?;

@@ -66,9 +66,9 @@ Case = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 _ENCODING_ERRORS = (TypeError, ValueError, RecursionError)
 
 
-# Most threads a sweep takes, as `rollbem sweep --jobs` (src/sweep.rs, MAX_JOBS): a larger count
-# is a mistake (a typo, a product of numbers), refused rather than capped.
-_MAX_JOBS = 1024
+# Most threads a sweep takes, the library's bound of `rollbem sweep --jobs` (src/sweep.rs): a
+# larger count is a mistake (a typo, a product of numbers), refused rather than capped.
+_MAX_JOBS = _rollbem.MAX_JOBS
 
 def _json(value: Any) -> str:
     """A case value as JSON text (a YAML flow document); raises one of ``_ENCODING_ERRORS``."""

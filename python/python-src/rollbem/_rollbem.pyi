@@ -5,6 +5,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 __version__: str
 RESULT_COLUMNS: List[str]
+MAX_JOBS: int
 CONTACT_COLUMNS: List[str]
 
 def run(path: str, text: Optional[str], overrides: List[str], out: Optional[str] = None) -> Dict[str, Any]: ...
