@@ -6,7 +6,7 @@
 //! (scene, assembly once, 100 warm-started steps). Best of `--repeat N` (default 3), both
 //! measured one after the other in one process, so their ratio shares the machine's load.
 //!
-//! Run: `cargo run --release --example transient_cost [-- --repeat 5]`. The ratios are in
+//! Run: `cargo run --release --example transient_cost [-- --repeat 5] [--only <scene>]`. The ratios are in
 //! docs/performance.md ("Transient rolling").
 
 pub mod common;
@@ -40,8 +40,9 @@ fn steady(name: &str, overrides: &[&str]) -> f64 {
     t.elapsed().as_secs_f64()
 }
 
-/// 100 steps, whole; and their mean Newton iterations.
-fn history(name: &str, overrides: &[&str]) -> (f64, f64) {
+/// 100 steps, whole; their mean Newton iterations; the Newton systems factored anew and those
+/// solved with the kept factors of an equal matrix.
+fn history(name: &str, overrides: &[&str]) -> (f64, f64, (usize, usize)) {
     let t = Instant::now();
     let s = scene(name, overrides);
     let mut h = History::new(&s).expect("a history");
@@ -57,11 +58,11 @@ fn history(name: &str, overrides: &[&str]) -> (f64, f64) {
     for _ in 0..98 {
         iterations += h.advance(step).expect("rolls").iterations;
     }
-    (t.elapsed().as_secs_f64(), iterations as f64 / 100.0)
+    (t.elapsed().as_secs_f64(), iterations as f64 / 100.0, h.factorisations())
 }
 
-/// The table: one row per scene.
-pub fn table(repeat: usize) -> Table {
+/// The table: one row per scene (those named `only`, if given).
+pub fn table(repeat: usize, only: Option<&str>) -> Table {
     let mut t = Table::new(&[
         "scene",
         "nodes",
@@ -69,14 +70,15 @@ pub fn table(repeat: usize) -> Table {
         "100 steps [s]",
         "ratio",
         "Newton iterations a step",
+        "LU factored / reused",
     ]);
-    for (name, overrides) in SCENES {
+    for (name, overrides) in SCENES.into_iter().filter(|(n, _)| only.is_none_or(|o| o == *n)) {
         let nodes = scene(name, overrides).grid.n_nodes();
-        let mut best = (f64::INFINITY, f64::INFINITY, 0.0);
+        let mut best = (f64::INFINITY, f64::INFINITY, 0.0, (0, 0));
         for _ in 0..repeat.max(1) {
             let one = steady(name, overrides);
-            let (all, iterations) = history(name, overrides);
-            best = (best.0.min(one), best.1.min(all), iterations);
+            let (all, iterations, lu) = history(name, overrides);
+            best = (best.0.min(one), best.1.min(all), iterations, lu);
         }
         t.push(vec![
             name.to_string(),
@@ -85,6 +87,7 @@ pub fn table(repeat: usize) -> Table {
             format!("{:.4}", best.1),
             format!("{:.1}", best.1 / best.0),
             format!("{:.2}", best.2),
+            format!("{} / {}", best.3 .0, best.3 .1),
         ]);
     }
     t
@@ -97,5 +100,6 @@ fn main() {
         .position(|a| a == "--repeat")
         .and_then(|i| args.get(i + 1))
         .map_or(3, |v| v.parse().expect("--repeat N"));
-    print!("{}", table(repeat).markdown());
+    let only = args.iter().position(|a| a == "--only").and_then(|i| args.get(i + 1));
+    print!("{}", table(repeat, only.map(String::as_str)).markdown());
 }

@@ -8,9 +8,8 @@ pub fn mat_vec(a: &Mat<f64>, x: &[f64]) -> Vec<f64> {
     // Column-major storage: accumulate column by column.
     for (j, &xj) in x.iter().enumerate().take(a.ncols()) {
         if xj != 0.0 {
-            let col = a.col(j);
-            for (i, yi) in y.iter_mut().enumerate() {
-                *yi += col[i] * xj;
+            for (yi, &aij) in y.iter_mut().zip(a.col_as_slice(j)) {
+                *yi += aij * xj;
             }
         }
     }
@@ -24,16 +23,15 @@ pub fn mat_vec2(a: &Mat<f64>, x: &[f64], b: &Mat<f64>, z: &[f64]) -> Vec<f64> {
     // Column-major storage: accumulate column by column.
     for j in 0..a.ncols() {
         let (xj, zj) = (x[j], z[j]);
+        // Slices of the columns (contiguous, unit stride), so the loops vectorise.
         if xj != 0.0 {
-            let col = a.col(j);
-            for (i, yi) in y.iter_mut().enumerate() {
-                *yi += col[i] * xj;
+            for (yi, &aij) in y.iter_mut().zip(a.col_as_slice(j)) {
+                *yi += aij * xj;
             }
         }
         if zj != 0.0 {
-            let col = b.col(j);
-            for (i, yi) in y.iter_mut().enumerate() {
-                *yi += col[i] * zj;
+            for (yi, &bij) in y.iter_mut().zip(b.col_as_slice(j)) {
+                *yi += bij * zj;
             }
         }
     }
@@ -114,6 +112,26 @@ impl LuWorkspace {
         let (_, row_perm) = factor::lu_in_place(a.as_mut(), perm, perm_inv, par, stack, Default::default());
         // L (unit lower) and U share the factored matrix: each solve reads only its own triangle.
         solve::solve_in_place(a.as_ref(), a.as_ref(), row_perm, rhs, par, stack);
+    }
+
+    /// Solves A X = B in place for `rhs` with the factors `lu` that this workspace's last
+    /// [`LuWorkspace::solve_in_place`] left in its matrix (its pivots are the workspace's): the
+    /// same numbers as that call would give for `rhs`, without factoring again.
+    pub fn solve_again(&mut self, lu: faer::MatRef<'_, f64>, rhs: faer::MatMut<'_, f64>) {
+        use faer::dyn_stack::MemStack;
+        use faer::linalg::lu::partial_pivoting::solve;
+        let n = lu.nrows();
+        assert_eq!(n, self.perm.len(), "the factors of this workspace's last solve");
+        assert_eq!(n, rhs.nrows(), "a right side of the matrix's order");
+        let par = parallelism(n);
+        let req = solve::solve_in_place_scratch::<usize, f64>(n, rhs.ncols(), par);
+        let grown = self.scratch_req.or(req);
+        if grown != self.scratch_req {
+            self.scratch = faer::dyn_stack::MemBuffer::new(grown);
+            self.scratch_req = grown;
+        }
+        let perm = faer::perm::PermRef::new_checked(&self.perm, &self.perm_inv, n);
+        solve::solve_in_place(lu, lu, perm, rhs, par, MemStack::new(&mut self.scratch));
     }
 }
 

@@ -130,6 +130,10 @@ pub struct History {
     /// The solver's report of the last step solved.
     report: Option<SolveReport>,
     rolled: f64,
+    /// The Newton systems' memory, kept from step to step with the last LU factors: a step
+    /// whose active sets are the last system's solves without factoring (most rolling steps
+    /// once the history is smooth; [`methods::Workspace::keeping_factors`]).
+    workspace: methods::Workspace,
 }
 
 impl History {
@@ -165,6 +169,7 @@ impl History {
             displacement: vec![0.0; m],
             state: None,
             rolled: 0.0,
+            workspace: methods::Workspace::keeping_factors(),
         })
     }
 
@@ -186,6 +191,12 @@ impl History {
     /// The solver's report of the last step solved (None before the first).
     pub fn report(&self) -> Option<&SolveReport> {
         self.report.as_ref()
+    }
+
+    /// The Newton systems of the history so far solved with new LU factors and with the kept
+    /// factors of an earlier system with the same matrix.
+    pub fn factorisations(&self) -> (usize, usize) {
+        self.workspace.factorisations()
     }
 
     /// Solves the next step, warm-started from the last (a rolling step; a shift starts cold).
@@ -228,7 +239,7 @@ impl History {
                 w.creep = c;
             }
         }
-        let (state, report) = methods::solve_from(&self.problem, &self.settings, warm);
+        let (state, report) = methods::solve_from_in(&self.problem, &self.settings, warm, &mut self.workspace);
         if !report.converged {
             return Err(TransientError::NotConverged {
                 rolled: self.rolled + step.distance,

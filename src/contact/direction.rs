@@ -207,7 +207,7 @@ impl System<'_> {
         let col_creep = free_creep.then_some(n_cols);
         n_cols += usize::from(free_creep);
         let n = n_cols;
-        let (J, rhs, lu) = ws.system(n);
+        let (J, rhs) = ws.system(n);
 
         let unknowns = Unknowns {
             p_col: &p_col,
@@ -251,10 +251,8 @@ impl System<'_> {
         }
         debug_assert_eq!(row, n);
 
-        if n > 0 {
-            lu.solve_in_place(J.as_mut(), rhs.as_mut());
-        }
-        let y = &*rhs;
+        ws.solve_system();
+        let y = &ws.rhs;
         let singular = (0..n).any(|r| !y[(r, 0)].is_finite());
         let (dp, dq) = unknowns.tractions(y);
         let d_overlap = col_overlap.map_or(0.0, |c| y[(c, 0)]);
