@@ -130,6 +130,10 @@ pub struct History {
     /// The solver's report of the last step solved.
     report: Option<SolveReport>,
     rolled: f64,
+    /// The falling friction law of the scene, if any: it acts in rolling steps (whose slip per
+    /// rolled distance times the speed is a slip velocity); a shift, without duration, slips
+    /// under the static coefficient.
+    falling: Option<crate::contact::falling::FallingLaw>,
     /// The Newton systems' memory, kept from step to step with the last LU factors: a step
     /// whose active sets are the last system's solves without factoring (most rolling steps
     /// once the history is smooth; [`methods::Workspace::keeping_factors`]).
@@ -155,6 +159,7 @@ impl History {
             }
         }
         let (models, mut problem) = scene.assemble()?;
+        let falling = problem.falling;
         // Every row carries the rigid shift: the steady problem's datum row (no creepage at
         // the upstream end) has no place in a step, whose w is absolute.
         problem.slip_operator.creep_weight.iter_mut().for_each(|e| *e = 1.0);
@@ -169,6 +174,7 @@ impl History {
             displacement: vec![0.0; m],
             state: None,
             rolled: 0.0,
+            falling,
             workspace: methods::Workspace::keeping_factors(),
         })
     }
@@ -225,6 +231,7 @@ impl History {
         }
         self.problem.normal = step.normal;
         self.problem.tangential = step.tangential;
+        self.problem.falling = self.falling.filter(|_| rolling);
         // A shift starts from the solver's own start vector: from the pressed state every node
         // sticks and the Newton method frees the slip zones about one node an iteration (the
         // Cattaneo shift on 81 elements: 56 iterations warm, 9 cold).

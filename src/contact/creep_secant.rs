@@ -168,7 +168,7 @@ pub(crate) fn solve(
 
 /// Whether node `k` sticks at `z` under `sys`: |q − r_t s| within its friction bound.
 fn is_stick(sys: &System, z: &State, k: usize) -> bool {
-    let bound = sys.pb.friction_at(k) * sys.bound_pressure(z, k);
+    let bound = sys.friction(z, k) * sys.bound_pressure(z, k);
     bound > 0.0 && (z.shear[k] - sys.rt[k] * z.slip[k]).abs() <= bound
 }
 

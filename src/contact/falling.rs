@@ -12,23 +12,22 @@
 //! the decay [length/time]. At a sticking node s = 0 and μ = μ_s; μ_k = μ_s is Coulomb's
 //! constant friction.
 //!
-//! **The scheme.** The generalized Newton method of [`super::restart`] solves the problem with
-//! the nodal μ_i frozen ([`ContactProblem::nodal_friction`], the bound μ_i p̂_i of the paper's
-//! Eq. 43/44 node by node); μ_i is then set from the slip found, and the next solve starts from
-//! the last solution (warm), until no μ_i changes by more than [`FIXED_POINT_TOLERANCE`] μ_s.
-//! The first solve freezes μ_i = μ_s (or the law at a warm start's slip). An outer fixed point
-//! keeps the Newton direction of [`super::direction`] as it is (μ inside the residual would add
-//! a dμ/ds column to every slipping row, which its reduction does not have); its cost is a few
-//! warm solves. The plain iteration μ ← μ(s(μ)) contracts only linearly, and slowly where the
-//! law is steep: on cases/veldep_fric.yaml at μ_s = 0.4 each solve cut the change by 0.905
-//! (200 solves left it at 8e-11, above the tolerance). The update is therefore Anderson's
-//! mixing of the last [`ANDERSON_DEPTH`] iterates (D.G. Anderson, J. ACM 12 (1965) 547–560; in
-//! the form of H.F. Walker & P. Ni, SIAM J. Numer. Anal. 49 (2011) 1715–1735, Eq. 2.2): the
-//! least-squares combination of the recent residuals f = μ(s(μ)) − μ, a secant method on the
-//! fixed point, which takes the same case to the tolerance in a few dozen solves. When the
-//! change grows from one solve to the next the history is dropped and the mixing weight
-//! halved (down to 1/16): a falling law makes the slip more sensitive to μ the steeper it is.
-//! The mixed μ_i are kept within [μ_k, μ_s], the law's range.
+//! **The scheme.** Two methods, combined ([`solve`]). (1) The generalized Newton method with
+//! the law inside the residual: μ_i = μ(V s_i) of the iterate, whose slope dμ/ds gives each
+//! slipping node a row of its own in the Newton direction ([`super::direction`]); quadratic
+//! near a solution, but from a cold start it can stall on the nonsmooth, nonconvex merit.
+//! (2) An outer fixed point: the Newton method of [`super::restart`] solves the problem with the
+//! nodal μ_i frozen ([`ContactProblem::nodal_friction`]); μ_i is then set from the slip found,
+//! and the next solve starts from the last solution, until no μ_i changes by more than
+//! [`FIXED_POINT_TOLERANCE`] μ_s. The plain iteration μ ← μ(s(μ)) contracts only linearly, and
+//! slowly where the law is steep (cases/veldep_fric.yaml at μ_s = 0.4: by 0.905 a solve), so the
+//! update is Anderson's mixing of the last [`ANDERSON_DEPTH`] iterates (D.G. Anderson, J. ACM 12
+//! (1965) 547–560; H.F. Walker & P. Ni, SIAM J. Numer. Anal. 49 (2011) 1715–1735, Eq. 2.2);
+//! when the change grows the history is dropped and the mixing weight halved (down to 1/16).
+//! The mixed μ_i are kept within [μ_k, μ_s]. A warm start goes to (1) first; otherwise, or when
+//! that fails, (2) runs and hands over to (1) once its change is below [`FINISH_CHANGE`] μ_s:
+//! veldep_fric at μ_s = 0.5, where (2) alone never settles, then converges in 5 Newton
+//! iterations from its iterate.
 //!
 //! **Uniqueness.** With a falling law the discrete problem can have several solutions
 //! (Vollebregt & Schuttelaars 2012, §3): which one the fixed point finds depends on where it
@@ -99,17 +98,32 @@ impl FallingLaw {
         mu_k + (mu_s - mu_k) * (-v / self.law.slip_velocity).exp()
     }
 
+    /// dμ/ds at the dimensionless slip `slip` [-] for the static coefficient `mu_s` [-]:
+    /// −(μ_s − μ_k)(V/s_h) exp(−V|s|/s_h) sgn s, zero at s = 0 and wherever μ_k = μ_s (the row
+    /// of the Newton direction of a slipping node, [`super::direction`]).
+    pub fn slope(&self, mu_s: f64, slip: f64) -> f64 {
+        if slip == 0.0 {
+            return 0.0;
+        }
+        let rate = self.speed / self.law.slip_velocity;
+        -(mu_s - self.law.kinetic) * rate * (-rate * slip.abs()).exp() * slip.signum()
+    }
+
     /// μ at every node of the slip `slip` [-], for the static coefficient `mu_s` [-].
     pub fn nodal(&self, mu_s: f64, slip: &[f64]) -> Vec<f64> {
         slip.iter().map(|&s| self.coefficient(mu_s, s)).collect()
     }
 }
 
-/// Solves `pb` under the falling law `law` by the outer fixed point of the module docs, each
-/// solve the line-search Newton of [`restart`] stopping on the measure of its frozen problem (from `warm` when given, else cold first), the
-/// Newton systems in the memory of `ws`. The report sums the iterations of every solve; it is
-/// not converged when a solve fails or the nodal μ_i do not settle within
-/// [`MAX_FIXED_POINT_SOLVES`] solves.
+/// Solves `pb` under the falling law `law` (module docs): from `warm`, when given, first the
+/// Newton method with the law inside (its slope in the direction) for at most
+/// [`FINISH_BUDGET`] iterations; else, or when that does not converge, the outer fixed point,
+/// each solve the line-search Newton of [`restart`] on the frozen problem, handing over to the
+/// Newton with the law once the largest change of μ_i is below [`FINISH_CHANGE`] μ_s (and
+/// again each time it has fallen ten times further, and when the fixed point ends unsettled).
+/// The Newton systems in the memory of `ws`. The report sums the iterations of every solve and
+/// attempt; it is not converged when a solve fails or neither the fixed point settles within
+/// [`MAX_FIXED_POINT_SOLVES`] solves nor the Newton finishes.
 pub fn solve(
     pb: &ContactProblem,
     law: &FallingLaw,
@@ -117,6 +131,14 @@ pub fn solve(
     warm: Option<State>,
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
+    // The measure of the problem with the law inside: the one every result is judged by.
+    let full = ConvergenceMeasure::new(pb);
+    let mut tally = Tally::default();
+    if let Some(w) = &warm {
+        if let Some(done) = finish(pb, settings, &full, w.clone(), &mut tally, ws) {
+            return done;
+        }
+    }
     let mut own = pb.clone();
     let mu_s = pb.friction;
     own.falling = None;
@@ -127,8 +149,8 @@ pub fn solve(
     };
     let mut start = warm;
     let (mut relaxation, mut last_change) = (1.0_f64, f64::INFINITY);
-    let (mut iterations, mut inner, mut history) = (0, 0, Vec::new());
     let scale = mu_s.max(f64::MIN_POSITIVE);
+    let mut next_finish = FINISH_CHANGE * scale;
     let mut solve = 0;
     let mut mixing = Anderson::new(ANDERSON_DEPTH);
     loop {
@@ -141,20 +163,32 @@ pub fn solve(
             Some(w) => restart::solve_warm(&own, settings, &measure, w, ws),
             None => restart::solve(NewtonInputs::new(&own, settings, &measure), ws),
         };
-        iterations += report.iterations;
-        inner += report.inner_iterations;
-        history.append(&mut report.history);
+        tally.add(&mut report);
         let target = law.nodal(mu_s, &state.slip);
         // Only where the bound μ_i p̂_i can act: out of contact μ_i bounds nothing.
         let change = (0..m)
             .filter(|&i| state.pressure[i] > 0.0)
             .fold(0.0_f64, |a, i| a.max((target[i] - mu[i]).abs()));
         let settled = change <= FIXED_POINT_TOLERANCE * scale;
-        if !report.converged || settled || solve == MAX_FIXED_POINT_SOLVES {
+        let ends = !report.converged || settled || solve == MAX_FIXED_POINT_SOLVES;
+        if report.converged && !settled && (change <= next_finish || ends) {
+            if let Some(done) = finish(pb, settings, &full, state.clone(), &mut tally, ws) {
+                log::info!(
+                    target: crate::logging::PROGRESS,
+                    "falling friction: {solve} solve(s) with the nodal mu frozen (last change {change:.1e}), \
+                     finished by the Newton method with the law's slope"
+                );
+                return done;
+            }
+            next_finish = change / 10.0;
+        }
+        if ends {
             report.converged &= settled;
-            report.iterations = iterations;
-            report.inner_iterations = inner;
-            report.history = history;
+            if !settled {
+                // The residual of the problem with the law, not of the last frozen one.
+                report.residual = full.of(&state);
+            }
+            tally.total(&mut report);
             // A settled run's count goes to the log (not a fallback: nothing stalled).
             match settled {
                 true => log::info!(
@@ -177,6 +211,60 @@ pub fn solve(
         mu.iter_mut().for_each(|u| *u = u.clamp(lo, hi));
         start = Some(state);
     }
+}
+
+/// Most iterations of one attempt of the Newton method with the law inside ([`solve`]): from
+/// a start near the solution it converges quadratically, in 5–20 iterations on
+/// cases/veldep_fric.yaml (μ_s 0.3–0.5).
+pub const FINISH_BUDGET: usize = 30;
+
+/// The largest change of the nodal μ_i, relative to μ_s, below which the fixed point hands
+/// over to the Newton method with the law inside ([`solve`]): from fixed-point iterates whose
+/// measure was still 1e-2, that Newton converged in 5 iterations on cases/veldep_fric.yaml at
+/// μ_s 0.5, where the fixed point alone does not settle.
+pub const FINISH_CHANGE: f64 = 1e-2;
+
+/// The iterations of a falling-law solve's inner solves and attempts, summed into its report.
+#[derive(Default)]
+struct Tally {
+    iterations: usize,
+    inner: usize,
+    history: Vec<super::report::IterationRecord>,
+}
+
+impl Tally {
+    /// Adds a solve's or attempt's iterations (its history moves here).
+    fn add(&mut self, report: &mut SolveReport) {
+        self.iterations += report.iterations;
+        self.inner += report.inner_iterations;
+        self.history.append(&mut report.history);
+    }
+
+    /// Puts the sums into the last report.
+    fn total(&mut self, report: &mut SolveReport) {
+        report.iterations = self.iterations;
+        report.inner_iterations = self.inner;
+        report.history = std::mem::take(&mut self.history);
+    }
+}
+
+/// The Newton method with the law inside from `from` ([`FINISH_BUDGET`] iterations, judged by
+/// `full`, the measure of the problem with the law): its state and report (with the iterations
+/// of `tally`) when it converged, else None, its iterations added to `tally`.
+fn finish(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    full: &ConvergenceMeasure,
+    from: State,
+    tally: &mut Tally,
+    ws: &mut Workspace,
+) -> Option<(State, SolveReport)> {
+    let (state, mut report) = restart::attempt_warm(pb, settings, full, from, FINISH_BUDGET, ws);
+    tally.add(&mut report);
+    report.converged.then(|| {
+        tally.total(&mut report);
+        (state, report)
+    })
 }
 
 /// Anderson's mixing of a fixed point x = g(x) (module docs): the last iterates' differences

@@ -10,7 +10,7 @@
 //! G3 = p − max(0, p − r_n g)          [Φ]       Signorini as a projection (Eq. 24)
 //!    = min(p, r_n g)                  [Ψ]       (Eq. 25; the same function: p − max(0, p − y) = min(p, y))
 //! G4 = q − Proj[−μp̂, μp̂](q − r_t s)             Coulomb as a projection (Eq. 34)
-//!      p̂ = max(0, p − r_n g) [Φ],  max(0, p) [Ψ]
+//!      p̂ = max(0, p − r_n g) [Φ],  max(0, p) [Ψ];  μ = μ(V s) under a falling law
 //! G5 = (Σ w_j p_j − P)/L,  G6 = (Σ w_j q_j − Q)/L   load control (Eq. 39), L the grid length
 //! ```
 //!
@@ -122,6 +122,20 @@ impl<'a> System<'a> {
         }
     }
 
+    /// μ_i [-] that bounds the shear at node i for the iterate z: a falling law's at z's slip
+    /// there (the law inside the residual, [`super::falling`]), else the problem's coefficient
+    /// (constant, or frozen per node by the falling law's fixed point).
+    pub(crate) fn friction(&self, z: &State, i: usize) -> f64 {
+        self.pb.friction_of_slip(i, z.slip[i])
+    }
+
+    /// dμ_i/ds_i [-] at the iterate z: the falling law's slope at z's slip, 0 without a law.
+    pub(crate) fn friction_slope(&self, z: &State, i: usize) -> f64 {
+        self.pb
+            .falling
+            .map_or(0.0, |law| law.slope(self.pb.friction, z.slip[i]))
+    }
+
     /// Whether a node is on the contact branch of the normal projection.
     pub(crate) fn is_contact(&self, z: &State, i: usize) -> bool {
         let (p, g) = (z.pressure[i], z.gap[i]);
@@ -165,7 +179,7 @@ impl<'a> System<'a> {
             });
         }
         for i in 0..m {
-            let bound = pb.friction_at(i) * self.bound_pressure(z, i);
+            let bound = self.friction(z, i) * self.bound_pressure(z, i);
             r.push(z.shear[i] - projection(z.shear[i] - self.rt[i] * z.slip[i], bound));
         }
         if let NormalControl::Force(p_total) = pb.normal {

@@ -235,6 +235,26 @@ pub fn solve_neighbour(
     warm_then_cold(pb, settings, &limited, measure, warm, FirstStep::Full, ws)
 }
 
+/// One line-search Newton attempt from `warm` with at most `budget` iterations and no restarts
+/// after it: the report says whether it converged (a falling law's finish, [`super::falling`],
+/// whose fallback is its own fixed point, not a cold start).
+pub fn attempt_warm(
+    pb: &ContactProblem,
+    settings: &NewtonSettings,
+    measure: &ConvergenceMeasure,
+    warm: State,
+    budget: usize,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let limited = NewtonSettings {
+        max_iterations: budget.min(settings.max_iterations),
+        ..*settings
+    };
+    let own = (settings.formulation, settings.penalty_scale);
+    let (out, used) = coupled_attempt(pb, own, warm, FirstStep::Searched, &limited, measure, ws);
+    newton::report(settings, out, used, measure, Vec::new())
+}
+
 /// One warm attempt from `warm` under `attempt`'s settings (its first step `first`); when it
 /// does not converge, the cold start and restarts of [`solve`] under `settings`, the warm
 /// attempt's steps kept in the history.

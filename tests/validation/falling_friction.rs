@@ -173,3 +173,112 @@ fn a_slowly_contracting_fixed_point_settles_by_mixing() {
         "{slipping} slipping nodes, lowest μ {lowest}"
     );
 }
+
+/// CONTACT's veldep_fric scene at μ_s = 0.5 beyond a creepage of about 7e-4, where the fixed
+/// point alone does not settle (the largest change of μ stays near 1.6e-2, one node turning
+/// between stick and slip from pass to pass): the Newton method with the law's slope in its
+/// direction finishes from the fixed point's iterate, and every contact node satisfies the law
+/// (checked from the tractions and the recomputed slip, as in `falling_law_holds_at_every_node`).
+#[test]
+fn a_steep_law_converges_by_the_newton_finish() {
+    for creep in ["-0.0009999", "-0.002"] {
+        let solved = solve(
+            "veldep_fric",
+            &[
+                "contact.friction=0.5",
+                &format!("load.tangential.creep={creep}"),
+                "contact.grid.estimate=false",
+            ],
+        );
+        assert!(solved.report.converged, "ξ {creep}: {:?}", solved.report.fallbacks);
+        let (slipping, lowest) = law_holds(&solved, (0.5, 0.18, 100.0, 45_000.0));
+        eprintln!(
+            "μ_s 0.5, ξ {creep}: {} Newton iterations, {slipping} slipping nodes, lowest μ {lowest:.4}, Q/(μ_s P) {:.4}",
+            solved.report.iterations,
+            traction_ratio(&solved, 0.5)
+        );
+        assert!(
+            slipping >= 5 && lowest < 0.4,
+            "{slipping} slipping nodes, lowest μ {lowest}"
+        );
+    }
+}
+
+/// A transient history under a falling law (carter_051 at μ_s = 0.1 → μ_k = 0.05,
+/// s_h = 0.3 mm/s, V = 10 mm/s; src/transient.rs: a rolling step's slip velocity is V times its
+/// slip per rolled distance): pressed, shifted to Q/μP 0.51 without rolling (under μ_s: a shift
+/// has no duration), then rolled one node spacing a step at the creepage of the steady solution
+/// under the same law. With one node spacing a step the history's slip is the first-order
+/// upwind difference, so it must settle on the steady solution of the same grid with
+/// `slip_derivative: first_order`: within 1e-6 μ_s p0 in q after rolling 8a. With μ_k = μ_s
+/// the history equals the constant-μ history bit for bit.
+#[test]
+fn a_history_under_a_falling_law_settles_on_its_steady_state() {
+    use rollbem::contact::{NormalControl, TangentialControl};
+    use rollbem::transient::{History, Step};
+    let scene = |kinetic: f64| {
+        let overrides = [
+            format!("contact.falling_friction={{kinetic: {kinetic}, slip_velocity: 0.3}}"),
+            "load.speed=10".to_string(),
+            "contact.slip_derivative=first_order".to_string(),
+            "contact.grid.elements=41".to_string(),
+        ];
+        let case = rollbem::case::load(&crate::common::case_path("carter_051"), &overrides).expect("loads");
+        rollbem::scene::Scene::from_case(&case).expect("scene")
+    };
+    let history_of = |scene: &rollbem::scene::Scene, creep: f64, steps: usize| {
+        let force = match scene.normal {
+            NormalControl::Force(p) => p,
+            _ => unreachable!("carter_051 gives P"),
+        };
+        let mut h = History::new(scene).expect("a history");
+        let mut step = Step {
+            distance: 0.0,
+            normal: NormalControl::Force(force),
+            tangential: TangentialControl::Ratio(0.0),
+        };
+        h.advance(step).expect("pressed");
+        step.tangential = TangentialControl::Ratio(0.51);
+        h.advance(step).expect("shifted");
+        step.distance = h.grid().node_spacing();
+        step.tangential = TangentialControl::Creep(creep);
+        let mut last = None;
+        for k in 0..steps {
+            let s = h.advance(step).unwrap_or_else(|e| panic!("step {k}: {e}"));
+            last = Some(s);
+        }
+        (last.expect("rolled"), h.grid().node_spacing())
+    };
+    let falling = scene(0.05);
+    let (_, problem) = falling.assemble().expect("assembles");
+    let (steady, report) = rollbem::contact::methods::solve(&problem, &falling.solver);
+    assert!(report.converged);
+    let a = falling.estimates.hertz_half_width;
+    let spacing = falling.grid.node_spacing();
+    let steps = (8.0 * a / spacing).ceil() as usize;
+    let (last, _) = history_of(&falling, steady.creep, steps);
+    let p0 = steady.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
+    let dq = last
+        .state
+        .shear
+        .iter()
+        .zip(&steady.shear)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
+        / (0.1 * p0);
+    let lowest = (0..problem.n_nodes())
+        .filter(|&i| steady.pressure[i] > 0.0)
+        .map(|i| problem.friction_of_slip(i, steady.slip[i]))
+        .fold(0.1_f64, f64::min);
+    eprintln!("falling history, {steps} steps: |q − q_steady| ≤ {dq:.2e} μ_s p0; lowest steady μ {lowest:.4}");
+    assert!(lowest < 0.1 - 0.01 * 0.05, "the law acts: lowest μ {lowest}");
+    assert!(dq <= 1e-6, "the history settles on the steady state: {dq:.3e} μ_s p0");
+    // μ_k = μ_s: the law's factor is zero, the history is the constant-μ one.
+    let flat = scene(0.1);
+    let mut constant = scene(0.1);
+    constant.falling = None;
+    let (_, pb_c) = constant.assemble().expect("assembles");
+    let (steady_c, _) = rollbem::contact::methods::solve(&pb_c, &constant.solver);
+    let (with_law, _) = history_of(&flat, steady_c.creep, 20);
+    let (without, _) = history_of(&constant, steady_c.creep, 20);
+    assert_eq!(with_law.state, without.state);
+}

@@ -93,13 +93,5 @@ pub(super) fn falling_friction_problems(case: &Case) -> Vec<(String, String)> {
             ),
         ));
     }
-    if case.transient.is_some() {
-        out.push((
-            "contact.falling_friction".into(),
-            "a transient history takes a constant friction coefficient only (the fixed point on the nodal \
-             friction is built for steady rolling); remove contact.falling_friction or the transient section"
-                .into(),
-        ));
-    }
     out
 }
