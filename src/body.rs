@@ -30,6 +30,7 @@
 pub mod bem;
 pub mod flamant;
 pub mod half_space;
+pub mod kind;
 pub mod layer;
 pub mod pair_influence;
 pub mod rigid;
@@ -43,6 +44,7 @@ use crate::grid::ContactGrid;
 use crate::interior::{InteriorOptions, InteriorSample, PlaneStress};
 use crate::linalg::mat_vec2;
 use faer::{Mat, MatRef};
+pub use kind::Capabilities;
 pub use run_caches::{BodyLineage, RunCaches};
 use serde::Serialize;
 pub use setup::{BodySetup, BuildContext, BuildError, ContactMesh, FlexibilityChange, PassStandIn, Rolling, SurfaceAt};

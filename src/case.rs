@@ -3,6 +3,7 @@
 //! This is the only module that names the YAML crate (`serde_norway`, the maintained fork of the
 //! archived `serde_yaml`): swapping it is a change to [`parse_yaml`] alone.
 
+mod kinds;
 pub mod schema;
 pub mod strength;
 pub mod transient;
@@ -102,10 +103,7 @@ impl LoadedCase {
     pub fn input_files(&self) -> Vec<PathBuf> {
         let meshes = [&self.case.bodies.a, &self.case.bodies.b]
             .into_iter()
-            .filter_map(|body| match body {
-                BodySpec::Bem { mesh: Some(m), .. } | BodySpec::Rigid { mesh: Some(m), .. } => Some(m),
-                _ => None,
-            })
+            .filter_map(|body| body.mesh_file())
             .map(|m| self.base_dir().join(m));
         std::iter::once(self.path.clone()).chain(meshes).collect()
     }

@@ -20,6 +20,7 @@ pub mod kept;
 pub mod setup;
 pub mod stand_in;
 
+use super::kind::Capabilities;
 use super::{
     BodyFields, BodyModel, BoundaryField, ContactLoad, FieldError, Flexibility, InteriorQuery, InteriorResult, Side,
     StrainOperator,
@@ -30,6 +31,16 @@ use crate::bem::{condense_reusing, factor_reusing, BemError, BemModel, BemSoluti
 use crate::grid::{ContactGrid, ElementKind};
 use crate::interior::{InteriorOptions, InteriorSample};
 use faer::{Mat, MatRef};
+
+/// What the checks of a case ask of the `bem` model. A boundary element body: elastic only (the BEM has no aged kernels), with interior fields by
+/// Somigliana's identity, its contact grid the contact elements of its mesh.
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "bem",
+    deforms: true,
+    accepts_viscoelastic: false,
+    interior_fields: true,
+    boundary_elements: true,
+};
 
 /// A body modelled by the BEM, condensed to a contact grid whose nodes it shares.
 #[derive(Debug)]

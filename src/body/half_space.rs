@@ -28,6 +28,7 @@ mod applied;
 pub mod setup;
 
 use super::flamant::halfplane_interior;
+use super::kind::Capabilities;
 use super::pair_influence::{joined, shared_or_computed, Family, InfluenceKey, PairInfluence};
 use super::{
     circle_profile, circle_profile_slope, BodyFields, BodyModel, ContactLoad, Flexibility, InteriorQuery,
@@ -39,6 +40,16 @@ use crate::material::Elastic;
 use crate::quadrature::gauss_legendre;
 use faer::{Mat, MatRef};
 use std::sync::Arc;
+
+/// What the checks of a case ask of the `half_space` model. An elastic or viscoelastic half-plane: it deforms, takes the aged kernels of a standard linear
+/// solid, and gives its interior fields in closed form.
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "half_space",
+    deforms: true,
+    accepts_viscoelastic: true,
+    interior_fields: true,
+    boundary_elements: false,
+};
 
 /// Distance (in element lengths) from the field point to an element's centre beyond which the
 /// element integrals use Gauss quadrature instead of the closed form.

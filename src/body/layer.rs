@@ -23,6 +23,7 @@ pub mod compliance;
 pub mod remainder;
 pub mod setup;
 
+use super::kind::Capabilities;
 use super::viscoelastic::aged_kernels::Ageing;
 use super::viscoelastic::ViscoelasticHalfSpace;
 use super::{
@@ -33,6 +34,16 @@ use crate::grid::ContactGrid;
 use crate::material::StandardLinearSolid;
 use faer::Mat;
 use remainder::{Component, Remainder};
+
+/// What the checks of a case ask of the `layer` model. A cover on a rigid core: it deforms and takes a viscoelastic material, but its flat-layer
+/// kernels give its surface tractions only, not the stresses inside the cover.
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "layer",
+    deforms: true,
+    accepts_viscoelastic: true,
+    interior_fields: false,
+    boundary_elements: false,
+};
 
 /// A layer bonded to a rigid core (module docs).
 #[derive(Debug, Clone)]

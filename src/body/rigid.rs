@@ -1,5 +1,6 @@
 //! The rigid body model: zero flexibility, circular profile.
 
+use super::kind::Capabilities;
 use super::setup::{BodySetup, BuildContext, BuildError, SurfaceAt};
 use super::Body;
 use super::{
@@ -8,6 +9,15 @@ use super::{
 };
 use crate::grid::ContactGrid;
 use crate::material::Elastic;
+
+/// What the checks of a case ask of the `rigid` model. A rigid body: no material, no deformation, no interior.
+pub const CAPABILITIES: Capabilities = Capabilities {
+    name: "rigid",
+    deforms: false,
+    accepts_viscoelastic: false,
+    interior_fields: false,
+    boundary_elements: false,
+};
 
 /// A rigid cylinder of the given signed radius [length] (negative: a concave bore).
 #[derive(Debug, Clone)]

@@ -3,8 +3,10 @@
 //! The scene holds each body as an `Arc<dyn BodySetup>`. Everything the stages after the case
 //! ask of a body goes through this trait, so a new body model is one type that implements it
 //! (in its own module under `src/body/`) plus one arm in the registry that turns its case keys
-//! into it (`src/scene/registry.rs`); nothing in `contact/`, `adapt/`, `post/` or `output/`
-//! changes (docs/architecture.md, "A new body model").
+//! into it (`src/scene/registry.rs`); what the case's checks ask of it before it is built is
+//! its [`crate::body::Capabilities`], answered per kind in `src/case/kinds.rs`. Nothing in
+//! `contact/`, `adapt/`, `post/` or `output/` changes (docs/architecture.md, "A new body
+//! model").
 //!
 //! What a setup owns:
 //! * what the scene's estimates need: its profile radius, the elastic constants that stand for

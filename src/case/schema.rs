@@ -206,18 +206,6 @@ pub enum BodySpec {
     },
 }
 
-impl BodySpec {
-    /// The name of the body's material under `materials`, None for a body that has none (rigid).
-    pub fn material_name(&self) -> Option<&str> {
-        match self {
-            BodySpec::HalfSpace { material, .. }
-            | BodySpec::Bem { material, .. }
-            | BodySpec::Layer { material, .. } => Some(material),
-            BodySpec::Rigid { .. } => None,
-        }
-    }
-}
-
 /// A parametric body that rollbem meshes itself (cases/README.md, "Parametric bodies"):
 /// exactly one family key. Lengths in the case's unit.
 #[derive(Debug, Clone, Deserialize, Serialize)]

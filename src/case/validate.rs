@@ -3,8 +3,9 @@
 
 use super::schema::*;
 use cover::overlap_through_a_cover;
-use geometry::geometry_violations;
 use viscoelastic::{rolling_speed_problems, viscoelastic_problems};
+// The per-kind checks of a body's keys, which src/case/kinds.rs runs.
+pub(super) use geometry::geometry_violations;
 
 mod cover;
 mod friction;
@@ -100,11 +101,11 @@ impl std::fmt::Display for Violation {
 }
 
 /// The violations of a case, as the checks find them.
-struct Problems(Vec<Violation>);
+pub(super) struct Problems(Vec<Violation>);
 
 impl Problems {
     /// Records that `key` breaks a rule, and why.
-    fn bad(&mut self, key: String, message: String) {
+    pub(super) fn bad(&mut self, key: String, message: String) {
         self.0.push(Violation { key, message });
     }
 }
@@ -184,95 +185,18 @@ fn body_problems(case: &Case, found: &mut Problems) {
     // The key that gives each profile radius: `radius`, or the `geometry:` it comes from.
     let mut radius_keys = ["bodies.A.radius".to_string(), "bodies.B.radius".to_string()];
     for (k, (side, body)) in [("A", &case.bodies.a), ("B", &case.bodies.b)].into_iter().enumerate() {
-        let radius = match body {
-            BodySpec::HalfSpace { material, radius } => {
-                if let Some(v) = undefined_material(side, material) {
-                    found.bad(v.key, v.message);
-                }
-                given[k] = Some(*radius);
-                *radius
-            }
-            BodySpec::Layer {
-                material,
-                radius,
-                thickness,
-            } => {
-                if let Some(v) = undefined_material(side, material) {
-                    found.bad(v.key, v.message);
-                }
-                layer_thickness_problems(case, side, material, *radius, *thickness, found);
-                given[k] = Some(*radius);
-                *radius
-            }
-            BodySpec::Rigid { radius, mesh, .. } => {
-                rigid += 1;
-                match (radius, mesh) {
-                    (Some(r), None) => {
-                        given[k] = Some(*r);
-                        *r
-                    }
-                    (None, Some(_)) => 1.0,
-                    _ => {
-                        found.bad(
-                            format!("bodies.{side}"),
-                            "a rigid body takes exactly one of `radius` (the profile radius) or `mesh` \
-                             (a Gmsh mesh whose contact group's circle gives it)"
-                                .into(),
-                        );
-                        1.0
-                    }
-                }
-            }
-            BodySpec::Bem {
-                material,
-                boundaries,
-                radius,
-                contact,
-                mesh,
-                geometry,
-            } => {
-                if let Some(v) = undefined_material(side, material) {
-                    found.bad(v.key, v.message);
-                }
-                match (mesh, geometry) {
-                    (Some(_), Some(_)) => found.bad(
-                        format!("bodies.{side}.geometry"),
-                        "a bem body takes exactly one of `mesh` (a Gmsh file) or `geometry` (a parametric \
-                         body rollbem meshes itself): remove one of the two"
-                            .into(),
-                    ),
-                    (None, None) => found.bad(
-                        format!("bodies.{side}.mesh"),
-                        "missing: give `mesh` (a Gmsh .msh file) or `geometry` (e.g. {roller: {radius: 150, \
-                         shaft: 15}}; cases/README.md lists the families)"
-                            .into(),
-                    ),
-                    (None, Some(g)) => {
-                        for v in geometry_violations(side, g, contact, boundaries, *radius) {
-                            found.bad(v.key, v.message);
-                        }
-                    }
-                    (Some(_), None) => {}
-                }
-                if boundaries.contains_key(contact) {
-                    found.bad(
-                        format!("bodies.{side}.boundaries.{contact}"),
-                        "the contact group takes the contact tractions; do not give it a boundary condition".into(),
-                    );
-                }
-                prescribed_boundary_problems(side, boundaries, found);
-                given[k] = radius.or_else(|| {
-                    geometry
-                        .as_ref()
-                        .map(|g| g.shape().profile_radius())
-                        .filter(|r| r.is_finite() && *r != 0.0)
-                });
-                if radius.is_none() && geometry.is_some() {
-                    radius_keys[k] = format!("bodies.{side}.geometry");
-                }
-                radius.unwrap_or(1.0)
-            }
-        };
+        if let Some(v) = body.material_name().and_then(|m| undefined_material(side, m)) {
+            found.bad(v.key, v.message);
+        }
+        if !body.capabilities().deforms {
+            rigid += 1;
+        }
+        let profile = body.key_problems(case, side, found);
+        given[k] = profile.given;
+        if profile.from_geometry {
+            radius_keys[k] = format!("bodies.{side}.geometry");
+        }
+        let radius = profile.checked;
         let nonzero = if radius == 0.0 {
             Some("must be non-zero and finite (value = 0)".to_string())
         } else {
@@ -308,7 +232,7 @@ fn body_problems(case: &Case, found: &mut Problems) {
 
 /// A layer's cover thickness: positive, and thin against the radius (the layer model takes the
 /// cover flat); a thick cover is a bem body.
-fn layer_thickness_problems(
+pub(super) fn layer_thickness_problems(
     case: &Case,
     side: &str,
     material: &str,
@@ -341,7 +265,7 @@ fn layer_thickness_problems(
 
 /// The prescribed boundary conditions of a bem body's other groups: exactly one kind each,
 /// and zero (a non-zero one would move the contact surface outside the gap the run solves).
-fn prescribed_boundary_problems(
+pub(super) fn prescribed_boundary_problems(
     side: &str,
     boundaries: &std::collections::BTreeMap<String, BoundarySpec>,
     found: &mut Problems,
@@ -387,9 +311,9 @@ fn contact_problems(case: &Case, found: &mut Problems) {
     }
     // A body meshed in Gmsh brings its own contact elements (the grid follows them); a generated
     // (`geometry:`) body's contact segment is cut into `elements` like a uniform grid.
-    let bem_bodies = || [&case.bodies.a, &case.bodies.b].into_iter();
-    let meshed_bem = bem_bodies().any(|b| matches!(b, BodySpec::Bem { mesh: Some(_), .. }));
-    let bem_body = bem_bodies().any(|b| matches!(b, BodySpec::Bem { .. }));
+    let bodies = || [&case.bodies.a, &case.bodies.b].into_iter();
+    let meshed_bem = bodies().any(|b| b.has_own_contact_elements());
+    let bem_body = bodies().any(|b| b.capabilities().boundary_elements);
     if c.grid.elements == 0 {
         found.bad(
             "contact.grid.elements".into(),
@@ -596,16 +520,7 @@ fn interior_problems(case: &Case, found: &mut Problems) {
                 "output.interior.body".into(),
                 format!("must be A or B (value = {})", g.body),
             ),
-            Some(BodySpec::HalfSpace { .. } | BodySpec::Bem { .. }) => {}
-            Some(BodySpec::Layer { .. }) => found.bad(
-                "output.interior.body".into(),
-                format!(
-                    "body {} is a layer, whose model gives its surface only; ask for the other body, or \
-                     model the cover by `bem` (geometry: covered_roller)",
-                    g.body
-                ),
-            ),
-            Some(BodySpec::Rigid { .. }) => found.bad(
+            Some(body) if !body.capabilities().deforms => found.bad(
                 "output.interior.body".into(),
                 format!(
                     "body {} is rigid: it does not deform and has no interior stresses; ask for a \
@@ -613,6 +528,17 @@ fn interior_problems(case: &Case, found: &mut Problems) {
                     g.body
                 ),
             ),
+            Some(body) if !body.capabilities().interior_fields => found.bad(
+                "output.interior.body".into(),
+                format!(
+                    "body {} is a {}, whose model gives its surface only; ask for the other body, or \
+                     model the cover by `bem` (geometry: covered_roller)",
+                    g.body,
+                    body.capabilities().name
+                ),
+            ),
+            // A deforming body with interior fields: the grid is checked below.
+            Some(_) => {}
         }
         for (k, v) in [("x", g.x), ("y", g.y)] {
             if let Some(why) = magnitude(v[0]).or_else(|| magnitude(v[1])) {

@@ -24,7 +24,7 @@ pub(super) fn ratio_of_a_large_friction(case: &Case) -> Option<(String, String)>
     };
     let bem = [&case.bodies.a, &case.bodies.b]
         .into_iter()
-        .any(|b| matches!(b, BodySpec::Bem { .. }));
+        .any(|b| b.capabilities().boundary_elements);
     (bem && r != 0.0 && mu > MAX_FRICTION_UNDER_A_RATIO).then(|| {
         (
             "contact.friction".into(),

@@ -5,7 +5,7 @@ use super::{positive_quantity, shown, Violation};
 use crate::case::schema::*;
 
 /// The broken rules of a `geometry:` body: its lengths, their order, its keys.
-pub(super) fn geometry_violations(
+pub(in crate::case) fn geometry_violations(
     side: &str,
     g: &GeometrySpec,
     contact: &str,

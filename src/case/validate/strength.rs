@@ -71,33 +71,35 @@ fn assessed_body_problems(case: &Case, s: &StrengthSpec) -> Vec<(String, String)
                 continue;
             }
         };
-        match body {
-            BodySpec::Rigid { .. } => out.push((
+        let model = body.capabilities();
+        if !model.deforms {
+            out.push((
                 key.clone(),
                 format!(
                     "body {name} is rigid: it does not deform and has no stresses to assess; leave it out of \
                      `bodies`"
                 ),
-            )),
-            BodySpec::Layer { .. } => out.push((
+            ));
+        } else if !model.interior_fields {
+            out.push((
                 key.clone(),
                 format!(
-                    "body {name} is a layer, whose model gives its surface tractions only, not the stresses \
+                    "body {name} is a {}, whose model gives its surface tractions only, not the stresses \
                      inside the cover; model the cover by `bem` (geometry: covered_roller), or leave it out \
-                     of `bodies`"
+                     of `bodies`",
+                    model.name
                 ),
-            )),
-            BodySpec::HalfSpace { material, .. } | BodySpec::Bem { material, .. } => {
-                let given = case.materials.get(material).is_none_or(|m| m.yield_stress.is_some());
-                if !given {
-                    out.push((
-                        format!("materials.{material}.yield"),
-                        format!(
-                            "missing: output.strength assesses body {name}, so its material needs a yield \
-                             stress, e.g. `yield: {{tensile: 1200}}` (Y) or `yield: {{shear: 690}}` (k)"
-                        ),
-                    ));
-                }
+            ));
+        } else if let Some(material) = body.material_name() {
+            let given = case.materials.get(material).is_none_or(|m| m.yield_stress.is_some());
+            if !given {
+                out.push((
+                    format!("materials.{material}.yield"),
+                    format!(
+                        "missing: output.strength assesses body {name}, so its material needs a yield \
+                         stress, e.g. `yield: {{tensile: 1200}}` (Y) or `yield: {{shear: 690}}` (k)"
+                    ),
+                ));
             }
         }
     }

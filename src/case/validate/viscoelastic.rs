@@ -62,21 +62,23 @@ pub(super) fn rolling_speed_problems(case: &Case) -> Vec<(String, String)> {
     };
     let mut needs_speed = false;
     for (side, body) in [("A", &case.bodies.a), ("B", &case.bodies.b)] {
-        match body {
-            BodySpec::HalfSpace { material, .. } | BodySpec::Layer { material, .. } => {
-                needs_speed |= creeping(material).is_some_and(|t| t > 0.0)
-            }
-            BodySpec::Bem { material, .. } if creeping(material).is_some() => out.push((
+        // A rigid body has no material; an elastic one needs no speed and fits every model.
+        let Some((material, creep_time)) = body.material_name().and_then(|m| Some((m, creeping(m)?))) else {
+            continue;
+        };
+        let model = body.capabilities();
+        if model.accepts_viscoelastic {
+            needs_speed |= creep_time > 0.0;
+        } else {
+            out.push((
                 format!("bodies.{side}.material"),
                 format!(
                     "material `{material}` is viscoelastic, which rollbem models on `half_space` and `layer` bodies \
-                     only (the aged kernels); give this bem body an elastic material or model it as a half_space \
-                     (a cover on a rigid core: a layer)"
+                     only (the aged kernels); give this {} body an elastic material or model it as a half_space \
+                     (a cover on a rigid core: a layer)",
+                    model.name
                 ),
-            )),
-            // Elastic bem bodies; a rigid body has no material. Every kind named, so that a new
-            // body model decides here whether it takes a viscoelastic material.
-            BodySpec::Bem { .. } | BodySpec::Rigid { .. } => {}
+            ));
         }
     }
     match case.load.speed {
