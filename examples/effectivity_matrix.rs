@@ -76,9 +76,6 @@ pub const VARIANTS: [Variant; 14] = [
 /// The tolerances of the matrix.
 pub const TOLERANCES: [f64; 3] = [1e-3, 1e-4, 1e-5];
 
-/// The runs the validation test repeats (a subset that takes seconds): (variant, tolerance).
-pub const TEST_RUNS: [(usize, f64); 0] = [];
-
 /// One run of the matrix: the solved case and its estimate and true errors (p, q, ξ).
 pub struct Run {
     /// The solved case.
