@@ -1,11 +1,15 @@
 //! The effectivity of the error estimate (estimate over true error) across a matrix of
-//! half-space runs against closed forms: Carter's tractions and creepage for similar bodies
-//! (cases/carter2d_contact.yaml varied in Q/μP, sign of Q, rolling direction, μ, element kind
-//! and grid extent) and Hertz's pressure for a frictionless pair (cases/hertz.yaml with radii
-//! of 10 m, where the circle's profile is Hertz's parabola to (a/R)²/4 ≈ 2.5e-7 of p0), each
-//! at the tolerances 1e-3, 1e-4 and 1e-5. tests/validation (`effectivity::`) asserts every
-//! effectivity of [`TEST_RUNS`] within [1/3, 3] and the true errors within the tolerance, and
-//! the `docs` test compares [`table`] with docs/validation.md.
+//! error-controlled runs. Against closed forms, half-space runs: Carter's tractions and
+//! creepage for similar bodies (cases/carter2d_contact.yaml varied in Q/μP, sign of Q, rolling
+//! direction, μ, element kind and grid extent) and Hertz's pressure for a frictionless pair
+//! (cases/hertz.yaml with radii of 10 m, where the circle's profile is Hertz's parabola to
+//! (a/R)²/4 ≈ 2.5e-7 of p0), each at the tolerances 1e-3, 1e-4 and 1e-5. Against the same case
+//! solved at a tolerance a hundred times smaller ([`REFERENCED`], no closed form): a dissimilar
+//! pair in partial slip (cases/dissimilar_al_steel_075.yaml, aluminium on steel, Q/μP 0.75,
+//! where the normal and tangential problems are coupled) and BEM rollers on shafts
+//! (cases/carter_051_true.yaml, and the paper's Fig. 14 rollers of two radii). tests/validation
+//! (`effectivity::`) asserts every effectivity within [1/3, 3] and the true errors within the
+//! tolerance, and the `docs` test compares [`table`] with docs/validation.md.
 //!
 //! Run: `cargo run --release --example effectivity_matrix` (the table of docs/validation.md).
 
@@ -15,7 +19,7 @@ use rollbem::adapt::estimate::CREEP_FLOOR;
 use rollbem::analytic::{hertz_pressure, Carter};
 use rollbem::app::{self, Solved};
 use rollbem::contact::TangentialControl;
-use rollbem::post::norms::nodal_error_against;
+use rollbem::post::norms::{nodal_error, nodal_error_against};
 
 /// The header of the table.
 pub const HEADER: [&str; 12] = [
@@ -72,9 +76,6 @@ pub const VARIANTS: [Variant; 14] = [
 /// The tolerances of the matrix.
 pub const TOLERANCES: [f64; 3] = [1e-3, 1e-4, 1e-5];
 
-/// The runs the validation test repeats (a subset that takes seconds): (variant, tolerance).
-pub const TEST_RUNS: [(usize, f64); 0] = [];
-
 /// One run of the matrix: the solved case and its estimate and true errors (p, q, ξ).
 pub struct Run {
     /// The solved case.
@@ -88,21 +89,90 @@ pub struct Run {
 }
 
 /// Solves `variant` at `tolerance`; panics when the case is refused or a solve fails.
-pub fn run(variant: &Variant, tolerance: f64) -> Run {
+pub fn solve(variant: &Variant, tolerance: f64) -> Solved {
     let (label, case, set) = *variant;
     let mut overrides = vec![format!("contact.grid.tolerance={tolerance:e}")];
     overrides.extend(set.iter().map(|s| s.to_string()));
     let s = app::solve_case(&common::case_path(case), &overrides).unwrap_or_else(|e| panic!("{label}: {e}"));
     assert!(s.report.converged, "{label} at {tolerance:e}: a solve did not converge");
+    s
+}
+
+/// Solves `variant` at `tolerance` and measures its true errors with `truth`.
+pub fn run_with(variant: &Variant, tolerance: f64, truth: impl Fn(&Solved) -> [f64; 3]) -> Run {
+    let s = solve(variant, tolerance);
     let a = s.adaptation.as_ref().expect("an error-controlled run");
     let e = a.estimate.expect("an estimate");
-    let truth = true_errors(&s);
     Run {
         estimate: [e.pressure_rms, e.shear_rms, e.creep_rel],
-        truth,
+        truth: truth(&s),
         reached: a.reached,
         solved: s,
     }
+}
+
+/// Solves `variant` at `tolerance` and measures its true errors against the closed forms.
+pub fn run(variant: &Variant, tolerance: f64) -> Run {
+    run_with(variant, tolerance, true_errors)
+}
+
+/// A variant without a closed form, measured against the same case solved at
+/// `reference` (a tolerance a hundred times below the smallest of its `tolerances`).
+pub struct Referenced {
+    /// The variant.
+    pub variant: Variant,
+    /// The tolerances it is run at.
+    pub tolerances: &'static [f64],
+    /// The tolerance of its reference run.
+    pub reference: f64,
+}
+
+/// The variants measured against a finer run of their own: the dissimilar pair in partial
+/// slip (aluminium on steel, Q/μP 0.75: the normal and tangential problems are coupled, there
+/// is no closed form) and the BEM rollers on shafts (the contact grid cuts the meshes, the
+/// passes and the final grid solve the bodies' stand-ins).
+pub const REFERENCED: [Referenced; 3] = [
+    Referenced {
+        variant: ("dissimilar Al/steel, Q/μP 0.75", "dissimilar_al_steel_075", &[]),
+        tolerances: &[1e-3, 1e-4],
+        reference: 1e-6,
+    },
+    Referenced {
+        variant: ("BEM rollers, carter_051_true", "carter_051_true", &[]),
+        tolerances: &[1e-3],
+        reference: 1e-5,
+    },
+    Referenced {
+        variant: ("BEM rollers, fig14_true_geometry", "fig14_true_geometry", &[]),
+        tolerances: &[1e-3],
+        reference: 1e-5,
+    },
+];
+
+/// The errors of `run` against `reference`, in the estimate's measures: RMS p/p0 and q/(μp0)
+/// over |x| < a (a and p0 of Hertz's estimates) at the run's nodes, the reference interpolated
+/// by its shape functions, and the creepage's difference relative to the reference's |ξ|, or
+/// to [`CREEP_FLOOR`]·μa/R* where that is smaller.
+pub fn errors_against(reference: &Solved, run: &Solved) -> [f64; 3] {
+    let est = &reference.scene.estimates;
+    let (a, p0, mu) = (
+        est.hertz_half_width,
+        est.hertz_peak_pressure,
+        reference.scene.friction(),
+    );
+    let (x, g) = (&run.solution.x, &reference.problem.grid);
+    let (rp, rq) = (&reference.solution.pressure, &reference.solution.shear);
+    let p = nodal_error(x, a, |i| {
+        (run.solution.pressure[i] - g.interpolate(rp, x[i])).abs() / p0
+    })
+    .rms;
+    let q = nodal_error(x, a, |i| {
+        (run.solution.shear[i] - g.interpolate(rq, x[i])).abs() / (mu * p0)
+    })
+    .rms;
+    let floor = CREEP_FLOOR * mu * a / est.effective_radius.abs();
+    let xi = reference.solution.creep;
+    [p, q, (run.solution.creep - xi).abs() / xi.abs().max(floor)]
 }
 
 /// True errors: RMS p/p0 against Hertz, RMS q/μp0 against Carter (length-weighted over
@@ -183,12 +253,29 @@ pub fn row(label: &str, tolerance: f64, r: &Run) -> Vec<String> {
     ]
 }
 
-/// The whole matrix.
+/// The rows of `referenced`: its reference solved once, then each of its tolerances.
+pub fn referenced_rows(referenced: &Referenced) -> Vec<Vec<String>> {
+    let reference = solve(&referenced.variant, referenced.reference);
+    let truth = |s: &Solved| errors_against(&reference, s);
+    let label = format!("{} (against {:.0e})", referenced.variant.0, referenced.reference);
+    referenced
+        .tolerances
+        .iter()
+        .map(|&tol| row(&label, tol, &run_with(&referenced.variant, tol, truth)))
+        .collect()
+}
+
+/// The whole matrix: the variants against closed forms, then those against finer runs.
 pub fn table() -> common::Table {
     let mut t = common::Table::new(&HEADER);
     for v in &VARIANTS {
         for tol in TOLERANCES {
             t.push(row(v.0, tol, &run(v, tol)));
+        }
+    }
+    for r in &REFERENCED {
+        for cells in referenced_rows(r) {
+            t.push(cells);
         }
     }
     t

@@ -390,7 +390,9 @@ fn validation_adaptive_table() {
     assert_table("validation.md", printed, Rows::All, &["time [s]"], (&[], 0.0));
 }
 
-/// docs/validation.md: the effectivity matrix of the error estimate, without the times.
+/// docs/validation.md: the effectivity matrix of the error estimate, without the times; and
+/// docs/theory.md's constants table quotes its span (lowest and highest effectivity) of p, q
+/// and ξ over the whole matrix.
 #[test]
 fn validation_effectivity_matrix_table() {
     let t = effectivity_matrix::table();
@@ -399,6 +401,26 @@ fn validation_effectivity_matrix_table() {
         rows: &t.rows,
     };
     assert_table("validation.md", printed, Rows::All, &["time [s]"], (&[], 0.0));
+    let span = |column: &str| {
+        let j = t
+            .header
+            .iter()
+            .position(|h| h == column)
+            .expect("a column of the table");
+        let values = t.rows.iter().filter_map(|r| r[j].parse::<f64>().ok());
+        let (lo, hi) = values.fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        (format!("{lo:.2}"), format!("{hi:.2}"))
+    };
+    for (column, before) in [
+        ("effectivity p", "over the matrix they lie in "),
+        ("effectivity q", "second order; over the matrix "),
+        ("effectivity ξ", "the difference itself; over the matrix "),
+    ] {
+        let (lo, hi) = span(column);
+        assert_quoted("theory.md", before, &lo);
+        let quoted_lo = number_after(&page("theory.md"), before);
+        assert_quoted("theory.md", &format!("{before}{quoted_lo}–"), &hi);
+    }
 }
 
 /// docs/validation.md: error-controlled grids of BEM rollers, without the times.
