@@ -208,6 +208,20 @@ impl System<'_> {
         n_cols += usize::from(free_creep);
         let n = n_cols;
         let (J, rhs, lu) = ws.system(n);
+        // The matrix holds the last system's entries (`Workspace::system`): the elastic rows
+        // assign every traction column below; the entries nothing assigns are cleared here —
+        // the overlap column in the stick rows, the creep column in the contact rows, and
+        // the load rows, which `add_row` accumulates.
+        let (n_contact, n_stick) = (contact_rows.len(), stick_rows.len());
+        if let Some(c) = col_overlap {
+            J.col_as_slice_mut(c)[n_contact..n_contact + n_stick].fill(0.0);
+        }
+        if let Some(c) = col_creep {
+            J.col_as_slice_mut(c)[..n_contact].fill(0.0);
+        }
+        for c in 0..n {
+            J.col_as_slice_mut(c)[n_contact + n_stick..].fill(0.0);
+        }
 
         let unknowns = Unknowns {
             p_col: &p_col,
@@ -369,17 +383,19 @@ impl Unknowns<'_> {
                     *o -= (ap + aq * coef) * known_p + aq * known_q;
                 }
             }
+            // Each traction column is one node's Δp or Δq: assigned, not accumulated (the
+            // matrix is not cleared between steps, `Workspace::system`).
             if let Some(c) = self.p_col[j] {
                 let out = &mut J.col_as_slice_mut(c)[first..end];
                 for (o, &i) in out.iter_mut().zip(rows) {
                     let (ap, aq) = (r[i] * col_p[i], r[i] * col_q[i]);
-                    *o += ap + aq * coef;
+                    *o = ap + aq * coef;
                 }
             }
             if let Some(c) = self.q_col[j] {
                 let out = &mut J.col_as_slice_mut(c)[first..end];
                 for (o, &i) in out.iter_mut().zip(rows) {
-                    *o += r[i] * col_q[i];
+                    *o = r[i] * col_q[i];
                 }
             }
         }
