@@ -208,20 +208,7 @@ impl System<'_> {
         n_cols += usize::from(free_creep);
         let n = n_cols;
         let (J, rhs, lu) = ws.system(n);
-        // The matrix holds the last system's entries (`Workspace::system`): the elastic rows
-        // assign every traction column below; the entries nothing assigns are cleared here —
-        // the overlap column in the stick rows, the creep column in the contact rows, and
-        // the load rows, which `add_row` accumulates.
-        let (n_contact, n_stick) = (contact_rows.len(), stick_rows.len());
-        if let Some(c) = col_overlap {
-            J.col_as_slice_mut(c)[n_contact..n_contact + n_stick].fill(0.0);
-        }
-        if let Some(c) = col_creep {
-            J.col_as_slice_mut(c)[..n_contact].fill(0.0);
-        }
-        for c in 0..n {
-            J.col_as_slice_mut(c)[n_contact + n_stick..].fill(0.0);
-        }
+        clear_unassigned(J, contact_rows.len(), stick_rows.len(), col_overlap, col_creep);
 
         let unknowns = Unknowns {
             p_col: &p_col,
@@ -411,6 +398,30 @@ impl Unknowns<'_> {
             .map(|j| self.q_const[j] + self.q_col[j].map_or(0.0, |c| y[(c, 0)]) + self.q_pcoef[j] * dp[j])
             .collect();
         (dp, dq)
+    }
+}
+
+/// Clears the entries of a reduced Newton matrix (`contact` contact rows, then `stick` stick
+/// rows, then the load rows) that [`System::newton_direction`] does not assign: the matrix
+/// holds the last system's entries (`Workspace::system`), the elastic rows assign every
+/// traction column, the overlap column is assigned in the contact rows only and the creep
+/// column in the stick rows only, and the load rows are accumulated (`add_row`).
+#[allow(non_snake_case)]
+fn clear_unassigned(
+    J: &mut Mat<f64>,
+    contact: usize,
+    stick: usize,
+    col_overlap: Option<usize>,
+    col_creep: Option<usize>,
+) {
+    if let Some(c) = col_overlap {
+        J.col_as_slice_mut(c)[contact..contact + stick].fill(0.0);
+    }
+    if let Some(c) = col_creep {
+        J.col_as_slice_mut(c)[..contact].fill(0.0);
+    }
+    for c in 0..J.ncols() {
+        J.col_as_slice_mut(c)[contact + stick..].fill(0.0);
     }
 }
 
