@@ -8,15 +8,69 @@
 //! on 41 elements, each on all threads and on one. Best of `--repeat N` (default 3), all
 //! measured one after the other in one process, so their ratios share the machine's load.
 //!
-//! Run: `cargo run --release --example sweep_cost [-- --repeat 5]`. The ratios are in
-//! docs/performance.md ("Sweeps").
+//! With `--contact BIN` (CONTACT's executable, built outside the repository; docs/performance.md
+//! says how), the same process also times CONTACT on its own benchmark of the Carter scene,
+//! `perfc_test/carter2d_100.inp` (1000 cases of creepage; `--contact-inp FILE`, by default
+//! `perfc_test/carter2d_100.inp` beside the folder holding BIN's source tree), run as
+//! `OMP_NUM_THREADS=1 BIN 2 carter2d_100` in a temporary folder (best of `--repeat`, wall
+//! time, its output files included as CONTACT writes them), and prints the ratio of rollbem's
+//! 1001-value sweep to it on each thread count. Without `--contact` nothing else runs.
+//!
+//! Run: `cargo run --release --example sweep_cost [-- --repeat 5] [--contact BIN
+//! [--contact-inp FILE]]`. The ratios are in docs/performance.md ("Sweeps").
 
 pub mod common;
 
 use common::{case_path, Table};
 use rayon::prelude::*;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
 use std::time::Instant;
+
+/// The value following `flag` on the command line.
+fn arg(args: &[String], flag: &str) -> Option<String> {
+    args.iter()
+        .position(|a| a == flag)
+        .and_then(|i| args.get(i + 1))
+        .cloned()
+}
+
+/// CONTACT's input for the comparison: `--contact-inp`, or `perfc_test/carter2d_100.inp` of
+/// the source tree holding the executable (the executable in its `src/` folder, or a link to it).
+fn contact_inp(args: &[String], bin: &Path) -> PathBuf {
+    if let Some(inp) = arg(args, "--contact-inp") {
+        return PathBuf::from(inp);
+    }
+    let bin = bin.canonicalize().expect("--contact: an existing executable");
+    bin.ancestors()
+        .skip(1)
+        .map(|d| d.join("perfc_test/carter2d_100.inp"))
+        .find(|p| p.is_file())
+        .expect("perfc_test/carter2d_100.inp beside CONTACT's executable; give --contact-inp FILE")
+}
+
+/// CONTACT's run of `inp` (copied into a fresh folder under `dir`) on one thread, as
+/// `OMP_NUM_THREADS=1 BIN 2 <stem>`: its wall time [s], its output files written.
+fn contact_run(bin: &Path, inp: &Path, dir: &Path) -> f64 {
+    let stem = inp.file_stem().and_then(|s| s.to_str()).expect("an input file name");
+    std::fs::create_dir_all(dir).expect("a folder for CONTACT");
+    std::fs::copy(inp, dir.join(format!("{stem}.inp"))).expect("copy CONTACT's input");
+    let t = Instant::now();
+    let status = Command::new(bin)
+        .args(["2", stem])
+        .env("OMP_NUM_THREADS", "1")
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .expect("CONTACT starts");
+    let wall = t.elapsed().as_secs_f64();
+    assert!(status.success(), "CONTACT ran: {status}");
+    let out = std::fs::read_to_string(dir.join(format!("{stem}.out"))).expect("CONTACT's .out");
+    assert!(!out.is_empty(), "CONTACT wrote its output");
+    wall
+}
 
 /// The values of Q/μP: `n` of them from 0 in steps of `step`.
 fn ratios(n: usize, step: f64) -> Vec<String> {
@@ -70,12 +124,14 @@ fn best(repeat: usize, mut f: impl FnMut() -> (f64, usize)) -> (f64, usize) {
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let repeat = args
-        .iter()
-        .position(|a| a == "--repeat")
-        .and_then(|i| args.get(i + 1))
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(3);
+    let repeat = arg(&args, "--repeat").and_then(|v| v.parse().ok()).unwrap_or(3);
+    let contact = arg(&args, "--contact").map(|bin| {
+        let bin = PathBuf::from(bin);
+        let inp = contact_inp(&args, &bin);
+        (bin, inp)
+    });
+    // rollbem's 1001-value sweep on each thread count, for the comparison with CONTACT.
+    let mut carter = Vec::new();
     let case = case_path("carter2d_contact");
     let tmp = tempfile::tempdir().expect("a temporary folder");
     let mut table = Table::new(&[
@@ -116,6 +172,9 @@ fn main() {
                 (single, files, c, s)
             };
             let (single, files, c, s) = if threads == 1 { one.install(run) } else { run() };
+            if n == 1001 {
+                carter.push((threads, s.0));
+            }
             table.push(vec![
                 format!("{n} values, {elements} elements"),
                 threads.to_string(),
@@ -130,4 +189,28 @@ fn main() {
         }
     }
     print!("{}", table.markdown());
+    if let Some((bin, inp)) = contact {
+        let mut k = 0;
+        let (t_contact, _) = best(repeat, || {
+            k += 1;
+            (contact_run(&bin, &inp, &tmp.path().join(format!("contact_{k}"))), 0)
+        });
+        let mut side = Table::new(&["program: Carter cases", "threads", "wall time [s]", "rollbem / CONTACT"]);
+        side.push(vec![
+            "CONTACT: carter2d_100.inp, 1000 creepages, 111 elements".into(),
+            "1".into(),
+            format!("{t_contact:.3}"),
+            "1".into(),
+        ]);
+        for (threads, t) in carter {
+            side.push(vec![
+                "rollbem sweep: 1001 values of Q/μP, 41 elements".into(),
+                threads.to_string(),
+                format!("{t:.3}"),
+                format!("1/{:.1}", t_contact / t),
+            ]);
+        }
+        println!();
+        print!("{}", side.markdown());
+    }
 }
