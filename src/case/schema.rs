@@ -375,7 +375,8 @@ pub struct ContactSpec {
     /// Coulomb friction coefficient μ ≥ 0; the static one μ_s under `falling_friction`.
     pub friction: f64,
     /// Friction falling with the local slip velocity from `friction` to `{kinetic: μ_k,
-    /// slip_velocity: s_h}` (src/contact/falling.rs); needs `load.speed` and `solver.method:
+    /// slip_velocity: s_h}`, optionally with a second exponential `second: {share: w,
+    /// slip_velocity: s_h2}` (src/contact/falling.rs); needs `load.speed` and `solver.method:
     /// newton`. Default: none (constant μ).
     #[serde(default)]
     pub falling_friction: Option<FallingFriction>,

@@ -572,6 +572,7 @@ mod tests {
             law: crate::contact::falling::FallingFriction {
                 kinetic: 0.5 * pb0.friction,
                 slip_velocity: 0.05 * s_max,
+                second: None,
             },
             speed: 1.0,
         };

@@ -75,6 +75,23 @@ pub struct FallingFriction {
     /// Slip velocity s_h > 0 [length/time] over which μ falls by the factor e from μ_s towards
     /// μ_k (the case's length and time units, as `load.speed`).
     pub slip_velocity: f64,
+    /// A second exponential, taking the share w of the fall μ_s − μ_k (CONTACT's law with two
+    /// exponential terms; [`FallingLaw::coefficient`]). None: one exponential.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub second: Option<SecondExponential>,
+}
+
+/// The second exponential of a falling law: μ = μ_k + (μ_s − μ_k)[(1 − w) e^(−|v|/s_h) +
+/// w e^(−|v|/s_h2)]. CONTACT's μ = FKIN + FEXP1 e^(−|v|/SABSH1) + FEXP2 e^(−|v|/SABSH2) with
+/// FEXP1, FEXP2 ≥ 0 is μ_s = FKIN + FEXP1 + FEXP2, μ_k = FKIN, s_h = SABSH1,
+/// w = FEXP2/(FEXP1 + FEXP2), s_h2 = SABSH2.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SecondExponential {
+    /// The share w ∈ [0, 1] of the fall μ_s − μ_k that the second exponential carries [-].
+    pub share: f64,
+    /// Its slip velocity s_h2 > 0 [length/time].
+    pub slip_velocity: f64,
 }
 
 /// A falling law with the speed it needs from the case. The static coefficient μ_s is the
@@ -95,7 +112,12 @@ impl FallingLaw {
     pub fn coefficient(&self, mu_s: f64, slip: f64) -> f64 {
         let v = self.speed * slip.abs();
         let mu_k = self.law.kinetic;
-        mu_k + (mu_s - mu_k) * (-v / self.law.slip_velocity).exp()
+        let first = (-v / self.law.slip_velocity).exp();
+        let decay = match self.law.second {
+            None => first,
+            Some(two) => (1.0 - two.share) * first + two.share * (-v / two.slip_velocity).exp(),
+        };
+        mu_k + (mu_s - mu_k) * decay
     }
 
     /// dμ/ds at the dimensionless slip `slip` [-] for the static coefficient `mu_s` [-]:
@@ -105,8 +127,15 @@ impl FallingLaw {
         if slip == 0.0 {
             return 0.0;
         }
-        let rate = self.speed / self.law.slip_velocity;
-        -(mu_s - self.law.kinetic) * rate * (-rate * slip.abs()).exp() * slip.signum()
+        // d/ds of the decay of `coefficient`: each exponential e^(−V|s|/s_h) gives −(V/s_h)·itself.
+        let rate = |s_h: f64| self.speed / s_h;
+        let term = |s_h: f64| rate(s_h) * (-rate(s_h) * slip.abs()).exp();
+        let first = term(self.law.slip_velocity);
+        let decay = match self.law.second {
+            None => first,
+            Some(two) => (1.0 - two.share) * first + two.share * term(two.slip_velocity),
+        };
+        -(mu_s - self.law.kinetic) * decay * slip.signum()
     }
 
     /// μ at every node of the slip `slip` [-], for the static coefficient `mu_s` [-].
@@ -334,6 +363,7 @@ mod tests {
             law: FallingFriction {
                 kinetic,
                 slip_velocity: 0.5,
+                second: None,
             },
             speed: 100.0,
         }
@@ -379,6 +409,58 @@ mod tests {
         let flat = law(0.3);
         for s in [0.0, 1e-6, 0.005, -3.0] {
             assert_eq!(flat.coefficient(0.3, s), 0.3);
+        }
+    }
+
+    /// The two-exponential law is CONTACT's L = 4 formula under the mapping of
+    /// [`SecondExponential`]: μ = FKIN + FEXP1 e^(−|v|/SABSH1) + FEXP2 e^(−|v|/SABSH2), and
+    /// its slope is the central difference of the coefficient.
+    #[test]
+    fn two_exponentials_are_contacts_law() {
+        let (fkin, fexp1, sabsh1, fexp2, sabsh2) = (0.18, 0.08, 100.0, 0.04, 2000.0);
+        let mu_s = fkin + fexp1 + fexp2;
+        let l = FallingLaw {
+            law: FallingFriction {
+                kinetic: fkin,
+                slip_velocity: sabsh1,
+                second: Some(SecondExponential {
+                    share: fexp2 / (fexp1 + fexp2),
+                    slip_velocity: sabsh2,
+                }),
+            },
+            speed: 45_000.0,
+        };
+        for s in [0.0, 1e-5, -3e-4, 2e-3, 0.05] {
+            let v = 45_000.0 * f64::abs(s);
+            let contact = fkin + fexp1 * (-v / sabsh1).exp() + fexp2 * (-v / sabsh2).exp();
+            assert!((l.coefficient(mu_s, s) - contact).abs() < 1e-15, "s = {s}");
+            if s != 0.0 {
+                let h = 1e-7 * s.abs();
+                let fd = (l.coefficient(mu_s, s + h) - l.coefficient(mu_s, s - h)) / (2.0 * h);
+                assert!(
+                    (l.slope(mu_s, s) - fd).abs() <= 1e-6 * fd.abs().max(1e-3),
+                    "s = {s}: {fd}"
+                );
+            }
+        }
+        // A share of 0 is the one-exponential law, bit for bit.
+        let one = FallingLaw {
+            law: FallingFriction { second: None, ..l.law },
+            ..l
+        };
+        let zero_share = FallingLaw {
+            law: FallingFriction {
+                second: Some(SecondExponential {
+                    share: 0.0,
+                    slip_velocity: sabsh2,
+                }),
+                ..l.law
+            },
+            ..l
+        };
+        for s in [1e-5, 2e-3] {
+            assert_eq!(one.coefficient(mu_s, s), zero_share.coefficient(mu_s, s));
+            assert_eq!(one.slope(mu_s, s), zero_share.slope(mu_s, s));
         }
     }
 }

@@ -59,6 +59,12 @@ fn a_valid_falling_law_passes_check() {
     // μ_k = μ_s (constant friction written as a law) is valid too.
     let (code, stderr, _) = run("check", &["contact.falling_friction.kinetic=0.3"]);
     assert_eq!(code, 0, "{stderr}");
+    // A second exponential.
+    let (code, stderr, _) = run(
+        "check",
+        &["contact.falling_friction.second={share: 0.25, slip_velocity: 2000.0}"],
+    );
+    assert_eq!(code, 0, "{stderr}");
     // A transient history takes the law in its rolling steps.
     let (code, stderr, _) = run("check", &["transient={steps: 3}"]);
     assert_eq!(code, 0, "{stderr}");
@@ -84,6 +90,16 @@ fn falling_friction_keys_are_checked() {
         );
     }
     assert_refused(&["load.speed=null"], "load.speed", &["missing", "falling_friction"]);
+    assert_refused(
+        &["contact.falling_friction.second={share: 1.5, slip_velocity: 10.0}"],
+        "contact.falling_friction.second.share",
+        &["[0, 1]", "1.5"],
+    );
+    assert_refused(
+        &["contact.falling_friction.second={share: 0.5, slip_velocity: 0}"],
+        "contact.falling_friction.second.slip_velocity",
+        &["> 0"],
+    );
     for method in ["gauss_seidel", "norm_tang", "newton_plain"] {
         assert_refused(
             &[&format!("solver.method={method}")],

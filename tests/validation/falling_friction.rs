@@ -55,6 +55,17 @@ fn falling_law_holds_at_every_node() {
 /// Every contact node of `solved` satisfies the falling law μ(V|s|) (module docs) with `mu_s`,
 /// `mu_k`, `s_h`, `speed`; returns the number of slipping nodes and the lowest μ among them.
 fn law_holds(solved: &rollbem::post::Solved, (mu_s, mu_k, s_h, speed): (f64, f64, f64, f64)) -> (usize, f64) {
+    law_of_velocity_holds(solved, mu_s, speed, |v| mu_k + (mu_s - mu_k) * (-v / s_h).exp())
+}
+
+/// [`law_holds`] for any law `mu` of the slip velocity |v| = V|s| [length/time], static
+/// coefficient `mu_s` and speed V.
+fn law_of_velocity_holds(
+    solved: &rollbem::post::Solved,
+    mu_s: f64,
+    speed: f64,
+    mu_of: impl Fn(f64) -> f64,
+) -> (usize, f64) {
     let (pb, z) = (&solved.problem, &solved.solution);
     let slip = pb.slip(&z.pressure, &z.shear, z.creep);
     let p0 = z.pressure.iter().fold(0.0_f64, |a, &b| a.max(b));
@@ -65,7 +76,7 @@ fn law_holds(solved: &rollbem::post::Solved, (mu_s, mu_k, s_h, speed): (f64, f64
         if p <= 1e-12 * p0 {
             continue;
         }
-        let mu = mu_k + (mu_s - mu_k) * (-speed * s.abs() / s_h).exp();
+        let mu = mu_of(speed * s.abs());
         let q = z.shear[i].abs();
         assert!(
             q <= mu * p + 1e-8 * mu_s * p0,
@@ -281,4 +292,32 @@ fn a_history_under_a_falling_law_settles_on_its_steady_state() {
     let (with_law, _) = history_of(&flat, steady_c.creep, 20);
     let (without, _) = history_of(&constant, steady_c.creep, 20);
     assert_eq!(with_law.state, without.state);
+}
+
+/// CONTACT's law with two exponentials, μ = FKIN + FEXP1 e^(−|v|/SABSH1) + FEXP2 e^(−|v|/SABSH2)
+/// (its friction law L = 4), written as `second: {share, slip_velocity}`
+/// (src/contact/falling.rs, `SecondExponential`), on the veldep_fric scene: FKIN 0.18, FEXP1
+/// 0.09, SABSH1 100 mm/s, FEXP2 0.03, SABSH2 2000 mm/s. Every contact node satisfies CONTACT's
+/// formula, evaluated here from the tractions and the recomputed slip; the slower second decay
+/// keeps μ higher than one exponential of the same fall would, so the force lies above it.
+#[test]
+fn falling_law_with_two_exponentials_holds_at_every_node() {
+    let (fkin, fexp1, sabsh1, fexp2, sabsh2) = (0.18, 0.09, 100.0, 0.03, 2000.0);
+    let two = solve(
+        "veldep_fric",
+        &["contact.falling_friction={kinetic: 0.18, slip_velocity: 100.0, second: {share: 0.25, slip_velocity: 2000.0}}"],
+    );
+    assert!(two.report.converged, "{:?}", two.report.fallbacks);
+    let contact = |v: f64| fkin + fexp1 * (-v / sabsh1).exp() + fexp2 * (-v / sabsh2).exp();
+    let (slipping, lowest) = law_of_velocity_holds(&two, 0.30, 45_000.0, contact);
+    let one = solve("veldep_fric", &[]);
+    let (r_two, r_one) = (traction_ratio(&two, 0.30), traction_ratio(&one, 0.30));
+    eprintln!(
+        "two exponentials: Q/(μ_s P) {r_two:.4} (one: {r_one:.4}), {slipping} slipping nodes, lowest μ {lowest:.4}"
+    );
+    assert!(
+        slipping >= 20 && lowest < 0.25,
+        "{slipping} slipping nodes, lowest μ {lowest}"
+    );
+    assert!(r_two > r_one, "two exponentials {r_two}, one {r_one}");
 }

@@ -49,6 +49,27 @@ pub(super) fn falling_friction_problems(case: &Case) -> Vec<(String, String)> {
     };
     let mut out = Vec::new();
     let mu_s = case.contact.friction;
+    if let Some(two) = &law.second {
+        if !(0.0..=1.0).contains(&two.share) {
+            out.push((
+                "contact.falling_friction.second.share".into(),
+                format!(
+                    "the second exponential's share of the fall from static to kinetic friction must lie in \
+                     [0, 1] (value = {}); CONTACT's FEXP1, FEXP2 ≥ 0 map to share = FEXP2/(FEXP1 + FEXP2)",
+                    shown(two.share)
+                ),
+            ));
+        }
+        if !(two.slip_velocity > 0.0 && two.slip_velocity.is_finite()) {
+            out.push((
+                "contact.falling_friction.second.slip_velocity".into(),
+                format!(
+                    "the second exponential's slip velocity must be > 0 and finite (value = {})",
+                    shown(two.slip_velocity)
+                ),
+            ));
+        }
+    }
     if !(law.kinetic >= 0.0 && law.kinetic <= mu_s) {
         out.push((
             "contact.falling_friction.kinetic".into(),

@@ -5,7 +5,7 @@
 use super::Unknowns;
 use faer::Mat;
 
-/// The rows of slipping nodes under a falling law (module docs of [`super::falling`]): the
+/// The rows of slipping nodes under a falling law (module docs of [`crate::contact::falling`]): the
 /// linearised G4_i = q_i − μ(s_i) p̂_i sgn_i with the slope c_i = sgn_i p̂_i dμ/ds at the
 /// node, Δs_i taken from the elastic slip row:
 ///
