@@ -225,7 +225,9 @@ pub(super) fn run(
     let speed = case.case.load.speed;
     output::write_atomically(output_dir, folder::Kind::Run, |tmp| {
         write_transient_csv(tmp, &records, &solved.problem.grid, friction, speed)?;
-        write_steps(tmp, &records, &solved.problem, summary.vtk)?;
+        write_steps(tmp, &records, &solved.problem, summary.vtk, |k, last| {
+            spec.writes_step(k, last)
+        })?;
         let unit = |key: &str| summary.units.get(key).map_or("", String::as_str);
         let units = [unit("overlap"), unit("max_pressure"), unit("normal_force")];
         write_transient_svg(tmp, &records, friction, &summary.title, units)?;

@@ -32,6 +32,20 @@ pub struct TransientSpec {
     /// [`Schedule`]. Default = `load.tangential` as a constant.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangential: Option<TangentialSchedule>,
+    /// Write the files of every `write_every`-th step into steps/ (and the ParaView series),
+    /// always with step 0 and the last: N ≥ 1. Default = 1 (every step). transient.csv keeps a
+    /// row for every step.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub write_every: Option<usize>,
+}
+
+impl TransientSpec {
+    /// Whether step `k` of a history whose last step is `last` has its files in steps/
+    /// (`write_every`: step 0, every N-th and the last).
+    pub fn writes_step(&self, k: usize, last: usize) -> bool {
+        let every = self.write_every.unwrap_or(1).max(1);
+        k == 0 || k == last || k % every == 0
+    }
 }
 
 /// `transient.shift`: exactly one key, the tangential control of a shift without rolling.

@@ -206,16 +206,24 @@ pub fn write_transient_csv(
     w.flush().map_err(|e| io(&e))
 }
 
-/// Writes each step's contact.csv as steps/step_NNNN.csv and, with `vtk`, its contact line as
-/// steps/step_NNNN.vtu and the ParaView series transient.pvd (time = the rolled distance).
-pub fn write_steps(dir: &Path, records: &[StepRecord], pb: &ContactProblem, vtk: bool) -> Result<(), Error> {
+/// Writes the contact.csv of each step `written` picks (by its number and the last step's) as
+/// steps/step_NNNN.csv and, with `vtk`, its contact line as steps/step_NNNN.vtu and the ParaView
+/// series transient.pvd over them (time = the rolled distance).
+pub fn write_steps(
+    dir: &Path,
+    records: &[StepRecord],
+    pb: &ContactProblem,
+    vtk: bool,
+    written: impl Fn(usize, usize) -> bool,
+) -> Result<(), Error> {
     let folder = dir.join("steps");
     std::fs::create_dir(&folder).map_err(|e| Error::Output {
         path: folder.clone(),
         message: e.to_string(),
     })?;
     let mut entries = Vec::new();
-    for (k, r) in records.iter().enumerate() {
+    let last = records.len().saturating_sub(1);
+    for (k, r) in records.iter().enumerate().filter(|(k, _)| written(*k, last)) {
         write_csv(&folder.join(step_file(k, "csv")), &r.solution, pb)?;
         if vtk {
             vtk::write_contact_line(&folder.join(step_file(k, "vtu")), &r.solution, pb)?;

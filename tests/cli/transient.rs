@@ -162,3 +162,37 @@ fn a_step_that_does_not_converge_stops_the_history() {
     );
     assert!(!out.exists());
 }
+
+/// `transient.write_every: 7` on 20 steps: steps/ holds steps 0, 7, 14 and the last (20), the
+/// ParaView series those four, and transient.csv every step (21 rows).
+#[test]
+fn write_every_thins_the_steps_files_not_the_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("thin");
+    let case = case_path("cattaneo_to_carter");
+    let (code, _, stderr) = rollbem(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "transient.steps=20",
+        "--set",
+        "transient.write_every=7",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let mut written: Vec<String> = std::fs::read_dir(out.join("steps"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".csv"))
+        .collect();
+    written.sort();
+    assert_eq!(
+        written,
+        ["step_0000.csv", "step_0007.csv", "step_0014.csv", "step_0020.csv"]
+    );
+    let pvd = std::fs::read_to_string(out.join("transient.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 4);
+    let (_, rows) = read_rows(&std::fs::read_to_string(out.join("transient.csv")).unwrap());
+    assert_eq!(rows.len(), 21);
+}

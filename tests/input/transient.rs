@@ -76,6 +76,7 @@ fn a_history_with_good_keys_runs() {
 #[test]
 fn bad_steps_are_refused_by_key() {
     assert_refused(&["transient.steps=0"], "transient.steps", &["1..="]);
+    assert_refused(&["transient.write_every=0"], "transient.write_every", &[">= 1"]);
     assert_refused(&["transient.step=-0.01"], "transient.step", &["positive"]);
     assert_refused(&["transient.step=0"], "transient.step", &["positive"]);
     assert_refused(&["transient.step=5"], "transient.step", &["contact"]);

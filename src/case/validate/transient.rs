@@ -26,6 +26,14 @@ pub(super) fn transient_problems(case: &Case) -> Vec<(String, String)> {
             ),
         ));
     }
+    if t.write_every == Some(0) {
+        out.push((
+            "transient.write_every".into(),
+            "write every N-th step's files with N >= 1 (1, the default, writes every step; step 0 and the \
+             last are always written)"
+                .into(),
+        ));
+    }
     out.extend(step_problems(case, t));
     out.extend(schedule_problems(case, t));
     out.extend(shift_problems(case, t));
