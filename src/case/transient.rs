@@ -44,7 +44,7 @@ impl TransientSpec {
     /// (`write_every`: step 0, every N-th and the last).
     pub fn writes_step(&self, k: usize, last: usize) -> bool {
         let every = self.write_every.unwrap_or(1).max(1);
-        k == 0 || k == last || k % every == 0
+        k == 0 || k == last || k.is_multiple_of(every)
     }
 }
 
