@@ -82,9 +82,9 @@ pub struct FallingFriction {
 }
 
 /// The second exponential of a falling law: μ = μ_k + (μ_s − μ_k)[(1 − w) e^(−|v|/s_h) +
-/// w e^(−|v|/s_h2)]. CONTACT's μ = FKIN + FEXP1 e^(−|v|/SABSH1) + FEXP2 e^(−|v|/SABSH2) with
-/// FEXP1, FEXP2 ≥ 0 is μ_s = FKIN + FEXP1 + FEXP2, μ_k = FKIN, s_h = SABSH1,
-/// w = FEXP2/(FEXP1 + FEXP2), s_h2 = SABSH2.
+/// w e^(−|v|/s_h2)]. CONTACT's μ = FKIN + FEXP1 e^(−ln 2 |v|/SABSH1) + FEXP2 e^(−ln 2 |v|/SABSH2)
+/// (each term halved at its SABSH) with FEXP1, FEXP2 ≥ 0 is μ_s = FKIN + FEXP1 + FEXP2,
+/// μ_k = FKIN, s_h = SABSH1/ln 2, w = FEXP2/(FEXP1 + FEXP2), s_h2 = SABSH2/ln 2.
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SecondExponential {
@@ -413,8 +413,9 @@ mod tests {
     }
 
     /// The two-exponential law is CONTACT's L = 4 formula under the mapping of
-    /// [`SecondExponential`]: μ = FKIN + FEXP1 e^(−|v|/SABSH1) + FEXP2 e^(−|v|/SABSH2), and
-    /// its slope is the central difference of the coefficient.
+    /// [`SecondExponential`]: μ = FKIN + FEXP1 e^(−ln 2 |v|/SABSH1) + FEXP2 e^(−ln 2 |v|/SABSH2)
+    /// (eve70a/CONTACT, src/m_friclaw.f90: each term halved at its SABSH), and its slope is the
+    /// central difference of the coefficient.
     #[test]
     fn two_exponentials_are_contacts_law() {
         let (fkin, fexp1, sabsh1, fexp2, sabsh2) = (0.18, 0.08, 100.0, 0.04, 2000.0);
@@ -422,18 +423,19 @@ mod tests {
         let l = FallingLaw {
             law: FallingFriction {
                 kinetic: fkin,
-                slip_velocity: sabsh1,
+                slip_velocity: sabsh1 / std::f64::consts::LN_2,
                 second: Some(SecondExponential {
                     share: fexp2 / (fexp1 + fexp2),
-                    slip_velocity: sabsh2,
+                    slip_velocity: sabsh2 / std::f64::consts::LN_2,
                 }),
             },
             speed: 45_000.0,
         };
         for s in [0.0, 1e-5, -3e-4, 2e-3, 0.05] {
             let v = 45_000.0 * f64::abs(s);
-            let contact = fkin + fexp1 * (-v / sabsh1).exp() + fexp2 * (-v / sabsh2).exp();
-            assert!((l.coefficient(mu_s, s) - contact).abs() < 1e-15, "s = {s}");
+            let halved = |sabsh: f64| (-std::f64::consts::LN_2 * v / sabsh).exp();
+            let contact = fkin + fexp1 * halved(sabsh1) + fexp2 * halved(sabsh2);
+            assert!((l.coefficient(mu_s, s) - contact).abs() < 1e-14, "s = {s}");
             if s != 0.0 {
                 let h = 1e-7 * s.abs();
                 let fd = (l.coefficient(mu_s, s + h) - l.coefficient(mu_s, s - h)) / (2.0 * h);
