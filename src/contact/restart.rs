@@ -228,11 +228,23 @@ pub fn solve_neighbour(
     budget: usize,
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
-    let limited = NewtonSettings {
+    warm_then_cold(
+        pb,
+        settings,
+        &with_budget(settings, budget),
+        measure,
+        warm,
+        FirstStep::Full,
+        ws,
+    )
+}
+
+/// `settings` with at most `budget` iterations.
+fn with_budget(settings: &NewtonSettings, budget: usize) -> NewtonSettings {
+    NewtonSettings {
         max_iterations: budget.min(settings.max_iterations),
         ..*settings
-    };
-    warm_then_cold(pb, settings, &limited, measure, warm, FirstStep::Full, ws)
+    }
 }
 
 /// One line-search Newton attempt from `warm` with at most `budget` iterations and no restarts
@@ -246,11 +258,8 @@ pub fn attempt_warm(
     budget: usize,
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
-    let limited = NewtonSettings {
-        max_iterations: budget.min(settings.max_iterations),
-        ..*settings
-    };
     let own = (settings.formulation, settings.penalty_scale);
+    let limited = with_budget(settings, budget);
     let (out, used) = coupled_attempt(pb, own, warm, FirstStep::Searched, &limited, measure, ws);
     newton::report(settings, out, used, measure, Vec::new())
 }
