@@ -79,7 +79,9 @@ fn a_rigid_body_has_no_interior_nothing_to_assess_and_presses_through_a_cover() 
             "output.strength={bodies: [A]}",
         ],
         &[
-            "bodies.B.thickness: the cover is 2 thick but load.normal.overlap = 3 presses the rigid body A",
+            "bodies.B.thickness: the cover is 2 thick but load.normal.overlap = 3 presses the rigid body A that \
+             deep into it (1.500 times its thickness): linear elasticity describes compressions of a small \
+             fraction of the cover; give a thicker cover or a smaller overlap",
             "output.interior.body: body A is rigid: it does not deform and has no interior stresses; ask for \
              a half_space or bem body",
             "output.strength.bodies: body A is rigid: it does not deform and has no stresses to assess; leave \

@@ -15,7 +15,9 @@ pub(super) fn overlap_through_a_cover(bodies: &Bodies, overlap: f64) -> Vec<(Str
                 out.push((
                     format!("bodies.{side}.thickness"),
                     format!(
-                        "the cover is {} thick but load.normal.overlap = {} presses the rigid body {} that                          deep into it ({:.3} times its thickness): linear elasticity describes compressions                          of a small fraction of the cover; give a thicker cover or a smaller overlap",
+                        "the cover is {} thick but load.normal.overlap = {} presses the rigid body {} that deep into \
+                         it ({:.3} times its thickness): linear elasticity describes compressions of a small \
+                         fraction of the cover; give a thicker cover or a smaller overlap",
                         shown(thickness),
                         shown(overlap),
                         if side == "A" { "B" } else { "A" },
