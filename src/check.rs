@@ -23,9 +23,53 @@ pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
     t.push_str(&format!("  {:<26} {}\n", "title", case.case.title));
     mesh_lines(case, &scene, &mut t)?;
     estimate_lines(case, &scene, &mut t);
+    transient_lines(case, &scene, &mut t);
     advice_lines(case, &scene, tolerance, &mut t);
     cost_lines(case, &scene, &mut t)?;
     Ok(t)
+}
+
+/// A transient case's history as planned (cases/README.md, "Transient rolling"): the steps,
+/// the step against the grid's node spacing and the Hertz half-width a, the distance rolled,
+/// how many steps' files steps/ will hold, and a note when the history ends before about 4a,
+/// the distance over which a change of load settles (docs/transient.md: Cattaneo to Carter
+/// within 1e-3 μp0 from about 4.5a, the BEM braking step from about 3.8a). The rest of the
+/// report is the history's steady problem: `rollbem run` alone solves the history.
+fn transient_lines(case: &LoadedCase, scene: &Scene, t: &mut String) {
+    let Some(spec) = &case.case.transient else { return };
+    let c = &case.case;
+    let l = &c.units.length;
+    let spacing = scene.grid.node_spacing();
+    let step = spec
+        .step
+        .or_else(|| spec.time_step.zip(c.load.speed).map(|(dt, v)| dt * v))
+        .unwrap_or(spacing);
+    let a = scene.estimates.hertz_half_width;
+    let rolled = step * spec.steps as f64;
+    let written = (0..=spec.steps).filter(|&k| spec.writes_step(k, spec.steps)).count();
+    let mut line = |k: &str, v: String| t.push_str(&format!("  {k:<26} {v}\n"));
+    line(
+        "transient history",
+        format!(
+            "{} rolling steps of {step:.6} {l} ({:.3} node spacings, {:.4}a) after step 0, rolled {rolled:.4} {l} \
+             = {:.2}a; steps/ will hold {written} steps' files; `rollbem run` solves the history, the rest \
+             of this report is its steady problem",
+            spec.steps,
+            step / spacing,
+            step / a,
+            rolled / a
+        ),
+    );
+    if rolled < 4.0 * a {
+        line(
+            "",
+            format!(
+                "note: the history ends after {:.2}a; a change of load settles over about 4a to 5a \
+                 (docs/transient.md), so its last step may not be steady yet (summary.json says)",
+                rolled / a
+            ),
+        );
+    }
 }
 
 /// The bodies as understood, their meshes' groups, loops and contact segments, and how their contact nodes meet the grid.

@@ -196,3 +196,32 @@ fn write_every_thins_the_steps_files_not_the_table() {
     let (_, rows) = read_rows(&std::fs::read_to_string(out.join("transient.csv")).unwrap());
     assert_eq!(rows.len(), 21);
 }
+
+/// `rollbem check` of a transient case reports the history as planned: the steps, the step
+/// against the node spacing and a, the distance rolled, the steps' files; and a note when the
+/// history ends before the 4a a change of load takes to settle (the shipped case rolls 8.6a).
+#[test]
+fn check_reports_the_history_as_planned() {
+    let case = case_path("cattaneo_to_carter");
+    let (code, stdout, stderr) = rollbem(&["check", case.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stdout.contains("400 rolling steps of 0.021505 mm (1.000 node spacings")
+            && stdout.contains("steps/ will hold 401 steps' files")
+            && !stdout.contains("note: the history ends"),
+        "{stdout}"
+    );
+    let (code, stdout, stderr) = rollbem(&[
+        "check",
+        case.to_str().unwrap(),
+        "--set",
+        "transient.steps=50",
+        "--set",
+        "transient.write_every=10",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stdout.contains("steps/ will hold 6 steps' files") && stdout.contains("note: the history ends after 1.08a"),
+        "{stdout}"
+    );
+}
