@@ -40,10 +40,7 @@ fn transient_lines(case: &LoadedCase, scene: &Scene, t: &mut String) {
     let c = &case.case;
     let l = &c.units.length;
     let spacing = scene.grid.node_spacing();
-    let step = spec
-        .step
-        .or_else(|| spec.time_step.zip(c.load.speed).map(|(dt, v)| dt * v))
-        .unwrap_or(spacing);
+    let step = spec.step_length(c.load.speed, spacing);
     let a = scene.estimates.hertz_half_width;
     let rolled = step * spec.steps as f64;
     let written = (0..=spec.steps).filter(|&k| spec.writes_step(k, spec.steps)).count();

@@ -28,11 +28,7 @@ impl Plan {
     /// The plan of `spec` on `scene` (Δ: `step`, speed × `time_step`, else the node spacing).
     fn of(spec: &TransientSpec, scene: &Scene) -> Self {
         let load = &scene.case.case.load;
-        let step = match (spec.step, spec.time_step, load.speed) {
-            (Some(d), _, _) => d,
-            (None, Some(dt), Some(v)) => v * dt,
-            _ => scene.grid.node_spacing(),
-        };
+        let step = spec.step_length(load.speed, scene.grid.node_spacing());
         Self {
             step,
             steps: spec.steps,

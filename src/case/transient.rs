@@ -40,6 +40,16 @@ pub struct TransientSpec {
 }
 
 impl TransientSpec {
+    /// The rolling distance Δ of a step [length]: `step`, else `time_step` × the rolling
+    /// `speed` [length/time], else the grid's node `spacing` [length] (the default).
+    pub fn step_length(&self, speed: Option<f64>, spacing: f64) -> f64 {
+        match (self.step, self.time_step, speed) {
+            (Some(d), _, _) => d,
+            (None, Some(dt), Some(v)) => v * dt,
+            _ => spacing,
+        }
+    }
+
     /// Whether step `k` of a history whose last step is `last` has its files in steps/
     /// (`write_every`: step 0, every N-th and the last).
     pub fn writes_step(&self, k: usize, last: usize) -> bool {

@@ -73,17 +73,14 @@ pub struct Workspace {
     kept: Option<KeptFactor>,
 }
 
-/// A factored reduced system kept for reuse: the matrix as assembled, its LU factors (in the
-/// matrix's place, as [`LuWorkspace::solve_in_place`] leaves them) and the LU workspace that
-/// holds their pivots.
+/// A factored reduced system kept for reuse: the matrix as assembled (0 × 0 while none is
+/// kept, so that no system compares equal), its LU factors (in the matrix's place, as
+/// [`LuWorkspace::solve_in_place`] leaves them) and the LU workspace that holds their pivots.
 #[derive(Debug)]
 struct KeptFactor {
     system: Mat<f64>,
     factors: Mat<f64>,
     lu: LuWorkspace,
-    /// Whether `factors` are those of `system` (false before the first factorisation and after
-    /// the buffers grow).
-    valid: bool,
     /// Systems solved with new factors, and with the kept ones.
     factored: usize,
     reused: usize,
@@ -126,7 +123,6 @@ impl Workspace {
                 system: Mat::new(),
                 factors: Mat::new(),
                 lu: LuWorkspace::new(),
-                valid: false,
                 factored: 0,
                 reused: 0,
             }),
@@ -159,7 +155,8 @@ impl Workspace {
             if let Some(kept) = self.kept.as_mut() {
                 kept.factors = Mat::new();
                 kept.factors.reserve(n, n);
-                kept.valid = false;
+                // No system is kept with them: no matrix compares equal to an empty one.
+                kept.system.truncate(0, 0);
             }
         }
         // Truncating first makes the resize write every entry once: zeros, whatever the last
@@ -187,7 +184,7 @@ impl Workspace {
             lu.solve_in_place(matrix.as_mut(), rhs.as_mut());
             return;
         };
-        if kept.valid && same_bits(kept.system.as_ref(), matrix.as_ref()) {
+        if same_bits(kept.system.as_ref(), matrix.as_ref()) {
             kept.lu.solve_again(kept.factors.as_ref(), rhs.as_mut());
             kept.reused += 1;
             return;
@@ -199,7 +196,6 @@ impl Workspace {
         // The factors stay; the old kept buffer (same capacity) is the next system's matrix.
         std::mem::swap(matrix, &mut kept.factors);
         std::mem::swap(lu, &mut kept.lu);
-        kept.valid = true;
         kept.factored += 1;
     }
 }
