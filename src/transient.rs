@@ -126,6 +126,8 @@ pub struct History {
     settings: SolverSettings,
     /// The relative tangential displacement w at the end of the last step [length].
     displacement: Vec<f64>,
+    /// The compression h (displacements into both bodies) at the end of the last step [length].
+    compression: Vec<f64>,
     state: Option<State>,
     /// The solver's report of the last step solved.
     report: Option<SolveReport>,
@@ -172,6 +174,7 @@ impl History {
             length: None,
             settings: scene.solver,
             displacement: vec![0.0; m],
+            compression: vec![0.0; m],
             state: None,
             rolled: 0.0,
             falling,
@@ -255,8 +258,10 @@ impl History {
             });
         }
         let displacement = self.problem.relative_tangential(&state.pressure, &state.shear);
-        let energy = self.energy(&state, &displacement, length, datum);
+        let compression = self.problem.compression(&state.pressure, &state.shear);
+        let energy = self.energy(&state, [&displacement, &compression], step.distance, datum);
         self.displacement = displacement;
+        self.compression = compression;
         self.rolled += step.distance;
         self.state = Some(state.clone());
         self.report = Some(report.clone());
@@ -269,11 +274,19 @@ impl History {
         })
     }
 
-    /// The energy balance of the step just solved into `state` (w = `displacement` at its end)
-    /// against the last step's (still in `self`), its slip length `length` and datum node.
-    fn energy(&self, state: &State, displacement: &[f64], length: f64, datum: Option<usize>) -> energy::StepEnergy {
+    /// The energy balance of the step just solved into `state` (w and h at its end in
+    /// `[displacement, compression]`) against the last step's (still in `self`), its rolled
+    /// distance `distance` and datum node.
+    fn energy(
+        &self,
+        state: &State,
+        [displacement, compression]: [&[f64]; 2],
+        distance: f64,
+        datum: Option<usize>,
+    ) -> energy::StepEnergy {
         let pb = &self.problem;
         let sigma = pb.flow_sign;
+        let length = if distance > 0.0 { distance } else { 1.0 };
         let slip: Vec<f64> = pb
             .slip(&state.pressure, &state.shear, state.creep)
             .iter()
@@ -281,8 +294,21 @@ impl History {
             .collect();
         let rigid: Vec<f64> = self.rigid_slip.iter().map(|k| sigma * length * k).collect();
         let zero = vec![0.0; pb.n_nodes()];
-        let previous_shear = self.state.as_ref().map_or(&zero, |s| &s.shear);
+        let (previous_pressure, previous_shear, previous_overlap) = self
+            .state
+            .as_ref()
+            .map_or((&zero, &zero, 0.0), |s| (&s.pressure, &s.shear, s.overlap));
         let moved = datum.map_or(0.0, |u| displacement[u] - self.displacement[u]);
+        // The normal fields at each node's material point one step earlier (module docs of
+        // [`energy`]): the profile h₀ stands in the contact's frame, the material moves by σΔ.
+        let upstream = |v: &[f64]| displacement_upstream(&pb.grid, v, sigma * distance);
+        let previous_gap: Vec<f64> = pb
+            .h0
+            .iter()
+            .zip(&self.compression)
+            .map(|(h0, h)| h0 - previous_overlap + h)
+            .collect();
+        let profile_change: Vec<f64> = pb.h0.iter().zip(upstream(&pb.h0)).map(|(a, b)| a - b).collect();
         energy::step_energy(&energy::StepFields {
             weights: &pb.grid.weights,
             shear: &state.shear,
@@ -290,6 +316,13 @@ impl History {
             displacement,
             previous_shear,
             previous_displacement: &self.displacement,
+            pressure: &state.pressure,
+            compression,
+            previous_pressure,
+            previous_compression: &self.compression,
+            previous_gap_upstream: &upstream(&previous_gap),
+            profile_change: &profile_change,
+            approach_change: state.overlap - previous_overlap,
             rigid_slip: &rigid,
             shift: sigma * length * state.creep - moved,
         })

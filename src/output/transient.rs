@@ -25,7 +25,7 @@ pub const STEADY_TOLERANCE: f64 = 1e-6;
 pub const SETTLED_TOLERANCE: f64 = 1e-3;
 
 /// Columns of transient.csv and what each measures (`time` needs `load.speed`).
-pub const TRANSIENT_CSV_UNITS: [(&str, Dimension); 21] = [
+pub const TRANSIENT_CSV_UNITS: [(&str, Dimension); 24] = [
     ("step", Count),
     ("distance", Length),
     ("rolled", Length),
@@ -46,7 +46,10 @@ pub const TRANSIENT_CSV_UNITS: [(&str, Dimension); 21] = [
     ("iterations", Count),
     ("dissipation", EnergyPerLength),
     ("shift_work", EnergyPerLength),
+    ("normal_work", EnergyPerLength),
+    ("closing", EnergyPerLength),
     ("stored_change", EnergyPerLength),
+    ("tangential_stored_change", EnergyPerLength),
 ];
 
 /// One step of a history as the outputs need it: the solver's step and its user-facing
@@ -180,7 +183,10 @@ fn row(k: usize, r: &StepRecord, grid: &ContactGrid, friction: f64, speed: Optio
         r.iterations.to_string(),
         cell(Some(r.step.energy.dissipation)),
         cell(Some(r.step.energy.work)),
+        cell(Some(r.step.energy.normal_work)),
+        cell(Some(r.step.energy.closing)),
         cell(Some(r.step.energy.stored_change)),
+        cell(Some(r.step.energy.tangential_stored_change)),
     ]
 }
 
