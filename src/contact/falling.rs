@@ -35,6 +35,10 @@
 //! reports the branch it found (its creepage and forces); a continuation in the creepage from
 //! below and from above can find different ones for the same load.
 
+mod continuation;
+
+pub use continuation::at_amplitude;
+
 use super::newton::NewtonInputs;
 use super::report::{NewtonSettings, SolveReport};
 use super::residual::{ConvergenceMeasure, State};
@@ -176,6 +180,8 @@ pub fn solve(
         Some(z) => law.nodal(mu_s, &z.slip),
         None => vec![mu_s; m],
     };
+    // The continuation's start when both stages fail (the fixed point moves `start` on).
+    let origin = warm.clone();
     let mut start = warm;
     let (mut relaxation, mut last_change) = (1.0_f64, f64::INFINITY);
     let scale = mu_s.max(f64::MIN_POSITIVE);
@@ -210,6 +216,21 @@ pub fn solve(
                 return done;
             }
             next_finish = change / 10.0;
+        }
+        if ends && !settled {
+            // Third the branch from below by a continuation in the law's amplitude, fourth,
+            // where that branch folds, the start from above (continuation.rs).
+            let found = continuation::solve(pb, law, settings, origin.clone(), &mut tally, ws)
+                .or_else(|| continuation::from_above(pb, law, settings, origin.clone(), &mut tally, ws));
+            if let Some(done) = found {
+                log::info!(
+                    target: crate::logging::PROGRESS,
+                    "falling friction: {solve} solve(s) with the nodal mu frozen did not settle (last change \
+                     {change:.1e}); solved by {}",
+                    done.1.fallbacks.last().map_or("", String::as_str)
+                );
+                return done;
+            }
         }
         if ends {
             report.converged &= settled;
