@@ -37,7 +37,7 @@
 
 mod continuation;
 
-pub use continuation::at_amplitude;
+pub use continuation::{at_amplitude, solve_from_side, InitialSlip};
 
 use super::newton::NewtonInputs;
 use super::report::{NewtonSettings, SolveReport};
@@ -172,14 +172,32 @@ pub fn solve(
             return done;
         }
     }
+    let mu = match &warm {
+        Some(z) => law.nodal(pb.friction, &z.slip),
+        None => vec![pb.friction; pb.n_nodes()],
+    };
+    fixed_point(pb, law, settings, warm, mu, true, tally, ws)
+}
+
+/// The outer fixed point of [`solve`] from the nodal coefficients `mu` and the start `warm`
+/// (the iterations so far in `tally`); when it does not settle and `stages`, the continuation
+/// and the start from above of [`continuation`] follow.
+#[allow(clippy::too_many_arguments)]
+fn fixed_point(
+    pb: &ContactProblem,
+    law: &FallingLaw,
+    settings: &NewtonSettings,
+    warm: Option<State>,
+    mut mu: Vec<f64>,
+    stages: bool,
+    mut tally: Tally,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let full = ConvergenceMeasure::new(pb);
     let mut own = pb.clone();
     let mu_s = pb.friction;
     own.falling = None;
     let m = pb.n_nodes();
-    let mut mu = match &warm {
-        Some(z) => law.nodal(mu_s, &z.slip),
-        None => vec![mu_s; m],
-    };
     // The continuation's start when both stages fail (the fixed point moves `start` on).
     let origin = warm.clone();
     let mut start = warm;
@@ -217,7 +235,7 @@ pub fn solve(
             }
             next_finish = change / 10.0;
         }
-        if ends && !settled {
+        if ends && !settled && stages {
             // Third the branch from below by a continuation in the law's amplitude, fourth,
             // where that branch folds, the start from above (continuation.rs).
             let found = continuation::solve(pb, law, settings, origin.clone(), &mut tally, ws)

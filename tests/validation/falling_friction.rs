@@ -419,3 +419,98 @@ fn a_history_under_a_steep_law_runs_through_its_slip_events() {
     );
     assert!(below > 0 && above > 0, "continuation {below}, from above {above}");
 }
+
+/// CONTACT's veldep_fric cases 2 and 4 (examples/veldep_fric.inp: after the steady case 1 at
+/// ξ = −0.09999 %, one transient step of DQ = 0.1 mm at −0.1 % from the initial slip estimate
+/// s⁰ = 0, INISLP = 1, and from s⁰ = V, INISLP = −1), on CONTACT's grid (node spacing 0.1 mm =
+/// DX over its 9.3 mm, `half_length` 4.65 mm on 31 elements), CONTACT's law (s_h = 100/ln 2 mm/s)
+/// and first-order slip (so that the steady state is the history's own fixed point,
+/// src/transient.rs). The step has several solutions (Vollebregt & Schuttelaars 2012, §3):
+/// from the steady state's own branch (the default warm start), from below (Coulomb at μ_s,
+/// then the continuation in the law's amplitude) and from above (the fixed point from μ_k at
+/// every node). Each must satisfy the law at every node (from the tractions, as
+/// `falling_law_holds_at_every_node`), and they must be distinct and ordered as CONTACT's:
+/// above < steady < below.
+///
+/// Against CONTACT (FX/(μ_s FN), docs/friction.md): from below CONTACT gives 0.5977, 0.5958,
+/// 0.5944 on dx = 0.05, 0.025 mm with DQ = 0.1 mm kept; rollbem 0.6057 (0.6001, 0.5997 on 62,
+/// 124 elements). Checked within 2 %: the two codes' steady results on this grid differ by
+/// 0.3 % (0.5941, 0.5959), CONTACT's case 2 moves 0.55 % and rollbem's 1.0 % over the grids
+/// above (measured 1.3 %). From above CONTACT gives 0.5702 (0.5685, 0.5673), rollbem 0.5437
+/// (0.5392, 0.5389): 4.6 % apart, beyond those errors, printed and not asserted (unexplained:
+/// docs/friction.md).
+#[test]
+fn contacts_two_branches_of_one_step_are_found_from_below_and_above() {
+    use rollbem::contact::falling::InitialSlip;
+    use rollbem::contact::{NormalControl, TangentialControl};
+    use rollbem::transient::{History, Step};
+    let (mu_s, mu_k, speed) = (0.30, 0.18, 45_000.0);
+    let s_h = 100.0 / std::f64::consts::LN_2;
+    let overrides = [
+        format!("contact.falling_friction.slip_velocity={s_h}"),
+        "contact.slip_derivative=first_order".to_string(),
+        "contact.grid.elements=31".to_string(),
+        "contact.grid.half_length=4.65".to_string(),
+    ];
+    let case = rollbem::case::load(&crate::common::case_path("veldep_fric"), &overrides).expect("loads");
+    let scene = rollbem::scene::Scene::from_case(&case).expect("scene");
+    let (_, problem) = scene.assemble().expect("assembles");
+    assert!((problem.grid.node_spacing() - 0.1).abs() < 1e-9, "CONTACT's DX");
+    let (steady, report) = rollbem::contact::methods::solve(&problem, &scene.solver);
+    assert!(report.converged);
+    let force = match scene.normal {
+        NormalControl::Force(p) => p,
+        _ => unreachable!("veldep_fric gives P"),
+    };
+    let step = Step {
+        distance: 0.1,
+        normal: NormalControl::Force(force),
+        tangential: TangentialControl::Creep(-0.001),
+    };
+    let p0 = steady.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
+    let mut ratio = |side: InitialSlip| {
+        let mut h = History::from_steady(&scene, steady.clone()).expect("a history");
+        h.set_initial_slip(side);
+        let z = h.advance(step).unwrap_or_else(|e| panic!("{side:?}: {e}")).state;
+        let pb = h.problem();
+        let slip = pb.slip(&z.pressure, &z.shear, z.creep);
+        let smax = slip.iter().fold(0.0_f64, |a, s| a.max(s.abs()));
+        for (i, &si) in slip.iter().enumerate() {
+            if z.pressure[i] <= 1e-12 * p0 {
+                continue;
+            }
+            let mu = mu_k + (mu_s - mu_k) * (-speed * si.abs() / s_h).exp();
+            let (q, p) = (z.shear[i].abs(), z.pressure[i]);
+            assert!(
+                q <= mu * p + 1e-8 * mu_s * p0,
+                "{side:?}, node {i}: |q| {q} above μp {}",
+                mu * p
+            );
+            if si.abs() > 1e-6 * smax {
+                assert!(
+                    (q - mu * p).abs() <= 1e-8 * mu_s * p0,
+                    "{side:?}, node {i}: |q| {q}, μp {}",
+                    mu * p
+                );
+            }
+        }
+        pb.grid.integrate(&z.shear).abs() / (mu_s * pb.grid.integrate(&z.pressure))
+    };
+    let (own, below, above) = (
+        ratio(InitialSlip::Warm),
+        ratio(InitialSlip::Below),
+        ratio(InitialSlip::Above),
+    );
+    eprintln!(
+        "veldep_fric step at -0.1 %: steady branch {own:.4}, from below {below:.4} (CONTACT 0.5977), \
+         from above {above:.4} (CONTACT 0.5702)"
+    );
+    assert!(
+        above < own - 0.01 && own < below - 0.005,
+        "above {above}, steady {own}, below {below}"
+    );
+    assert!(
+        (below - 0.5977).abs() <= 0.02 * 0.5977,
+        "from below {below}, CONTACT 0.5977"
+    );
+}

@@ -142,3 +142,53 @@ pub(super) fn from_above(
         (state, report)
     })
 }
+
+/// Where the solve of a problem under a falling law starts looking (CONTACT's initial slip
+/// estimate INISLP; Vollebregt & Schuttelaars 2012, §3: a step of a steep law can have several
+/// solutions, and the start selects one).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum InitialSlip {
+    /// From the warm start (the last step's state) with the stages of [`super::solve`].
+    #[default]
+    Warm,
+    /// From below: zero slip velocity, μ = μ_s at every node (CONTACT's INISLP = 1): the
+    /// continuation of the module docs, from Coulomb's solution at μ_s.
+    Below,
+    /// From above: μ = μ_k at every node (CONTACT's INISLP = −1): [`from_above`].
+    Above,
+}
+
+/// Solves `pb` under its law `law` from the side `side` (not [`InitialSlip::Warm`], which is
+/// [`super::solve`]), warm from `warm` (the last step's state), the Newton systems in `ws`:
+/// the state and report, not converged (with the iterations spent) when that side's solve failed.
+pub fn solve_from_side(
+    pb: &ContactProblem,
+    law: &FallingLaw,
+    settings: &NewtonSettings,
+    warm: Option<State>,
+    side: InitialSlip,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let mut tally = Tally::default();
+    let found = match side {
+        InitialSlip::Warm => return super::solve(pb, law, settings, warm, ws),
+        InitialSlip::Below => solve(pb, law, settings, warm.clone(), &mut tally, ws),
+        InitialSlip::Above => {
+            let mu = vec![law.law.kinetic.min(pb.friction); pb.n_nodes()];
+            return super::fixed_point(pb, law, settings, warm, mu, false, tally, ws);
+        }
+    };
+    found.unwrap_or_else(|| {
+        // Not converged: the report of the problem with the law at the warm start.
+        let measure = ConvergenceMeasure::new(pb);
+        let start = warm.unwrap_or_else(|| super::super::residual::start_vector(pb));
+        let (state, mut report) = restart::attempt_warm(pb, settings, &measure, start, 1, ws);
+        tally.add(&mut report);
+        tally.total(&mut report);
+        report.converged = false;
+        report
+            .fallbacks
+            .push(format!("falling friction: no solution found from {side:?}"));
+        (state, report)
+    })
+}
