@@ -27,7 +27,10 @@
 //! The mixed μ_i are kept within [μ_k, μ_s]. A warm start goes to (1) first; otherwise, or when
 //! that fails, (2) runs and hands over to (1) once its change is below [`FINISH_CHANGE`] μ_s:
 //! veldep_fric at μ_s = 0.5, where (2) alone never settles, then converges in 5 Newton
-//! iterations from its iterate.
+//! iterations from its iterate. When (2) ends unsettled, (3) a continuation in the law's
+//! amplitude from Coulomb's solution at μ_s and, where that branch folds, (4) a start from above
+//! (Coulomb at μ_k, then (1)) follow ([`continuation`]): a transient step of a steep law whose
+//! last step's branch no longer exists (a slip event) is solved by one of them.
 //!
 //! **Uniqueness.** With a falling law the discrete problem can have several solutions
 //! (Vollebregt & Schuttelaars 2012, §3): which one the fixed point finds depends on where it
