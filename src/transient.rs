@@ -140,6 +140,8 @@ pub struct History {
     /// whose active sets are the last system's solves without factoring (most rolling steps
     /// once the history is smooth; [`methods::Workspace::keeping_factors`]).
     workspace: methods::Workspace,
+    /// Where the solve of a rolling step under a falling law starts ([`Self::set_initial_slip`]).
+    initial: crate::contact::falling::InitialSlip,
 }
 
 impl History {
@@ -179,7 +181,28 @@ impl History {
             rolled: 0.0,
             falling,
             workspace: methods::Workspace::keeping_factors(),
+            initial: Default::default(),
         })
+    }
+
+    /// The history of `scene` continuing from `state`, a solution of the scene's steady problem
+    /// on the same grid (CONTACT's transient step after a steady case): the next rolling step's
+    /// previous displacement is the steady state's w and its warm start `state`. With
+    /// `contact.slip_derivative: first_order` and steps of one node spacing, the steady state is
+    /// the history's own fixed point (module docs).
+    pub fn from_steady(scene: &Scene, state: State) -> Result<Self, TransientError> {
+        let mut history = Self::new(scene)?;
+        history.displacement = history.problem.relative_tangential(&state.pressure, &state.shear);
+        history.state = Some(state);
+        Ok(history)
+    }
+
+    /// Where the rolling steps under a falling law start from now on: the last step's state
+    /// (the default), or from below or above (CONTACT's initial slip estimate INISLP = 1 or −1;
+    /// [`crate::contact::falling::InitialSlip`]): a step of a steep law can have several
+    /// solutions, and the start selects one (docs/friction.md).
+    pub fn set_initial_slip(&mut self, initial: crate::contact::falling::InitialSlip) {
+        self.initial = initial;
     }
 
     /// The contact grid of the history.
@@ -249,7 +272,14 @@ impl History {
                 w.creep = c;
             }
         }
-        let (state, report) = methods::solve_from_in(&self.problem, &self.settings, warm, &mut self.workspace);
+        let side = self.initial;
+        let (state, report) = match self.problem.falling {
+            Some(law) if side != crate::contact::falling::InitialSlip::Warm => {
+                let newton = &self.settings.newton;
+                crate::contact::falling::solve_from_side(&self.problem, &law, newton, warm, side, &mut self.workspace)
+            }
+            _ => methods::solve_from_in(&self.problem, &self.settings, warm, &mut self.workspace),
+        };
         if !report.converged {
             return Err(TransientError::NotConverged {
                 rolled: self.rolled + step.distance,

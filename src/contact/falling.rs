@@ -27,13 +27,20 @@
 //! The mixed μ_i are kept within [μ_k, μ_s]. A warm start goes to (1) first; otherwise, or when
 //! that fails, (2) runs and hands over to (1) once its change is below [`FINISH_CHANGE`] μ_s:
 //! veldep_fric at μ_s = 0.5, where (2) alone never settles, then converges in 5 Newton
-//! iterations from its iterate.
+//! iterations from its iterate. When (2) ends unsettled, (3) a continuation in the law's
+//! amplitude from Coulomb's solution at μ_s and, where that branch folds, (4) a start from above
+//! (Coulomb at μ_k, then (1)) follow ([`continuation`]): a transient step of a steep law whose
+//! last step's branch no longer exists (a slip event) is solved by one of them.
 //!
 //! **Uniqueness.** With a falling law the discrete problem can have several solutions
 //! (Vollebregt & Schuttelaars 2012, §3): which one the fixed point finds depends on where it
 //! starts, μ_s everywhere from a cold start, the neighbour's slip from a warm one. The run
 //! reports the branch it found (its creepage and forces); a continuation in the creepage from
 //! below and from above can find different ones for the same load.
+
+mod continuation;
+
+pub use continuation::{at_amplitude, solve_from_side, InitialSlip};
 
 use super::newton::NewtonInputs;
 use super::report::{NewtonSettings, SolveReport};
@@ -168,14 +175,34 @@ pub fn solve(
             return done;
         }
     }
+    let mu = match &warm {
+        Some(z) => law.nodal(pb.friction, &z.slip),
+        None => vec![pb.friction; pb.n_nodes()],
+    };
+    fixed_point(pb, law, settings, warm, mu, true, tally, ws)
+}
+
+/// The outer fixed point of [`solve`] from the nodal coefficients `mu` and the start `warm`
+/// (the iterations so far in `tally`); when it does not settle and `stages`, the continuation
+/// and the start from above of [`continuation`] follow.
+#[allow(clippy::too_many_arguments)]
+fn fixed_point(
+    pb: &ContactProblem,
+    law: &FallingLaw,
+    settings: &NewtonSettings,
+    warm: Option<State>,
+    mut mu: Vec<f64>,
+    stages: bool,
+    mut tally: Tally,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let full = ConvergenceMeasure::new(pb);
     let mut own = pb.clone();
     let mu_s = pb.friction;
     own.falling = None;
     let m = pb.n_nodes();
-    let mut mu = match &warm {
-        Some(z) => law.nodal(mu_s, &z.slip),
-        None => vec![mu_s; m],
-    };
+    // The continuation's start when both stages fail (the fixed point moves `start` on).
+    let origin = warm.clone();
     let mut start = warm;
     let (mut relaxation, mut last_change) = (1.0_f64, f64::INFINITY);
     let scale = mu_s.max(f64::MIN_POSITIVE);
@@ -210,6 +237,21 @@ pub fn solve(
                 return done;
             }
             next_finish = change / 10.0;
+        }
+        if ends && !settled && stages {
+            // Third the branch from below by a continuation in the law's amplitude, fourth,
+            // where that branch folds, the start from above (continuation.rs).
+            let found = continuation::solve(pb, law, settings, origin.clone(), &mut tally, ws)
+                .or_else(|| continuation::from_above(pb, law, settings, origin.clone(), &mut tally, ws));
+            if let Some(done) = found {
+                log::info!(
+                    target: crate::logging::PROGRESS,
+                    "falling friction: {solve} solve(s) with the nodal mu frozen did not settle (last change \
+                     {change:.1e}); solved by {}",
+                    done.1.fallbacks.last().map_or("", String::as_str)
+                );
+                return done;
+            }
         }
         if ends {
             report.converged &= settled;

@@ -332,3 +332,185 @@ fn falling_law_with_two_exponentials_holds_at_every_node() {
     );
     assert!(r_two > r_one, "two exponentials {r_two}, one {r_one}");
 }
+
+/// The history of `a_history_under_a_falling_law_settles_on_its_steady_state` at V = 100 mm/s,
+/// where the largest slip velocity of a step reaches several s_h: before the third and fourth
+/// stages of the falling-law solve (src/contact/falling/continuation.rs) it stopped in its 11th
+/// rolling step (the warm Newton stalled at a measure of 4e-3, the fixed point did not settle).
+/// The branch of the last step's state ends in a fold (the continuation in the law's amplitude
+/// from Coulomb's solution stalls at λ ≈ 0.84 in the 32nd step), where the start from above
+/// finds the step's slip event. The history must roll 8a, every step converged, and at every
+/// step and contact node the law must hold from the tractions (|q| ≤ μ(V|s|) p, equality where
+/// slipping, within 1e-8 μ_s p0, s recomputed from the step's tractions): a step's solution,
+/// whichever branch, is a solution of the step's problem. Both stages must have acted (else the
+/// test checks the old path). It does not settle on the steady state: it ends in a stick-slip
+/// cycle of 30 steps (docs/friction.md), which is printed, not asserted.
+#[test]
+fn a_history_under_a_steep_law_runs_through_its_slip_events() {
+    use rollbem::contact::{NormalControl, TangentialControl};
+    use rollbem::transient::{History, Step};
+    let (mu_s, mu_k, s_h, speed) = (0.1, 0.05, 0.3, 100.0);
+    let overrides = [
+        format!("contact.falling_friction={{kinetic: {mu_k}, slip_velocity: {s_h}}}"),
+        format!("load.speed={speed}"),
+        "contact.slip_derivative=first_order".to_string(),
+        "contact.grid.elements=41".to_string(),
+    ];
+    let case = rollbem::case::load(&crate::common::case_path("carter_051"), &overrides).expect("loads");
+    let scene = rollbem::scene::Scene::from_case(&case).expect("scene");
+    let (_, problem) = scene.assemble().expect("assembles");
+    let (steady, report) = rollbem::contact::methods::solve(&problem, &scene.solver);
+    assert!(report.converged);
+    let force = match scene.normal {
+        NormalControl::Force(p) => p,
+        _ => unreachable!("carter_051 gives P"),
+    };
+    let mut h = History::new(&scene).expect("a history");
+    let mut step = Step {
+        distance: 0.0,
+        normal: NormalControl::Force(force),
+        tangential: TangentialControl::Ratio(0.0),
+    };
+    h.advance(step).expect("pressed");
+    step.tangential = TangentialControl::Ratio(0.51);
+    h.advance(step).expect("shifted");
+    step.distance = h.grid().node_spacing();
+    step.tangential = TangentialControl::Creep(steady.creep);
+    let steps = (8.0 * scene.estimates.hertz_half_width / step.distance).ceil() as usize;
+    let p0 = steady.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
+    let (mut below, mut above, mut ratios) = (0, 0, Vec::new());
+    for k in 0..steps {
+        let s = h.advance(step).unwrap_or_else(|e| panic!("step {k}: {e}"));
+        let pb = h.problem();
+        let z = &s.state;
+        let slip = pb.slip(&z.pressure, &z.shear, z.creep);
+        let smax = slip.iter().fold(0.0_f64, |a, s| a.max(s.abs()));
+        for (i, &si) in slip.iter().enumerate() {
+            if z.pressure[i] <= 1e-12 * p0 {
+                continue;
+            }
+            let mu = mu_k + (mu_s - mu_k) * (-speed * si.abs() / s_h).exp();
+            let (q, p) = (z.shear[i].abs(), z.pressure[i]);
+            assert!(
+                q <= mu * p + 1e-8 * mu_s * p0,
+                "step {k}, node {i}: |q| {q} above μp {}",
+                mu * p
+            );
+            if si.abs() > 1e-6 * smax {
+                assert!(
+                    (q - mu * p).abs() <= 1e-8 * mu_s * p0,
+                    "step {k}, node {i}: |q| {q}, μp {}",
+                    mu * p
+                );
+            }
+        }
+        let fallbacks = &h.report().expect("solved").fallbacks;
+        below += fallbacks.iter().filter(|f| f.contains("continuation")).count();
+        above += fallbacks.iter().filter(|f| f.contains("from above")).count();
+        ratios.push(pb.grid.integrate(&z.shear) / (mu_s * pb.grid.integrate(&z.pressure)));
+    }
+    let tail = &ratios[ratios.len() - 60..];
+    let (lo, hi) = tail
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &r| (a.min(r), b.max(r)));
+    eprintln!(
+        "steep history, {steps} steps: {below} steps by the continuation, {above} from above; \
+         Q/μ_s P over the last 60 steps {lo:.4}..{hi:.4}"
+    );
+    assert!(below > 0 && above > 0, "continuation {below}, from above {above}");
+}
+
+/// CONTACT's veldep_fric cases 2 and 4 (examples/veldep_fric.inp: after the steady case 1 at
+/// ξ = −0.09999 %, one transient step of DQ = 0.1 mm at −0.1 % from the initial slip estimate
+/// s⁰ = 0, INISLP = 1, and from s⁰ = V, INISLP = −1), on CONTACT's grid (node spacing 0.1 mm =
+/// DX over its 9.3 mm, `half_length` 4.65 mm on 31 elements), CONTACT's law (s_h = 100/ln 2 mm/s)
+/// and first-order slip (so that the steady state is the history's own fixed point,
+/// src/transient.rs). The step has several solutions (Vollebregt & Schuttelaars 2012, §3):
+/// from the steady state's own branch (the default warm start), from below (Coulomb at μ_s,
+/// then the continuation in the law's amplitude) and from above (the fixed point from μ_k at
+/// every node). Each must satisfy the law at every node (from the tractions, as
+/// `falling_law_holds_at_every_node`), and they must be distinct and ordered as CONTACT's:
+/// above < steady < below.
+///
+/// Against CONTACT (FX/(μ_s FN), docs/friction.md): from below CONTACT gives 0.5977, 0.5958,
+/// 0.5944 on dx = 0.05, 0.025 mm with DQ = 0.1 mm kept; rollbem 0.6057 (0.6001, 0.5997 on 62,
+/// 124 elements). Checked within 2 %: the two codes' steady results on this grid differ by
+/// 0.3 % (0.5941, 0.5959), CONTACT's case 2 moves 0.55 % and rollbem's 1.0 % over the grids
+/// above (measured 1.3 %). From above CONTACT gives 0.5702 (0.5685, 0.5673), rollbem 0.5437
+/// (0.5392, 0.5389): 4.6 % apart, beyond those errors, printed and not asserted (unexplained:
+/// docs/friction.md).
+#[test]
+fn contacts_two_branches_of_one_step_are_found_from_below_and_above() {
+    use rollbem::contact::falling::InitialSlip;
+    use rollbem::contact::{NormalControl, TangentialControl};
+    use rollbem::transient::{History, Step};
+    let (mu_s, mu_k, speed) = (0.30, 0.18, 45_000.0);
+    let s_h = 100.0 / std::f64::consts::LN_2;
+    let overrides = [
+        format!("contact.falling_friction.slip_velocity={s_h}"),
+        "contact.slip_derivative=first_order".to_string(),
+        "contact.grid.elements=31".to_string(),
+        "contact.grid.half_length=4.65".to_string(),
+    ];
+    let case = rollbem::case::load(&crate::common::case_path("veldep_fric"), &overrides).expect("loads");
+    let scene = rollbem::scene::Scene::from_case(&case).expect("scene");
+    let (_, problem) = scene.assemble().expect("assembles");
+    assert!((problem.grid.node_spacing() - 0.1).abs() < 1e-9, "CONTACT's DX");
+    let (steady, report) = rollbem::contact::methods::solve(&problem, &scene.solver);
+    assert!(report.converged);
+    let force = match scene.normal {
+        NormalControl::Force(p) => p,
+        _ => unreachable!("veldep_fric gives P"),
+    };
+    let step = Step {
+        distance: 0.1,
+        normal: NormalControl::Force(force),
+        tangential: TangentialControl::Creep(-0.001),
+    };
+    let p0 = steady.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
+    let mut ratio = |side: InitialSlip| {
+        let mut h = History::from_steady(&scene, steady.clone()).expect("a history");
+        h.set_initial_slip(side);
+        let z = h.advance(step).unwrap_or_else(|e| panic!("{side:?}: {e}")).state;
+        let pb = h.problem();
+        let slip = pb.slip(&z.pressure, &z.shear, z.creep);
+        let smax = slip.iter().fold(0.0_f64, |a, s| a.max(s.abs()));
+        for (i, &si) in slip.iter().enumerate() {
+            if z.pressure[i] <= 1e-12 * p0 {
+                continue;
+            }
+            let mu = mu_k + (mu_s - mu_k) * (-speed * si.abs() / s_h).exp();
+            let (q, p) = (z.shear[i].abs(), z.pressure[i]);
+            assert!(
+                q <= mu * p + 1e-8 * mu_s * p0,
+                "{side:?}, node {i}: |q| {q} above μp {}",
+                mu * p
+            );
+            if si.abs() > 1e-6 * smax {
+                assert!(
+                    (q - mu * p).abs() <= 1e-8 * mu_s * p0,
+                    "{side:?}, node {i}: |q| {q}, μp {}",
+                    mu * p
+                );
+            }
+        }
+        pb.grid.integrate(&z.shear).abs() / (mu_s * pb.grid.integrate(&z.pressure))
+    };
+    let (own, below, above) = (
+        ratio(InitialSlip::Warm),
+        ratio(InitialSlip::Below),
+        ratio(InitialSlip::Above),
+    );
+    eprintln!(
+        "veldep_fric step at -0.1 %: steady branch {own:.4}, from below {below:.4} (CONTACT 0.5977), \
+         from above {above:.4} (CONTACT 0.5702)"
+    );
+    assert!(
+        above < own - 0.01 && own < below - 0.005,
+        "above {above}, steady {own}, below {below}"
+    );
+    assert!(
+        (below - 0.5977).abs() <= 0.02 * 0.5977,
+        "from below {below}, CONTACT 0.5977"
+    );
+}
