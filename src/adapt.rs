@@ -34,12 +34,19 @@
 //!    five passes to 542 elements, its estimate falling 1.3–1.6 times a pass; halving the
 //!    contact: three passes to 466 elements, 8.9 times in the pass that halved it).
 //!
-//! Once the grid meets the tolerance, the bodies' own meshes outside the contact (a BEM
-//! body's free boundary, shaft, rim) are checked too ([`body_mesh`]: the bodies solved on a
-//! coarser check grid as given and with them bisected), and bisected while their estimate
-//! exceeds the tolerance (the contact grid refined again on the bisected bodies).
-//! Under force control between bodies with a datum the overlap is controlled with the
-//! creepage ([`overlap`]).
+//! The loop asks these steps of *error contributions*, each one implementation of
+//! [`contribution::ErrorContribution`] returning one value, a [`contribution::Contribution`]
+//! (met, refine, rebuild, ended): the contact grid's estimate of steps 2–3
+//! ([`contribution::ContactGrid`]), the overlap under force control between bodies with a
+//! datum ([`overlap::Overlap`]), the BEM bodies' stand-ins (the passes solve cheaper stand-ins
+//! until the final grid is checked against the bodies themselves: `stand_ins::StandIns`), and
+//! the bodies' own meshes outside the contact (a BEM body's free boundary, shaft, rim: checked
+//! once the grid meets the tolerance and bisected while their estimate exceeds it,
+//! `body_mesh::BodyMeshes`). One pass of `controlled`: solve G and H, collect the
+//! contributions in order, and act on the first that is not met — mark and refine the
+//! contact grid (step 4), solve again from G on other bodies (rebuild), or stop; with all met,
+//! the result. The loop names no kind of body: the stand-ins' contribution gives the scene the
+//! passes solve, and on half-space scenes the stand-ins and meshes have nothing to check.
 //!
 //! The result is H's solution; summary.json reports the estimate (`error_estimate`) and the
 //! grid's passes. With the estimate not reached within `contact.grid.max_elements` elements
@@ -262,7 +269,14 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
         // the same grid): held here, passed to every build, dropped when the run returns.
         let run = RunCaches::new();
         let mut timings = Timings::default();
-        let only = solve_on(scene.clone(), None, true, Some(&run), &mut timings, &mut Workspace::new())?;
+        let only = solve_on(
+            scene.clone(),
+            None,
+            true,
+            Some(&run),
+            &mut timings,
+            &mut Workspace::new(),
+        )?;
         return Ok(finished(only, scene, timings, None));
     };
     let check_grid = stand_ins::body_mesh_check_grid(&DyadicGrid::new(&scene.grid), control.tolerance);
@@ -296,11 +310,11 @@ fn controlled(scene: &Scene, contributions: &mut [Box<dyn ErrorContribution + '_
         steps: Vec::new(),
         tolerance,
     };
-    let start = DyadicGrid::new(&scene.grid);
     let mut bodies = scene.clone();
-    // The scene the passes solve in the bodies' place, if a contribution offers one.
-    let mut passes = started(contributions, &bodies, &start, &mut env)?;
-    let (mut coarse, mut warm): (DyadicGrid, Option<(ContactGrid, State)>) = (start.clone(), None);
+    // The scene the passes solve in the bodies' place, if a contribution offers one (fitted
+    // on the levels of the bodies' start grid, wherever the passes start).
+    let mut passes = started(contributions, &bodies, &DyadicGrid::new(&bodies.grid), &mut env)?;
+    let (mut coarse, mut warm): (DyadicGrid, Option<(ContactGrid, State)>) = (DyadicGrid::new(&scene.grid), None);
     let mut run_scales: Option<HertzScales> = None;
     let mut shortest = bodies.shortest_grid_element();
     // The passes on the current bodies start here (MAX_PASSES counts them).
@@ -356,7 +370,7 @@ fn controlled(scene: &Scene, contributions: &mut [Box<dyn ErrorContribution + '_
                 warm = Some(h.into_warm());
                 if let Rebuild::New(rebuilt) = rebuild {
                     bodies = rebuilt;
-                    passes = started(contributions, &bodies, &start, &mut env)?;
+                    passes = started(contributions, &bodies, &DyadicGrid::new(&bodies.grid), &mut env)?;
                     run_scales = None;
                     shortest = bodies.shortest_grid_element();
                     first_step = env.steps.len();
@@ -434,7 +448,14 @@ fn solve_pass(
         return Ok(Err(g));
     }
     let on_g = Some((&g.problem.grid, &g.state));
-    let mut h = solve_on(scene.on_grid(coarse.bisected().grid()), on_g, false, Some(env.run), timings, ws)?;
+    let mut h = solve_on(
+        scene.on_grid(coarse.bisected().grid()),
+        on_g,
+        false,
+        Some(env.run),
+        timings,
+        ws,
+    )?;
     h.from_stand_ins = from_stand_ins;
     if !h.report.converged {
         return Ok(Err(h));
@@ -554,4 +575,3 @@ fn finished(mut s: Solve, bodies: &Scene, mut timings: Timings, passes: Option<(
         timings,
     }
 }
-

@@ -177,10 +177,7 @@ impl ErrorContribution for BodyMeshes {
         if e.largest() <= tolerance {
             return Ok(contribution(Some(e.largest()), Verdict::Met));
         }
-        let Some(bisected) = checked
-            .bisected
-            .filter(|_| self.bisections < MAX_BODY_MESH_BISECTIONS)
-        else {
+        let Some(bisected) = checked.bisected.filter(|_| self.bisections < MAX_BODY_MESH_BISECTIONS) else {
             let ended = Verdict::Ended {
                 reached: false,
                 too_coarse: Some(meshed_bodies(round.bodies)),
@@ -197,7 +194,10 @@ impl ErrorContribution for BodyMeshes {
              solving again with them bisected"
         );
         self.bisections += 1;
-        Ok(contribution(Some(e.largest()), Verdict::Rebuild(Rebuild::New(bisected))))
+        Ok(contribution(
+            Some(e.largest()),
+            Verdict::Rebuild(Rebuild::New(bisected)),
+        ))
     }
 }
 

@@ -298,7 +298,10 @@ mod tests {
             if let Some(toy) = toy {
                 list.push(Box::new(ToyRef(toy)));
             }
-            controlled(&scene, &mut list).unwrap().adaptation.expect("an error-controlled run")
+            controlled(&scene, &mut list)
+                .unwrap()
+                .adaptation
+                .expect("an error-controlled run")
         };
         let plain = run(None);
         let mut toy = OneRebuild { asked: Vec::new() };

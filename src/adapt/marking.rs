@@ -144,8 +144,8 @@ pub(super) fn actions(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grid::{ContactGrid, ElementKind};
     use crate::adapt::A_PRIORI_LENGTH;
+    use crate::grid::{ContactGrid, ElementKind};
 
     /// A grid of four elements of length 1/2 on [−1, 1] whose third holds a square-root point
     /// at 0.3 and carries all the error, far above the tolerance.
