@@ -34,12 +34,19 @@
 //!    five passes to 542 elements, its estimate falling 1.3–1.6 times a pass; halving the
 //!    contact: three passes to 466 elements, 8.9 times in the pass that halved it).
 //!
-//! Once the grid meets the tolerance, the bodies' own meshes outside the contact (a BEM
-//! body's free boundary, shaft, rim) are checked too ([`body_mesh`]: the bodies solved on a
-//! coarser check grid as given and with them bisected), and bisected while their estimate
-//! exceeds the tolerance (the contact grid refined again on the bisected bodies).
-//! Under force control between bodies with a datum the overlap is controlled with the
-//! creepage ([`overlap`]).
+//! The loop asks these steps of *error contributions*, each one implementation of
+//! [`contribution::ErrorContribution`] returning one value, a [`contribution::Contribution`]
+//! (met, refine, rebuild, ended): the contact grid's estimate of steps 2–3
+//! ([`contribution::ContactGrid`]), the overlap under force control between bodies with a
+//! datum ([`overlap::Overlap`]), the BEM bodies' stand-ins (the passes solve cheaper stand-ins
+//! until the final grid is checked against the bodies themselves: `stand_ins::StandIns`), and
+//! the bodies' own meshes outside the contact (a BEM body's free boundary, shaft, rim: checked
+//! once the grid meets the tolerance and bisected while their estimate exceeds it,
+//! `body_mesh::BodyMeshes`). One pass of `controlled`: solve G and H, collect the
+//! contributions in order, and act on the first that is not met — mark and refine the
+//! contact grid (step 4), solve again from G on other bodies (rebuild), or stop; with all met,
+//! the result. The loop names no kind of body: the stand-ins' contribution gives the scene the
+//! passes solve, and on half-space scenes the stand-ins and meshes have nothing to check.
 //!
 //! The result is H's solution; summary.json reports the estimate (`error_estimate`) and the
 //! grid's passes. With the estimate not reached within `contact.grid.max_elements` elements
@@ -52,9 +59,11 @@
 mod a_priori;
 pub mod body_mesh;
 pub mod cells;
+pub mod contribution;
 mod corrections;
 pub mod estimate;
 pub mod fixed;
+mod marking;
 pub mod overlap;
 mod scales;
 mod stand_ins;
@@ -66,12 +75,13 @@ use crate::contact::{
 };
 use crate::error::Error;
 use crate::grid::ContactGrid;
-use crate::post::adaptation::{AdaptationStep, GridAdaptation};
-use crate::post::{ContactSolution, NodeState, Timings};
+use crate::post::adaptation::{AdaptationStep, ErrorEstimate, GridAdaptation};
+use crate::post::Timings;
 use crate::scene::{BodyModels, Scene};
-use a_priori::{resolved, APriori};
-use cells::{Action, DyadicGrid};
-use estimate::{Comparison, ErrorEstimator, Pass, Scales};
+use a_priori::APriori;
+use cells::DyadicGrid;
+use contribution::{Env, ErrorContribution, Held, Rebuild, Round, Verdict};
+use estimate::ErrorEstimator;
 use scales::HertzScales;
 use std::time::Instant;
 
@@ -254,220 +264,266 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
 /// [`solve`] with another error estimator: the estimate that decides convergence and the
 /// indicators the refinement marks by come from `estimator` alone.
 pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<Adapted, Error> {
-    // One solver workspace for every solve of the run: it grows to the largest grid's system.
-    let mut ws = Workspace::new();
-    let mut timings = Timings::default();
+    let Some(control) = scene.grid_control else {
+        // What the run's body builds share (a BEM body's condensation kept for a later build on
+        // the same grid): held here, passed to every build, dropped when the run returns.
+        let run = RunCaches::new();
+        let mut timings = Timings::default();
+        let only = solve_on(
+            scene.clone(),
+            None,
+            true,
+            Some(&run),
+            &mut timings,
+            &mut Workspace::new(),
+        )?;
+        return Ok(finished(only, scene, timings, None));
+    };
+    let check_grid = stand_ins::body_mesh_check_grid(&DyadicGrid::new(&scene.grid), control.tolerance);
+    let mut contributions: [Box<dyn ErrorContribution + '_>; 4] = [
+        Box::new(contribution::ContactGrid { estimator }),
+        Box::new(overlap::Overlap),
+        Box::new(stand_ins::StandIns::default()),
+        Box::new(body_mesh::BodyMeshes {
+            grid: check_grid,
+            bisections: 0,
+        }),
+    ];
+    controlled(scene, &mut contributions)
+}
+
+/// The error-control loop of the module docs on `scene` (which has a tolerance), with
+/// `contributions` asked in their order ([`contribution`]): solve the pass, collect the
+/// contributions, then mark and refine, rebuild, or stop.
+fn controlled(scene: &Scene, contributions: &mut [Box<dyn ErrorContribution + '_>]) -> Result<Adapted, Error> {
+    let control = scene.grid_control.expect("an error-controlled grid");
+    let (tolerance, max_elements) = (control.tolerance, control.max_elements);
     // What the run's body builds share (a BEM body's condensation kept for a later build on the
     // same grid): held here, passed to every build, dropped with what it holds when the run
     // returns.
     let run = RunCaches::new();
-    let Some(control) = scene.grid_control else {
-        let only = solve_on(scene.clone(), None, true, Some(&run), &mut timings, &mut ws)?;
-        return Ok(finished(only, scene, timings, None));
+    // One solver workspace for every solve of the run: it grows to the largest grid's system.
+    let mut env = Env {
+        run: &run,
+        timings: Timings::default(),
+        ws: Workspace::new(),
+        steps: Vec::new(),
+        tolerance,
     };
-    let tolerance = control.tolerance;
-    let check_grid = stand_ins::body_mesh_check_grid(&DyadicGrid::new(&scene.grid), tolerance);
-    let mut steps: Vec<AdaptationStep> = Vec::new();
-    let mut scene = scene.clone();
-    // After the bodies' meshes are bisected, the refinement resumes from the last pass's grid.
-    let mut resume: Option<(DyadicGrid, ContactGrid, State)> = None;
-    for bisections in 0..=body_mesh::MAX_BODY_MESH_BISECTIONS {
-        let refined = refine(
-            &scene,
-            resume.take(),
-            estimator,
-            &run,
-            &mut timings,
-            &mut steps,
-            &mut ws,
-        )?;
-        let (met, scales, last) = match refined {
-            Refined::Met(met, scales, last) => (met, scales, last),
-            Refined::Ended(s, reached) => {
-                let mut best = finished(s, &scene, timings, Some((tolerance, steps)));
-                if let Some(a) = best.adaptation.as_mut() {
-                    a.reached = reached;
-                }
-                return Ok(best);
-            }
-        };
-        // The result waits for its outputs without its slip blocks (`Refined::Met`): two m × m
-        // blocks fewer beside the check's bodies (the braking bore's: 31 MB).
-        let warm = (met.problem.grid(), &met.state);
-        let first = bisections == 0;
-        // The check solves on a coarser grid than the final one: the final grid's Newton matrix
-        // goes before the check's condensations are made (the braking bore's: 25 MB).
-        ws = Workspace::new();
-        let checked = body_mesh::check_on(
-            &scene,
-            &check_grid,
-            warm,
-            scales,
-            tolerance,
-            first,
-            &run,
-            &mut timings,
-            &mut ws,
-        )?;
-        let Some(checked) = checked else {
-            return Ok(finished(
-                met.with_slip_blocks(),
-                &scene,
-                timings,
-                Some((tolerance, steps)),
-            ));
-        };
-        let mut e = checked.estimate;
-        e.bisections = bisections;
-        if let Some(last) = steps.last_mut() {
-            last.estimate.body_mesh = Some(e);
-        }
-        let adopt = checked.bisected.filter(|_| e.largest() > tolerance);
-        let Some(bisected) = adopt.filter(|_| bisections < body_mesh::MAX_BODY_MESH_BISECTIONS) else {
-            let too_coarse = (e.largest() > tolerance).then(|| body_mesh::meshed_bodies(&scene));
-            let mut done = finished(met.with_slip_blocks(), &scene, timings, Some((tolerance, steps)));
-            if let (Some(a), Some(bodies)) = (done.adaptation.as_mut(), too_coarse) {
-                a.reached = false;
-                a.coarse_body_mesh = Some(bodies);
-            }
-            return Ok(done);
-        };
-        // The bisected bodies are adopted: the contact grid is refined again on them from the
-        // last pass's grid, warm from its solution (the bisection outside the contact moves the
-        // square-root points only within the grid's tolerance; starting over from the start
-        // grid repeated every pass: bore_a001 at 1e-5, about 67 s).
-        log::info!(
-            target: crate::logging::PROGRESS,
-            "error control: the bodies' meshes outside the contact are too coarse for the tolerance; \
-             solving again with them bisected"
-        );
-        resume = Some((last, met.problem.grid().clone(), met.state.clone()));
-        scene = bisected;
-    }
-    unreachable!("the loop returns on its last bisection")
-}
-
-/// How the refinement of the contact grid ended: on a grid that meets the tolerance (with the
-/// units of its estimate; the solve waiting for its outputs without its slip blocks), or otherwise (a solve that did not converge, `reached` true; the
-/// element limit or the pass limit, `reached` false).
-enum Refined {
-    Met(Solve<WithoutSlipBlocks>, Scales, DyadicGrid),
-    Ended(Solve, bool),
-}
-
-/// The loop of the module docs on `scene`'s bodies as they are: passes until the contact
-/// grid meets the tolerance (each pass appended to `steps`), its bodies built with the run's
-/// caches `run`.
-fn refine(
-    scene: &Scene,
-    resume: Option<(DyadicGrid, ContactGrid, State)>,
-    estimator: &mut dyn ErrorEstimator,
-    run: &RunCaches,
-    timings: &mut Timings,
-    steps: &mut Vec<AdaptationStep>,
-    ws: &mut Workspace,
-) -> Result<Refined, Error> {
-    let control = scene.grid_control.expect("an error-controlled grid");
-    let (tolerance, max_elements) = (control.tolerance, control.max_elements);
-    let start = DyadicGrid::new(&scene.grid);
-    let shortest = scene.shortest_grid_element();
-    // The stand-ins are fitted on the levels of the start grid, wherever the passes start.
-    let mut stand_ins = stand_ins::PassStandIns::build(scene, &start, tolerance, run, timings)?;
-    let (mut coarse, mut warm) = match resume {
-        Some((grid, from, state)) => (grid, Some((from, state))),
-        None => (start, None),
-    };
-    let mut hertz: Option<HertzScales> = None;
-    let first_step = steps.len();
+    let mut bodies = scene.clone();
+    // The scene the passes solve in the bodies' place, if a contribution offers one (fitted
+    // on the levels of the bodies' start grid, wherever the passes start).
+    let mut passes = started(contributions, &bodies, &DyadicGrid::new(&bodies.grid), &mut env)?;
+    let (mut coarse, mut warm): (DyadicGrid, Option<(ContactGrid, State)>) = (DyadicGrid::new(&scene.grid), None);
+    let mut run_scales: Option<HertzScales> = None;
+    let mut shortest = bodies.shortest_grid_element();
+    // The passes on the current bodies start here (MAX_PASSES counts them).
+    let mut first_step = 0;
     loop {
-        let pass_scene = stand_ins.passes.as_ref().unwrap_or(scene);
-        let from_stand_ins = stand_ins.passes.is_some();
-        let mut g = solve_on(
-            pass_scene.on_grid(coarse.grid()),
-            warm.as_ref().map(|(g, z)| (g, z)),
-            false,
-            Some(run),
-            timings,
-            ws,
-        )?;
-        g.from_stand_ins = from_stand_ins;
-        if !g.report.converged {
-            return Ok(Refined::Ended(g, true));
-        }
-        let hertz = *hertz.get_or_insert_with(|| HertzScales::of_run(scene, &g.problem, &g.state));
-        let scales = hertz.scales(scene);
-        let mut h = solve_on(
-            pass_scene.on_grid(coarse.bisected().grid()),
-            Some((&g.problem.grid, &g.state)),
-            false,
-            Some(run),
-            timings,
-            ws,
-        )?;
-        h.from_stand_ins = from_stand_ins;
-        if !h.report.converged {
-            return Ok(Refined::Ended(h, true));
-        }
-        let singular = singular_points(&h.problem, &h.state);
-        let mut cmp = estimator.estimate(&Pass {
-            coarse_grid: &g.problem.grid,
-            coarse: &g.state,
-            fine_grid: &h.problem.grid,
-            fine: &h.state,
-            singular: &singular,
-            scales,
-        });
-        if overlap::controlled(scene) {
-            cmp.estimate.overlap_rel = Some(overlap::relative_error(g.state.overlap, h.state.overlap));
-        }
-        let e = cmp.estimate;
-        steps.push(AdaptationStep {
+        // Solve: G and its bisection H.
+        let pass_scene = passes.as_ref().unwrap_or(&bodies);
+        let solved = solve_pass(pass_scene, &coarse, warm.take(), passes.is_some(), &mut env)?;
+        let (g, h) = match solved {
+            Ok(pair) => pair,
+            Err(unconverged) => return Ok(ended(unconverged, &bodies, env, true, None)),
+        };
+        let hertz = *run_scales.get_or_insert_with(|| HertzScales::of_run(&bodies, &g.problem, &g.state));
+        let singular = marking::singular_points(&h.problem, &h.state);
+        let lengths = APriori::of_pass(&bodies, &h, &singular, tolerance, hertz.half_width);
+        let step = AdaptationStep {
             elements: h.problem.grid.n_elements(),
             nodes: h.problem.n_nodes(),
-            estimate: e,
+            estimate: NO_ESTIMATE,
             iterations: g.report.iterations + h.report.iterations,
-        });
-        log::info!(
-            target: crate::logging::PROGRESS,
-            "error control, pass {}: {} elements, estimated error: pressure {:.2e} p0, shear {:.2e} mu p0, \
-             creepage {:.2e}, overlap {}",
-            steps.len(),
-            h.problem.grid.n_elements(),
-            e.pressure_rms,
-            e.shear_rms,
-            e.creep_rel,
-            e.overlap_rel.map_or("not controlled".to_string(), |o| format!("{o:.2e}"))
-        );
-        let half_width = hertz.half_width;
-        let lengths = APriori::of_pass(scene, &h, &singular, tolerance, half_width);
-        if e.within(tolerance) && resolved(&h.problem.grid, &singular, &lengths) {
-            match stand_ins.finish(scene, g, h, e, scales, tolerance, steps.last_mut(), run, timings, ws)? {
-                stand_ins::Final::Met(s) => return Ok(Refined::Met(s, scales, coarse)),
-                stand_ins::Final::Ended(s) => return Ok(Refined::Ended(s, true)),
-                stand_ins::Final::GoOn(full) => {
-                    warm = Some((full.problem.grid, full.state));
-                    continue;
+        };
+        let mut round = Round {
+            bodies: &bodies,
+            coarse: &coarse,
+            g: Some(g),
+            h: Some(Held::Whole(h)),
+            scales: hertz.scales(&bodies),
+            singular,
+            lengths,
+            comparison: None,
+            estimate: NO_ESTIMATE,
+            env: &mut env,
+        };
+        // Collect the contributions.
+        let verdict = collected(contributions, &mut round, step)?;
+        let Round {
+            g,
+            h,
+            singular,
+            lengths,
+            comparison,
+            estimate,
+            ..
+        } = round;
+        drop(g);
+        let h = h.expect("the pass's result");
+        match verdict {
+            Verdict::Met => return Ok(ended(h.whole(), &bodies, env, true, None)),
+            Verdict::Ended { reached, too_coarse } => {
+                return Ok(ended(h.whole(), &bodies, env, reached, too_coarse));
+            }
+            Verdict::Rebuild(rebuild) => {
+                warm = Some(h.into_warm());
+                if let Rebuild::New(rebuilt) = rebuild {
+                    bodies = rebuilt;
+                    passes = started(contributions, &bodies, &DyadicGrid::new(&bodies.grid), &mut env)?;
+                    run_scales = None;
+                    shortest = bodies.shortest_grid_element();
+                    first_step = env.steps.len();
+                } else {
+                    passes = None;
                 }
             }
+            Verdict::Refine => {
+                // Mark.
+                let cmp = comparison.expect("the contact grid's comparison");
+                let marked = marking::actions(&coarse, &cmp, &estimate, &singular, tolerance, &lengths, shortest);
+                let Some(marked) = marked else {
+                    log::warn!(
+                        "the contact grid cannot be refined further: its elements reached the shortest length \
+                         the bodies' meshes can be cut to ({shortest:.3e})"
+                    );
+                    return Ok(ended(h.whole(), &bodies, env, false, None));
+                };
+                // Refine, unless the grid would outgrow the limits.
+                let next = coarse.refined(&marked);
+                log::debug!("singular points {singular:?}; next grid {} elements", next.len());
+                let finer = 2 * next.len();
+                let ends = finer > max_elements || env.steps.len() - first_step >= MAX_PASSES;
+                if ends || !crate::scene::preflight::finer_grid_fits(&bodies.case, &bodies.bodies, finer) {
+                    // The best solution reached, marked: the driver reports it as not converged.
+                    return Ok(ended(h.whole(), &bodies, env, false, None));
+                }
+                warm = Some(h.into_warm());
+                coarse = next;
+            }
         }
-        let Some(marked) = actions(&coarse, &cmp, &singular, tolerance, &lengths, shortest) else {
-            log::warn!(
-                "the contact grid cannot be refined further: its elements reached the shortest length \
-                 the bodies' meshes can be cut to ({shortest:.3e})"
-            );
-            return Ok(Refined::Ended(h, false));
-        };
-        let next = coarse.refined(&marked);
-        log::debug!("singular points {singular:?}; next grid {} elements", next.len());
-        let finer = 2 * next.len();
-        let ends = finer > max_elements || steps.len() - first_step >= MAX_PASSES;
-        if ends || !crate::scene::preflight::finer_grid_fits(&scene.case, &scene.bodies, finer) {
-            // The best solution reached, marked: the driver reports it as not converged.
-            return Ok(Refined::Ended(h, false));
-        }
-        warm = Some((h.problem.grid, h.state));
-        coarse = next;
     }
+}
+
+/// The estimate of a pass before its contributions fill it in.
+const NO_ESTIMATE: ErrorEstimate = ErrorEstimate {
+    pressure_rms: 0.0,
+    shear_rms: 0.0,
+    creep_rel: 0.0,
+    overlap_rel: None,
+    body_mesh: None,
+};
+
+/// Every contribution started on `bodies` ([`ErrorContribution::start`]): the scene the passes
+/// solve in their place, the last offered (None: the bodies themselves).
+fn started(
+    contributions: &mut [Box<dyn ErrorContribution + '_>],
+    bodies: &Scene,
+    start: &DyadicGrid,
+    env: &mut Env<'_>,
+) -> Result<Option<Scene>, Error> {
+    let mut passes = None;
+    for c in contributions.iter_mut() {
+        if let Some(s) = c.start(bodies, start, env)? {
+            passes = Some(s);
+        }
+    }
+    Ok(passes)
+}
+
+/// One pass's solves on `scene`: the grid `coarse` (warm from `warm`) and its bisection (warm
+/// from the first); `Err` holds the solve that did not converge.
+fn solve_pass(
+    scene: &Scene,
+    coarse: &DyadicGrid,
+    warm: Option<(ContactGrid, State)>,
+    from_stand_ins: bool,
+    env: &mut Env<'_>,
+) -> Result<Result<(Solve, Solve), Solve>, Error> {
+    let (timings, ws) = (&mut env.timings, &mut env.ws);
+    let warm = warm.as_ref().map(|(g, z)| (g, z));
+    let mut g = solve_on(scene.on_grid(coarse.grid()), warm, false, Some(env.run), timings, ws)?;
+    g.from_stand_ins = from_stand_ins;
+    if !g.report.converged {
+        return Ok(Err(g));
+    }
+    let on_g = Some((&g.problem.grid, &g.state));
+    let mut h = solve_on(
+        scene.on_grid(coarse.bisected().grid()),
+        on_g,
+        false,
+        Some(env.run),
+        timings,
+        ws,
+    )?;
+    h.from_stand_ins = from_stand_ins;
+    if !h.report.converged {
+        return Ok(Err(h));
+    }
+    Ok(Ok((g, h)))
+}
+
+/// The contributions' verdict on `round`: each asked in order, those that
+/// [`ErrorContribution::checks_the_result`] only while every one before them is met; the first
+/// verdict that is not met, or met. The pass's `step` is recorded (with the pass's estimate)
+/// before the first check, which may complete it.
+fn collected(
+    contributions: &mut [Box<dyn ErrorContribution + '_>],
+    round: &mut Round<'_, '_>,
+    mut step: AdaptationStep,
+) -> Result<Verdict, Error> {
+    let mut verdict = Verdict::Met;
+    let mut recorded = false;
+    for c in contributions.iter_mut() {
+        if c.checks_the_result() {
+            if !recorded {
+                step.estimate = round.estimate;
+                record(round, step);
+                recorded = true;
+            }
+            if !matches!(verdict, Verdict::Met) {
+                break;
+            }
+        }
+        let found = c.assess(round)?;
+        log::debug!("error control: {}: {:?}", found.name, found.verdict);
+        if matches!(verdict, Verdict::Met) {
+            verdict = found.verdict;
+        }
+    }
+    if !recorded {
+        step.estimate = round.estimate;
+        record(round, step);
+    }
+    Ok(verdict)
+}
+
+/// The pass's `step` appended to the run's passes, and logged.
+fn record(round: &mut Round<'_, '_>, step: AdaptationStep) {
+    let e = step.estimate;
+    round.env.steps.push(step);
+    log::info!(
+        target: crate::logging::PROGRESS,
+        "error control, pass {}: {} elements, estimated error: pressure {:.2e} p0, shear {:.2e} mu p0, \
+         creepage {:.2e}, overlap {}",
+        round.env.steps.len(),
+        step.elements,
+        e.pressure_rms,
+        e.shear_rms,
+        e.creep_rel,
+        e.overlap_rel.map_or("not controlled".to_string(), |o| format!("{o:.2e}"))
+    );
+}
+
+/// The run's result: `s` on `bodies`, `reached` or not (`too_coarse`: the bodies whose meshes
+/// were too coarse for the tolerance).
+fn ended(s: Solve, bodies: &Scene, env: Env<'_>, reached: bool, too_coarse: Option<String>) -> Adapted {
+    let mut done = finished(s, bodies, env.timings, Some((env.tolerance, env.steps)));
+    if let Some(a) = done.adaptation.as_mut() {
+        a.reached = reached;
+        a.coarse_body_mesh = too_coarse;
+    }
+    done
 }
 
 /// The result of the loop: the last solve with the tolerance and the passes so far (None for a
@@ -517,182 +573,5 @@ fn finished(mut s: Solve, bodies: &Scene, mut timings: Timings, passes: Option<(
         state: s.state,
         report: s.report,
         timings,
-    }
-}
-
-/// Where the tractions have square-root points [length]: between neighbouring nodes where the
-/// contact opens (an edge), where stick turns to slip, and where the slip reverses.
-fn singular_points(pb: &ContactProblem, z: &State) -> Vec<f64> {
-    let sol = ContactSolution::from_state(pb, z);
-    let x = &pb.grid.nodes;
-    (1..x.len())
-        .filter(|&i| {
-            let (a, b) = (sol.state[i - 1], sol.state[i]);
-            let reversal = a == NodeState::Slip && b == NodeState::Slip && sol.shear[i - 1] * sol.shear[i] < 0.0;
-            a != b || reversal
-        })
-        .map(|i| 0.5 * (x[i - 1] + x[i]))
-        .collect()
-}
-
-/// What to do with each element of `coarse` (module docs, step 4), no element of the bisection
-/// of the result shorter than `shortest` [length]; None when no element can be halved.
-fn actions(
-    coarse: &DyadicGrid,
-    cmp: &Comparison,
-    singular: &[f64],
-    tolerance: f64,
-    lengths: &APriori,
-    shortest: f64,
-) -> Option<Vec<Action>> {
-    let indicator = &cmp.detail;
-    let active = indicator.iter().filter(|&&z| z > 0.0).count().max(1);
-    // The estimate (squared) is taken to fall with the sum of the local indicators: to bring
-    // the largest of the three estimates to SAFETY·tolerance, the sum must fall by `factor`,
-    // shared equally among the elements that carry it.
-    let largest = cmp.estimate.largest();
-    let factor = if largest > 0.0 {
-        (SAFETY * tolerance / largest).powi(2).min(1.0)
-    } else {
-        1.0
-    };
-    let target = indicator.iter().sum::<f64>() * factor / active as f64;
-    // The creepage's error alone above the tolerance, the tractions' an order of magnitude
-    // below it: the creepage is a functional of the shear over the whole stick zone, and its
-    // error is the smooth error there, which the indicators do not see: every element in the
-    // contact is halved (module docs).
-    let e = &cmp.estimate;
-    let creepage_alone = e.creep_rel > tolerance && e.pressure_rms.max(e.shear_rms) <= CREEPAGE_ALONE * tolerance;
-    let mut action: Vec<Action> = coarse
-        .cells()
-        .iter()
-        .zip(indicator)
-        .zip(&cmp.open)
-        .map(|((&c, &z), &open)| {
-            let (x0, x1) = (coarse.end(c, false), coarse.end(c, true));
-            let inside = singular.iter().copied().find(|&x| x >= x0 && x <= x1);
-            // The nearest square-root point, when it lies within an element length: the
-            // discrete transition may sit one node off the true one, in this element.
-            let near = singular
-                .iter()
-                .copied()
-                .filter(|&x| (x0 - x).max(x - x1).max(0.0) <= x1 - x0)
-                .min_by(|a, b| (a - 0.5 * (x0 + x1)).abs().total_cmp(&(b - 0.5 * (x0 + x1)).abs()));
-            // An element of H holding a square-root point is at most A_PRIORI_LENGTH·tolerance·a
-            // long: a node beside the point has an error ∝ √(h/a), standing for a length h, so
-            // its share of the RMS is ∝ h/a whatever the estimate saw (a node can fall close
-            // enough to the point that both grids miss its error). Graded there in one pass, as
-            // deep as the rule asks: the point is located to H's node spacing, and where the next
-            // pass finds it elsewhere it grades again there, as [`resolved`] asks of every pass.
-            // (Three halvings a pass at most, as before, left the rule for one more pass where
-            // the estimate already met the tolerance: fig14_true_geometry at 1e-5, four passes
-            // to 518 elements against three to 454 now.)
-            let a_priori = inside.map_or(0, |x| {
-                // G's element is halved once more in H.
-                let ratio = (x1 - x0) / (2.0 * lengths.at(x));
-                if ratio > 1.0 {
-                    (ratio.log2().ceil() as u32).min(MAX_DEPTH_PER_PASS)
-                } else {
-                    0
-                }
-            });
-            if z > target && target > 0.0 {
-                let ratio = (z / target).log2();
-                let depth =
-                    |per_halving: f64| (ratio / per_halving).ceil().clamp(1.0, f64::from(MAX_DEPTH_PER_PASS)) as u32;
-                match inside.or(near) {
-                    // Next to a square-root point the share falls by 4 per halving.
-                    Some(x) => Action::GradeTowards(x.clamp(x0, x1), depth(2.0).max(a_priori)),
-                    // Where the solution is smooth, by 2⁷ (nodal error h³, over a length h): one
-                    // halving a pass is plenty, and keeps a pass from multiplying the grid.
-                    None => Action::Split(depth(7.0).min(1)),
-                }
-            } else if let (Some(x), true) = (inside, a_priori > 0) {
-                Action::GradeTowards(x, a_priori)
-            } else if creepage_alone && !open {
-                Action::Split(1)
-            } else if open && inside.is_none() && z <= target / 64.0 {
-                Action::Merge
-            } else {
-                Action::Keep
-            }
-        })
-        .collect();
-    // The grid's H halves each element of the result once more: 2^(depth + 1) pieces of an
-    // element must each be at least `shortest` long.
-    let deepest: Vec<u32> = coarse
-        .cells()
-        .iter()
-        .map(|&c| {
-            let pieces = (coarse.end(c, true) - coarse.end(c, false)) / shortest;
-            (pieces.log2().floor() - 1.0).max(0.0) as u32
-        })
-        .collect();
-    for (a, &d) in action.iter_mut().zip(&deepest) {
-        *a = match *a {
-            Action::Split(_) | Action::GradeTowards(..) if d == 0 => Action::Keep,
-            Action::Split(k) => Action::Split(k.min(d)),
-            Action::GradeTowards(x, k) => Action::GradeTowards(x, k.min(d)),
-            other => other,
-        };
-    }
-    // Never a pass without a refinement: the element with the largest share is halved.
-    if !action
-        .iter()
-        .any(|a| matches!(a, Action::Split(_) | Action::GradeTowards(..)))
-    {
-        let worst = (0..indicator.len())
-            .filter(|&k| deepest[k] > 0)
-            .max_by(|&a, &b| indicator[a].total_cmp(&indicator[b]))?;
-        action[worst] = Action::Split(1);
-    }
-    Some(action)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::grid::ElementKind;
-
-    /// A grid of four elements of length 1/2 on [−1, 1] whose third holds a square-root point
-    /// at 0.3 and carries all the error, far above the tolerance.
-    fn marked(shortest: f64) -> Option<Vec<Action>> {
-        let coarse = DyadicGrid::new(&ContactGrid::uniform(ElementKind::DiscontinuousQuadratic, 4, -1.0, 1.0));
-        let cmp = Comparison {
-            estimate: crate::post::adaptation::ErrorEstimate {
-                pressure_rms: 1e-1,
-                shear_rms: 1e-1,
-                creep_rel: 1e-1,
-                overlap_rel: None,
-                body_mesh: None,
-            },
-            detail: vec![0.0, 0.0, 1.0, 0.0],
-            open: vec![false; 4],
-        };
-        let lengths = APriori {
-            everywhere: A_PRIORI_LENGTH * 1e-4,
-            leading_edge: None,
-        };
-        actions(&coarse, &cmp, &[0.3], 1e-4, &lengths, shortest)
-    }
-
-    /// The grading towards a square-root point stops where the grid's bisection would hold an
-    /// element shorter than the bodies' meshes can be cut to; with no element left to halve
-    /// there is nothing to do (the run then ends, not reaching the tolerance, instead of cutting
-    /// a mesh into elements of zero length).
-    #[test]
-    fn no_element_is_graded_below_the_shortest_length() {
-        let depth = |a: &Action| match *a {
-            Action::GradeTowards(_, k) | Action::Split(k) => k,
-            _ => 0,
-        };
-        // Unlimited: graded as deep as a pass grades.
-        let free = marked(1e-12).expect("a refinement");
-        assert!(depth(&free[2]) > 3, "{:?}", free[2]);
-        // Pieces of 1/16 at most (1/2 halved three times, once more in H): depth 2.
-        let limited = marked(1.0 / 16.0).expect("a refinement");
-        assert_eq!(depth(&limited[2]), 2, "{:?}", limited[2]);
-        // Elements of 1/2 whose bisection is 1/4 already: none can be halved.
-        assert!(marked(0.2).is_none());
     }
 }

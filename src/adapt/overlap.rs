@@ -12,7 +12,9 @@
 //! with either body idealised as a half-plane the overlap is not controlled (absent). Under
 //! overlap control δ is prescribed: absent too.
 
+use super::contribution::{Contribution, ErrorContribution, Round, Verdict};
 use crate::contact::NormalControl;
+use crate::error::Error;
 use crate::scene::Scene;
 
 /// The factor of the overlap's relative difference between G and H (module docs).
@@ -30,6 +32,32 @@ pub fn relative_error(coarse: f64, fine: f64) -> f64 {
         0.0
     } else {
         OVERLAP_ESTIMATE_FACTOR * (fine - coarse).abs() / fine.abs().max(f64::MIN_POSITIVE)
+    }
+}
+
+/// The overlap's contribution: its relative change from G to H where [`controlled`] (it joins
+/// the pass's estimate), met where not controlled.
+pub struct Overlap;
+
+impl ErrorContribution for Overlap {
+    fn name(&self) -> &'static str {
+        "overlap"
+    }
+
+    fn assess(&mut self, round: &mut Round<'_, '_>) -> Result<Contribution, Error> {
+        let (Some(g), Some(h)) = (round.g.as_ref(), round.h.as_ref()) else {
+            unreachable!("the overlap is assessed on the pass's solves")
+        };
+        let estimate = controlled(round.bodies).then(|| relative_error(g.state.overlap, h.state().overlap));
+        if estimate.is_some() {
+            round.estimate.overlap_rel = estimate;
+        }
+        let met = estimate.is_none_or(|e| e <= round.env.tolerance);
+        Ok(Contribution {
+            name: self.name(),
+            estimate,
+            verdict: if met { Verdict::Met } else { Verdict::Refine },
+        })
     }
 }
 

@@ -2,16 +2,17 @@
 //! estimate of their own error on the final grid (src/body/bem/stand_in.rs).
 
 use super::body_mesh;
+use super::cells::DyadicGrid;
+use super::contribution::{Contribution, Env, ErrorContribution, Held, Rebuild, Round, Verdict};
 use super::estimate::Scales;
 use super::{carried, solve_on, solve_problem, Solve};
-use crate::adapt::cells::DyadicGrid;
 use crate::body::{FlexibilityChange, RunCaches, Side};
 use crate::contact::report::SolveReport;
 use crate::contact::residual::State;
 use crate::contact::{WithoutSlipBlocks, Workspace};
 use crate::error::Error;
 use crate::grid::ContactGrid;
-use crate::post::adaptation::{AdaptationStep, BodyMeshError, ErrorEstimate};
+use crate::post::adaptation::BodyMeshError;
 use crate::post::Timings;
 use crate::scene::Scene;
 use std::sync::Arc;
@@ -47,13 +48,14 @@ pub(super) fn levels(start: &DyadicGrid, tolerance: f64) -> Vec<ContactGrid> {
         .collect()
 }
 
-/// A run's pass stand-ins: the scene the passes solve (bodies that offer a cheaper stand-in,
-/// a BEM body's half-plane plus its smooth remainder, replaced by it; None when no body
-/// offers one or once the passes go on with the bodies themselves), and the check that
-/// estimates the stand-ins' own error on the final grid.
-pub(super) struct PassStandIns {
-    /// The passes' scene.
-    pub passes: Option<Scene>,
+/// The stand-ins' contribution: a run's pass stand-ins, whose scene the passes solve (bodies
+/// that offer a cheaper stand-in, a BEM body's half-plane plus its smooth remainder, replaced by
+/// it), and the check that estimates the stand-ins' own error on the final grid. With no body
+/// offering one, or once the passes go on with the bodies themselves, it is met.
+#[derive(Default)]
+pub(super) struct StandIns {
+    /// Whether the passes solve the stand-ins.
+    stood_in: bool,
     /// The scene of the stand-ins known less well (None: the final grid is solved with the
     /// bodies themselves).
     check: Option<Scene>,
@@ -63,86 +65,74 @@ pub(super) struct PassStandIns {
     check_factor: f64,
 }
 
-/// How the final grid of the passes ended ([`PassStandIns::finish`]).
-pub(super) enum Final {
-    /// Its solution meets the tolerance: the run's result, waiting for its outputs without its
-    /// slip blocks.
-    Met(Solve<WithoutSlipBlocks>),
-    /// The bodies themselves did not converge on it.
-    Ended(Solve),
-    /// The bodies themselves on it, whose estimate is above the tolerance: the passes go on
-    /// with them from this solution.
-    GoOn(Solve),
-}
+impl ErrorContribution for StandIns {
+    fn name(&self) -> &'static str {
+        "stand-ins"
+    }
 
-impl PassStandIns {
-    /// The stand-ins of `scene`'s bodies, fitted on the [`levels`] of `start` for `tolerance`,
-    /// their build time added to `timings`.
-    pub(super) fn build(
-        scene: &Scene,
-        start: &DyadicGrid,
-        tolerance: f64,
-        run: &RunCaches,
-        timings: &mut Timings,
-    ) -> Result<Self, Error> {
+    fn checks_the_result(&self) -> bool {
+        true
+    }
+
+    /// The stand-ins of `bodies`, fitted on the [`levels`] of `start` for the run's tolerance,
+    /// their build time added to the run's: the passes' scene, None when no body offers one.
+    fn start(&mut self, bodies: &Scene, start: &DyadicGrid, env: &mut Env<'_>) -> Result<Option<Scene>, Error> {
         let t = Instant::now();
-        let levels = levels(start, tolerance);
+        let levels = levels(start, env.tolerance);
         let level_refs: Vec<&ContactGrid> = levels.iter().collect();
-        let built = scene.with_pass_stand_ins(&level_refs, Some(run))?;
-        let (stand_ins, condense_s) = match built {
+        let built = bodies.with_pass_stand_ins(&level_refs, Some(env.run))?;
+        let (passes, condense_s) = match built {
             // The two bodies' builds may have overlapped: the condensation's share of the wall time.
-            Some(s) => (
-                Self {
-                    passes: Some(s.passes),
+            Some(s) => {
+                *self = Self {
+                    stood_in: true,
                     check: s.check,
                     changes: s.check_changes,
                     check_factor: check_factor(levels.len()),
-                },
-                Timings::share_of_wall(t.elapsed().as_secs_f64(), s.condense_s, s.build_s),
-            ),
-            None => (
-                Self {
-                    passes: None,
-                    check: None,
-                    changes: None,
+                };
+                (
+                    Some(s.passes),
+                    Timings::share_of_wall(t.elapsed().as_secs_f64(), s.condense_s, s.build_s),
+                )
+            }
+            None => {
+                *self = Self {
                     check_factor: 1.0,
-                },
-                0.0,
-            ),
+                    ..Self::default()
+                };
+                (None, 0.0)
+            }
         };
-        timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
-        timings.condense_s += condense_s;
-        Ok(stand_ins)
+        env.timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
+        env.timings.condense_s += condense_s;
+        Ok(passes)
     }
 
-    /// The passes' grids G (`g`) and H (`h`), solved, meet the tolerance with the grid's
-    /// estimate `e`: H's solution is the result when the passes solved the bodies themselves,
-    /// or when the stand-ins' own estimated error ([`check_difference`] times the check
-    /// factor) leaves the sum within `tolerance`; else H's grid is solved with the bodies
-    /// themselves, whose difference from the stand-ins' solution joins the estimate. The final
-    /// estimate and the iterations go to `last` (the pass's step).
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn finish(
-        &mut self,
-        scene: &Scene,
-        g: Solve,
-        h: Solve,
-        e: ErrorEstimate,
-        scales: Scales,
-        tolerance: f64,
-        last: Option<&mut AdaptationStep>,
-        run: &RunCaches,
-        timings: &mut Timings,
-        ws: &mut Workspace,
-    ) -> Result<Final, Error> {
+    /// The passes' grids G and H, solved on the stand-ins, meet the tolerance with the pass's
+    /// estimate: H's solution is the result when the stand-ins' own estimated error
+    /// ([`check_difference`] times the check factor) leaves the sum within the tolerance; else
+    /// H's grid is solved with the bodies themselves, whose difference from the stand-ins'
+    /// solution joins the estimate: met, or the passes go on with the bodies
+    /// ([`Rebuild::Bodies`]). The final estimate and the iterations go to the pass's step.
+    fn assess(&mut self, round: &mut Round<'_, '_>) -> Result<Contribution, Error> {
         // H's slip blocks go before the check's are made: its problem is the base of the
         // check's changed problems, and its solution waits for its outputs.
-        let mut h = h.without_slip_blocks();
-        if self.passes.is_none() {
-            return Ok(Final::Met(h));
+        let mut h = round.take_waiting();
+        let e = round.estimate;
+        let (scene, scales, tolerance) = (round.bodies, round.scales, round.env.tolerance);
+        let contribution = |estimate: Option<f64>, verdict: Verdict| Contribution {
+            name: "stand-ins",
+            estimate,
+            verdict,
+        };
+        if !self.stood_in {
+            round.h = Some(Held::Waiting(h));
+            return Ok(contribution(None, Verdict::Met));
         }
+        let env = &mut *round.env;
         let overlap = e.overlap_rel.is_some();
         if let Some(check) = self.check.as_ref().filter(|_| !asks_interior_fields(scene)) {
+            let g = round.g.take().expect("the pass's solve on G");
             let checked = check_difference(
                 check,
                 self.changes.as_ref(),
@@ -150,9 +140,9 @@ impl PassStandIns {
                 &mut h,
                 scales,
                 overlap,
-                run,
-                timings,
-                ws,
+                env.run,
+                &mut env.timings,
+                &mut env.ws,
             )?;
             if let Some((d, iterations)) = checked {
                 let total = e.plus(&d, self.check_factor);
@@ -165,11 +155,12 @@ impl PassStandIns {
                     self.check_factor * d.creepage_rel
                 );
                 if total.within(tolerance) {
-                    if let Some(last) = last {
+                    if let Some(last) = env.steps.last_mut() {
                         last.estimate = total;
                         last.iterations += iterations;
                     }
-                    return Ok(Final::Met(h));
+                    round.h = Some(Held::Waiting(h));
+                    return Ok(contribution(Some(total.largest()), Verdict::Met));
                 }
             }
             // The stand-ins are not known well enough for this tolerance: the final grid is
@@ -180,16 +171,23 @@ impl PassStandIns {
             scene.on_grid(h.problem.grid().clone()),
             Some((h.problem.grid(), &h.state)),
             false,
-            Some(run),
-            timings,
-            ws,
+            Some(env.run),
+            &mut env.timings,
+            &mut env.ws,
         )?;
         if !full.report.converged {
-            return Ok(Final::Ended(full));
+            drop(h);
+            round.h = Some(Held::Whole(full));
+            let ended = Verdict::Ended {
+                reached: true,
+                too_coarse: None,
+            };
+            return Ok(contribution(None, ended));
         }
         // The bodies themselves differ from their stand-ins by this much on the final grid; the
         // estimate of their solution is the stand-in's plus the difference.
         let d = body_mesh::difference(&full.problem.grid, &h.state, &full.state, scales, overlap);
+        drop(h);
         let total = e.plus(&d, 1.0);
         log::info!(
             target: crate::logging::PROGRESS,
@@ -199,12 +197,13 @@ impl PassStandIns {
             d.shear,
             d.creepage_rel
         );
-        if let Some(last) = last {
+        if let Some(last) = env.steps.last_mut() {
             last.estimate = total;
             last.iterations += full.report.iterations;
         }
         if total.within(tolerance) {
-            return Ok(Final::Met(full.without_slip_blocks()));
+            round.h = Some(Held::Waiting(full.without_slip_blocks()));
+            return Ok(contribution(Some(total.largest()), Verdict::Met));
         }
         // Not close enough at this tolerance: the passes go on with the bodies themselves, from
         // this grid.
@@ -213,8 +212,9 @@ impl PassStandIns {
             "error control: the pass stand-ins are not accurate enough at this tolerance; refining \
              with the full bodies"
         );
-        self.passes = None;
-        Ok(Final::GoOn(full))
+        self.stood_in = false;
+        round.h = Some(Held::Whole(full));
+        Ok(contribution(Some(total.largest()), Verdict::Rebuild(Rebuild::Bodies)))
     }
 }
 
