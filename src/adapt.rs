@@ -369,7 +369,7 @@ fn controlled(scene: &Scene, contributions: &mut [Box<dyn ErrorContribution + '_
             Verdict::Rebuild(rebuild) => {
                 warm = Some(h.into_warm());
                 if let Rebuild::New(rebuilt) = rebuild {
-                    bodies = rebuilt;
+                    bodies = *rebuilt;
                     passes = started(contributions, &bodies, &DyadicGrid::new(&bodies.grid), &mut env)?;
                     run_scales = None;
                     shortest = bodies.shortest_grid_element();

@@ -196,7 +196,7 @@ impl ErrorContribution for BodyMeshes {
         self.bisections += 1;
         Ok(contribution(
             Some(e.largest()),
-            Verdict::Rebuild(Rebuild::New(bisected)),
+            Verdict::Rebuild(Rebuild::New(Box::new(bisected))),
         ))
     }
 }

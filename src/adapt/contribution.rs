@@ -70,7 +70,7 @@ pub enum Rebuild {
     Bodies,
     /// These bodies in place of the run's (the result is of them): every contribution is
     /// started on them again ([`ErrorContribution::start`]).
-    New(Scene),
+    New(Box<Scene>),
 }
 
 /// One part of the error the loop controls (module docs).

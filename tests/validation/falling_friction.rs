@@ -468,7 +468,7 @@ fn contacts_two_branches_of_one_step_are_found_from_below_and_above() {
         tangential: TangentialControl::Creep(-0.001),
     };
     let p0 = steady.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
-    let mut ratio = |side: InitialSlip| {
+    let ratio = |side: InitialSlip| {
         let mut h = History::from_steady(&scene, steady.clone()).expect("a history");
         h.set_initial_slip(side);
         let z = h.advance(step).unwrap_or_else(|e| panic!("{side:?}: {e}")).state;
