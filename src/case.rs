@@ -77,6 +77,24 @@ pub struct LoadedCase {
 }
 
 impl LoadedCase {
+    /// Refuses a case that gives a `transient:` history for a `command` that solves steady
+    /// problems (`rollbem sweep`, the studies): it would solve the steady problem and drop the
+    /// history without a word.
+    pub fn steady_only(&self, command: &str) -> Result<(), CaseError> {
+        match self.case.transient {
+            None => Ok(()),
+            Some(_) => Err(CaseError::Schema {
+                path: self.path.clone(),
+                key: "transient".into(),
+                message: format!(
+                    "the case gives a transient history, and {command} solves steady problems only: \
+                     run the history with `rollbem run`, or remove it with `--set transient=null` \
+                     (an override `transient=null`) to solve the case's steady problem"
+                ),
+            }),
+        }
+    }
+
     /// Folder of the case file (paths in a case are relative to it).
     pub fn base_dir(&self) -> PathBuf {
         self.path.parent().map(Path::to_path_buf).unwrap_or_default()

@@ -111,7 +111,7 @@ pub fn run(
     // Fail fast on an unreadable case or a --set or --vary key that no run could take; value
     // errors (out of range, or only in some combinations) are per-run failures.
     Runs::new(varies)?;
-    crate::case::load(case, base_set)?;
+    crate::case::load(case, base_set)?.steady_only("`rollbem sweep`")?;
     check_keys(case, base_set, varies)?;
     let record = SweepRecord::new(case, base_set, varies, shard)?;
     let access = if shard.is_some() {

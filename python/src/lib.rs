@@ -530,7 +530,9 @@ fn sweep(
                 .into());
             }
             // Fail fast on an unreadable case, as the CLI's sweep does.
-            app::load_case(source.case_source(), &overrides)?;
+            app::load_case(source.case_source(), &overrides)?
+                .steady_only("`rollbem.sweep`")
+                .map_err(Error::from)?;
             let varies: Vec<rollbem::sweep::Vary> = varies
                 .iter()
                 .map(|(key, values)| rollbem::sweep::Vary {

@@ -127,6 +127,7 @@ BAD_ARGUMENTS = {
     "vary [10**5000]": (lambda: rollbem.sweep(CARTER, vary={"contact.grid.elements": [10**5000]}), "contact.grid.elements"),
     "vary nested": (lambda: rollbem.sweep(CARTER, vary={"contact.grid": [nested(100_000)]}), "vary['contact.grid']"),
     "vary key 1": (lambda: rollbem.sweep(CARTER, vary={1: [0.1]}), "vary"),
+    "sweep of a history": (lambda: rollbem.sweep("cases/cattaneo_to_carter.yaml", vary=ONE), "transient=null"),
 }
 
 

@@ -190,6 +190,7 @@ const MIN_RUNG: usize = 3;
 /// Runs the study on the scene of `case`; `progress` shows a bar on the terminal.
 pub fn run(case: &LoadedCase, options: &AccuracyOptions, progress: bool) -> Result<AccuracyReport, Error> {
     let start = Instant::now();
+    case.steady_only("`rollbem study accuracy`")?;
     let scene = scenes::scene_bodies(case)?;
     if options.ladder.is_empty() || options.models.is_empty() {
         return Err(study_error(

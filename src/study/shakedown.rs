@@ -108,9 +108,10 @@ pub struct ShakedownStudy {
 /// (von Mises when the case has no `output.strength`), draws the map for its criterion and
 /// writes shakedown_map.csv, shakedown_points.csv and shakedown.svg into `out`.
 pub fn run(case: &Path, overrides: &[String], vary: Option<&str>, out: &Path) -> Result<ShakedownStudy, Error> {
-    let _claim = Claim::acquire(out, Kind::StudyShakedown, Access::Exclusive)?;
     let mut base = overrides.to_vec();
     let loaded = crate::case::load(case, &base)?;
+    loaded.steady_only("`rollbem study shakedown`")?;
+    let _claim = Claim::acquire(out, Kind::StudyShakedown, Access::Exclusive)?;
     if loaded.case.output.strength.is_none() {
         base.push("output.strength.criterion=von_mises".into());
     }

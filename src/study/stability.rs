@@ -509,7 +509,7 @@ fn solve_cell(case_path: &Path, base_set: &[String], job: &Job) -> CellResult {
 /// Runs the stability study of `case_path` (with `base_set` overrides) into `out`.
 pub fn run(case_path: &Path, base_set: &[String], preset: Preset, out: &Path) -> Result<StabilityReport, Error> {
     let start = Instant::now();
-    case::load(case_path, base_set)?;
+    case::load(case_path, base_set)?.steady_only("`rollbem study stability`")?;
     // Lock and check the output folder before the study runs.
     let _claim = Claim::acquire(out, Kind::StudyStability, Access::Exclusive)?;
     let slices = ladder(preset);

@@ -233,3 +233,48 @@ fn check_reports_the_history_as_planned() {
         "{stdout}"
     );
 }
+
+/// `rollbem sweep` and the studies solve steady problems: a transient case is refused by its
+/// key `transient` (exit 1, nothing written) rather than swept as its steady problem without a
+/// word; `--set transient=null` sweeps the steady problem.
+#[test]
+fn a_sweep_refuses_a_history_and_takes_its_steady_problem_when_asked() {
+    let case = case_path("cattaneo_to_carter");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sweep");
+    let sweep = |extra: &[&str]| {
+        let mut args = vec![
+            "sweep",
+            case.to_str().unwrap(),
+            "--vary",
+            "load.tangential.ratio=0.3,0.6",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        rollbem(&args)
+    };
+    let (code, _, stderr) = sweep(&[]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("key `transient`")
+            && stderr.contains("`rollbem sweep` solves steady problems only")
+            && stderr.contains("--set transient=null"),
+        "{stderr}"
+    );
+    assert!(!out.exists(), "a refused sweep writes nothing");
+    for study in [["study", "stability"], ["study", "shakedown"]] {
+        let (code, _, stderr) = rollbem(&[
+            study[0],
+            study[1],
+            case.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 1, "{stderr}");
+        assert!(stderr.contains("key `transient`"), "{stderr}");
+    }
+    let (code, _, stderr) = sweep(&["--set", "transient=null"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(out.join("sweep.csv").exists());
+}
