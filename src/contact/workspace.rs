@@ -190,8 +190,12 @@ impl Workspace {
             return;
         }
         let n = matrix.nrows();
-        kept.system.truncate(0, 0);
-        kept.system.resize_with(n, n, |i, j| matrix[(i, j)]);
+        if kept.system.nrows() != n || kept.system.ncols() != n {
+            kept.system.truncate(0, 0);
+            kept.system.resize_with(n, n, |_, _| 0.0);
+        }
+        // Column by column (contiguous: a copy the compiler vectorises).
+        kept.system.as_mut().copy_from(matrix.as_ref());
         lu.solve_in_place(matrix.as_mut(), rhs.as_mut());
         // The factors stay; the old kept buffer (same capacity) is the next system's matrix.
         std::mem::swap(matrix, &mut kept.factors);
@@ -202,9 +206,15 @@ impl Workspace {
 
 /// Whether two matrices have the same shape and the same bits in every entry.
 fn same_bits(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> bool {
-    a.nrows() == b.nrows()
-        && a.ncols() == b.ncols()
-        && (0..a.ncols()).all(|j| (0..a.nrows()).all(|i| a[(i, j)].to_bits() == b[(i, j)].to_bits()))
+    let same_column = |j: usize| match (a.col(j).try_as_col_major(), b.col(j).try_as_col_major()) {
+        (Some(x), Some(y)) => x
+            .as_slice()
+            .iter()
+            .zip(y.as_slice())
+            .all(|(u, v)| u.to_bits() == v.to_bits()),
+        _ => (0..a.nrows()).all(|i| a[(i, j)].to_bits() == b[(i, j)].to_bits()),
+    };
+    a.nrows() == b.nrows() && a.ncols() == b.ncols() && (0..a.ncols()).all(same_column)
 }
 
 /// `Workspace` moves between the threads of a parallel sweep with its solve.
