@@ -93,6 +93,17 @@ pub fn solve_run(case: &LoadedCase) -> Result<Solved, Error> {
     }
 }
 
+/// Solves a loaded case as [`solve_run`] does, with a fixed grid's error estimate whatever
+/// `contact.grid.estimate` says (`rollbem check --estimate`).
+pub fn solve_estimated(case: &LoadedCase) -> Result<Solved, Error> {
+    let start = Instant::now();
+    let s = solve_adapted(Scene::from_case(case)?, start, true)?;
+    match tolerance_not_reached(&s) {
+        Some(e) => Err(e),
+        None => Ok(s),
+    }
+}
+
 /// [`solve_scene_best`] as `rollbem run` solves it (see [`solve_run`]).
 fn solve_run_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
     let estimate = scene.case.case.contact.grid.estimate;

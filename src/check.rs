@@ -11,7 +11,65 @@ use std::path::Path;
 /// The text printed by `rollbem check`: the case as understood, with Hertz estimates.
 /// `tolerance` is the accuracy the user needs (a fraction of p0 and μp0), for the model advice.
 pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> Result<String, Error> {
-    report(&case::load(case_path, overrides)?, tolerance)
+    let case = case::load(case_path, overrides)?;
+    let mut t = report(&case, tolerance)?;
+    if case.case.contact.grid.tolerance.is_none() {
+        t.push_str(&format!(
+            "  {:<26} not estimated: `rollbem check --estimate` solves the grid and its halving \
+             (`rollbem run` reports it as error_estimate)\n",
+            "grid error"
+        ));
+    }
+    Ok(t)
+}
+
+/// `rollbem check --estimate`: [`check_report`], then the grid's estimated error, from solving
+/// the case's steady problem on its grid and on the grid halved (what `rollbem run` reports as
+/// `error_estimate`, docs/validation.md "Fixed grids"), with a warning when it exceeds
+/// `tolerance` (the accuracy asked). An error-controlled grid (`contact.grid.tolerance`) is not
+/// solved: its tolerance bounds the estimate.
+pub fn check_report_estimated(case_path: &Path, overrides: &[String], tolerance: f64) -> Result<String, Error> {
+    let case = case::load(case_path, overrides)?;
+    let mut t = report(&case, tolerance)?;
+    let label = "grid error (estimated)";
+    if let Some(control) = case.case.contact.grid.tolerance {
+        t.push_str(&format!(
+            "  {label:<26} at most {control:e} (relative): contact.grid.tolerance controls it; not solved here\n"
+        ));
+        return Ok(t);
+    }
+    let start = std::time::Instant::now();
+    let solved = crate::app::solve_estimated(&case)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let Some(e) = solved.fixed_grid_estimate else {
+        t.push_str(&format!(
+            "  {label:<26} none: the grid's solve or its halving's did not converge (`rollbem run` says why)\n"
+        ));
+        return Ok(t);
+    };
+    t.push_str(&format!(
+        "  {label:<26} pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}{} (relative); the grid \
+         and its halving solved in {seconds:.2} s\n",
+        e.pressure_rms,
+        e.shear_rms,
+        e.creep_rel,
+        e.overlap_rel.map_or(String::new(), |o| format!(", overlap {o:.2e}")),
+    ));
+    if e.largest() > tolerance {
+        t.push_str(&format!(
+            "  warning: the grid's estimated error {:.2e} exceeds the accuracy asked (--tolerance, {}): \
+             set contact.grid.tolerance (e.g. 1e-4) for an error-controlled grid, or refine \
+             contact.grid.elements\n",
+            e.largest(),
+            percent(tolerance)
+        ));
+    }
+    Ok(t)
+}
+
+/// A fraction as a percentage for messages: 0.01 → "1 %".
+fn percent(fraction: f64) -> String {
+    format!("{} %", (fraction * 100.0 * 1e9).round() / 1e9)
 }
 
 /// The text of `rollbem check` for a case already loaded (from a file or from text in memory,

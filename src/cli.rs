@@ -157,6 +157,11 @@ pub enum Command {
         /// Accuracy you need, as a fraction of p0 (pressure) and μp0 (shear): 0.01 is 1 %.
         #[arg(long, default_value_t = 0.01)]
         tolerance: f64,
+        /// Also estimate the grid's discretisation error: solves the case's steady problem on
+        /// its fixed grid and on the grid halved (what `rollbem run` reports as error_estimate;
+        /// 1.5–4 times a run's time) and warns when the estimate exceeds --tolerance.
+        #[arg(long)]
+        estimate: bool,
     },
     /// Write the meshes rollbem generates for a case's `geometry:` bodies as Gmsh files.
     ///

@@ -228,11 +228,20 @@ fn dispatch(cli: Cli) -> Result<i32> {
             }
             Ok(0)
         }
-        Command::Check { case, set, tolerance } => {
+        Command::Check {
+            case,
+            set,
+            tolerance,
+            estimate,
+        } => {
             if !(tolerance > 0.0 && tolerance.is_finite()) {
                 anyhow::bail!("--tolerance must be a positive fraction, e.g. 0.01 for 1 % (value = {tolerance})");
             }
-            print!("{}", rollbem::check::check_report(&case, &set, tolerance)?);
+            let report = match estimate {
+                true => rollbem::check::check_report_estimated(&case, &set, tolerance)?,
+                false => rollbem::check::check_report(&case, &set, tolerance)?,
+            };
+            print!("{report}");
             Ok(0)
         }
     }

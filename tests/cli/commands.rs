@@ -191,6 +191,47 @@ fn check_prints_hertz_estimates_and_set_overrides_apply() {
     assert!(stdout.contains("41 discontinuous_quadratic"), "{stdout}");
 }
 
+/// `check --estimate` solves the grid and its halving: the estimate it prints is the
+/// `error_estimate` that `run` writes for the same fixed grid, and it warns exactly when the
+/// largest part exceeds `--tolerance`; without `--estimate` it says how to get one, and an
+/// error-controlled grid is not solved.
+#[test]
+fn check_estimates_the_fixed_grid_s_error_and_warns_above_the_tolerance() {
+    let case = crate::common::case_path("carter_051");
+    let case = case.to_str().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let (code, _, stderr) = rollbem(&["run", case, "--out", out.to_str().unwrap(), "-q"]);
+    assert_eq!(code, 0, "{stderr}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let e = &summary["error_estimate"];
+    let part = |key: &str| e[key].as_f64().unwrap_or_else(|| panic!("error_estimate.{key}"));
+    let (p, q, xi) = (part("pressure_rms"), part("shear_rms"), part("creep_rel"));
+    let expected = format!("pressure {p:.2e} p0, shear {q:.2e} mu p0, creepage {xi:.2e} (relative)");
+    let largest = p.max(q).max(xi);
+    // Between the largest part and the others, and above it: no warning, then a warning.
+    for (tolerance, warns) in [(2.0 * largest, false), (0.5 * largest, true)] {
+        let t = format!("{tolerance}");
+        let (code, stdout, stderr) = rollbem(&["check", case, "--estimate", "--tolerance", &t]);
+        assert_eq!(code, 0, "{stderr}");
+        let line = stdout
+            .lines()
+            .find(|l| l.contains("grid error (estimated)"))
+            .expect("the line");
+        assert!(line.contains(&expected), "{line}\nexpected {expected}");
+        assert_eq!(
+            stdout.contains("warning: the grid's estimated error"),
+            warns,
+            "{stdout}"
+        );
+    }
+    let (_, stdout, _) = rollbem(&["check", case]);
+    assert!(stdout.contains("not estimated: `rollbem check --estimate`"), "{stdout}");
+    let (_, stdout, _) = rollbem(&["check", case, "--estimate", "--set", "contact.grid.tolerance=1e-3"]);
+    assert!(stdout.contains("contact.grid.tolerance controls it"), "{stdout}");
+}
+
 /// Dissimilar bodies without friction: β/μ has no value, and `check` says so in a few words
 /// (it printed an infinity of about 300 digits).
 #[test]
