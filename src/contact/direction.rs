@@ -217,8 +217,6 @@ impl System<'_> {
         let col_creep = free_creep.then_some(n_cols);
         n_cols += usize::from(free_creep);
         let n = n_cols;
-        let (J, rhs) = ws.system(n);
-
         let unknowns = Unknowns {
             p_col: &p_col,
             p_const: &p_const,
@@ -226,11 +224,32 @@ impl System<'_> {
             q_const: &q_const,
             q_pcoef: &q_pcoef,
         };
+        // A workspace that keeps factors solves a system whose inputs are the kept one's with
+        // those factors, and then fills only the right side.
+        let rows = SystemRows {
+            contact: &contact_rows,
+            stick: &stick_rows,
+            falling: &falling,
+            overlap: col_overlap,
+            creep: col_creep,
+        };
+        let key = ws.keeps_factors().then(|| self.system_key(&unknowns, &rows));
+        let kept = key.as_deref().is_some_and(|k| ws.kept_for(k));
+        let (J, rhs) = ws.system(n, !kept);
+        let mut J = (!kept).then_some(J);
         for (k, &i) in contact_rows.iter().enumerate() {
             rhs[(k, 0)] = -g3[i] + g1[i];
         }
-        unknowns.fill_elastic(J, rhs, 0, &contact_rows, &self.rn, &pb.flex.hp, &pb.flex.hq);
-        if let Some(c) = col_overlap {
+        unknowns.fill_elastic(
+            J.as_deref_mut(),
+            rhs,
+            0,
+            &contact_rows,
+            &self.rn,
+            &pb.flex.hp,
+            &pb.flex.hq,
+        );
+        if let (Some(c), Some(J)) = (col_overlap, J.as_deref_mut()) {
             for (k, &i) in contact_rows.iter().enumerate() {
                 J[(k, c)] = -self.rn[i];
             }
@@ -239,21 +258,28 @@ impl System<'_> {
         for (k, &i) in stick_rows.iter().enumerate() {
             rhs[(first + k, 0)] = -g4[i] + g2[i];
         }
-        unknowns.fill_elastic(J, rhs, first, &stick_rows, &self.rt, &pb.bp, &pb.bq);
-        if let Some(c) = col_creep {
+        unknowns.fill_elastic(J.as_deref_mut(), rhs, first, &stick_rows, &self.rt, &pb.bp, &pb.bq);
+        if let (Some(c), Some(J)) = (col_creep, J.as_deref_mut()) {
             for (k, &i) in stick_rows.iter().enumerate() {
                 J[(first + k, c)] = self.rt[i] * pb.flow_sign * pb.slip_operator.creep_weight[i];
             }
         }
         let mut row = first + stick_rows.len();
-        falling.fill(&unknowns, J, rhs, row, col_creep.map(|c| (c, pb.flow_sign)), pb);
+        falling.fill(
+            &unknowns,
+            J.as_deref_mut(),
+            rhs,
+            row,
+            col_creep.map(|c| (c, pb.flow_sign)),
+            pb,
+        );
         row += falling.rows.len();
         let w = &pb.grid.weights;
         // G5 sits at 4m whenever δ0 is free, G6 after it: the layout of the full residual.
         let k = 4 * m + usize::from(self.free_overlap);
         if free_overlap {
             rhs[(row, 0)] = -self.length * G[4 * m];
-            unknowns.add_row(J, rhs, row, &|j| w[j], &|_| 0.0);
+            unknowns.add_row(J.as_deref_mut(), rhs, row, &|j| w[j], &|_| 0.0);
             row += 1;
         }
         if let (true, Some((ratio, _))) = (free_creep, self.tangential_load()) {
@@ -263,7 +289,7 @@ impl System<'_> {
         }
         debug_assert_eq!(row, n);
 
-        ws.solve_system();
+        ws.solve_system(key);
         let y = &ws.rhs;
         let singular = (0..n).any(|r| !y[(r, 0)].is_finite());
         let (dp, dq) = unknowns.tractions(y);
@@ -317,6 +343,59 @@ fn reset<T: Clone>(v: &mut Vec<T>, m: usize, value: T) {
     v.resize(m, value);
 }
 
+/// The rows of a reduced system besides the load rows: the contact rows' nodes, the stick
+/// rows' nodes, the falling-law rows, and the columns of δ0 and ξ when they are free.
+struct SystemRows<'a> {
+    contact: &'a [usize],
+    stick: &'a [usize],
+    falling: &'a FallingRows,
+    overlap: Option<usize>,
+    creep: Option<usize>,
+}
+
+impl System<'_> {
+    /// Everything the reduced Newton matrix is made of, by its bits: the problem's
+    /// flexibilities (by address and diagonal: they stay in place while a workspace keeps
+    /// factors of them, and a history that changes its slip blocks makes new ones) and weights
+    /// (by address), the row
+    /// weights r_n and r_t, the rows and columns (the nodes of each kind in order, the
+    /// load columns), the coefficients q_pcoef and the falling rows' slopes and μ_i sgn_i, the
+    /// load row's Q/(μP) and μ. Two systems with the same key have the same matrix bit for
+    /// bit, so a [`Workspace`] keeping factors solves the second with the first's LU without
+    /// filling its matrix.
+    fn system_key(&self, unknowns: &Unknowns, rows: &SystemRows) -> Vec<u64> {
+        let pb = self.pb;
+        let mut key = Vec::with_capacity(8 * self.m() + 32);
+        for a in [&pb.flex.hp, &pb.flex.hq, &pb.bp, &pb.bq] {
+            key.extend([a.as_ptr() as u64, a.nrows() as u64, a.ncols() as u64]);
+            // The diagonal too: a problem dropped and another made in its memory differs there.
+            key.extend((0..a.nrows().min(a.ncols())).map(|i| a[(i, i)].to_bits()));
+        }
+        key.extend([
+            pb.grid.weights.as_ptr() as u64,
+            pb.slip_operator.creep_weight.as_ptr() as u64,
+            pb.flow_sign.to_bits(),
+            pb.friction.to_bits(),
+        ]);
+        key.extend(
+            self.rn
+                .iter()
+                .chain(&self.rt)
+                .chain(unknowns.q_pcoef)
+                .map(|v| v.to_bits()),
+        );
+        for nodes in [rows.contact, rows.stick] {
+            key.push(nodes.len() as u64);
+            key.extend(nodes.iter().map(|&i| i as u64));
+        }
+        rows.falling.key_into(&mut key);
+        key.extend([rows.overlap, rows.creep].map(|c| c.map_or(u64::MAX, |c| c as u64)));
+        let ratio = self.tangential_load().map_or(f64::NAN, |(ratio, _)| ratio);
+        key.push(ratio.to_bits());
+        key
+    }
+}
+
 /// The tractions of the reduced system: Δp_j = p_const_j + [column p_col_j] and
 /// Δq_j = q_const_j + [column q_col_j] + q_pcoef_j·Δp_j (a node's known parts in the
 /// constants, its unknowns, if any, in the named columns of the reduced matrix).
@@ -333,7 +412,7 @@ impl Unknowns<'_> {
     /// Adds Σ_j (ap_j Δp_j + aq_j Δq_j) to row `row`, moving known parts to the right side.
     fn add_row(
         &self,
-        J: &mut Mat<f64>,
+        mut J: Option<&mut Mat<f64>>,
         rhs: &mut Mat<f64>,
         row: usize,
         ap: &dyn Fn(usize) -> f64,
@@ -343,6 +422,7 @@ impl Unknowns<'_> {
             let (a_p, a_q) = (ap(j), aq(j));
             let cp = a_p + a_q * self.q_pcoef[j];
             rhs[(row, 0)] -= cp * self.p_const[j] + a_q * self.q_const[j];
+            let Some(J) = J.as_deref_mut() else { continue };
             if let Some(c) = self.p_col[j] {
                 J[(row, c)] += cp;
             }
@@ -359,7 +439,7 @@ impl Unknowns<'_> {
     #[allow(clippy::too_many_arguments)]
     fn fill_elastic(
         &self,
-        J: &mut Mat<f64>,
+        mut J: Option<&mut Mat<f64>>,
         rhs: &mut Mat<f64>,
         first: usize,
         rows: &[usize],
@@ -379,6 +459,8 @@ impl Unknowns<'_> {
                     *o -= (ap + aq * coef) * known_p + aq * known_q;
                 }
             }
+            // Without the matrix (the kept factors solve it) only the right side is made.
+            let Some(J) = J.as_deref_mut() else { continue };
             if let Some(c) = self.p_col[j] {
                 let out = &mut J.col_as_slice_mut(c)[first..end];
                 for (o, &i) in out.iter_mut().zip(rows) {

@@ -15,16 +15,20 @@
 //! A workspace holds no state of the solution: a solve with a used workspace gives the same
 //! numbers as one with a new one (`solves_alike_with_a_used_workspace` below).
 //!
-//! **Kept factors.** The reduced matrix depends only on the problem and on the nodes' states
-//! (contact or open; stick, slip and its sign), not on the residual: when an iterate has the
-//! states of the last one factored, the matrix is the same and so are its factors. The steps
-//! of a transient history meet this all the time (each step starts from the last step's
-//! solution, whose states its last Newton system already had). A workspace made by
-//! [`Workspace::keeping_factors`] keeps the last factored matrix and its LU, and solves a
-//! system whose matrix equals it bit for bit with the kept factors: the same numbers as a new
-//! LU (the same factors of the same matrix), for an O(n²) comparison instead of an O(n³)
-//! factorisation, and two more matrices of the workspace's capacity held. The equality is
-//! tested entry by entry, so no key of states and problem can go stale.
+//! **Kept factors.** The reduced matrix depends only on the problem, on the nodes' states
+//! (contact or open; stick, slip and its sign) and on a few coefficients (μ at slipping nodes,
+//! a falling law's slopes, the row weights, the load row's Q/(μP)), not on the residual: when an
+//! iterate has the states of the last one factored, the matrix is the same and so are its
+//! factors. The steps of a transient history meet this all the time (each step starts from the
+//! last step's solution, whose states its last Newton system already had). A workspace made by
+//! [`Workspace::keeping_factors`] keeps the last factored system's LU with the system's *key*
+//! (`System::system_key` in src/contact/direction.rs: every input of the matrix by its bits,
+//! the problem's flexibilities by address and diagonal), and a system with the same key is
+//! solved with the kept factors without its matrix being filled: the same numbers as a new LU
+//! (the same factors of the same matrix; `kept_factors_give_the_bits_of_new_ones` below), for
+//! an O(n²) solve instead of an O(n³) factorisation and the O(n²) fill. The flexibilities are
+//! keyed by address, so a problem must not be changed in place while a workspace keeps
+//! factors of it (a history that changes its slip blocks makes new ones).
 
 use crate::linalg::LuWorkspace;
 use faer::Mat;
@@ -73,12 +77,12 @@ pub struct Workspace {
     kept: Option<KeptFactor>,
 }
 
-/// A factored reduced system kept for reuse: the matrix as assembled (0 × 0 while none is
-/// kept, so that no system compares equal), its LU factors (in the matrix's place, as
+/// A factored reduced system kept for reuse: its key (empty while none is kept, so that no
+/// system's key equals it), its LU factors (in the matrix's place, as
 /// [`LuWorkspace::solve_in_place`] leaves them) and the LU workspace that holds their pivots.
 #[derive(Debug)]
 struct KeptFactor {
-    system: Mat<f64>,
+    key: Vec<u64>,
     factors: Mat<f64>,
     lu: LuWorkspace,
     /// Systems solved with new factors, and with the kept ones.
@@ -120,7 +124,7 @@ impl Workspace {
     pub fn keeping_factors() -> Self {
         Self {
             kept: Some(KeptFactor {
-                system: Mat::new(),
+                key: Vec::new(),
                 factors: Mat::new(),
                 lu: LuWorkspace::new(),
                 factored: 0,
@@ -142,9 +146,21 @@ impl Workspace {
         self.capacity
     }
 
-    /// The n × n zero matrix and zero right side of a reduced system, in the workspace's memory
-    /// (grown when n exceeds its capacity), to fill and then solve by [`Workspace::solve_system`].
-    pub(super) fn system(&mut self, n: usize) -> (&mut Mat<f64>, &mut Mat<f64>) {
+    /// Whether the workspace keeps factors ([`Workspace::keeping_factors`]).
+    pub(super) fn keeps_factors(&self) -> bool {
+        self.kept.is_some()
+    }
+
+    /// Whether the kept factors are those of the system with this key (module docs).
+    pub(super) fn kept_for(&self, key: &[u64]) -> bool {
+        self.kept.as_ref().is_some_and(|k| !k.key.is_empty() && k.key == key)
+    }
+
+    /// The n × n matrix (zero when `zero_matrix`; else as the last system left it, for a system
+    /// the kept factors solve) and the zero right side of a reduced system, in the workspace's
+    /// memory (grown when n exceeds its capacity), to fill and then solve by
+    /// [`Workspace::solve_system`].
+    pub(super) fn system(&mut self, n: usize, zero_matrix: bool) -> (&mut Mat<f64>, &mut Mat<f64>) {
         if n > self.capacity {
             // Freed before the larger one is allocated (a reserve would hold both at once).
             self.matrix = Mat::new();
@@ -155,14 +171,16 @@ impl Workspace {
             if let Some(kept) = self.kept.as_mut() {
                 kept.factors = Mat::new();
                 kept.factors.reserve(n, n);
-                // No system is kept with them: no matrix compares equal to an empty one.
-                kept.system.truncate(0, 0);
+                // No system is kept with them: no key equals an empty one.
+                kept.key.clear();
             }
         }
         // Truncating first makes the resize write every entry once: zeros, whatever the last
         // system left there.
-        self.matrix.truncate(0, 0);
-        self.matrix.resize_with(n, n, |_, _| 0.0);
+        if zero_matrix {
+            self.matrix.truncate(0, 0);
+            self.matrix.resize_with(n, n, |_, _| 0.0);
+        }
         self.rhs.truncate(0, 0);
         self.rhs.resize_with(n, 1, |_, _| 0.0);
         (&mut self.matrix, &mut self.rhs)
@@ -170,51 +188,34 @@ impl Workspace {
 }
 
 impl Workspace {
-    /// Solves the system that [`Workspace::system`] handed out and the caller filled: the right
-    /// side becomes the solution. With kept factors whose matrix equals this one bit for bit,
-    /// by them; else by a new LU, which a workspace that keeps factors then keeps.
-    pub(super) fn solve_system(&mut self) {
+    /// Solves the system that [`Workspace::system`] handed out and the caller filled (its right
+    /// side; its matrix too unless the kept factors are the system's): the right side becomes
+    /// the solution. With kept factors of the same `key` (module docs), by them; else by a new
+    /// LU, which a workspace that keeps factors then keeps with `key`.
+    pub(super) fn solve_system(&mut self, key: Option<Vec<u64>>) {
         let Self {
             matrix, rhs, lu, kept, ..
         } = self;
-        if matrix.nrows() == 0 {
+        if rhs.nrows() == 0 {
             return;
         }
         let Some(kept) = kept.as_mut() else {
             lu.solve_in_place(matrix.as_mut(), rhs.as_mut());
             return;
         };
-        if same_bits(kept.system.as_ref(), matrix.as_ref()) {
+        let key = key.unwrap_or_default();
+        if !key.is_empty() && kept.key == key {
             kept.lu.solve_again(kept.factors.as_ref(), rhs.as_mut());
             kept.reused += 1;
             return;
         }
-        let n = matrix.nrows();
-        if kept.system.nrows() != n || kept.system.ncols() != n {
-            kept.system.truncate(0, 0);
-            kept.system.resize_with(n, n, |_, _| 0.0);
-        }
-        // Column by column (contiguous: a copy the compiler vectorises).
-        kept.system.as_mut().copy_from(matrix.as_ref());
         lu.solve_in_place(matrix.as_mut(), rhs.as_mut());
         // The factors stay; the old kept buffer (same capacity) is the next system's matrix.
         std::mem::swap(matrix, &mut kept.factors);
         std::mem::swap(lu, &mut kept.lu);
+        kept.key = key;
         kept.factored += 1;
     }
-}
-
-/// Whether two matrices have the same shape and the same bits in every entry.
-fn same_bits(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> bool {
-    let same_column = |j: usize| match (a.col(j).try_as_col_major(), b.col(j).try_as_col_major()) {
-        (Some(x), Some(y)) => x
-            .as_slice()
-            .iter()
-            .zip(y.as_slice())
-            .all(|(u, v)| u.to_bits() == v.to_bits()),
-        _ => (0..a.nrows()).all(|i| a[(i, j)].to_bits() == b[(i, j)].to_bits()),
-    };
-    a.nrows() == b.nrows() && a.ncols() == b.ncols() && (0..a.ncols()).all(same_column)
 }
 
 /// `Workspace` moves between the threads of a parallel sweep with its solve.
@@ -302,5 +303,40 @@ mod tests {
             (factored, reused)
         );
         assert_eq!(Workspace::new().factorisations(), (0, 0));
+    }
+
+    #[test]
+    fn kept_factors_follow_a_problem_changed_in_place() {
+        // The same problem, its friction and its tangential load changed in place between
+        // solves (same flexibilities at the same addresses): the key sees μ and Q/(μP), so no
+        // stale factor solves the changed system; every result equals a new workspace's. Each
+        // pair is solved twice from a start a little off its solution, the second time with
+        // the factors the first kept (as in `kept_factors_give_the_bits_of_new_ones`).
+        use crate::contact::methods::solve_from_in;
+        use crate::contact::TangentialControl;
+        let (mut pb, settings) = carter(41);
+        let mut ws = Workspace::keeping_factors();
+        for (mu, ratio) in [(0.3, 0.51), (0.25, 0.51), (0.25, 0.6), (0.3, 0.51)] {
+            pb.friction = mu;
+            if let TangentialControl::Ratio(r) = &mut pb.tangential {
+                *r = ratio;
+            }
+            let (z, _) = solve(&pb, &settings);
+            let mut warm = z.clone();
+            warm.pressure.iter_mut().for_each(|p| *p *= 1.01);
+            warm.shear.iter_mut().for_each(|q| *q *= 0.99);
+            let (fresh, r_fresh) = solve_from_in(&pb, &settings, Some(warm.clone()), &mut Workspace::new());
+            assert!(r_fresh.converged);
+            for _ in 0..2 {
+                let (kept, r_kept) = solve_from_in(&pb, &settings, Some(warm.clone()), &mut ws);
+                assert!(r_kept.converged);
+                assert_eq!(kept, fresh, "μ {mu}, Q/μP {ratio}");
+            }
+        }
+        assert!(
+            ws.factorisations().1 > 0,
+            "some systems reused: {:?}",
+            ws.factorisations()
+        );
     }
 }

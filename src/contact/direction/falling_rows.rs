@@ -49,7 +49,7 @@ impl FallingRows {
     pub(super) fn fill(
         &self,
         unknowns: &Unknowns,
-        J: &mut Mat<f64>,
+        mut J: Option<&mut Mat<f64>>,
         rhs: &mut Mat<f64>,
         first: usize,
         creep: Option<(usize, f64)>,
@@ -61,18 +61,30 @@ impl FallingRows {
         for (k, &value) in self.rhs.iter().enumerate() {
             rhs[(first + k, 0)] = value;
         }
-        unknowns.fill_elastic(J, rhs, first, &self.rows, &self.weight, &pb.bp, &pb.bq);
+        unknowns.fill_elastic(J.as_deref_mut(), rhs, first, &self.rows, &self.weight, &pb.bp, &pb.bq);
         for (k, &i) in self.rows.iter().enumerate() {
             let row = first + k;
+            if unknowns.p_col[i].is_none() {
+                rhs[(row, 0)] += self.mu_sign[k] * unknowns.p_const[i];
+            }
+            let Some(J) = J.as_deref_mut() else { continue };
             let q = unknowns.q_col[i].expect("a falling row's shear is an unknown");
             J[(row, q)] += 1.0;
-            match unknowns.p_col[i] {
-                Some(c) => J[(row, c)] -= self.mu_sign[k],
-                None => rhs[(row, 0)] += self.mu_sign[k] * unknowns.p_const[i],
+            if let Some(c) = unknowns.p_col[i] {
+                J[(row, c)] -= self.mu_sign[k];
             }
             if let Some((c, sigma)) = creep {
                 J[(row, c)] += self.weight[i] * sigma * pb.slip_operator.creep_weight[i];
             }
+        }
+    }
+
+    /// The rows' part of a system's key ([`super::System::system_key`]): each row's node, its
+    /// weight −c_i and μ_i sgn_i, by their bits.
+    pub(super) fn key_into(&self, key: &mut Vec<u64>) {
+        key.push(self.rows.len() as u64);
+        for (k, &i) in self.rows.iter().enumerate() {
+            key.extend([i as u64, self.weight[i].to_bits(), self.mu_sign[k].to_bits()]);
         }
     }
 }
