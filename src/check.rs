@@ -12,49 +12,55 @@ use std::path::Path;
 /// `tolerance` is the accuracy the user needs (a fraction of p0 and μp0), for the model advice.
 pub fn check_report(case_path: &Path, overrides: &[String], tolerance: f64) -> Result<String, Error> {
     let case = case::load(case_path, overrides)?;
-    let mut t = report(&case, tolerance)?;
-    if case.case.contact.grid.tolerance.is_none() {
-        t.push_str(&format!(
+    Ok(report(&case, tolerance)? + &grid_error_lines(&case, tolerance, false)?)
+}
+
+/// `rollbem check --estimate`: [`check_report`] with the grid's estimated error (see
+/// [`grid_error_lines`]).
+pub fn check_report_estimated(case_path: &Path, overrides: &[String], tolerance: f64) -> Result<String, Error> {
+    let case = case::load(case_path, overrides)?;
+    Ok(report(&case, tolerance)? + &grid_error_lines(&case, tolerance, true)?)
+}
+
+/// The lines on the grid's error that end `rollbem check`'s report. With `estimate`
+/// (`--estimate`), the error from solving the case's steady problem on its grid and on the
+/// grid halved (what `rollbem run` reports as `error_estimate`, docs/validation.md "Fixed
+/// grids"), with a warning when it exceeds `tolerance` (the accuracy asked); without, a line
+/// that says how to get it. An error-controlled grid (`contact.grid.tolerance`) is not solved:
+/// its tolerance bounds the estimate.
+pub fn grid_error_lines(case: &LoadedCase, tolerance: f64, estimate: bool) -> Result<String, Error> {
+    if !estimate {
+        if case.case.contact.grid.tolerance.is_some() {
+            return Ok(String::new());
+        }
+        return Ok(format!(
             "  {:<26} not estimated: `rollbem check --estimate` solves the grid and its halving \
              (`rollbem run` reports it as error_estimate)\n",
             "grid error"
         ));
     }
-    Ok(t)
-}
-
-/// `rollbem check --estimate`: [`check_report`], then the grid's estimated error, from solving
-/// the case's steady problem on its grid and on the grid halved (what `rollbem run` reports as
-/// `error_estimate`, docs/validation.md "Fixed grids"), with a warning when it exceeds
-/// `tolerance` (the accuracy asked). An error-controlled grid (`contact.grid.tolerance`) is not
-/// solved: its tolerance bounds the estimate.
-pub fn check_report_estimated(case_path: &Path, overrides: &[String], tolerance: f64) -> Result<String, Error> {
-    let case = case::load(case_path, overrides)?;
-    let mut t = report(&case, tolerance)?;
     let label = "grid error (estimated)";
     if let Some(control) = case.case.contact.grid.tolerance {
-        t.push_str(&format!(
+        return Ok(format!(
             "  {label:<26} at most {control:e} (relative): contact.grid.tolerance controls it; not solved here\n"
         ));
-        return Ok(t);
     }
     let start = std::time::Instant::now();
-    let solved = crate::app::solve_estimated(&case)?;
+    let solved = crate::app::solve_estimated(case)?;
     let seconds = start.elapsed().as_secs_f64();
     let Some(e) = solved.fixed_grid_estimate else {
-        t.push_str(&format!(
+        return Ok(format!(
             "  {label:<26} none: the grid's solve or its halving's did not converge (`rollbem run` says why)\n"
         ));
-        return Ok(t);
     };
-    t.push_str(&format!(
+    let mut t = format!(
         "  {label:<26} pressure {:.2e} p0, shear {:.2e} mu p0, creepage {:.2e}{} (relative); the grid \
          and its halving solved in {seconds:.2} s\n",
         e.pressure_rms,
         e.shear_rms,
         e.creep_rel,
         e.overlap_rel.map_or(String::new(), |o| format!(", overlap {o:.2e}")),
-    ));
+    );
     if e.largest() > tolerance {
         t.push_str(&format!(
             "  warning: the grid's estimated error {:.2e} exceeds the accuracy asked (--tolerance, {}): \

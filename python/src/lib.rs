@@ -403,15 +403,18 @@ fn run<'py>(
 /// `rollbem check`: the case as understood, without solving. Returns `report` (the text the
 /// CLI prints), `estimates` (summary.json's `estimates` as JSON text: Hertz half-width and peak
 /// pressure, E*, R*, ...) and `case` (the case resolved after the overrides, JSON text).
-/// `tolerance` is the accuracy the model advice aims at, a fraction of p0 and μp0.
+/// `tolerance` is the accuracy the model advice aims at, a fraction of p0 and μp0; with
+/// `estimate` the report ends with the grid's estimated error (`rollbem check --estimate`:
+/// the case solved on its grid and on the grid halved).
 #[pyfunction]
-#[pyo3(signature = (path, text, overrides, tolerance=0.01))]
+#[pyo3(signature = (path, text, overrides, tolerance=0.01, estimate=false))]
 fn check<'py>(
     py: Python<'py>,
     path: PathBuf,
     text: Option<String>,
     overrides: Vec<String>,
     tolerance: f64,
+    estimate: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     refresh_logging();
     if !(tolerance > 0.0 && tolerance.is_finite()) {
@@ -425,7 +428,8 @@ fn check<'py>(
     let outcome = py.detach(|| {
         guarded(|| {
             let case = app::load_case(source.case_source(), &overrides)?;
-            let report = rollbem::check::report(&case, tolerance)?;
+            let mut report = rollbem::check::report(&case, tolerance)?;
+            report.push_str(&rollbem::check::grid_error_lines(&case, tolerance, estimate)?);
             let scene = rollbem::scene::Scene::from_case(&case)?;
             let estimates = serde_json::to_string(&scene.estimates).map_err(|e| Error::Output {
                 path: case.path.clone(),

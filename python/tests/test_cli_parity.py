@@ -159,6 +159,22 @@ def test_check_prints_what_the_cli_prints():
     assert rollbem.check("cases/carter_051.yaml", set={"contact.friction": 0.2}, tolerance=0.001)["report"] == tight
 
 
+def test_check_estimate_prints_what_the_cli_prints():
+    """`estimate=True` is `rollbem check --estimate` (but for the seconds the solves took)."""
+    import re
+
+    def untimed(text):
+        return re.sub(r"solved in [0-9.]+ s", "solved in - s", text)
+
+    expected = cli("check", "cases/carter_051.yaml", "--estimate", "--tolerance", "0.005").stdout
+    got = rollbem.check("cases/carter_051.yaml", tolerance=0.005, estimate=True)
+    assert untimed(got["report"]) == untimed(expected)
+    assert got["items"]["grid error (estimated)"].startswith("pressure ")
+    assert "warning: the grid's estimated error" in got["report"]
+    with pytest.raises(rollbem.InputError, match="estimate"):
+        rollbem.check("cases/carter_051.yaml", estimate="yes")
+
+
 def test_check_of_a_dict_case_and_to_pandas():
     result = rollbem.run("cases/carter_051.yaml")
     by_dict = rollbem.check(result.case)

@@ -348,13 +348,19 @@ def run(
     return result
 
 
-def check(case: Case, set: Optional[Mapping[str, Any]] = None, tolerance: float = 0.01) -> Dict[str, Any]:
+def check(
+    case: Case, set: Optional[Mapping[str, Any]] = None, tolerance: float = 0.01, estimate: bool = False
+) -> Dict[str, Any]:
     """The case as understood, without solving, like ``rollbem check``.
 
     Args:
         case, set: as for :func:`run`.
         tolerance: the accuracy you need, a fraction of p0 and mu p0 (0.01 is 1 %), for the model
             advice.
+        estimate: also estimate the grid's discretisation error, like ``rollbem check
+            --estimate``: solves the case on its fixed grid and on the grid halved; the report
+            (and ``items["grid error (estimated)"]``) gives the estimate and warns when it exceeds
+            ``tolerance``.
 
     Returns:
         a dict: ``report`` (the text the CLI prints), ``items`` (its rows as {label: text}),
@@ -373,7 +379,9 @@ def check(case: Case, set: Optional[Mapping[str, Any]] = None, tolerance: float 
         tolerance = float(tolerance)
     except (ValueError, OverflowError) as e:
         raise InputError(f"tolerance: {e}") from None
-    raw = _rollbem.check(path, text, _overrides(set), tolerance)
+    if not isinstance(estimate, bool):
+        raise InputError(f"estimate must be True or False, not {type(estimate).__name__}")
+    raw = _rollbem.check(path, text, _overrides(set), tolerance, estimate)
     report = raw["report"]
     items: Dict[str, str] = {}
     for line in report.splitlines()[1:]:
