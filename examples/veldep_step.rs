@@ -15,7 +15,9 @@
 //! `DATUM` is the datum length of `History::set_datum_length` (DY·e^(ν/(1−ν)) for CONTACT's
 //! strip of width DY), `ELEMENTS` the grid's elements (31). With a CONTACT `.mat` file of the
 //! step on DX = 0.1 mm (case 4 of veldep_fric.inp, MATFIL = 1) its tractions are put on
-//! rollbem's nodes (the same points) and rollbem's step is solved warm from them. `DUMP=1`
+//! rollbem's nodes (the same points), its displacement UX is printed beside rollbem's
+//! half-plane pair's under the same tractions with the datum length `DATUM` (295.068 by default)
+//! and rollbem's step is solved warm from them. `DUMP=1`
 //! writes x, p, q, slip velocity and μ per node to /tmp/rollbem_<side>.txt.
 use rollbem::contact::falling::InitialSlip;
 use rollbem::contact::{NormalControl, TangentialControl};
@@ -129,6 +131,40 @@ fn main() {
                 p[k] = f[4];
                 q[k] = sign * f[5].abs();
             }
+        }
+        let mut ux = vec![f64::NAN; pb.n_nodes()];
+        for line in text.lines().filter(|l| !l.trim_start().starts_with('%')) {
+            let f: Vec<f64> = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+            if f.len() < 11 || f[1] < 1.0 || f[4] < 1.0 {
+                continue;
+            }
+            let x = -4.65 + (f[0] - 0.5) * dx;
+            if let Some(k) = pb.grid.nodes.iter().position(|&xn| (xn - x).abs() < 1e-6) {
+                ux[k] = f[8];
+            }
+        }
+        let raw = pb.relative_tangential(&p, &q);
+        let u = pb.slip_operator.upstream_end;
+        let k = rollbem::body::half_space::influence_matrix(&pb.grid, rollbem::body::half_space::Kernel::Log);
+        let nu: f64 = 0.28;
+        let b_pair = 2.0 * 2.0 * (1.0 - nu * nu) / (std::f64::consts::PI * 2.0 * 82000.0 * (1.0 + nu));
+        let ell: f64 = std::env::var("DATUM")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(295.068);
+        let c: f64 = (0..pb.n_nodes())
+            .map(|j| -b_pair * (k[(u, j)] - pb.grid.weights[j] * ell.ln()) * q[j])
+            .sum();
+        let qtot = pb.grid.integrate(&q);
+        for i in (6..87).step_by(10) {
+            let wl = raw[i] - raw[u] + c;
+            println!(
+                "x {:.2}: CONTACT UX {:.6e}, rollbem w_L {:.6e}, implied ln L shift {:.4}",
+                pb.grid.nodes[i],
+                ux[i],
+                wl,
+                (ux[i].abs() - wl.abs()) / (b_pair * qtot.abs())
+            );
         }
         let ratio = pb.grid.integrate(&q).abs() / (mu_s * pb.grid.integrate(&p));
         println!("CONTACT's state on rollbem's nodes: {ratio:.4}");
