@@ -159,7 +159,7 @@ pub struct History {
     log_coefficient: f64,
     /// The upstream end's displacement per nodal shear under the datum length of
     /// [`Self::set_datum_length`] (module docs) [length/stress]; None: the upstream end is the datum.
-    datum: Option<Vec<f64>>,
+    datum_row: Option<Vec<f64>>,
 }
 
 impl History {
@@ -206,7 +206,7 @@ impl History {
             workspace: methods::Workspace::keeping_factors(),
             initial: Default::default(),
             log_coefficient,
-            datum: None,
+            datum_row: None,
         })
     }
 
@@ -236,7 +236,7 @@ impl History {
     /// default) measures it from the material at the grid's upstream end, which then takes no
     /// part in a change of Q.
     pub fn set_datum_length(&mut self, length: Option<f64>) {
-        self.datum = length.map(|ell| {
+        self.datum_row = length.map(|ell| {
             let grid = &self.problem.grid;
             let u = self.problem.slip_operator.upstream_end;
             let log = crate::body::half_space::influence_matrix(grid, crate::body::half_space::Kernel::Log);
@@ -251,7 +251,7 @@ impl History {
 
     /// The upstream end's displacement under `shear` by the datum length (0 without one).
     fn datum_displacement(&self, shear: &[f64]) -> f64 {
-        self.datum
+        self.datum_row
             .as_ref()
             .map_or(0.0, |c| c.iter().zip(shear).map(|(c, q)| c * q).sum())
     }
@@ -298,7 +298,7 @@ impl History {
         if self.length != Some((length, datum)) {
             self.problem.bp = blocks(&self.problem.flex.wp, length, datum);
             self.problem.bq = blocks(&self.problem.flex.wq, length, datum);
-            if let (Some(c), true) = (&self.datum, rolling) {
+            if let (Some(c), true) = (&self.datum_row, rolling) {
                 for (j, c) in c.iter().enumerate() {
                     self.problem.bq.col_mut(j).iter_mut().for_each(|b| *b += c / length);
                 }
