@@ -17,7 +17,8 @@
 //! step on DX = 0.1 mm (case 4 of veldep_fric.inp, MATFIL = 1) its tractions are put on
 //! rollbem's nodes (the same points), its displacement UX is printed beside rollbem's
 //! half-plane pair's under the same tractions with the datum length `DATUM` (295.068 by default)
-//! and rollbem's step is solved warm from them. `DUMP=1`
+//! and rollbem's step is solved warm from them. `STEPS=n` rolls n further steps from above after
+//! the step from above (CONTACT's cases 5, 6, …), `WARM_AFTER=1` warm from the second step on. `DUMP=1`
 //! writes x, p, q, slip velocity and μ per node to /tmp/rollbem_<side>.txt.
 use rollbem::contact::falling::InitialSlip;
 use rollbem::contact::{NormalControl, TangentialControl};
@@ -109,6 +110,30 @@ fn main() {
             std::fs::write(&path, out).unwrap();
         }
         if side == InitialSlip::Above {
+            // CONTACT's cases 5, 6, ...: further steps from above (`STEPS`, 0 by default).
+            let more: usize = std::env::var("STEPS").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
+            let mut h2 = History::from_steady(&scene, steady.clone()).expect("a history");
+            h2.set_initial_slip(side);
+            h2.set_datum_length(std::env::var("DATUM").ok().and_then(|v| v.parse().ok()));
+            let mut ratios = Vec::new();
+            for _ in 0..=more.min(1000) {
+                let s = match h2.advance(step) {
+                    Ok(s) => s,
+                    Err(e) => {
+                        println!("step {}: {e}", ratios.len() + 1);
+                        break;
+                    }
+                };
+                let pb2 = h2.problem();
+                ratios.push(pb2.grid.integrate(&s.state.shear).abs() / (mu_s * pb2.grid.integrate(&s.state.pressure)));
+                if std::env::var("WARM_AFTER").is_ok() {
+                    h2.set_initial_slip(InitialSlip::Warm);
+                }
+            }
+            if more > 0 {
+                let text: Vec<String> = ratios.iter().map(|r| format!("{r:.4}")).collect();
+                println!("steps from above: {}", text.join(" "));
+            }
             above_hist = Some((h, z));
         }
     }
