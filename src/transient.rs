@@ -35,6 +35,19 @@
 //! a uniform grid of discontinuous elements onto a node; else an interpolation error O(h³)).
 //! Material that enters the grid from upstream carries the displacement of the grid's
 //! upstream end (outside the contact on a sensible grid, where it has no traction to act on).
+//!
+//! **The datum of a step.** Measuring w from the upstream end is a choice the plane problem
+//! leaves open: a half-plane's displacement is fixed only up to a constant, and that constant
+//! moves with the total shear Q. A 2D model computed on a strip of width b of a 3D half-space
+//! (CONTACT's one row of elements, DY = b) measures displacements from infinity instead: on the
+//! strip's centre line, Cerruti's solution integrated over the width is the half-plane's
+//! −B ∫ q(s) ln(|x − s|/L) ds with L = b·e^(ν/(1−ν)), to O((a/b)²). There the upstream material
+//! moves with Q, and over a step that changes Q the move is a rigid shift that acts as a
+//! creepage of its own until Q settles. [`History::set_datum_length`] takes that datum: the
+//! upstream end's w is then the displacement −ΣB ∫ q(s) ln(|x_u − s|/L) ds of a half-plane pair
+//! (B = 2(1−ν²)/(πE) of each deformable body's material), the rest of w relative to it as
+//! before. A steady state does not depend on it (only ∂w/∂x enters); a step that changes Q does
+//! (docs/friction.md, "Against CONTACT", cases 2 and 4).
 
 pub mod energy;
 
@@ -142,6 +155,11 @@ pub struct History {
     workspace: methods::Workspace,
     /// Where the solve of a rolling step under a falling law starts ([`Self::set_initial_slip`]).
     initial: crate::contact::falling::InitialSlip,
+    /// The sum of the deformable bodies' half-plane coefficients B = 2(1−ν²)/(πE) [1/stress].
+    log_coefficient: f64,
+    /// The upstream end's displacement per nodal shear under the datum length of
+    /// [`Self::set_datum_length`] (module docs) [length/stress]; None: the upstream end is the datum.
+    datum_row: Option<Vec<f64>>,
 }
 
 impl History {
@@ -164,6 +182,11 @@ impl History {
         }
         let (models, mut problem) = scene.assemble()?;
         let falling = problem.falling;
+        let log_coefficient = [&case.bodies.a, &case.bodies.b]
+            .into_iter()
+            .filter_map(|spec| spec.material_name())
+            .map(|name| scene.case.material(name).halfplane_log_coefficient())
+            .sum();
         // Every row carries the rigid shift: the steady problem's datum row (no creepage at
         // the upstream end) has no place in a step, whose w is absolute.
         problem.slip_operator.creep_weight.iter_mut().for_each(|e| *e = 1.0);
@@ -182,6 +205,8 @@ impl History {
             falling,
             workspace: methods::Workspace::keeping_factors(),
             initial: Default::default(),
+            log_coefficient,
+            datum_row: None,
         })
     }
 
@@ -203,6 +228,32 @@ impl History {
     /// solutions, and the start selects one (docs/friction.md).
     pub fn set_initial_slip(&mut self, initial: crate::contact::falling::InitialSlip) {
         self.initial = initial;
+    }
+
+    /// Measures the displacement of the rolling steps from now on from the datum length `length`
+    /// [length] of a half-plane pair (module docs, "The datum of a step"): a 2D model on a strip
+    /// of width b of a 3D half-space (CONTACT's DY) has `length` = b·e^(ν/(1−ν)). None (the
+    /// default) measures it from the material at the grid's upstream end, which then takes no
+    /// part in a change of Q.
+    pub fn set_datum_length(&mut self, length: Option<f64>) {
+        self.datum_row = length.map(|ell| {
+            let grid = &self.problem.grid;
+            let u = self.problem.slip_operator.upstream_end;
+            let log = crate::body::half_space::influence_matrix(grid, crate::body::half_space::Kernel::Log);
+            let b = self.log_coefficient;
+            (0..grid.nodes.len())
+                .map(|j| -b * (log[(u, j)] - grid.weights[j] * ell.ln()))
+                .collect()
+        });
+        // The slip blocks are rebuilt by the next step.
+        self.length = None;
+    }
+
+    /// The upstream end's displacement under `shear` by the datum length (0 without one).
+    fn datum_displacement(&self, shear: &[f64]) -> f64 {
+        self.datum_row
+            .as_ref()
+            .map_or(0.0, |c| c.iter().zip(shear).map(|(c, q)| c * q).sum())
     }
 
     /// The contact grid of the history.
@@ -247,11 +298,22 @@ impl History {
         if self.length != Some((length, datum)) {
             self.problem.bp = blocks(&self.problem.flex.wp, length, datum);
             self.problem.bq = blocks(&self.problem.flex.wq, length, datum);
+            if let (Some(c), true) = (&self.datum_row, rolling) {
+                for (j, c) in c.iter().enumerate() {
+                    self.problem.bq.col_mut(j).iter_mut().for_each(|b| *b += c / length);
+                }
+            }
             self.length = Some((length, datum));
         }
         let sigma = self.problem.flow_sign;
         let earlier = displacement_upstream(&self.problem.grid, &self.displacement, sigma * step.distance);
-        let before = datum.map_or(0.0, |u| self.displacement[u]);
+        let previous_shear = self.state.as_ref().map(|s| s.shear.as_slice());
+        let datum_before = if rolling {
+            previous_shear.map_or(0.0, |q| self.datum_displacement(q))
+        } else {
+            0.0
+        };
+        let before = datum.map_or(0.0, |u| self.displacement[u]) - datum_before;
         for ((k, k0), w) in self.problem.rigid_slip.iter_mut().zip(&self.rigid_slip).zip(&earlier) {
             *k = k0 - sigma * (w - before) / length;
         }
@@ -289,7 +351,13 @@ impl History {
         }
         let displacement = self.problem.relative_tangential(&state.pressure, &state.shear);
         let compression = self.problem.compression(&state.pressure, &state.shear);
-        let energy = self.energy(&state, [&displacement, &compression], step.distance, datum);
+        let datum_moved = if rolling {
+            let before = self.state.as_ref().map_or(0.0, |s| self.datum_displacement(&s.shear));
+            self.datum_displacement(&state.shear) - before
+        } else {
+            0.0
+        };
+        let energy = self.energy(&state, [&displacement, &compression], step.distance, datum, datum_moved);
         self.displacement = displacement;
         self.compression = compression;
         self.rolled += step.distance;
@@ -306,13 +374,14 @@ impl History {
 
     /// The energy balance of the step just solved into `state` (w and h at its end in
     /// `[displacement, compression]`) against the last step's (still in `self`), its rolled
-    /// distance `distance` and datum node.
+    /// distance `distance`, datum node and the move `datum_moved` of the upstream end by the datum length.
     fn energy(
         &self,
         state: &State,
         [displacement, compression]: [&[f64]; 2],
         distance: f64,
         datum: Option<usize>,
+        datum_moved: f64,
     ) -> energy::StepEnergy {
         let pb = &self.problem;
         let sigma = pb.flow_sign;
@@ -328,7 +397,7 @@ impl History {
             .state
             .as_ref()
             .map_or((&zero, &zero, 0.0), |s| (&s.pressure, &s.shear, s.overlap));
-        let moved = datum.map_or(0.0, |u| displacement[u] - self.displacement[u]);
+        let moved = datum.map_or(0.0, |u| displacement[u] - self.displacement[u]) - datum_moved;
         // The normal fields at each node's material point one step earlier (module docs of
         // [`energy`]): the profile h₀ stands in the contact's frame, the material moves by σΔ.
         let upstream = |v: &[f64]| displacement_upstream(&pb.grid, v, sigma * distance);

@@ -432,13 +432,15 @@ fn a_history_under_a_steep_law_runs_through_its_slip_events() {
 /// `falling_law_holds_at_every_node`), and they must be distinct and ordered as CONTACT's:
 /// above < steady < below.
 ///
-/// Against CONTACT (FX/(μ_s FN), docs/friction.md): from below CONTACT gives 0.5977, 0.5958,
-/// 0.5944 on dx = 0.05, 0.025 mm with DQ = 0.1 mm kept; rollbem 0.6057 (0.6001, 0.5997 on 62,
-/// 124 elements). Checked within 2 %: the two codes' steady results on this grid differ by
-/// 0.3 % (0.5941, 0.5959), CONTACT's case 2 moves 0.55 % and rollbem's 1.0 % over the grids
-/// above (measured 1.3 %). From above CONTACT gives 0.5702 (0.5685, 0.5673), rollbem 0.5437
-/// (0.5392, 0.5389): 4.6 % apart, beyond those errors, printed and not asserted (unexplained:
-/// docs/friction.md).
+/// Against CONTACT (FX/(μ_s FN), docs/friction.md): a step that changes Q depends on where the
+/// displacement is measured from (src/transient.rs, "The datum of a step"). CONTACT's 2D model
+/// is a strip of DY = 200 mm of a 3D half-space; with its datum (`History::set_datum_length`,
+/// 200·e^(ν/(1−ν)) mm) rollbem gives 0.5995 from below and
+/// 0.5719 from above, 4 and 47 of 81 nodes slipping, against CONTACT's 0.5977 and 0.5702 (4 and
+/// 47 of 81 elements): 0.3 % apart, the two codes' steady difference on this grid (0.5959,
+/// 0.5941). Checked within 1 %. With rollbem's default datum (the upstream end, which takes no
+/// part in the change of Q) the step is another problem: 0.6057 from below, 0.5437 from above
+/// (5 and 43 of 81 slip), only the ordering checked.
 #[test]
 fn contacts_two_branches_of_one_step_are_found_from_below_and_above() {
     use rollbem::contact::falling::InitialSlip;
@@ -468,9 +470,10 @@ fn contacts_two_branches_of_one_step_are_found_from_below_and_above() {
         tangential: TangentialControl::Creep(-0.001),
     };
     let p0 = steady.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
-    let ratio = |side: InitialSlip| {
+    let ratio = |side: InitialSlip, datum: Option<f64>| {
         let mut h = History::from_steady(&scene, steady.clone()).expect("a history");
         h.set_initial_slip(side);
+        h.set_datum_length(datum);
         let z = h.advance(step).unwrap_or_else(|e| panic!("{side:?}: {e}")).state;
         let pb = h.problem();
         let slip = pb.slip(&z.pressure, &z.shear, z.creep);
@@ -496,21 +499,30 @@ fn contacts_two_branches_of_one_step_are_found_from_below_and_above() {
         }
         pb.grid.integrate(&z.shear).abs() / (mu_s * pb.grid.integrate(&z.pressure))
     };
-    let (own, below, above) = (
-        ratio(InitialSlip::Warm),
-        ratio(InitialSlip::Below),
-        ratio(InitialSlip::Above),
-    );
-    eprintln!(
-        "veldep_fric step at -0.1 %: steady branch {own:.4}, from below {below:.4} (CONTACT 0.5977), \
-         from above {above:.4} (CONTACT 0.5702)"
-    );
-    assert!(
-        above < own - 0.01 && own < below - 0.005,
-        "above {above}, steady {own}, below {below}"
-    );
-    assert!(
-        (below - 0.5977).abs() <= 0.02 * 0.5977,
-        "from below {below}, CONTACT 0.5977"
-    );
+    // CONTACT's strip of width DY = 200 mm: its datum length (src/transient.rs).
+    let nu: f64 = 0.28;
+    let strip = 200.0 * (nu / (1.0 - nu)).exp();
+    for datum in [None, Some(strip)] {
+        let (own, below, above) = (
+            ratio(InitialSlip::Warm, datum),
+            ratio(InitialSlip::Below, datum),
+            ratio(InitialSlip::Above, datum),
+        );
+        eprintln!(
+            "veldep_fric step at -0.1 %, datum length {datum:?}: steady branch {own:.4}, from below {below:.4} \
+             (CONTACT 0.5977), from above {above:.4} (CONTACT 0.5702)"
+        );
+        assert!(
+            above < own - 0.01 && own < below - 0.002,
+            "above {above}, steady {own}, below {below}"
+        );
+        if datum.is_some() {
+            for (name, value, contact) in [("below", below, 0.5977), ("above", above, 0.5702)] {
+                assert!(
+                    (value - contact).abs() <= 0.01 * contact,
+                    "from {name} {value}, CONTACT {contact}"
+                );
+            }
+        }
+    }
 }
