@@ -106,6 +106,32 @@ fn check_step_length(case: &LoadedCase, plan: &Plan, scene: &Scene) -> Result<()
     Ok(())
 }
 
+/// `transient.datum_length` measures the upstream end's displacement as a half-plane's: every
+/// deformable body must be one.
+fn check_datum_bodies(case: &LoadedCase, scene: &Scene) -> Result<(), Error> {
+    let others: Vec<&str> = scene
+        .bodies
+        .iter()
+        .filter(|b| !b.idealises_as_half_plane() && b.compliance() > 0.0)
+        .map(|b| b.model_name())
+        .collect();
+    if others.is_empty() {
+        return Ok(());
+    }
+    Err(Error::Case(CaseError::Invalid {
+        path: case.path.clone(),
+        violations: vec![Violation {
+            key: "transient.datum_length".into(),
+            message: format!(
+                "the datum length measures the displacement of a half-plane (a strip of a 3D half-space), but a \
+                 body is modelled as {}, whose displacement has its own datum: remove the key, or model both \
+                 bodies as half_space (or rigid)",
+                others.join(" and ")
+            ),
+        }],
+    }))
+}
+
 /// An error of the history as the run's error: the scene's own, else a message naming the case.
 /// `what` names the step, if one.
 fn history_error(case: &LoadedCase, what: &str, e: TransientError) -> Error {
@@ -192,6 +218,10 @@ pub(super) fn run(
     let plan = Plan::of(spec, &scene);
     check_step_length(case, &plan, &scene)?;
     let mut history = History::new(&scene).map_err(|e| history_error(case, "", e))?;
+    if let Some(length) = spec.datum_length {
+        check_datum_bodies(case, &scene)?;
+        history.set_datum_length(Some(length));
+    }
     let assembled = start.elapsed().as_secs_f64();
     let Solved { records, stopped } = solve_history(case, &mut history, &plan)?;
     let last = records.last().expect("step 0 stands");

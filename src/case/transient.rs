@@ -32,6 +32,13 @@ pub struct TransientSpec {
     /// [`Schedule`]. Default = `load.tangential` as a constant.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangential: Option<TangentialSchedule>,
+    /// The datum of a rolling step's tangential displacement [length] (docs/transient.md, "The
+    /// datum of a step"): absent (the default), the material at the grid's upstream end; a
+    /// length L > 0, the half-plane pair's displacement there measured from L, as a 2D model
+    /// of a strip of width b of a 3D half-space measures it from infinity (L = b·e^(ν/(1−ν));
+    /// CONTACT's DY = b). Half-space and rigid bodies only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub datum_length: Option<f64>,
     /// Write the files of every `write_every`-th step into steps/ (and the ParaView series),
     /// always with step 0 and the last: N ≥ 1. Default = 1 (every step). transient.csv keeps a
     /// row for every step.

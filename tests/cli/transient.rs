@@ -278,3 +278,72 @@ fn a_sweep_refuses_a_history_and_takes_its_steady_problem_when_asked() {
     assert_eq!(code, 0, "{stderr}");
     assert!(out.join("sweep.csv").exists());
 }
+
+/// `transient.datum_length` (docs/transient.md, "The datum of a step"): the upstream end's
+/// displacement measured as a half-plane pair's from a datum length moves with Q, which acts
+/// as a creepage of its own in the steps where Q changes. Over a table that lowers Q/μP from
+/// 0.6 to 0.3 and holds it there, the creepage of the steps that change Q differs from the
+/// upstream-end datum's by far more than the Newton tolerance, and the shift (step 0, no
+/// rolling) does not. Bad values and a body that is not a half-plane are refused by the key.
+#[test]
+fn a_datum_length_moves_the_upstream_end_with_q() {
+    let case = case_path("cattaneo_to_carter");
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec![
+            "run",
+            case.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "-q",
+            "--set",
+            "transient.steps=30",
+            "--set",
+            "transient.tangential={ratio: [[0, 0.6], [0.2, 0.3]]}",
+        ];
+        args.extend_from_slice(extra);
+        let (code, _, stderr) = rollbem(&args);
+        assert_eq!(code, 0, "{stderr}");
+        let (header, rows) = read_rows(&std::fs::read_to_string(out.join("transient.csv")).unwrap());
+        // Step 0's rigid shift, then each rolling step's creepage.
+        let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+        let (shift, creep) = (column("shift"), column("creep"));
+        rows.iter()
+            .enumerate()
+            .map(|(k, r)| r[if k == 0 { shift } else { creep }].parse::<f64>().unwrap())
+            .collect::<Vec<f64>>()
+    };
+    let own = run("own", &[]);
+    let strip = run("strip", &["--set", "transient.datum_length=295.068"]);
+    assert_eq!(own.len(), 31);
+    assert!(
+        (own[0] - strip[0]).abs() <= 1e-9 * own[0].abs().max(1e-12),
+        "the shift: {} {}",
+        own[0],
+        strip[0]
+    );
+    let changed = (1..own.len())
+        .filter(|&k| (own[k] - strip[k]).abs() > 1e-3 * own[k].abs())
+        .count();
+    assert!(changed >= 3, "the steps that change Q: {own:?} against {strip:?}");
+
+    let (code, _, stderr) = rollbem(&["check", case.to_str().unwrap(), "--set", "transient.datum_length=-1"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("transient.datum_length"), "{stderr}");
+    let bem = case_path("braking_step_bem");
+    let out = dir.path().join("bem");
+    let (code, _, stderr) = rollbem(&[
+        "run",
+        bem.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "transient.datum_length=100",
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("transient.datum_length") && stderr.contains("bem"),
+        "{stderr}"
+    );
+}

@@ -34,6 +34,15 @@ pub(super) fn transient_problems(case: &Case) -> Vec<(String, String)> {
                 .into(),
         ));
     }
+    if let Some(l) = t.datum_length.filter(|l| !(*l > 0.0 && l.is_finite())) {
+        out.push((
+            "transient.datum_length".into(),
+            format!(
+                "the datum length of the half-plane's displacement must be a positive length, e.g. \
+                 b·e^(ν/(1−ν)) for a strip of width b (value = {l})"
+            ),
+        ));
+    }
     out.extend(step_problems(case, t));
     out.extend(schedule_problems(case, t));
     out.extend(shift_problems(case, t));
