@@ -218,6 +218,9 @@ pub(super) fn run(
     let plan = Plan::of(spec, &scene);
     check_step_length(case, &plan, &scene)?;
     let mut history = History::new(&scene).map_err(|e| history_error(case, "", e))?;
+    if let Some(side) = spec.initial_slip {
+        history.set_initial_slip(side.start());
+    }
     if let Some(length) = spec.datum_length {
         check_datum_bodies(case, &scene)?;
         history.set_datum_length(Some(length));

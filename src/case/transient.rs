@@ -39,6 +39,13 @@ pub struct TransientSpec {
     /// CONTACT's DY = b). Half-space and rigid bodies only.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub datum_length: Option<f64>,
+    /// Where each rolling step's solve under a falling friction law starts (CONTACT's INISLP;
+    /// docs/friction.md, "Choosing the branch of a step"): `warm` (the default: the last step's
+    /// state), `below` (zero slip velocity, μ = μ_s: the continuation from Coulomb's solution)
+    /// or `above` (μ = μ_k at every node). A step of a steep law can have several solutions;
+    /// this picks the one each side finds.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_slip: Option<InitialSlipKey>,
     /// Write the files of every `write_every`-th step into steps/ (and the ParaView series),
     /// always with step 0 and the last: N ≥ 1. Default = 1 (every step). transient.csv keeps a
     /// row for every step.
@@ -62,6 +69,30 @@ impl TransientSpec {
     pub fn writes_step(&self, k: usize, last: usize) -> bool {
         let every = self.write_every.unwrap_or(1).max(1);
         k == 0 || k == last || k.is_multiple_of(every)
+    }
+}
+
+/// `transient.initial_slip`: where a rolling step's solve under a falling law starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InitialSlipKey {
+    /// From the last step's state.
+    Warm,
+    /// From zero slip velocity (μ = μ_s everywhere; CONTACT's INISLP = 1).
+    Below,
+    /// From μ = μ_k everywhere (CONTACT's INISLP = −1).
+    Above,
+}
+
+impl InitialSlipKey {
+    /// The solver's start of that name.
+    pub fn start(self) -> crate::contact::falling::InitialSlip {
+        use crate::contact::falling::InitialSlip;
+        match self {
+            Self::Warm => InitialSlip::Warm,
+            Self::Below => InitialSlip::Below,
+            Self::Above => InitialSlip::Above,
+        }
     }
 }
 

@@ -347,3 +347,50 @@ fn a_datum_length_moves_the_upstream_end_with_q() {
         "{stderr}"
     );
 }
+
+/// `transient.initial_slip` starts each rolling step's solve under a falling law from the last
+/// step (`warm`), from below or from above (CONTACT's INISLP). Where a step has one solution,
+/// as in the first steps of a history from Q = 0 on CONTACT's veldep_fric scene (a few nodes
+/// slip), the three starts find it alike (the tractions' forces agree to 1e-9 relative), in
+/// different numbers of Newton iterations; without a falling law the key is refused.
+#[test]
+fn the_start_of_a_step_under_a_falling_law_is_a_key() {
+    let case = case_path("veldep_fric");
+    let dir = tempfile::tempdir().unwrap();
+    let forces: Vec<Vec<f64>> = ["warm", "below", "above"]
+        .iter()
+        .map(|side| {
+            let out = dir.path().join(side);
+            let history = format!("transient={{steps: 8, step: 0.1, initial_slip: {side}}}");
+            let (code, _, stderr) = rollbem(&[
+                "run",
+                case.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "-q",
+                "--set",
+                &history,
+            ]);
+            assert_eq!(code, 0, "{side}: {stderr}");
+            let (header, rows) = read_rows(&std::fs::read_to_string(out.join("transient.csv")).unwrap());
+            let q = header.iter().position(|h| h == "tangential_force").unwrap();
+            rows.iter().map(|r| r[q].parse::<f64>().unwrap()).collect()
+        })
+        .collect();
+    for other in &forces[1..] {
+        for (a, b) in forces[0].iter().zip(other) {
+            assert!((a - b).abs() <= 1e-9 * a.abs().max(1.0), "{:?}", forces);
+        }
+    }
+    let (code, _, stderr) = rollbem(&[
+        "check",
+        case_path("cattaneo_to_carter").to_str().unwrap(),
+        "--set",
+        "transient.initial_slip=above",
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        stderr.contains("transient.initial_slip") && stderr.contains("contact.falling_friction"),
+        "{stderr}"
+    );
+}

@@ -43,6 +43,14 @@ pub(super) fn transient_problems(case: &Case) -> Vec<(String, String)> {
             ),
         ));
     }
+    if t.initial_slip.is_some() && case.contact.falling_friction.is_none() {
+        out.push((
+            "transient.initial_slip".into(),
+            "the start of a step's solve under a friction law that falls with the slip velocity: give \
+             contact.falling_friction, or remove the key (a constant μ has one solution a step)"
+                .into(),
+        ));
+    }
     out.extend(step_problems(case, t));
     out.extend(schedule_problems(case, t));
     out.extend(shift_problems(case, t));
