@@ -20,8 +20,10 @@ use super::workspace::{Tangential, Workspace};
 use crate::linalg::mat_vec2;
 use faer::Mat;
 use falling_rows::FallingRows;
+use system::SystemRows;
 
 mod falling_rows;
+mod system;
 
 /// The reduced Newton system has no accurate solution (a non-finite entry after the LU solve):
 /// the active sets of the iterate leave it singular.
@@ -143,10 +145,8 @@ impl System<'_> {
         block: Block,
         ws: &mut Workspace,
     ) -> Result<(State, usize), SingularNewtonMatrix> {
-        let pb = self.pb;
         let m = self.m();
-        let (g1, g2, g3, g4) = (&G[0..m], &G[m..2 * m], &G[2 * m..3 * m], &G[3 * m..4 * m]);
-        let mu = pb.friction;
+        let (g2, g3, g4) = (&G[m..2 * m], &G[2 * m..3 * m], &G[3 * m..4 * m]);
 
         // Δp_j = p_const + [column p_col]; Δq_j = q_const + [column q_col] + q_pcoef·Δp_j.
         let mut n_cols = 0;
@@ -236,57 +236,8 @@ impl System<'_> {
         let key = ws.keeps_factors().then(|| self.system_key(&unknowns, &rows));
         let kept = key.as_deref().is_some_and(|k| ws.kept_for(k));
         let (J, rhs) = ws.system(n, !kept);
-        let mut J = (!kept).then_some(J);
-        for (k, &i) in contact_rows.iter().enumerate() {
-            rhs[(k, 0)] = -g3[i] + g1[i];
-        }
-        unknowns.fill_elastic(
-            J.as_deref_mut(),
-            rhs,
-            0,
-            &contact_rows,
-            &self.rn,
-            &pb.flex.hp,
-            &pb.flex.hq,
-        );
-        if let (Some(c), Some(J)) = (col_overlap, J.as_deref_mut()) {
-            for (k, &i) in contact_rows.iter().enumerate() {
-                J[(k, c)] = -self.rn[i];
-            }
-        }
-        let first = contact_rows.len();
-        for (k, &i) in stick_rows.iter().enumerate() {
-            rhs[(first + k, 0)] = -g4[i] + g2[i];
-        }
-        unknowns.fill_elastic(J.as_deref_mut(), rhs, first, &stick_rows, &self.rt, &pb.bp, &pb.bq);
-        if let (Some(c), Some(J)) = (col_creep, J.as_deref_mut()) {
-            for (k, &i) in stick_rows.iter().enumerate() {
-                J[(first + k, c)] = self.rt[i] * pb.flow_sign * pb.slip_operator.creep_weight[i];
-            }
-        }
-        let mut row = first + stick_rows.len();
-        falling.fill(
-            &unknowns,
-            J.as_deref_mut(),
-            rhs,
-            row,
-            col_creep.map(|c| (c, pb.flow_sign)),
-            pb,
-        );
-        row += falling.rows.len();
-        let w = &pb.grid.weights;
-        // G5 sits at 4m whenever δ0 is free, G6 after it: the layout of the full residual.
-        let k = 4 * m + usize::from(self.free_overlap);
-        if free_overlap {
-            rhs[(row, 0)] = -self.length * G[4 * m];
-            unknowns.add_row(J.as_deref_mut(), rhs, row, &|j| w[j], &|_| 0.0);
-            row += 1;
-        }
-        if let (true, Some((ratio, _))) = (free_creep, self.tangential_load()) {
-            rhs[(row, 0)] = -self.length * G[k];
-            unknowns.add_row(J, rhs, row, &|j| -ratio * mu * w[j], &|j| w[j]);
-            row += 1;
-        }
+        let J = (!kept).then_some(J);
+        let row = self.fill_system(J, rhs, &unknowns, &rows, G, (free_overlap, free_creep));
         debug_assert_eq!(row, n);
 
         ws.solve_system(key);
@@ -341,59 +292,6 @@ impl System<'_> {
 fn reset<T: Clone>(v: &mut Vec<T>, m: usize, value: T) {
     v.clear();
     v.resize(m, value);
-}
-
-/// The rows of a reduced system besides the load rows: the contact rows' nodes, the stick
-/// rows' nodes, the falling-law rows, and the columns of δ0 and ξ when they are free.
-struct SystemRows<'a> {
-    contact: &'a [usize],
-    stick: &'a [usize],
-    falling: &'a FallingRows,
-    overlap: Option<usize>,
-    creep: Option<usize>,
-}
-
-impl System<'_> {
-    /// Everything the reduced Newton matrix is made of, by its bits: the problem's
-    /// flexibilities (by address and diagonal: they stay in place while a workspace keeps
-    /// factors of them, and a history that changes its slip blocks makes new ones) and weights
-    /// (by address), the row
-    /// weights r_n and r_t, the rows and columns (the nodes of each kind in order, the
-    /// load columns), the coefficients q_pcoef and the falling rows' slopes and μ_i sgn_i, the
-    /// load row's Q/(μP) and μ. Two systems with the same key have the same matrix bit for
-    /// bit, so a [`Workspace`] keeping factors solves the second with the first's LU without
-    /// filling its matrix.
-    fn system_key(&self, unknowns: &Unknowns, rows: &SystemRows) -> Vec<u64> {
-        let pb = self.pb;
-        let mut key = Vec::with_capacity(8 * self.m() + 32);
-        for a in [&pb.flex.hp, &pb.flex.hq, &pb.bp, &pb.bq] {
-            key.extend([a.as_ptr() as u64, a.nrows() as u64, a.ncols() as u64]);
-            // The diagonal too: a problem dropped and another made in its memory differs there.
-            key.extend((0..a.nrows().min(a.ncols())).map(|i| a[(i, i)].to_bits()));
-        }
-        key.extend([
-            pb.grid.weights.as_ptr() as u64,
-            pb.slip_operator.creep_weight.as_ptr() as u64,
-            pb.flow_sign.to_bits(),
-            pb.friction.to_bits(),
-        ]);
-        key.extend(
-            self.rn
-                .iter()
-                .chain(&self.rt)
-                .chain(unknowns.q_pcoef)
-                .map(|v| v.to_bits()),
-        );
-        for nodes in [rows.contact, rows.stick] {
-            key.push(nodes.len() as u64);
-            key.extend(nodes.iter().map(|&i| i as u64));
-        }
-        rows.falling.key_into(&mut key);
-        key.extend([rows.overlap, rows.creep].map(|c| c.map_or(u64::MAX, |c| c as u64)));
-        let ratio = self.tangential_load().map_or(f64::NAN, |(ratio, _)| ratio);
-        key.push(ratio.to_bits());
-        key
-    }
 }
 
 /// The tractions of the reduced system: Δp_j = p_const_j + [column p_col_j] and

@@ -15,6 +15,18 @@ fn read_rows(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
     (header, rows)
 }
 
+/// `rollbem run` of `case` with `--set` overrides `sets` into `out` (exit 0 asserted): its
+/// transient.csv as rows of named cells.
+fn run_history(case: &std::path::Path, out: &std::path::Path, sets: &[&str]) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut args = vec!["run", case.to_str().unwrap(), "--out", out.to_str().unwrap(), "-q"];
+    for set in sets {
+        args.extend(["--set", set]);
+    }
+    let (code, _, stderr) = rollbem(&args);
+    assert_eq!(code, 0, "{sets:?}: {stderr}");
+    read_rows(&std::fs::read_to_string(out.join("transient.csv")).unwrap())
+}
+
 /// Step 0 has Cattaneo–Mindlin's stick zone |x| < c = a√(1 − Q/μP) (Johnson, Contact
 /// Mechanics, 1985, §7.1); the last step Carter's, of width 2a√(1 − Q/μP) at the leading edge
 /// x = +a. The zone ends are the nodes' midpoints (as in summary.json), so they resolve a stick
@@ -290,22 +302,15 @@ fn a_datum_length_moves_the_upstream_end_with_q() {
     let case = case_path("cattaneo_to_carter");
     let dir = tempfile::tempdir().unwrap();
     let run = |name: &str, extra: &[&str]| {
-        let out = dir.path().join(name);
-        let mut args = vec![
-            "run",
-            case.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "-q",
-            "--set",
-            "transient.steps=30",
-            "--set",
-            "transient.tangential={ratio: [[0, 0.6], [0.2, 0.3]]}",
-        ];
-        args.extend_from_slice(extra);
-        let (code, _, stderr) = rollbem(&args);
-        assert_eq!(code, 0, "{stderr}");
-        let (header, rows) = read_rows(&std::fs::read_to_string(out.join("transient.csv")).unwrap());
+        let sets = [
+            &[
+                "transient.steps=30",
+                "transient.tangential={ratio: [[0, 0.6], [0.2, 0.3]]}",
+            ][..],
+            extra,
+        ]
+        .concat();
+        let (header, rows) = run_history(&case, &dir.path().join(name), &sets);
         // Step 0's rigid shift, then each rolling step's creepage.
         let column = |name: &str| header.iter().position(|h| h == name).unwrap();
         let (shift, creep) = (column("shift"), column("creep"));
@@ -315,7 +320,7 @@ fn a_datum_length_moves_the_upstream_end_with_q() {
             .collect::<Vec<f64>>()
     };
     let own = run("own", &[]);
-    let strip = run("strip", &["--set", "transient.datum_length=295.068"]);
+    let strip = run("strip", &["transient.datum_length=295.068"]);
     assert_eq!(own.len(), 31);
     assert!(
         (own[0] - strip[0]).abs() <= 1e-9 * own[0].abs().max(1e-12),
@@ -360,19 +365,8 @@ fn the_start_of_a_step_under_a_falling_law_is_a_key() {
     let forces: Vec<Vec<f64>> = ["warm", "below", "above"]
         .iter()
         .map(|side| {
-            let out = dir.path().join(side);
             let history = format!("transient={{steps: 8, step: 0.1, initial_slip: {side}}}");
-            let (code, _, stderr) = rollbem(&[
-                "run",
-                case.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-                "-q",
-                "--set",
-                &history,
-            ]);
-            assert_eq!(code, 0, "{side}: {stderr}");
-            let (header, rows) = read_rows(&std::fs::read_to_string(out.join("transient.csv")).unwrap());
+            let (header, rows) = run_history(&case, &dir.path().join(side), &[&history]);
             let q = header.iter().position(|h| h == "tangential_force").unwrap();
             rows.iter().map(|r| r[q].parse::<f64>().unwrap()).collect()
         })

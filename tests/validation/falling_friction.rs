@@ -383,27 +383,7 @@ fn a_history_under_a_steep_law_runs_through_its_slip_events() {
         let s = h.advance(step).unwrap_or_else(|e| panic!("step {k}: {e}"));
         let pb = h.problem();
         let z = &s.state;
-        let slip = pb.slip(&z.pressure, &z.shear, z.creep);
-        let smax = slip.iter().fold(0.0_f64, |a, s| a.max(s.abs()));
-        for (i, &si) in slip.iter().enumerate() {
-            if z.pressure[i] <= 1e-12 * p0 {
-                continue;
-            }
-            let mu = mu_k + (mu_s - mu_k) * (-speed * si.abs() / s_h).exp();
-            let (q, p) = (z.shear[i].abs(), z.pressure[i]);
-            assert!(
-                q <= mu * p + 1e-8 * mu_s * p0,
-                "step {k}, node {i}: |q| {q} above μp {}",
-                mu * p
-            );
-            if si.abs() > 1e-6 * smax {
-                assert!(
-                    (q - mu * p).abs() <= 1e-8 * mu_s * p0,
-                    "step {k}, node {i}: |q| {q}, μp {}",
-                    mu * p
-                );
-            }
-        }
+        assert_law_holds(pb, z, [mu_s, mu_k, speed, s_h], p0, &format!("step {k}"));
         let fallbacks = &h.report().expect("solved").fallbacks;
         below += fallbacks.iter().filter(|f| f.contains("continuation")).count();
         above += fallbacks.iter().filter(|f| f.contains("from above")).count();
@@ -476,27 +456,7 @@ fn contacts_two_branches_of_one_step_are_found_from_below_and_above() {
         h.set_datum_length(datum);
         let z = h.advance(step).unwrap_or_else(|e| panic!("{side:?}: {e}")).state;
         let pb = h.problem();
-        let slip = pb.slip(&z.pressure, &z.shear, z.creep);
-        let smax = slip.iter().fold(0.0_f64, |a, s| a.max(s.abs()));
-        for (i, &si) in slip.iter().enumerate() {
-            if z.pressure[i] <= 1e-12 * p0 {
-                continue;
-            }
-            let mu = mu_k + (mu_s - mu_k) * (-speed * si.abs() / s_h).exp();
-            let (q, p) = (z.shear[i].abs(), z.pressure[i]);
-            assert!(
-                q <= mu * p + 1e-8 * mu_s * p0,
-                "{side:?}, node {i}: |q| {q} above μp {}",
-                mu * p
-            );
-            if si.abs() > 1e-6 * smax {
-                assert!(
-                    (q - mu * p).abs() <= 1e-8 * mu_s * p0,
-                    "{side:?}, node {i}: |q| {q}, μp {}",
-                    mu * p
-                );
-            }
-        }
+        assert_law_holds(pb, &z, [mu_s, mu_k, speed, s_h], p0, &format!("{side:?}"));
         pb.grid.integrate(&z.shear).abs() / (mu_s * pb.grid.integrate(&z.pressure))
     };
     // CONTACT's strip of width DY = 200 mm: its datum length (src/transient.rs).
@@ -523,6 +483,40 @@ fn contacts_two_branches_of_one_step_are_found_from_below_and_above() {
                     "from {name} {value}, CONTACT {contact}"
                 );
             }
+        }
+    }
+}
+
+/// The falling law μ = μ_k + (μ_s − μ_k)·exp(−V|s|/s_h) (`law` = [μ_s, μ_k, V, s_h]) holds at
+/// every loaded node of `z`, a solution of `pb`: |q| ≤ μp everywhere and |q| = μp where the
+/// node slips, to 1e-8 μ_s p0 (`what` names the solve in the messages).
+fn assert_law_holds(
+    pb: &rollbem::contact::ContactProblem,
+    z: &rollbem::contact::State,
+    law: [f64; 4],
+    p0: f64,
+    what: &str,
+) {
+    let [mu_s, mu_k, speed, s_h] = law;
+    let slip = pb.slip(&z.pressure, &z.shear, z.creep);
+    let smax = slip.iter().fold(0.0_f64, |a, s| a.max(s.abs()));
+    for (i, &si) in slip.iter().enumerate() {
+        if z.pressure[i] <= 1e-12 * p0 {
+            continue;
+        }
+        let mu = mu_k + (mu_s - mu_k) * (-speed * si.abs() / s_h).exp();
+        let (q, p) = (z.shear[i].abs(), z.pressure[i]);
+        assert!(
+            q <= mu * p + 1e-8 * mu_s * p0,
+            "{what}, node {i}: |q| {q} above μp {}",
+            mu * p
+        );
+        if si.abs() > 1e-6 * smax {
+            assert!(
+                (q - mu * p).abs() <= 1e-8 * mu_s * p0,
+                "{what}, node {i}: |q| {q}, μp {}",
+                mu * p
+            );
         }
     }
 }
