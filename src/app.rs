@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 mod transient;
+pub(crate) use transient::check_datum_bodies;
 
 /// Where a case comes from: a file, or text in memory that stands for a file.
 #[derive(Debug, Clone, Copy)]

@@ -83,6 +83,9 @@ fn percent(fraction: f64) -> String {
 /// `case.path`.
 pub fn report(case: &LoadedCase, tolerance: f64) -> Result<String, Error> {
     let scene = Scene::from_case(case)?;
+    if case.case.transient.as_ref().is_some_and(|t| t.datum_length.is_some()) {
+        crate::app::check_datum_bodies(case, &scene)?;
+    }
     let mut t = format!("rollbem check {}: valid\n", case.path.display());
     t.push_str(&format!("  {:<26} {}\n", "title", case.case.title));
     mesh_lines(case, &scene, &mut t)?;
@@ -121,6 +124,27 @@ fn transient_lines(case: &LoadedCase, scene: &Scene, t: &mut String) {
             rolled / a
         ),
     );
+    if let Some(length) = spec.datum_length {
+        line(
+            "",
+            format!(
+                "displacement datum: a half-plane pair's from the datum length L = {length} {l} (a strip of \
+                 width b of a 3D half-space has L = b·e^(ν/(1−ν))), not the grid's upstream end"
+            ),
+        );
+    }
+    if let Some(side) = spec.initial_slip {
+        use crate::case::transient::InitialSlipKey;
+        let start = match side {
+            InitialSlipKey::Warm => "from the last step's state",
+            InitialSlipKey::Below => "from below (mu = mu_s at every node)",
+            InitialSlipKey::Above => "from above (mu = mu_k at every node)",
+        };
+        line(
+            "",
+            format!("each rolling step's solve under the falling law starts {start}"),
+        );
+    }
     if rolled < 4.0 * a {
         line(
             "",

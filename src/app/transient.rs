@@ -108,7 +108,7 @@ fn check_step_length(case: &LoadedCase, plan: &Plan, scene: &Scene) -> Result<()
 
 /// `transient.datum_length` measures the upstream end's displacement as a half-plane's: every
 /// deformable body must be one.
-fn check_datum_bodies(case: &LoadedCase, scene: &Scene) -> Result<(), Error> {
+pub(crate) fn check_datum_bodies(case: &LoadedCase, scene: &Scene) -> Result<(), Error> {
     let others: Vec<&str> = scene
         .bodies
         .iter()

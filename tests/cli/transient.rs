@@ -351,6 +351,18 @@ fn a_datum_length_moves_the_upstream_end_with_q() {
         stderr.contains("transient.datum_length") && stderr.contains("bem"),
         "{stderr}"
     );
+    // `check` refuses it alike, and reports the datum where it is taken.
+    let (code, _, stderr) = rollbem(&["check", bem.to_str().unwrap(), "--set", "transient.datum_length=100"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("transient.datum_length"), "{stderr}");
+    let (code, stdout, stderr) = rollbem(&[
+        "check",
+        case.to_str().unwrap(),
+        "--set",
+        "transient.datum_length=295.068",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("datum length L = 295.068"), "{stdout}");
 }
 
 /// `transient.initial_slip` starts each rolling step's solve under a falling law from the last
