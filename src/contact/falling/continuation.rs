@@ -50,14 +50,7 @@ pub(super) fn solve(
     tally: &mut Tally,
     ws: &mut Workspace,
 ) -> Option<(State, SolveReport)> {
-    let mut coulomb = pb.clone();
-    coulomb.falling = None;
-    coulomb.nodal_friction = None;
-    let measure = ConvergenceMeasure::new(&coulomb);
-    let (mut state, mut report) = match warm {
-        Some(w) => restart::solve_warm(&coulomb, settings, &measure, w, ws),
-        None => restart::solve(NewtonInputs::new(&coulomb, settings, &measure), ws),
-    };
+    let (mut state, mut report) = coulomb_solution(pb, pb.friction, settings, warm, ws);
     tally.add(&mut report);
     if !report.converged {
         return None;
@@ -87,6 +80,27 @@ pub(super) fn solve(
     tally.total(&mut report);
     report.fallbacks.push(format!("{LABEL} ({solves} solves)"));
     Some((state, report))
+}
+
+/// `pb` under Coulomb's law at the constant coefficient `friction` (no falling law, no nodal
+/// coefficients) solved warm from `warm` (else cold) by the line-search Newton method with its
+/// restarts, the Newton systems in `ws`.
+fn coulomb_solution(
+    pb: &ContactProblem,
+    friction: f64,
+    settings: &NewtonSettings,
+    warm: Option<State>,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let mut coulomb = pb.clone();
+    coulomb.falling = None;
+    coulomb.nodal_friction = None;
+    coulomb.friction = friction;
+    let measure = ConvergenceMeasure::new(&coulomb);
+    match warm {
+        Some(w) => restart::solve_warm(&coulomb, settings, &measure, w, ws),
+        None => restart::solve(NewtonInputs::new(&coulomb, settings, &measure), ws),
+    }
 }
 
 /// `pb` under the law `law` with amplitude `lambda` (module docs): the kinetic coefficient
@@ -120,15 +134,7 @@ pub(super) fn from_above(
     tally: &mut Tally,
     ws: &mut Workspace,
 ) -> Option<(State, SolveReport)> {
-    let mut kinetic = pb.clone();
-    kinetic.falling = None;
-    kinetic.nodal_friction = None;
-    kinetic.friction = law.law.kinetic;
-    let measure = ConvergenceMeasure::new(&kinetic);
-    let (state, mut report) = match warm {
-        Some(w) => restart::solve_warm(&kinetic, settings, &measure, w, ws),
-        None => restart::solve(NewtonInputs::new(&kinetic, settings, &measure), ws),
-    };
+    let (state, mut report) = coulomb_solution(pb, law.law.kinetic, settings, warm, ws);
     tally.add(&mut report);
     if !report.converged {
         return None;
