@@ -5,6 +5,8 @@
 //! here from the tractions and the slip recomputed from them, not from the solver's own μ_i.
 
 use crate::common::solve;
+use rollbem::contact::{NormalControl, TangentialControl};
+use rollbem::transient::{History, Step};
 
 /// carter_051 (μ = 0.1, Q/μP = 0.51) with the law and speed set.
 fn falling(kinetic: f64, slip_velocity: f64, speed: f64) -> rollbem::post::Solved {
@@ -233,8 +235,6 @@ fn a_steep_law_converges_by_the_newton_finish() {
 /// the history equals the constant-μ history bit for bit.
 #[test]
 fn a_history_under_a_falling_law_settles_on_its_steady_state() {
-    use rollbem::contact::{NormalControl, TangentialControl};
-    use rollbem::transient::{History, Step};
     let scene = |kinetic: f64| {
         let overrides = [
             format!("contact.falling_friction={{kinetic: {kinetic}, slip_velocity: 0.3}}"),
@@ -246,21 +246,7 @@ fn a_history_under_a_falling_law_settles_on_its_steady_state() {
         rollbem::scene::Scene::from_case(&case).expect("scene")
     };
     let history_of = |scene: &rollbem::scene::Scene, creep: f64, steps: usize| {
-        let force = match scene.normal {
-            NormalControl::Force(p) => p,
-            _ => unreachable!("carter_051 gives P"),
-        };
-        let mut h = History::new(scene).expect("a history");
-        let mut step = Step {
-            distance: 0.0,
-            normal: NormalControl::Force(force),
-            tangential: TangentialControl::Ratio(0.0),
-        };
-        h.advance(step).expect("pressed");
-        step.tangential = TangentialControl::Ratio(0.51);
-        h.advance(step).expect("shifted");
-        step.distance = h.grid().node_spacing();
-        step.tangential = TangentialControl::Creep(creep);
+        let (mut h, step) = pressed_shifted_rolling(scene, creep);
         let mut last = None;
         for k in 0..steps {
             let s = h.advance(step).unwrap_or_else(|e| panic!("step {k}: {e}"));
@@ -347,8 +333,6 @@ fn falling_law_with_two_exponentials_holds_at_every_node() {
 /// cycle of 30 steps (docs/friction.md), which is printed, not asserted.
 #[test]
 fn a_history_under_a_steep_law_runs_through_its_slip_events() {
-    use rollbem::contact::{NormalControl, TangentialControl};
-    use rollbem::transient::{History, Step};
     let (mu_s, mu_k, s_h, speed) = (0.1, 0.05, 0.3, 100.0);
     let overrides = [
         format!("contact.falling_friction={{kinetic: {mu_k}, slip_velocity: {s_h}}}"),
@@ -361,21 +345,7 @@ fn a_history_under_a_steep_law_runs_through_its_slip_events() {
     let (_, problem) = scene.assemble().expect("assembles");
     let (steady, report) = rollbem::contact::methods::solve(&problem, &scene.solver);
     assert!(report.converged);
-    let force = match scene.normal {
-        NormalControl::Force(p) => p,
-        _ => unreachable!("carter_051 gives P"),
-    };
-    let mut h = History::new(&scene).expect("a history");
-    let mut step = Step {
-        distance: 0.0,
-        normal: NormalControl::Force(force),
-        tangential: TangentialControl::Ratio(0.0),
-    };
-    h.advance(step).expect("pressed");
-    step.tangential = TangentialControl::Ratio(0.51);
-    h.advance(step).expect("shifted");
-    step.distance = h.grid().node_spacing();
-    step.tangential = TangentialControl::Creep(steady.creep);
+    let (mut h, step) = pressed_shifted_rolling(&scene, steady.creep);
     let steps = (8.0 * scene.estimates.hertz_half_width / step.distance).ceil() as usize;
     let p0 = steady.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
     let (mut below, mut above, mut ratios) = (0, 0, Vec::new());
@@ -424,8 +394,6 @@ fn a_history_under_a_steep_law_runs_through_its_slip_events() {
 #[test]
 fn contacts_two_branches_of_one_step_are_found_from_below_and_above() {
     use rollbem::contact::falling::InitialSlip;
-    use rollbem::contact::{NormalControl, TangentialControl};
-    use rollbem::transient::{History, Step};
     let (mu_s, mu_k, speed) = (0.30, 0.18, 45_000.0);
     let s_h = 100.0 / std::f64::consts::LN_2;
     let overrides = [
@@ -519,4 +487,25 @@ fn assert_law_holds(
             );
         }
     }
+}
+
+/// A history of carter_051's `scene` pressed (Q = 0), shifted to Q/μP = 0.51 without rolling,
+/// and the rolling step that follows: one node spacing at creepage `creep`.
+fn pressed_shifted_rolling(scene: &rollbem::scene::Scene, creep: f64) -> (History, Step) {
+    let force = match scene.normal {
+        NormalControl::Force(p) => p,
+        _ => unreachable!("carter_051 gives P"),
+    };
+    let mut h = History::new(scene).expect("a history");
+    let mut step = Step {
+        distance: 0.0,
+        normal: NormalControl::Force(force),
+        tangential: TangentialControl::Ratio(0.0),
+    };
+    h.advance(step).expect("pressed");
+    step.tangential = TangentialControl::Ratio(0.51);
+    h.advance(step).expect("shifted");
+    step.distance = h.grid().node_spacing();
+    step.tangential = TangentialControl::Creep(creep);
+    (h, step)
 }
