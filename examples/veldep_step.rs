@@ -143,6 +143,7 @@ fn main() {
         let pb = h.problem();
         let mut p = vec![0.0; pb.n_nodes()];
         let mut q = vec![0.0; pb.n_nodes()];
+        let mut ux = vec![f64::NAN; pb.n_nodes()];
         // Element i (1-based) centre: XL + (i - 0.5) DX with XL = -4.65, DX = 0.1.
         let dx = pb.grid.node_spacing();
         let sign = z.shear.iter().sum::<f64>().signum();
@@ -155,16 +156,6 @@ fn main() {
             if let Some(k) = pb.grid.nodes.iter().position(|&xn| (xn - x).abs() < 1e-6) {
                 p[k] = f[4];
                 q[k] = sign * f[5].abs();
-            }
-        }
-        let mut ux = vec![f64::NAN; pb.n_nodes()];
-        for line in text.lines().filter(|l| !l.trim_start().starts_with('%')) {
-            let f: Vec<f64> = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
-            if f.len() < 11 || f[1] < 1.0 || f[4] < 1.0 {
-                continue;
-            }
-            let x = -4.65 + (f[0] - 0.5) * dx;
-            if let Some(k) = pb.grid.nodes.iter().position(|&xn| (xn - x).abs() < 1e-6) {
                 ux[k] = f[8];
             }
         }
