@@ -29,7 +29,12 @@
 //! an iteration); the line search applies from the second step on. Close runs differ in a few
 //! nodes near the contact edges and the stick–slip point, so few iterations remain. The method with line
 //! search is globally convergent, so the start changes the iteration count, not the solution
-//! (to the Newton tolerance). A warm start that has not converged within [`WARM_START_BUDGET`]
+//! (to the Newton tolerance). From a chain's third run on, when the last three runs' controls
+//! lie on one line (a sweep of one key in steps), the start is the secant extrapolation of the
+//! last two solutions ([`predicted_start`]): second order in the step where the tractions are
+//! smooth in the control, so the iterations left are those of the nodes whose state changes
+//! (on 1001 values of Q/μP on 41 elements 0.19 iterations a run against 1.10 from the last
+//! solution, examples/sweep_cost.rs). A warm start that has not converged within [`WARM_START_BUDGET`]
 //! iterations falls back to the cold start and its restarts
 //! ([`crate::contact::restart::solve_neighbour`]); only a converged run is the
 //! next one's start.
@@ -148,6 +153,7 @@ impl Shared {
             shared: self,
             problem: Some(self.problem.clone()),
             last: None,
+            before_last: None,
             ws: Workspace::new(),
         }
     }
@@ -174,8 +180,11 @@ pub struct Chain<'a> {
     shared: &'a Shared,
     /// The contact problem with the last run's controls (taken while post-processing holds it).
     problem: Option<ContactProblem>,
-    /// The solution of the last converged run.
-    last: Option<State>,
+    /// The solution of the last converged run, with its controls.
+    last: Option<(State, Controls)>,
+    /// The converged run before it, when the two followed each other: with the last one it
+    /// extrapolates the next run's start ([`predicted_start`]).
+    before_last: Option<(State, Controls)>,
     ws: Workspace,
 }
 
@@ -189,9 +198,10 @@ pub enum Start {
 }
 
 impl Chain<'_> {
-    /// Forgets the last solution: the next run starts cold.
+    /// Forgets the last solutions: the next run starts cold.
     pub fn restart_cold(&mut self) {
         self.last = None;
+        self.before_last = None;
     }
 
     /// Solves the run of `scene` (admitted to the chain's assembly; a scene admitted to another
@@ -211,7 +221,11 @@ impl Chain<'_> {
         debug_assert!(self.shared.shares(&scene), "a run outside the sequence's assembly");
         let mut problem = self.problem.take().unwrap_or_else(|| self.shared.problem.clone());
         set_controls(&mut problem, &scene);
-        let warm = self.last.take().map(|z| with_prescribed(z, &problem));
+        let controls = Controls::of(&problem);
+        let warm = self
+            .last
+            .as_ref()
+            .map(|last| with_prescribed(predicted_start(last, self.before_last.as_ref(), &controls), &problem));
         let how = if warm.is_some() { Start::Warm } else { Start::Cold };
         let t = Instant::now();
         let (state, report) =
@@ -223,7 +237,9 @@ impl Chain<'_> {
             ..Timings::default()
         };
         if report.converged {
-            self.last = Some(state.clone());
+            self.before_last = self.last.replace((state.clone(), controls));
+        } else {
+            self.restart_cold();
         }
         let processed = post::process(scene, &self.shared.models, problem, &state, report, timings);
         match processed {
@@ -233,7 +249,7 @@ impl Chain<'_> {
                 Ok((out, how))
             }
             Err(e) => {
-                self.last = None;
+                self.restart_cold();
                 Err(e)
             }
         }
@@ -259,6 +275,79 @@ fn set_controls(problem: &mut ContactProblem, scene: &Scene) {
     problem.tangential = scene.tangential;
 }
 
+/// The controls a sequence varies, as numbers: μ, the normal and the tangential control's
+/// values, and which kind each control is (a run of another kind is not on the same line).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Controls {
+    values: [f64; 3],
+    kinds: [u8; 2],
+}
+
+impl Controls {
+    fn of(problem: &ContactProblem) -> Self {
+        let (normal_kind, normal) = match problem.normal {
+            NormalControl::Force(p) => (0, p),
+            NormalControl::Overlap(d) => (1, d),
+        };
+        let (tangential_kind, tangential) = match problem.tangential {
+            TangentialControl::Force(q) => (0, q),
+            TangentialControl::Ratio(r) => (1, r),
+            TangentialControl::Creep(c) => (2, c),
+        };
+        Self {
+            values: [problem.friction, normal, tangential],
+            kinds: [normal_kind, tangential_kind],
+        }
+    }
+}
+
+/// The start of the next run from the last two converged ones (a secant predictor, as in
+/// numerical continuation: Allgower & Georg, *Introduction to Numerical Continuation Methods*,
+/// 2003, §2.2): when the controls of the runs before, last and next lie on one line, at
+/// `next = last + s·(last − before)` with 0 < s ≤ 2, the solution is extrapolated by the same
+/// s. The contact problem's gap and slip are linear in the tractions and controls, so the
+/// extrapolated state satisfies those equations as the runs do; only the contact and friction
+/// projections are left to the Newton method, which starts from the active sets of the
+/// extrapolated tractions, closer to the next run's than the last run's are. Otherwise (a
+/// chain's second run, controls off the line, a change of control kind, a step more than twice
+/// the last) the last run's solution, as before.
+fn predicted_start(last: &(State, Controls), before: Option<&(State, Controls)>, next: &Controls) -> State {
+    let (z1, c1) = last;
+    let Some((z0, c0)) = before else {
+        return z1.clone();
+    };
+    let Some(s) = step_ratio(c0, c1, next) else {
+        return z1.clone();
+    };
+    let extrapolate = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x1, x0)| x1 + s * (x1 - x0)).collect();
+    State {
+        gap: extrapolate(&z1.gap, &z0.gap),
+        slip: extrapolate(&z1.slip, &z0.slip),
+        pressure: extrapolate(&z1.pressure, &z0.pressure),
+        shear: extrapolate(&z1.shear, &z0.shear),
+        overlap: z1.overlap + s * (z1.overlap - z0.overlap),
+        creep: z1.creep + s * (z1.creep - z0.creep),
+    }
+}
+
+/// s with `next − last = s·(last − before)` in every control (to 1e-9 of its size), when
+/// 0 < s ≤ 2 and the kinds agree; None otherwise.
+fn step_ratio(before: &Controls, last: &Controls, next: &Controls) -> Option<f64> {
+    if before.kinds != last.kinds || last.kinds != next.kinds {
+        return None;
+    }
+    let d1: Vec<f64> = (0..3).map(|i| last.values[i] - before.values[i]).collect();
+    let d2: Vec<f64> = (0..3).map(|i| next.values[i] - last.values[i]).collect();
+    let norm1: f64 = d1.iter().map(|d| d * d).sum();
+    if norm1 == 0.0 {
+        return None;
+    }
+    let s = d1.iter().zip(&d2).map(|(a, b)| a * b).sum::<f64>() / norm1;
+    let on_line =
+        (0..3).all(|i| (d2[i] - s * d1[i]).abs() <= 1e-9 * (last.values[i].abs() + d2[i].abs() + f64::MIN_POSITIVE));
+    (on_line && s > 0.0 && s <= 2.0).then_some(s)
+}
+
 /// A neighbour's solution as the start of `problem`: a prescribed overlap or creepage takes
 /// the problem's own value (the Newton method keeps a prescribed unknown where it starts).
 fn with_prescribed(mut z: State, problem: &ContactProblem) -> State {
@@ -269,4 +358,67 @@ fn with_prescribed(mut z: State, problem: &ContactProblem) -> State {
         z.creep = c;
     }
     z
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn controls(values: [f64; 3]) -> Controls {
+        Controls { values, kinds: [0, 1] }
+    }
+
+    #[test]
+    fn the_step_ratio_is_taken_on_a_line_of_controls_only() {
+        let (a, b) = (controls([0.3, 100.0, 0.50]), controls([0.3, 100.0, 0.51]));
+        let s = step_ratio(&a, &b, &controls([0.3, 100.0, 0.53])).expect("on the line");
+        assert!((s - 2.0).abs() < 1e-12, "{s}");
+        // Off the line (the friction changes too), backwards, too far, or another kind.
+        assert_eq!(step_ratio(&a, &b, &controls([0.31, 100.0, 0.52])), None);
+        assert_eq!(step_ratio(&a, &b, &controls([0.3, 100.0, 0.50])), None);
+        assert_eq!(step_ratio(&a, &b, &controls([0.3, 100.0, 0.54])), None);
+        let mut force = controls([0.3, 100.0, 0.52]);
+        force.kinds = [0, 0];
+        assert_eq!(step_ratio(&a, &b, &force), None);
+        // Two runs of the same controls give no direction.
+        assert_eq!(step_ratio(&a, &a, &b), None);
+    }
+
+    /// The secant predictor is second order in the step: on Carter's problem (100 elements,
+    /// Q/μP 0.50, 0.51 → 0.52) the extrapolated shear lies far closer to the next run's than
+    /// the last run's does, at the median node (where the traction is a smooth function of
+    /// Q/μP: an O(h²) error against O(h)). Only the few nodes the stick–slip point crosses keep
+    /// a first-order error (a kink in q as a node turns from stick to slip), which is why the
+    /// Newton method still has iterations to do there. Measured: median 8.7e-6 against 5.7e-4
+    /// of p0 (66×); 10× asserted.
+    #[test]
+    fn the_secant_start_lies_closer_to_the_next_run_than_the_last_run() {
+        let solved = |ratio: f64| {
+            let set = [
+                "contact.grid.elements=100".to_string(),
+                format!("load.tangential.ratio={ratio}"),
+            ];
+            let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/carter2d_contact.yaml");
+            let s = crate::app::solve_case(path.as_path(), &set).expect("carter2d_contact solves");
+            let (state, report) = methods::solve_from(&s.problem, &s.scene.solver, None);
+            assert!(report.converged);
+            (state, Controls::of(&s.problem))
+        };
+        let (z0, z1, z2) = (solved(0.50), solved(0.51), solved(0.52));
+        let predicted = predicted_start(&z1, Some(&z0), &z2.1);
+        let p0 = z2.0.pressure.iter().fold(0.0_f64, |m, &p| m.max(p));
+        let median_distance = |z: &State| {
+            let mut d: Vec<f64> = z
+                .shear
+                .iter()
+                .zip(&z2.0.shear)
+                .map(|(a, b)| (a - b).abs() / p0)
+                .collect();
+            d.sort_by(f64::total_cmp);
+            d[d.len() / 2]
+        };
+        let (secant, last) = (median_distance(&predicted), median_distance(&z1.0));
+        println!("median distance of q to the next run: secant start {secant:.2e}, last run {last:.2e}");
+        assert!(secant < last / 10.0, "secant {secant:e}, last {last:e}");
+    }
 }
