@@ -155,6 +155,14 @@ pub const REFERENCED: [Referenced; 3] = [
 /// to [`CREEP_FLOOR`]·μa/R* where that is smaller.
 pub fn errors_against(reference: &Solved, run: &Solved) -> [f64; 3] {
     let est = &reference.scene.estimates;
+    let floor = CREEP_FLOOR * reference.scene.friction() * est.hertz_half_width / est.effective_radius.abs();
+    errors_against_with_creep_floor(reference, run, floor)
+}
+
+/// [`errors_against`] with the creepage's difference taken relative to max(|ξ_reference|,
+/// `creep_floor`) [-] (0: relative to |ξ_reference| alone).
+pub fn errors_against_with_creep_floor(reference: &Solved, run: &Solved, creep_floor: f64) -> [f64; 3] {
+    let est = &reference.scene.estimates;
     let (a, p0, mu) = (
         est.hertz_half_width,
         est.hertz_peak_pressure,
@@ -170,9 +178,8 @@ pub fn errors_against(reference: &Solved, run: &Solved) -> [f64; 3] {
         (run.solution.shear[i] - g.interpolate(rq, x[i])).abs() / (mu * p0)
     })
     .rms;
-    let floor = CREEP_FLOOR * mu * a / est.effective_radius.abs();
     let xi = reference.solution.creep;
-    [p, q, (run.solution.creep - xi).abs() / xi.abs().max(floor)]
+    [p, q, (run.solution.creep - xi).abs() / xi.abs().max(creep_floor)]
 }
 
 /// True errors: RMS p/p0 against Hertz, RMS q/μp0 against Carter (length-weighted over

@@ -181,19 +181,11 @@ fn tractions_at(from: &Solved, x: &[f64]) -> (Vec<f64>, Vec<f64>) {
 
 /// RMS p/p0 and q/(μp0) over |x| < a of `run` against `reference` at the run's own nodes (the
 /// reference interpolated by its shape functions), and the relative creepage difference; a
-/// and p0 of the reference's Hertz estimates.
+/// and p0 of the reference's Hertz estimates (examples/effectivity_matrix.rs, without its
+/// creepage floor).
 pub(crate) fn errors_against(reference: &Solved, run: &Solved) -> (f64, f64, f64) {
-    let est = &reference.scene.estimates;
-    let (a, p0, mu) = (
-        est.hertz_half_width,
-        est.hertz_peak_pressure,
-        reference.scene.friction(),
-    );
-    let x = &run.solution.x;
-    let (p_r, q_r) = tractions_at(reference, x);
-    let p = nodal_error(x, a, |i| (run.solution.pressure[i] - p_r[i]).abs() / p0).rms;
-    let q = nodal_error(x, a, |i| (run.solution.shear[i] - q_r[i]).abs() / (mu * p0)).rms;
-    (p, q, (run.solution.creep / reference.solution.creep - 1.0).abs())
+    let [p, q, xi] = crate::effectivity_matrix::errors_against_with_creep_floor(reference, run, 0.0);
+    (p, q, xi)
 }
 
 /// Asserts that the true errors (p, q, ξ) of a run all meet its tolerance.
