@@ -53,6 +53,7 @@ mod slip_end;
 mod smooth_cuts;
 mod solver;
 mod stand_in;
+mod stand_in_surface;
 mod strength;
 #[allow(dead_code)]
 #[path = "../../examples/strength_report.rs"]

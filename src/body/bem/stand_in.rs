@@ -376,12 +376,50 @@ impl BemStandIn {
         self.fitted.finest.is_some()
     }
 
-    /// The profile of the BEM body: the mesh's surface from its touching point, or the case's
-    /// `profile_radius` circle.
+    /// The surface of the body at x as the body itself has it on a pass's grid: on the circle
+    /// its contact nodes lie on, where it has one (a generated body's exact circle, a mesh
+    /// file's fitted one), else on its start mesh's elements. A body cut along a grid puts its
+    /// new contact nodes on that circle (src/mesh/cuts.rs), so on the fine grids of the passes
+    /// its surface is the circle to the cut elements' tiny interpolation error; the start mesh's
+    /// quadratics instead change slope at their ends (by 2.8e-6 rad at a 1.06 mm element of the
+    /// roller R 30 of tests/data/bore_c30_tractive.yaml). The contact frame turns by that kink
+    /// ([`crate::scene::contact_frame`]), stepping the normal gap by tan ψ·w (docs/theory.md,
+    /// "Tractions along the contact") at every start element's end: a step the passes resolved
+    /// as a contact edge, grading towards it to 1e-8 mm and never meeting 1e-5
+    /// (tests/validation/stand_in_surface.rs).
+    fn surface(&self, x: f64, side: Side) -> Option<SurfaceAt> {
+        let on_mesh = self.inner.surface_at(x, side)?;
+        let Some(circle) = self.inner.contact_circle else {
+            return Some(on_mesh);
+        };
+        // As `BemSetup::surface_at`: clamped to the contact group's x-range, the branch of the
+        // circle the mesh's surface lies on, the profile from the touching point at x = 0.
+        let [x0, x1] = self.inner.shape.range;
+        let xc = x.clamp(x0, x1);
+        let (y, _) = self.inner.mesh.surface_at(xc)?;
+        let p = circle.at_abscissa_of([xc, y]);
+        let dy = p[1] - circle.centre[1];
+        if dy == 0.0 {
+            return Some(on_mesh);
+        }
+        let touch = self
+            .inner
+            .shape
+            .touch
+            .map_or(p[1], |t| circle.at_abscissa_of([0.0, t])[1]);
+        Some(SurfaceAt {
+            slope_angle: (-(xc - circle.centre[0]) / dy).atan(),
+            profile: (p[1] - touch) * side.sign(),
+            radius: on_mesh.radius,
+        })
+    }
+
+    /// The profile of the BEM body: its surface ([`Self::surface`]) from its touching point, or
+    /// the case's `profile_radius` circle.
     fn profile(&self, x: f64, side: Side) -> f64 {
         match self.inner.profile_radius {
             Some(r) => circle_profile(r, x),
-            None => self.inner.surface_at(x, side).map_or(0.0, |s| s.profile) + self.profile_shift,
+            None => self.surface(x, side).map_or(0.0, |s| s.profile) + self.profile_shift,
         }
     }
 }
@@ -400,7 +438,7 @@ impl BodySetup for BemStandIn {
     }
 
     fn surface_at(&self, x: f64, side: Side) -> Option<SurfaceAt> {
-        self.inner.surface_at(x, side)
+        self.surface(x, side)
     }
 
     fn datum_distance(&self) -> f64 {
@@ -442,7 +480,7 @@ struct StandInBody {
 impl StandInBody {
     /// The slope angle θ [rad] of the body's surface at x on `side` (0 beyond its contact).
     fn slope(&self, x: f64, side: Side) -> f64 {
-        self.setup.inner.surface_at(x, side).map_or(0.0, |s| s.slope_angle)
+        self.setup.surface(x, side).map_or(0.0, |s| s.slope_angle)
     }
 
     /// The nodal loads `v` per unit x made per unit arc ([`arc_scales`]: the column scaling of
