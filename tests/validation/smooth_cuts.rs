@@ -118,6 +118,9 @@ fn the_pressure_has_no_step_at_the_gmsh_element_ends() {
 /// 1e-5) and the body meshes' own error outside the contact, which the run's body-mesh check
 /// bounds. Ignored by default (two runs of several minutes and a few GB each):
 /// `cargo test --release --test validation -- --ignored gmsh_bore_at_1e_5 --nocapture`.
+/// Open: it does not pass yet. The Gmsh run's estimate falls to 5.3e-7 p0 on 798 elements and
+/// rises to 1.0e-5 p0 on 1002 (docs/validation.md, "Left open: the Gmsh twin at 1e-5"); this test
+/// is the acceptance check of the fix.
 #[test]
 #[ignore]
 fn a_gmsh_bore_at_1e_5_meets_its_tolerance_against_a_body_mesh_4_times_finer() {
@@ -127,7 +130,7 @@ fn a_gmsh_bore_at_1e_5_meets_its_tolerance_against_a_body_mesh_4_times_finer() {
             format!("bodies.A.mesh=../../meshes/{roller}.msh"),
             format!("bodies.B.mesh=../../meshes/{ring}.msh"),
             format!("contact.grid.tolerance={tolerance:e}"),
-            "contact.grid.max_elements=1300".to_string(),
+            "contact.grid.max_elements=2600".to_string(),
         ];
         let s = app::solve_case(&case_path_in_tests("bore_c30_tractive"), &set)
             .unwrap_or_else(|e| panic!("{roller} in {ring} at {tolerance:e}: {e}"));
