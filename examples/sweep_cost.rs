@@ -23,6 +23,7 @@ pub mod common;
 
 use common::{case_path, Table};
 use rayon::prelude::*;
+use rollbem::sequence::GridReuse;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
@@ -122,9 +123,130 @@ fn best(repeat: usize, mut f: impl FnMut() -> (f64, usize)) -> (f64, usize) {
         .fold((f64::INFINITY, 0), |b, r| if r.0 < b.0 { r } else { b })
 }
 
+/// One error-controlled run of Q/μP = `v` at `tolerance` on `case`, from `chain`'s last run
+/// (`None`: cold, on the start grid): (elements of the result, Newton iterations, passes).
+fn adaptive_run(
+    case: &Path,
+    tolerance: &str,
+    v: &str,
+    chain: Option<&mut rollbem::sequence::GridChain>,
+) -> (usize, usize, usize) {
+    let set = [tolerance.to_string(), format!("load.tangential.ratio={v}")];
+    let read = |s: &rollbem::app::Solved| {
+        let a = s.adaptation.as_ref().expect("an error-controlled run");
+        let iterations = a.steps.iter().map(|p| p.iterations).sum();
+        (s.problem.grid.n_elements(), iterations, a.steps.len())
+    };
+    match chain {
+        None => read(&rollbem::app::solve_case(case, &set).expect("solves")),
+        Some(chain) => {
+            let scene =
+                rollbem::scene::Scene::from_case(&rollbem::app::load_case(case, &set).expect("loads")).expect("scene");
+            chain.solve_with(scene, Instant::now(), read).expect("solves")
+        }
+    }
+}
+
+/// The error-controlled sweep: `values` of Q/μP on carter2d_contact.yaml at `tolerance`, on
+/// one thread: every run cold (from the start grid) against one chain of runs each started
+/// warm from the last one's solution, on its final grid merged 0, 1, 2 and 4 levels or on the
+/// start grid (src/sequence.rs, `GridChain`), and the sweep of `rollbem sweep` on all threads. Rows of the table "error-controlled".
+fn adaptive(case: &Path, tolerance: f64, values: &[String], repeat: usize, dir: &Path) -> Table {
+    let tol = format!("contact.grid.tolerance={tolerance:e}");
+    let mut table = Table::new(&[
+        "error-controlled sweep",
+        "threads",
+        "start of each run",
+        "wall [s]",
+        "cold / this",
+        "elements a run (mean, max)",
+        "passes a run",
+        "iterations a run",
+    ]);
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a pool");
+    let chain_of = |reuse: Option<GridReuse>| {
+        let mut chain = reuse.map(rollbem::sequence::GridChain::new);
+        let t = Instant::now();
+        let runs: Vec<_> = values
+            .iter()
+            .map(|v| adaptive_run(case, &tol, v, chain.as_mut()))
+            .collect();
+        (t.elapsed().as_secs_f64(), runs)
+    };
+    let best_of = |reuse: Option<GridReuse>| {
+        (0..repeat)
+            .map(|_| one.install(|| chain_of(reuse)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .expect("one repeat")
+    };
+    let cold = best_of(None);
+    let n = values.len() as f64;
+    let label = format!("{} values of Q/μP, tolerance {tolerance:e}", values.len());
+    let mut row = |threads: usize, start: &str, (wall, runs): &(f64, Vec<(usize, usize, usize)>)| {
+        let mean = |f: fn(&(usize, usize, usize)) -> usize| runs.iter().map(f).sum::<usize>() as f64 / n;
+        let max = runs.iter().map(|r| r.0).max().unwrap_or(0);
+        table.push(vec![
+            label.clone(),
+            threads.to_string(),
+            start.to_string(),
+            format!("{wall:.3}"),
+            if runs.is_empty() {
+                "—".into()
+            } else {
+                format!("{:.2}", cold.0 / wall)
+            },
+            if runs.is_empty() {
+                "—".into()
+            } else {
+                format!("{:.0}, {max}", mean(|r| r.0))
+            },
+            if runs.is_empty() {
+                "—".into()
+            } else {
+                format!("{:.2}", mean(|r| r.2))
+            },
+            if runs.is_empty() {
+                "—".into()
+            } else {
+                format!("{:.1}", mean(|r| r.1))
+            },
+        ]);
+    };
+    row(1, "cold: the start grid", &cold);
+    for merged in [0, 1, 2, 4] {
+        let shared = best_of(Some(GridReuse::LastGrid { merged }));
+        row(1, &format!("last run's grid, merged {merged}×"), &shared);
+    }
+    let shared = best_of(Some(GridReuse::StartGrid));
+    row(1, "start grid, warm from the last run", &shared);
+    let mut k = 0;
+    let (wall, _) = best(repeat, || {
+        k += 1;
+        let t = tolerance.to_string();
+        let s = swept(
+            case,
+            &format!("contact.grid.tolerance={t}"),
+            values,
+            &dir.join(format!("adaptive_{k}")),
+        );
+        (s.0, 0)
+    });
+    row(rayon::current_num_threads(), "rollbem sweep", &(wall, Vec::new()));
+    table
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let repeat = arg(&args, "--repeat").and_then(|v| v.parse().ok()).unwrap_or(3);
+    if args.iter().any(|a| a == "--adaptive") {
+        let case = case_path("carter2d_contact");
+        let tmp = tempfile::tempdir().expect("a temporary folder");
+        let n: usize = arg(&args, "--values").and_then(|v| v.parse().ok()).unwrap_or(20);
+        let values = ratios(n, 0.95 / (n - 1) as f64);
+        let tolerance = arg(&args, "--tolerance").and_then(|v| v.parse().ok()).unwrap_or(1e-4);
+        print!("{}", adaptive(&case, tolerance, &values, repeat, tmp.path()).markdown());
+        return;
+    }
     let contact = arg(&args, "--contact").map(|bin| {
         let bin = PathBuf::from(bin);
         let inp = contact_inp(&args, &bin);

@@ -17,7 +17,18 @@
 //! grid around its Hertz contact (unless `contact.grid.half_length` or a body's mesh fixes it),
 //! so a run of another normal load on such a grid builds its own ([`Shared::shares`] tells).
 //! Error-controlled grids (`contact.grid.tolerance`) build each run's grids themselves and are
-//! refused ([`SequenceError::AdaptiveGrid`]).
+//! refused ([`SequenceError::AdaptiveGrid`]); their runs share what their grids share instead:
+//! a [`GridChain`] starts each run's passes from the last run's final grid and solution.
+//!
+//! **Error-controlled chains.** A [`GridChain`] solves each run with
+//! [`crate::adapt::solve_from`]: its passes start on the last converged run's final grid G,
+//! coarsened by [`GRID_COARSENING`] levels ([`crate::adapt::GridStart::coarsened`]), warm from
+//! that run's solution, when the run's start grid is the last run's (else on its own start
+//! grid, as alone). Every run meets its tolerance by its own estimate and a-priori lengths, as
+//! a run alone does; its grid, and so its solution, depends on the run before it in the chain,
+//! i.e. on how a sweep cuts its runs into chains (the number of threads, the shards, a resumed
+//! sweep's runs): two such results of one run differ by up to about twice the tolerance (each
+//! is within it of the exact solution), never more.
 //!
 //! **The warm start.** The Newton method of [`crate::contact`] solves the semismooth equations
 //! of the contact and friction conditions, whose projections fix at each iterate which nodes
@@ -261,7 +272,7 @@ fn set_controls(problem: &mut ContactProblem, scene: &Scene) {
 
 /// A neighbour's solution as the start of `problem`: a prescribed overlap or creepage takes
 /// the problem's own value (the Newton method keeps a prescribed unknown where it starts).
-fn with_prescribed(mut z: State, problem: &ContactProblem) -> State {
+pub(crate) fn with_prescribed(mut z: State, problem: &ContactProblem) -> State {
     if let NormalControl::Overlap(d) = problem.normal {
         z.overlap = d;
     }
@@ -269,4 +280,66 @@ fn with_prescribed(mut z: State, problem: &ContactProblem) -> State {
         z.creep = c;
     }
     z
+}
+
+/// Where a [`GridChain`]'s runs start their passes, warm from the last run's solution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GridReuse {
+    /// On the run's own start grid (the sweep's chains; module docs, "Error-controlled
+    /// chains", say why).
+    StartGrid,
+    /// On the last run's final grid with every pair of sibling pieces merged back this many
+    /// times ([`crate::adapt::GridStart::coarsened`]; 0: the grid itself).
+    LastGrid {
+        /// Levels merged.
+        merged: u32,
+    },
+}
+
+/// One worker's error-controlled runs, each started warm from the last converged run's
+/// solution (module docs, "Error-controlled chains").
+#[derive(Debug, Clone)]
+pub struct GridChain {
+    /// The last converged run's final grid and solution.
+    last: Option<crate::adapt::GridStart>,
+    /// Which grid a run starts on.
+    reuse: GridReuse,
+}
+
+impl Default for GridChain {
+    fn default() -> Self {
+        Self::new(GridReuse::StartGrid)
+    }
+}
+
+impl GridChain {
+    /// A chain whose runs start as `reuse` says (the sweep's chains: [`GridReuse::StartGrid`]).
+    pub fn new(reuse: GridReuse) -> Self {
+        Self { last: None, reuse }
+    }
+
+    /// Forgets the last run: the next starts cold, as alone.
+    pub fn restart_cold(&mut self) {
+        self.last = None;
+    }
+
+    /// Whether the next run would start warm from the last run (if its start grid is the last
+    /// run's).
+    pub fn is_warm(&self) -> bool {
+        self.last.is_some()
+    }
+
+    /// Solves `scene` (error-controlled or not: a fixed grid is solved as alone) warm from the
+    /// last converged run, post-processes it and hands it to `read`, whose result is returned;
+    /// `start` is when the run began (its timings). A run that met its tolerance is the next
+    /// one's start; a failed one makes the next start cold.
+    pub fn solve_with<T>(&mut self, scene: Scene, start: Instant, read: impl FnOnce(&Solved) -> T) -> Result<T, Error> {
+        let from = self.last.take().map(|s| match self.reuse {
+            GridReuse::StartGrid => s.on_start_grid(),
+            GridReuse::LastGrid { merged } => s.coarsened(merged),
+        });
+        let (solved, next) = crate::app::solve_scene_from(scene, start, from.as_ref())?;
+        self.last = next.filter(|_| solved.report.converged);
+        Ok(read(&solved))
+    }
 }
