@@ -124,33 +124,67 @@ fn best(repeat: usize, mut f: impl FnMut() -> (f64, usize)) -> (f64, usize) {
 }
 
 /// One error-controlled run of Q/μP = `v` at `tolerance` on `case`, from `chain`'s last run
-/// (`None`: cold, on the start grid): (elements of the result, Newton iterations, passes).
+/// (`None`: cold, on the start grid): (elements of the result, Newton iterations, passes), or
+/// None when the run failed (its grid reached `contact.grid.max_elements` first).
 fn adaptive_run(
     case: &Path,
     tolerance: &str,
     v: &str,
     chain: Option<&mut rollbem::sequence::GridChain>,
-) -> (usize, usize, usize) {
+) -> Option<Counts> {
     let set = [tolerance.to_string(), format!("load.tangential.ratio={v}")];
     let read = |s: &rollbem::app::Solved| {
         let a = s.adaptation.as_ref().expect("an error-controlled run");
         let iterations = a.steps.iter().map(|p| p.iterations).sum();
-        (s.problem.grid.n_elements(), iterations, a.steps.len())
+        Counts {
+            elements: s.problem.grid.n_elements(),
+            iterations,
+            passes: a.steps.len(),
+        }
     };
     match chain {
-        None => read(&rollbem::app::solve_case(case, &set).expect("solves")),
+        None => rollbem::app::solve_case(case, &set).ok().map(|s| read(&s)),
         Some(chain) => {
-            let scene =
-                rollbem::scene::Scene::from_case(&rollbem::app::load_case(case, &set).expect("loads")).expect("scene");
-            chain.solve_with(scene, Instant::now(), read).expect("solves")
+            let case = rollbem::app::load_case(case, &set).expect("loads");
+            let scene = rollbem::scene::Scene::from_case(&case).expect("scene");
+            chain.solve_with(scene, Instant::now(), read).ok()
         }
     }
+}
+
+/// What one error-controlled run took.
+#[derive(Debug, Clone, Copy)]
+struct Counts {
+    elements: usize,
+    iterations: usize,
+    passes: usize,
+}
+
+/// The row of one way of running the error-controlled sweep: its wall time `wall` [s] against
+/// the cold runs' `cold` [s], and each run's counts (None: failed).
+fn adaptive_row(label: &str, threads: usize, start: &str, wall: f64, cold: f64, all: &[Option<Counts>]) -> Vec<String> {
+    let runs: Vec<Counts> = all.iter().flatten().copied().collect();
+    let n = runs.len().max(1) as f64;
+    let mean = |f: fn(&Counts) -> usize| runs.iter().map(f).sum::<usize>() as f64 / n;
+    let max = runs.iter().map(|r| r.elements).max().unwrap_or(0);
+    let counted = |text: String| if all.is_empty() { "—".to_string() } else { text };
+    vec![
+        label.to_string(),
+        threads.to_string(),
+        start.to_string(),
+        format!("{wall:.3}"),
+        format!("{:.2}", cold / wall),
+        counted(format!("{:.0}, {max}", mean(|r| r.elements))),
+        counted(format!("{:.2}", mean(|r| r.passes))),
+        counted(format!("{:.1}", mean(|r| r.iterations))),
+        counted((all.len() - runs.len()).to_string()),
+    ]
 }
 
 /// The error-controlled sweep: `values` of Q/μP on carter2d_contact.yaml at `tolerance`, on
 /// one thread: every run cold (from the start grid) against one chain of runs each started
 /// warm from the last one's solution, on its final grid merged 0, 1, 2 and 4 levels or on the
-/// start grid (src/sequence.rs, `GridChain`), and the sweep of `rollbem sweep` on all threads. Rows of the table "error-controlled".
+/// start grid (src/sequence.rs, `GridChain`), and the sweep of `rollbem sweep` on all threads.
 fn adaptive(case: &Path, tolerance: f64, values: &[String], repeat: usize, dir: &Path) -> Table {
     let tol = format!("contact.grid.tolerance={tolerance:e}");
     let mut table = Table::new(&[
@@ -162,6 +196,7 @@ fn adaptive(case: &Path, tolerance: f64, values: &[String], repeat: usize, dir: 
         "elements a run (mean, max)",
         "passes a run",
         "iterations a run",
+        "runs failed",
     ]);
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a pool");
     let chain_of = |reuse: Option<GridReuse>| {
@@ -180,58 +215,30 @@ fn adaptive(case: &Path, tolerance: f64, values: &[String], repeat: usize, dir: 
             .expect("one repeat")
     };
     let cold = best_of(None);
-    let n = values.len() as f64;
     let label = format!("{} values of Q/μP, tolerance {tolerance:e}", values.len());
-    let mut row = |threads: usize, start: &str, (wall, runs): &(f64, Vec<(usize, usize, usize)>)| {
-        let mean = |f: fn(&(usize, usize, usize)) -> usize| runs.iter().map(f).sum::<usize>() as f64 / n;
-        let max = runs.iter().map(|r| r.0).max().unwrap_or(0);
-        table.push(vec![
-            label.clone(),
-            threads.to_string(),
-            start.to_string(),
-            format!("{wall:.3}"),
-            if runs.is_empty() {
-                "—".into()
-            } else {
-                format!("{:.2}", cold.0 / wall)
-            },
-            if runs.is_empty() {
-                "—".into()
-            } else {
-                format!("{:.0}, {max}", mean(|r| r.0))
-            },
-            if runs.is_empty() {
-                "—".into()
-            } else {
-                format!("{:.2}", mean(|r| r.2))
-            },
-            if runs.is_empty() {
-                "—".into()
-            } else {
-                format!("{:.1}", mean(|r| r.1))
-            },
-        ]);
-    };
-    row(1, "cold: the start grid", &cold);
+    table.push(adaptive_row(&label, 1, "cold: the start grid", cold.0, cold.0, &cold.1));
     for merged in [0, 1, 2, 4] {
-        let shared = best_of(Some(GridReuse::LastGrid { merged }));
-        row(1, &format!("last run's grid, merged {merged}×"), &shared);
+        let (wall, runs) = best_of(Some(GridReuse::LastGrid { merged }));
+        let start = format!("last run's grid, merged {merged}×");
+        table.push(adaptive_row(&label, 1, &start, wall, cold.0, &runs));
     }
-    let shared = best_of(Some(GridReuse::StartGrid));
-    row(1, "start grid, warm from the last run", &shared);
+    let (wall, runs) = best_of(Some(GridReuse::StartGrid));
+    table.push(adaptive_row(
+        &label,
+        1,
+        "start grid, warm from the last run",
+        wall,
+        cold.0,
+        &runs,
+    ));
     let mut k = 0;
     let (wall, _) = best(repeat, || {
         k += 1;
-        let t = tolerance.to_string();
-        let s = swept(
-            case,
-            &format!("contact.grid.tolerance={t}"),
-            values,
-            &dir.join(format!("adaptive_{k}")),
-        );
+        let s = swept(case, &tol, values, &dir.join(format!("adaptive_{k}")));
         (s.0, 0)
     });
-    row(rayon::current_num_threads(), "rollbem sweep", &(wall, Vec::new()));
+    let threads = rayon::current_num_threads();
+    table.push(adaptive_row(&label, threads, "rollbem sweep", wall, cold.0, &[]));
     table
 }
 

@@ -73,6 +73,7 @@ pub use start::GridStart;
 
 use crate::body::RunCaches;
 use crate::contact::residual::State;
+use crate::contact::restart;
 use crate::contact::{
     methods, BodyBLoad, BodyBShare, ContactProblem, SolveReport, SolverSettings, WithoutSlipBlocks, Workspace,
 };
@@ -251,7 +252,7 @@ fn solve_problem(
 
 /// [`solve_problem`] from the result of a neighbouring run (its controls differ): its
 /// prescribed overlap or creepage set to the problem's own, the first Newton step taken in
-/// full and a warm start that has not converged within [`crate::sequence::WARM_START_BUDGET`]
+/// full and a warm start that has not converged within [`restart::NEIGHBOUR_BUDGET`]
 /// iterations given up for the cold start, as a sequence's runs are started
 /// (src/sequence.rs, "The warm start").
 fn solve_from_neighbour(
@@ -262,8 +263,8 @@ fn solve_from_neighbour(
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
     let t = Instant::now();
-    let warm = warm.map(|(from, z)| crate::sequence::with_prescribed(carried(&problem.grid, from, z), problem));
-    let budget = crate::sequence::WARM_START_BUDGET;
+    let warm = warm.map(|(from, z)| restart::with_prescribed(carried(&problem.grid, from, z), problem));
+    let budget = restart::NEIGHBOUR_BUDGET;
     let solved = methods::solve_from_neighbour_in(problem, solver, warm, budget, ws);
     timings.solve_s += t.elapsed().as_secs_f64();
     solved

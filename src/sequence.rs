@@ -17,18 +17,27 @@
 //! grid around its Hertz contact (unless `contact.grid.half_length` or a body's mesh fixes it),
 //! so a run of another normal load on such a grid builds its own ([`Shared::shares`] tells).
 //! Error-controlled grids (`contact.grid.tolerance`) build each run's grids themselves and are
-//! refused ([`SequenceError::AdaptiveGrid`]); their runs share what their grids share instead:
-//! a [`GridChain`] starts each run's passes from the last run's final grid and solution.
+//! refused ([`SequenceError::AdaptiveGrid`]); a [`GridChain`] starts each of their runs warm
+//! from the last run's result instead ("Error-controlled chains" below).
 //!
 //! **Error-controlled chains.** A [`GridChain`] solves each run with
-//! [`crate::adapt::solve_from`]: its passes start on the last converged run's final grid G,
-//! coarsened by [`GRID_COARSENING`] levels ([`crate::adapt::GridStart::coarsened`]), warm from
-//! that run's solution, when the run's start grid is the last run's (else on its own start
-//! grid, as alone). Every run meets its tolerance by its own estimate and a-priori lengths, as
-//! a run alone does; its grid, and so its solution, depends on the run before it in the chain,
-//! i.e. on how a sweep cuts its runs into chains (the number of threads, the shards, a resumed
-//! sweep's runs): two such results of one run differ by up to about twice the tolerance (each
-//! is within it of the exact solution), never more.
+//! [`crate::adapt::solve_from`], warm from the last converged run's result: by default
+//! ([`GridReuse::StartGrid`], the sweep's) its passes start on the run's own start grid, the
+//! last run's solution carried to it; [`GridReuse::LastGrid`] starts them on the last run's
+//! final grid, merged back a number of levels (src/adapt/start.rs). Either way a run meets its
+//! tolerance by its own estimate and a-priori lengths, as a run alone does. The last run's grid
+//! does not pay (examples/sweep_cost.rs `--adaptive`, docs/performance.md "Sweeps"): its
+//! grading sits at the last run's stick/slip point, the run's own has moved by far more than
+//! the a-priori length there (30·tolerance·a), so the first pass never meets the tolerance and
+//! the run takes as many passes as from the start grid, on larger grids; unmerged, the grading
+//! of every earlier run's point piles up along the chain (carter2d_contact at 1e-4, 20 values
+//! of Q/μP: 422 elements a run against 167, 7–11 times slower). What pays is the warm start,
+//! and on the start grid the passes see the cold run's solutions to the Newton tolerance, so
+//! they refine to the cold run's grids: a run's result is the cold run's to the Newton
+//! tolerance, whatever run precedes it in its chain, so a sweep's results do not depend on its
+//! number of threads, its shards or a resumed sweep's chains (tests/validation/sequence.rs,
+//! tests/cli/sweep.rs). (Starting on the last run's grid, a run's result would depend on its
+//! chain by up to about twice the tolerance: each is within it of the exact solution.)
 //!
 //! **The warm start.** The Newton method of [`crate::contact`] solves the semismooth equations
 //! of the contact and friction conditions, whose projections fix at each iterate which nodes
@@ -47,7 +56,8 @@
 
 use crate::contact::methods::{self, Workspace};
 use crate::contact::residual::State;
-use crate::contact::{ContactProblem, NormalControl, TangentialControl};
+use crate::contact::restart;
+use crate::contact::ContactProblem;
 use crate::error::Error;
 use crate::post::{self, Solved, Timings};
 use crate::scene::{BodyModels, Scene};
@@ -55,7 +65,7 @@ use std::time::Instant;
 
 /// Most Newton iterations a warm start is given before the run falls back to its cold start
 /// (cold runs of the shipped cases take 5–12; a warm start that needs more is not paying).
-pub const WARM_START_BUDGET: usize = 20;
+pub const WARM_START_BUDGET: usize = crate::contact::restart::NEIGHBOUR_BUDGET;
 
 /// Why a scene cannot start a sequence.
 #[derive(Debug, thiserror::Error)]
@@ -222,7 +232,7 @@ impl Chain<'_> {
         debug_assert!(self.shared.shares(&scene), "a run outside the sequence's assembly");
         let mut problem = self.problem.take().unwrap_or_else(|| self.shared.problem.clone());
         set_controls(&mut problem, &scene);
-        let warm = self.last.take().map(|z| with_prescribed(z, &problem));
+        let warm = self.last.take().map(|z| restart::with_prescribed(z, &problem));
         let how = if warm.is_some() { Start::Warm } else { Start::Cold };
         let t = Instant::now();
         let (state, report) =
@@ -268,18 +278,6 @@ fn set_controls(problem: &mut ContactProblem, scene: &Scene) {
     problem.falling = scene.falling;
     problem.normal = scene.normal;
     problem.tangential = scene.tangential;
-}
-
-/// A neighbour's solution as the start of `problem`: a prescribed overlap or creepage takes
-/// the problem's own value (the Newton method keeps a prescribed unknown where it starts).
-pub(crate) fn with_prescribed(mut z: State, problem: &ContactProblem) -> State {
-    if let NormalControl::Overlap(d) = problem.normal {
-        z.overlap = d;
-    }
-    if let TangentialControl::Creep(c) = problem.tangential {
-        z.creep = c;
-    }
-    z
 }
 
 /// Where a [`GridChain`]'s runs start their passes, warm from the last run's solution.

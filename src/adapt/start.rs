@@ -9,7 +9,10 @@
 //! (the a-priori length and the estimate are checked as for any run, so it meets the same
 //! tolerance). What it may not do is keep the neighbour's grading where its own points are
 //! not: [`GridStart::coarsened`] merges sibling pieces back first (src/adapt/cells.rs), so
-//! that along a chain the grading of points that moved away does not pile up.
+//! that along a chain the grading of points that moved away does not pile up, and
+//! [`GridStart::on_start_grid`] merges them all: the run's own start grid, warm from the
+//! neighbour's solution (what a sweep uses; src/sequence.rs, "Error-controlled chains", says
+//! why).
 
 use super::cells::{Action, DyadicGrid};
 use crate::contact::residual::State;

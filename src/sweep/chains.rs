@@ -71,9 +71,9 @@ pub(super) enum Link<'a> {
     /// Nothing: every run is done on its own.
     Alone,
     /// The shared assembly and the last run's solution (fixed grids).
-    Shared(Chain<'a>),
+    Shared(Box<Chain<'a>>),
     /// The last run's solution, the next run's warm start (error-controlled grids).
-    Grids(GridChain),
+    Grids(Box<GridChain>),
 }
 
 /// Solves the runs `order` (already in [`neighbour_order`]) of the case text `text` in
@@ -94,8 +94,8 @@ pub(super) fn solve_in_chains<R: Send>(
         .par_iter()
         .flat_map_iter(|runs_of_chain| {
             let mut link = match (&points.shared, points.grids) {
-                (Some(s), _) => Link::Shared(s.chain()),
-                (None, true) => Link::Grids(GridChain::default()),
+                (Some(s), _) => Link::Shared(Box::new(s.chain())),
+                (None, true) => Link::Grids(Box::default()),
                 (None, false) => Link::Alone,
             };
             runs_of_chain
