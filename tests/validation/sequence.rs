@@ -226,3 +226,40 @@ fn error_controlled_chains_meet_the_tolerance_and_agree_with_the_cold_runs() {
         }
     }
 }
+
+/// An error-controlled chain under a prescribed creepage (carter_051, ξ from −2e-4 to −5e-5 at
+/// 1e-4): the warm start takes the run's own creepage, not the last run's (the Newton method
+/// keeps a prescribed unknown where it starts), so each run on its start grid is the cold run,
+/// its grid and tractions (within the sequence's TOLERANCE of p0) and its creepage exactly.
+#[test]
+fn an_error_controlled_chain_under_a_prescribed_creepage_solves_each_run_at_its_own() {
+    use rollbem::sequence::GridChain;
+    let set = |xi: &str| {
+        vec![
+            "contact.grid.tolerance=1e-4".to_string(),
+            "load.tangential.ratio=null".to_string(),
+            format!("load.tangential.creep={xi}"),
+        ]
+    };
+    let mut chain = GridChain::default();
+    for xi in ["-0.0002", "-0.00015", "-0.0001", "-0.00005"] {
+        let run = chain
+            .solve_with(scene("carter_051", &set(xi)), std::time::Instant::now(), Clone::clone)
+            .expect("chained run");
+        let cold = rollbem::app::solve_case(crate::common::case_path("carter_051").as_path(), &set(xi)).expect("cold");
+        assert_eq!(
+            run.solution.creep,
+            xi.parse::<f64>().unwrap(),
+            "ξ = {xi}: its own creepage"
+        );
+        assert_eq!(
+            run.problem.grid.edges, cold.problem.grid.edges,
+            "ξ = {xi}: the cold run's grid"
+        );
+        let diff = traction_difference(&cold, &run);
+        assert!(
+            diff <= TOLERANCE,
+            "ξ = {xi}: tractions differ from the cold run's by {diff:e} p0"
+        );
+    }
+}
