@@ -26,18 +26,21 @@
 //! last run's solution carried to it; [`GridReuse::LastGrid`] starts them on the last run's
 //! final grid, merged back a number of levels (src/adapt/start.rs). Either way a run meets its
 //! tolerance by its own estimate and a-priori lengths, as a run alone does. The last run's grid
-//! does not pay (examples/sweep_cost.rs `--adaptive`, docs/performance.md "Sweeps"): its
+//! saves no pass (examples/sweep_cost.rs `--adaptive`, docs/performance.md "Sweeps"): its
 //! grading sits at the last run's stick/slip point, the run's own has moved by far more than
-//! the a-priori length there (30·tolerance·a), so the first pass never meets the tolerance and
-//! the run takes as many passes as from the start grid, on larger grids; unmerged, the grading
-//! of every earlier run's point piles up along the chain (carter2d_contact at 1e-4, 20 values
-//! of Q/μP: 422 elements a run against 167, 7–11 times slower). What pays is the warm start,
-//! and on the start grid the passes see the cold run's solutions to the Newton tolerance, so
-//! they refine to the cold run's grids: a run's result is the cold run's to the Newton
-//! tolerance, whatever run precedes it in its chain, so a sweep's results do not depend on its
-//! number of threads, its shards or a resumed sweep's chains (tests/validation/sequence.rs,
-//! tests/cli/sweep.rs). (Starting on the last run's grid, a run's result would depend on its
-//! chain by up to about twice the tolerance: each is within it of the exact solution.)
+//! the a-priori length there (30·tolerance·a), so the first pass does not meet the tolerance
+//! and the run takes as many passes as from the start grid. Unmerged, the grading of every
+//! earlier run's point piles up along the chain (carter2d_contact at 1e-4, 20 values of Q/μP:
+//! 422 elements a run against 167 cold, 16 times the CPU time); merged back 4 levels the grids
+//! are about the cold runs' and the chain 1.05–1.18 times as fast. On the start grid the chain
+//! is 1.05 times as fast, from the warm start alone (7.4–8.9 Newton iterations a run against
+//! 12.1–12.4 cold; the solves are the smaller part of such a run), and the passes see the cold
+//! run's solutions to the Newton tolerance, so they refine to the cold run's grids: a run's
+//! result is the cold run's to the Newton tolerance, whatever run precedes it in its chain,
+//! so a sweep's results do not depend on its number of threads, its shards or a resumed
+//! sweep's chains (tests/validation/sequence.rs, tests/cli/sweep.rs). Started on a merged
+//! grid, a run's result would depend on its chain by up to about twice the tolerance (each is
+//! within it of the exact solution): the sweep starts on the start grid.
 //!
 //! **The warm start.** The Newton method of [`crate::contact`] solves the semismooth equations
 //! of the contact and friction conditions, whose projections fix at each iterate which nodes
