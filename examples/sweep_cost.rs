@@ -23,6 +23,7 @@ pub mod common;
 
 use common::{case_path, Table};
 use rayon::prelude::*;
+use rollbem::sequence::GridReuse;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
@@ -122,9 +123,187 @@ fn best(repeat: usize, mut f: impl FnMut() -> (f64, usize)) -> (f64, usize) {
         .fold((f64::INFINITY, 0), |b, r| if r.0 < b.0 { r } else { b })
 }
 
+/// One error-controlled run of Q/μP = `v` at `tolerance` on `case`, from `chain`'s last run
+/// (`None`: cold, on the start grid): (elements of the result, Newton iterations, passes), or
+/// None when the run failed (its grid reached `contact.grid.max_elements` first).
+fn adaptive_run(
+    case: &Path,
+    tolerance: &str,
+    v: &str,
+    chain: Option<&mut rollbem::sequence::GridChain>,
+) -> Option<Counts> {
+    let set = [tolerance.to_string(), format!("load.tangential.ratio={v}")];
+    let read = |s: &rollbem::app::Solved| {
+        let a = s.adaptation.as_ref().expect("an error-controlled run");
+        let iterations = a.steps.iter().map(|p| p.iterations).sum();
+        Counts {
+            elements: s.problem.grid.n_elements(),
+            iterations,
+            passes: a.steps.len(),
+        }
+    };
+    match chain {
+        None => rollbem::app::solve_case(case, &set).ok().map(|s| read(&s)),
+        Some(chain) => {
+            let case = rollbem::app::load_case(case, &set).expect("loads");
+            let scene = rollbem::scene::Scene::from_case(&case).expect("scene");
+            chain.solve_with(scene, Instant::now(), read).ok()
+        }
+    }
+}
+
+/// What one error-controlled run took.
+#[derive(Debug, Clone, Copy)]
+struct Counts {
+    elements: usize,
+    iterations: usize,
+    passes: usize,
+}
+
+/// CPU time [s] this process has used (user and system, from /proc/self/stat; 10 ms ticks):
+/// the work of a one-thread chain, without the time it waited while other processes ran.
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").expect("/proc/self/stat");
+    // The fields after the command name (which is in parentheses and may hold spaces).
+    let rest = &stat[stat.rfind(')').expect("a command name") + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // utime and stime are fields 14 and 15 of the whole line, 12 and 13 after the name.
+    let ticks: f64 = fields[11].parse::<f64>().unwrap() + fields[12].parse::<f64>().unwrap();
+    ticks / 100.0
+}
+
+/// One way of running the error-controlled sweep, timed: wall and CPU time [s], and each
+/// run's counts (None: failed).
+struct Timed {
+    wall: f64,
+    cpu: f64,
+    runs: Vec<Option<Counts>>,
+}
+
+/// The row of `t` against the cold runs' CPU time `cold_cpu` [s].
+fn adaptive_row(label: &str, threads: usize, start: &str, t: &Timed, cold_cpu: f64) -> Vec<String> {
+    let all = &t.runs;
+    let runs: Vec<Counts> = all.iter().flatten().copied().collect();
+    let n = runs.len().max(1) as f64;
+    let mean = |f: fn(&Counts) -> usize| runs.iter().map(f).sum::<usize>() as f64 / n;
+    let max = runs.iter().map(|r| r.elements).max().unwrap_or(0);
+    let counted = |text: String| if all.is_empty() { "—".to_string() } else { text };
+    vec![
+        label.to_string(),
+        threads.to_string(),
+        start.to_string(),
+        format!("{:.3}", t.wall),
+        format!("{:.2}", t.cpu),
+        format!("{:.2}", cold_cpu / t.cpu),
+        counted(format!("{:.0}, {max}", mean(|r| r.elements))),
+        counted(format!("{:.2}", mean(|r| r.passes))),
+        counted(format!("{:.1}", mean(|r| r.iterations))),
+        counted((all.len() - runs.len()).to_string()),
+    ]
+}
+
+/// The error-controlled sweep: `values` of Q/μP on carter2d_contact.yaml at `tolerance`, on
+/// one thread: every run cold (from the start grid) against one chain of runs each started
+/// warm from the last one's solution, on its final grid merged 0, 1, 2 and 4 levels or on the
+/// start grid (src/sequence.rs, `GridChain`), and the sweep of `rollbem sweep` on all threads.
+/// The ways take turns, `repeat` rounds (the unmerged grid, ten times slower, in the first
+/// only), each the best of its rounds by CPU time: the process's CPU time of a one-thread
+/// chain leaves out the time other processes held the cores.
+fn adaptive(case: &Path, tolerance: f64, values: &[String], repeat: usize, dir: &Path) -> Table {
+    let tol = format!("contact.grid.tolerance={tolerance:e}");
+    let mut table = Table::new(&[
+        "error-controlled sweep",
+        "threads",
+        "start of each run",
+        "wall [s]",
+        "CPU [s]",
+        "cold / this, CPU",
+        "elements a run (mean, max)",
+        "passes a run",
+        "iterations a run",
+        "runs failed",
+    ]);
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a pool");
+    let chain_of = |reuse: Option<GridReuse>| {
+        let mut chain = reuse.map(rollbem::sequence::GridChain::new);
+        let (t, c) = (Instant::now(), cpu_seconds());
+        let runs: Vec<_> = values
+            .iter()
+            .map(|v| adaptive_run(case, &tol, v, chain.as_mut()))
+            .collect();
+        Timed {
+            wall: t.elapsed().as_secs_f64(),
+            cpu: cpu_seconds() - c,
+            runs,
+        }
+    };
+    let mut ways: Vec<(String, Option<GridReuse>, Option<Timed>)> = vec![("cold: the start grid".into(), None, None)];
+    for merged in [0, 1, 2, 4] {
+        let start = format!("last run's grid, merged {merged}×");
+        ways.push((start, Some(GridReuse::LastGrid { merged }), None));
+    }
+    ways.push((
+        "start grid, warm from the last run".into(),
+        Some(GridReuse::StartGrid),
+        None,
+    ));
+    for round in 0..repeat {
+        for (_, reuse, best) in ways.iter_mut() {
+            if round > 0 && *reuse == Some(GridReuse::LastGrid { merged: 0 }) {
+                continue;
+            }
+            let t = one.install(|| chain_of(*reuse));
+            if best.as_ref().is_none_or(|b| t.cpu < b.cpu) {
+                *best = Some(t);
+            }
+        }
+    }
+    let label = format!("{} values of Q/μP, tolerance {tolerance:e}", values.len());
+    let cold_cpu = ways[0].2.as_ref().expect("timed").cpu;
+    for (start, _, best) in &ways {
+        table.push(adaptive_row(&label, 1, start, best.as_ref().expect("timed"), cold_cpu));
+    }
+    let mut k = 0;
+    let mut sweep = Timed {
+        wall: f64::INFINITY,
+        cpu: f64::INFINITY,
+        runs: Vec::new(),
+    };
+    for _ in 0..repeat {
+        k += 1;
+        let c = cpu_seconds();
+        let (wall, _) = swept(case, &tol, values, &dir.join(format!("adaptive_{k}")));
+        let cpu = cpu_seconds() - c;
+        if cpu < sweep.cpu {
+            sweep = Timed {
+                wall,
+                cpu,
+                runs: Vec::new(),
+            };
+        }
+    }
+    table.push(adaptive_row(
+        &label,
+        rayon::current_num_threads(),
+        "rollbem sweep",
+        &sweep,
+        cold_cpu,
+    ));
+    table
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let repeat = arg(&args, "--repeat").and_then(|v| v.parse().ok()).unwrap_or(3);
+    if args.iter().any(|a| a == "--adaptive") {
+        let case = case_path("carter2d_contact");
+        let tmp = tempfile::tempdir().expect("a temporary folder");
+        let n: usize = arg(&args, "--values").and_then(|v| v.parse().ok()).unwrap_or(20);
+        let values = ratios(n, 0.95 / (n - 1) as f64);
+        let tolerance = arg(&args, "--tolerance").and_then(|v| v.parse().ok()).unwrap_or(1e-4);
+        print!("{}", adaptive(&case, tolerance, &values, repeat, tmp.path()).markdown());
+        return;
+    }
     let contact = arg(&args, "--contact").map(|bin| {
         let bin = PathBuf::from(bin);
         let inp = contact_inp(&args, &bin);

@@ -67,9 +67,13 @@ mod marking;
 pub mod overlap;
 mod scales;
 mod stand_ins;
+mod start;
+
+pub use start::GridStart;
 
 use crate::body::RunCaches;
 use crate::contact::residual::State;
+use crate::contact::restart;
 use crate::contact::{
     methods, BodyBLoad, BodyBShare, ContactProblem, SolveReport, SolverSettings, WithoutSlipBlocks, Workspace,
 };
@@ -119,6 +123,9 @@ pub struct Adapted {
     pub timings: Timings,
     /// How the grid was reached (None for a fixed grid).
     pub adaptation: Option<GridAdaptation>,
+    /// Where a neighbouring run may start its passes ([`solve_from`]): this run's final grid
+    /// and solution, when it is error-controlled and met its tolerance (None otherwise).
+    pub grid_start: Option<GridStart>,
 }
 
 /// One grid assembled and solved; its problem whole, or waiting for its outputs or the
@@ -178,6 +185,27 @@ fn solve_on(
     timings: &mut Timings,
     ws: &mut Workspace,
 ) -> Result<Solve, Error> {
+    solve_on_from(scene, warm, WarmFrom::Pass, may_be_final, run, timings, ws)
+}
+
+/// Where a warm start comes from: the run's own previous grid, or a neighbouring run's result
+/// ([`solve_from`]), whose controls differ.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum WarmFrom {
+    Pass,
+    Neighbour,
+}
+
+/// [`solve_on`] from a warm start that came `from` a pass or a neighbour.
+fn solve_on_from(
+    scene: Scene,
+    warm: Option<(&ContactGrid, &State)>,
+    from: WarmFrom,
+    may_be_final: bool,
+    run: Option<&RunCaches>,
+    timings: &mut Timings,
+    ws: &mut Workspace,
+) -> Result<Solve, Error> {
     let t = Instant::now();
     let models = scene.body_models_in(run)?;
     let built = t.elapsed().as_secs_f64();
@@ -186,7 +214,10 @@ fn solve_on(
     let condense_s = condensation_share(&models, built);
     timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
     timings.condense_s += condense_s;
-    let (state, report) = solve_problem(&problem, &scene.solver, warm, timings, ws);
+    let (state, report) = match from {
+        WarmFrom::Pass => solve_problem(&problem, &scene.solver, warm, timings, ws),
+        WarmFrom::Neighbour => solve_from_neighbour(&problem, &scene.solver, warm, timings, ws),
+    };
     Ok(Solve {
         from_stand_ins: false,
         scene,
@@ -215,6 +246,26 @@ fn solve_problem(
     let t = Instant::now();
     let warm = warm.map(|(from, z)| carried(&problem.grid, from, z));
     let solved = methods::solve_from_in(problem, solver, warm, ws);
+    timings.solve_s += t.elapsed().as_secs_f64();
+    solved
+}
+
+/// [`solve_problem`] from the result of a neighbouring run (its controls differ): its
+/// prescribed overlap or creepage set to the problem's own, the first Newton step taken in
+/// full and a warm start that has not converged within [`restart::NEIGHBOUR_BUDGET`]
+/// iterations given up for the cold start, as a sequence's runs are started
+/// (src/sequence.rs, "The warm start").
+fn solve_from_neighbour(
+    problem: &ContactProblem,
+    solver: &SolverSettings,
+    warm: Option<(&ContactGrid, &State)>,
+    timings: &mut Timings,
+    ws: &mut Workspace,
+) -> (State, SolveReport) {
+    let t = Instant::now();
+    let warm = warm.map(|(from, z)| restart::with_prescribed(carried(&problem.grid, from, z), problem));
+    let budget = restart::NEIGHBOUR_BUDGET;
+    let solved = methods::solve_from_neighbour_in(problem, solver, warm, budget, ws);
     timings.solve_s += t.elapsed().as_secs_f64();
     solved
 }
@@ -264,6 +315,24 @@ pub fn solve(scene: &Scene) -> Result<Adapted, Error> {
 /// [`solve`] with another error estimator: the estimate that decides convergence and the
 /// indicators the refinement marks by come from `estimator` alone.
 pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<Adapted, Error> {
+    solve_from_with(scene, None, estimator)
+}
+
+/// [`solve`], an error-controlled grid's passes starting from `from` (a neighbouring run's
+/// final grid and solution, src/adapt/start.rs) when it [`GridStart::fits`] the scene, else
+/// from the scene's start grid. The result meets the same tolerance either way; it is another
+/// grid's solution, so it differs from the run started on the start grid by up to the
+/// tolerance (both are within it of the exact solution, by the estimate).
+pub fn solve_from(scene: &Scene, from: Option<&GridStart>) -> Result<Adapted, Error> {
+    solve_from_with(scene, from, &mut estimate::BisectionEstimator)
+}
+
+/// [`solve_with`] from `from` as [`solve_from`].
+fn solve_from_with(
+    scene: &Scene,
+    from: Option<&GridStart>,
+    estimator: &mut dyn ErrorEstimator,
+) -> Result<Adapted, Error> {
     let Some(control) = scene.grid_control else {
         // What the run's body builds share (a BEM body's condensation kept for a later build on
         // the same grid): held here, passed to every build, dropped when the run returns.
@@ -289,13 +358,18 @@ pub fn solve_with(scene: &Scene, estimator: &mut dyn ErrorEstimator) -> Result<A
             bisections: 0,
         }),
     ];
-    controlled(scene, &mut contributions)
+    controlled(scene, &mut contributions, from.filter(|f| f.fits(scene)))
 }
 
 /// The error-control loop of the module docs on `scene` (which has a tolerance), with
 /// `contributions` asked in their order ([`contribution`]): solve the pass, collect the
-/// contributions, then mark and refine, rebuild, or stop.
-fn controlled(scene: &Scene, contributions: &mut [Box<dyn ErrorContribution + '_>]) -> Result<Adapted, Error> {
+/// contributions, then mark and refine, rebuild, or stop. The passes start on the scene's start
+/// grid, or on `from`'s grid warm from its solution (a neighbouring run's, [`solve_from`]).
+fn controlled(
+    scene: &Scene,
+    contributions: &mut [Box<dyn ErrorContribution + '_>],
+    from: Option<&GridStart>,
+) -> Result<Adapted, Error> {
     let control = scene.grid_control.expect("an error-controlled grid");
     let (tolerance, max_elements) = (control.tolerance, control.max_elements);
     // What the run's body builds share (a BEM body's condensation kept for a later build on the
@@ -314,7 +388,16 @@ fn controlled(scene: &Scene, contributions: &mut [Box<dyn ErrorContribution + '_
     // The scene the passes solve in the bodies' place, if a contribution offers one (fitted
     // on the levels of the bodies' start grid, wherever the passes start).
     let mut passes = started(contributions, &bodies, &DyadicGrid::new(&bodies.grid), &mut env)?;
-    let (mut coarse, mut warm): (DyadicGrid, Option<(ContactGrid, State)>) = (DyadicGrid::new(&scene.grid), None);
+    let (mut coarse, mut warm): (DyadicGrid, Option<(ContactGrid, State)>) = match from {
+        Some(f) => (f.coarse.clone(), Some((f.grid.clone(), f.state.clone()))),
+        None => (DyadicGrid::new(&scene.grid), None),
+    };
+    // The first solve of a run started from a neighbour's result is started as a neighbour's.
+    let mut warm_from = if from.is_some() {
+        WarmFrom::Neighbour
+    } else {
+        WarmFrom::Pass
+    };
     let mut run_scales: Option<HertzScales> = None;
     let mut shortest = bodies.shortest_grid_element();
     // The passes on the current bodies start here (MAX_PASSES counts them).
@@ -322,7 +405,8 @@ fn controlled(scene: &Scene, contributions: &mut [Box<dyn ErrorContribution + '_
     loop {
         // Solve: G and its bisection H.
         let pass_scene = passes.as_ref().unwrap_or(&bodies);
-        let solved = solve_pass(pass_scene, &coarse, warm.take(), passes.is_some(), &mut env)?;
+        let solved = solve_pass(pass_scene, &coarse, warm.take(), warm_from, passes.is_some(), &mut env)?;
+        warm_from = WarmFrom::Pass;
         let (g, h) = match solved {
             Ok(pair) => pair,
             Err(unconverged) => return Ok(ended(unconverged, &bodies, env, true, None)),
@@ -362,7 +446,15 @@ fn controlled(scene: &Scene, contributions: &mut [Box<dyn ErrorContribution + '_
         drop(g);
         let h = h.expect("the pass's result");
         match verdict {
-            Verdict::Met => return Ok(ended(h.whole(), &bodies, env, true, None)),
+            Verdict::Met => {
+                let mut done = ended(h.whole(), &bodies, env, true, None);
+                done.grid_start = Some(GridStart {
+                    coarse,
+                    grid: done.problem.grid.clone(),
+                    state: done.state.clone(),
+                });
+                return Ok(done);
+            }
             Verdict::Ended { reached, too_coarse } => {
                 return Ok(ended(h.whole(), &bodies, env, reached, too_coarse));
             }
@@ -431,18 +523,28 @@ fn started(
     Ok(passes)
 }
 
-/// One pass's solves on `scene`: the grid `coarse` (warm from `warm`) and its bisection (warm
-/// from the first); `Err` holds the solve that did not converge.
+/// One pass's solves on `scene`: the grid `coarse` (warm from `warm`, which came `warm_from`
+/// a pass or a neighbouring run) and its bisection (warm from the first); `Err` holds the
+/// solve that did not converge.
 fn solve_pass(
     scene: &Scene,
     coarse: &DyadicGrid,
     warm: Option<(ContactGrid, State)>,
+    warm_from: WarmFrom,
     from_stand_ins: bool,
     env: &mut Env<'_>,
 ) -> Result<Result<(Solve, Solve), Solve>, Error> {
     let (timings, ws) = (&mut env.timings, &mut env.ws);
     let warm = warm.as_ref().map(|(g, z)| (g, z));
-    let mut g = solve_on(scene.on_grid(coarse.grid()), warm, false, Some(env.run), timings, ws)?;
+    let mut g = solve_on_from(
+        scene.on_grid(coarse.grid()),
+        warm,
+        warm_from,
+        false,
+        Some(env.run),
+        timings,
+        ws,
+    )?;
     g.from_stand_ins = from_stand_ins;
     if !g.report.converged {
         return Ok(Err(g));
@@ -567,6 +669,7 @@ fn finished(mut s: Solve, bodies: &Scene, mut timings: Timings, passes: Option<(
             coarse_body_mesh: None,
             results_from_stand_ins: s.from_stand_ins,
         }),
+        grid_start: None,
         scene: s.scene,
         models: s.models,
         problem: s.problem,

@@ -111,13 +111,39 @@ fn solve_run_scene(scene: Scene, start: Instant) -> Result<Solved, Error> {
     solve_adapted(scene, start, estimate)
 }
 
+/// [`solve_scene`] with an error-controlled grid's passes started from `from`, a neighbouring
+/// run's final grid and solution ([`crate::adapt::solve_from`]; a fixed grid ignores it), with
+/// where the run's own neighbours may start (None unless the run met its tolerance).
+pub fn solve_scene_from(
+    scene: Scene,
+    start: Instant,
+    from: Option<&crate::adapt::GridStart>,
+) -> Result<(Solved, Option<crate::adapt::GridStart>), Error> {
+    let (solved, next) = solve_adapted_from(scene, start, false, from)?;
+    match tolerance_not_reached(&solved) {
+        Some(e) => Err(e),
+        None => Ok((solved, next)),
+    }
+}
+
 /// [`solve_scene_best`], estimating a fixed grid's error when `estimate_fixed`.
 fn solve_adapted(scene: Scene, start: Instant, estimate_fixed: bool) -> Result<Solved, Error> {
+    Ok(solve_adapted_from(scene, start, estimate_fixed, None)?.0)
+}
+
+/// [`solve_adapted`] from `from` ([`solve_scene_from`]), with the run's own grid start.
+fn solve_adapted_from(
+    scene: Scene,
+    start: Instant,
+    estimate_fixed: bool,
+    from: Option<&crate::adapt::GridStart>,
+) -> Result<(Solved, Option<crate::adapt::GridStart>), Error> {
     // Scenes of a study's own bodies are not checked by `Scene::from_case`.
     crate::scene::preflight::check_memory(&scene.case, &scene.bodies)?;
     // Reading the case and the meshes counts as assembly.
     let before = start.elapsed().as_secs_f64();
-    let a = crate::adapt::solve(&scene)?;
+    let mut a = crate::adapt::solve_from(&scene, from)?;
+    let next = a.grid_start.take();
     let mut timings = a.timings;
     timings.assembly_s += before;
     timings.total_s = start.elapsed().as_secs_f64();
@@ -137,7 +163,7 @@ fn solve_adapted(scene: Scene, start: Instant, estimate_fixed: bool) -> Result<S
         false => None,
     };
     solved.fixed_grid_estimate = fixed_grid_estimate;
-    Ok(solved)
+    Ok((solved, next))
 }
 
 /// The error of a solution whose error-controlled grid stopped at its limit, if it did.

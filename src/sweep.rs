@@ -7,7 +7,8 @@
 //! one contiguous chain per worker thread ([`chains`]); where the varied keys leave the bodies
 //! and the grid as they are, a chain's runs share one assembly and start from the last run's
 //! solution ([`crate::sequence`]), so a run's iteration count (not its result, beyond the Newton
-//! tolerance) depends on its neighbours.
+//! tolerance) depends on its neighbours. Error-controlled runs share no assembly; each starts
+//! warm from the last run of its chain ([`crate::sequence::GridChain`]).
 //!
 //! Runs are numbered in the order of the product (the first `--vary` varies slowest). Sharding
 //! (`--shard K/N`) keeps the runs whose number n satisfies n mod N = K − 1, so N processes on N
@@ -234,10 +235,11 @@ pub fn summaries<R: Send>(
         out: Path::new(""),
         per_run_files: false,
         shared: None,
+        grids: false,
     };
-    let mut solved = chains::solve_in_chains(points, &runs, varies, &order, |points, mut chain, n| {
+    let mut solved = chains::solve_in_chains(points, &runs, varies, &order, |points, link, n| {
         let overrides = runs.overrides(n);
-        (n, guard(&mut || points.summary(chain.as_deref_mut(), &overrides)))
+        (n, guard(&mut || points.summary(link, &overrides)))
     });
     solved.sort_by_key(|(n, _)| *n);
     Ok(solved.into_iter().map(|(_, r)| r).collect())
@@ -388,6 +390,7 @@ impl Job<'_> {
             out: dir,
             per_run_files: self.per_run_files,
             shared: None,
+            grids: false,
         };
         let bar = ProgressBar::new(order.len() as u64);
         bar.set_style(

@@ -298,7 +298,7 @@ mod tests {
             if let Some(toy) = toy {
                 list.push(Box::new(ToyRef(toy)));
             }
-            controlled(&scene, &mut list)
+            controlled(&scene, &mut list, None)
                 .unwrap()
                 .adaptation
                 .expect("an error-controlled run")

@@ -42,7 +42,7 @@ use super::report::{GaussSeidelSettings, NewtonSettings, SolveReport};
 use super::residual::{automatic_penalties, start_vector, ConvergenceMeasure, Formulation, State};
 use super::start::normal_start;
 use super::workspace::Workspace;
-use super::{creep_secant, gauss_seidel, ContactProblem};
+use super::{creep_secant, gauss_seidel, ContactProblem, NormalControl, TangentialControl};
 
 /// Friction coefficient above which the first attempt starts from the normal start instead of
 /// the paper's start vector (module docs).
@@ -193,6 +193,23 @@ impl Attempts<'_> {
             }
         }
     }
+}
+
+/// Most Newton iterations a warm start from a neighbouring problem's solution is given before
+/// the cold start takes over ([`solve_neighbour`]'s budget in a sequence's runs and in an
+/// error-controlled run started from its neighbour's result; `sequence::WARM_START_BUDGET`).
+pub const NEIGHBOUR_BUDGET: usize = 20;
+
+/// A neighbour's solution as the start of `problem`: a prescribed overlap or creepage takes
+/// the problem's own value (the Newton method keeps a prescribed unknown where it starts).
+pub fn with_prescribed(mut z: State, problem: &ContactProblem) -> State {
+    if let NormalControl::Overlap(d) = problem.normal {
+        z.overlap = d;
+    }
+    if let TangentialControl::Creep(c) = problem.tangential {
+        z.creep = c;
+    }
+    z
 }
 
 /// The line-search Newton from `warm` (a solution of a neighbouring problem, e.g. a coarser grid's

@@ -1,13 +1,14 @@
 //! The runs of a sweep in chains of neighbours: ordered so that each run follows the one
 //! nearest to it in the varied values, split into one contiguous chain per worker thread, and
 //! solved on one shared assembly with warm starts ([`crate::sequence`]) where the varied keys
-//! allow it; every other run is done on its own.
+//! allow it, or, on an error-controlled grid, each warm-started from the last run's solution
+//! ([`GridChain`]); every other run is done on its own.
 
 use super::row::{failed_row, guarded, row_of_summary, run_alone, run_folder, RunRow};
 use super::{Runs, Vary};
 use crate::case::LoadedCase;
 use crate::scene::Scene;
-use crate::sequence::{Chain, Shared};
+use crate::sequence::{Chain, GridChain, SequenceError, Shared};
 use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
@@ -65,26 +66,41 @@ pub(super) fn contiguous_chains(order: &[usize], workers: usize) -> Vec<&[usize]
     order.chunks(size).collect()
 }
 
+/// What one chain of a sweep carries from a run to the next.
+pub(super) enum Link<'a> {
+    /// Nothing: every run is done on its own.
+    Alone,
+    /// The shared assembly and the last run's solution (fixed grids).
+    Shared(Box<Chain<'a>>),
+    /// The last run's solution, the next run's warm start (error-controlled grids).
+    Grids(Box<GridChain>),
+}
+
 /// Solves the runs `order` (already in [`neighbour_order`]) of the case text `text` in
 /// contiguous chains, one per thread of the current rayon pool ([`contiguous_chains`]), on one
-/// shared assembly when the varied keys allow it ([`Points::share`]); `each` solves run `n` with
-/// the points and its chain. The results come back in `order`'s order.
+/// shared assembly when the varied keys allow it, or warm from the last run on an
+/// error-controlled grid ([`Points::share`]); `each` solves run `n` with the points and its
+/// chain's link. The results come back in `order`'s order.
 pub(super) fn solve_in_chains<R: Send>(
     mut points: Points<'_>,
     runs: &Runs,
     varies: &[Vary],
     order: &[usize],
-    each: impl Fn(&Points, Option<&mut Chain>, usize) -> R + Sync,
+    each: impl Fn(&Points, &mut Link, usize) -> R + Sync,
 ) -> Vec<R> {
     points.share(varies, order.first().map(|&n| runs.overrides(n)).as_deref());
     let points = &points;
     contiguous_chains(order, rayon::current_num_threads())
         .par_iter()
         .flat_map_iter(|runs_of_chain| {
-            let mut chain = points.shared.as_ref().map(|s| s.chain());
+            let mut link = match (&points.shared, points.grids) {
+                (Some(s), _) => Link::Shared(Box::new(s.chain())),
+                (None, true) => Link::Grids(Box::default()),
+                (None, false) => Link::Alone,
+            };
             runs_of_chain
                 .iter()
-                .map(|&n| each(points, chain.as_mut(), n))
+                .map(|&n| each(points, &mut link, n))
                 .collect::<Vec<_>>()
         })
         .collect()
@@ -104,6 +120,9 @@ pub(super) struct Points<'a> {
     pub per_run_files: bool,
     /// The shared assembly, when the varied keys allow one.
     pub shared: Option<Shared>,
+    /// Whether the runs are error-controlled and the varied keys leave the bodies as they
+    /// are: each then starts warm from the last run of its chain ([`GridChain`]).
+    pub grids: bool,
 }
 
 impl Points<'_> {
@@ -116,7 +135,8 @@ impl Points<'_> {
 
     /// The assembly the runs share: that of the scene of `first` (a run of the sweep), when
     /// every varied key [`may_share`] and that scene can start a sequence; None otherwise (each
-    /// run then builds its own).
+    /// run then builds its own). An error-controlled scene shares no assembly: its runs are
+    /// chained by their solutions instead ([`Self::grids`]).
     pub fn share(&mut self, varies: &[Vary], first: Option<&[(String, String)]>) {
         let Some(first) = first.filter(|_| varies.iter().all(|v| may_share(&v.key))) else {
             return;
@@ -124,6 +144,10 @@ impl Points<'_> {
         let scene = self.case_of(first).and_then(|c| Scene::from_case(&c));
         self.shared = match scene.map(|s| Shared::new(&s)) {
             Ok(Ok(shared)) => Some(shared),
+            Ok(Err(SequenceError::AdaptiveGrid)) => {
+                self.grids = true;
+                None
+            }
             Ok(Err(e)) => {
                 log::info!("the runs build their own assemblies: {e}");
                 None
@@ -132,13 +156,17 @@ impl Points<'_> {
         };
     }
 
-    /// Runs one point: on the chain's shared assembly when its scene shares it, else on its own.
-    pub fn run(&self, chain: Option<&mut Chain>, run: usize, overrides: &[(String, String)]) -> RunRow {
+    /// Runs one point: on the chain's shared assembly when its scene shares it, warm from the
+    /// chain's last run on an error-controlled grid, else on its own.
+    pub fn run(&self, link: &mut Link, run: usize, overrides: &[(String, String)]) -> RunRow {
         guarded(run, overrides, || {
             let start = Instant::now();
-            let (Some(chain), Some(shared)) = (chain, self.shared.as_ref()) else {
-                return self.alone(run, overrides);
+            let chain = match (link, self.shared.as_ref()) {
+                (Link::Shared(chain), Some(shared)) => (chain, shared),
+                (Link::Grids(chain), _) => return self.run_warm(chain, run, overrides, start),
+                _ => return self.alone(run, overrides),
             };
+            let (chain, shared) = chain;
             let scene = match self.case_of(overrides).and_then(|c| shared.scene_of(c)) {
                 Ok(Some(scene)) => scene,
                 Ok(None) => return self.alone(run, overrides),
@@ -160,18 +188,52 @@ impl Points<'_> {
         })
     }
 
+    /// An error-controlled run warm from `chain`'s last run ([`GridChain`]), written to its
+    /// folder with per-run files.
+    fn run_warm(&self, chain: &mut GridChain, run: usize, overrides: &[(String, String)], start: Instant) -> RunRow {
+        let folder = self.folder(run);
+        let dir = self.out.join(&folder);
+        let summary = self
+            .case_of(overrides)
+            .and_then(|c| Scene::from_case(&c))
+            .and_then(|scene| {
+                chain.solve_with(scene, start, |solved| {
+                    if self.per_run_files {
+                        crate::app::write_solved(solved, &dir, start)
+                    } else {
+                        crate::app::checked_summary(solved)
+                    }
+                })
+            });
+        match summary {
+            Ok(Ok(s)) => row_of_summary(run, folder, overrides, &s),
+            Ok(Err(e)) | Err(e) => {
+                chain.restart_cold();
+                failed_row(run, folder, overrides, e.to_string())
+            }
+        }
+    }
+
     /// The summary of one point, nothing written (the library's [`super::summaries`]): on the
-    /// chain's shared assembly when its scene shares it, else solved on its own.
+    /// chain's shared assembly when its scene shares it, warm from the chain's last run on an
+    /// error-controlled grid, else solved on its own.
     pub fn summary(
         &self,
-        chain: Option<&mut Chain>,
+        link: &mut Link,
         overrides: &[(String, String)],
     ) -> Result<crate::output::Summary, crate::error::Error> {
         let start = Instant::now();
-        if let (Some(chain), Some(shared)) = (chain, self.shared.as_ref()) {
-            if let Some(scene) = shared.scene_of(self.case_of(overrides)?)? {
-                return chain.solve_with(scene, start, crate::app::checked_summary)?.0;
+        match (link, self.shared.as_ref()) {
+            (Link::Shared(chain), Some(shared)) => {
+                if let Some(scene) = shared.scene_of(self.case_of(overrides)?)? {
+                    return chain.solve_with(scene, start, crate::app::checked_summary)?.0;
+                }
             }
+            (Link::Grids(chain), _) => {
+                let scene = Scene::from_case(&self.case_of(overrides)?)?;
+                return chain.solve_with(scene, start, crate::app::checked_summary)?;
+            }
+            _ => {}
         }
         crate::app::solve(&self.case_of(overrides)?).and_then(|s| crate::app::checked_summary(&s))
     }

@@ -19,7 +19,7 @@ fn estimate(s: &Solved) -> ErrorEstimate {
 
 /// True errors against Hertz and Carter: RMS p/p0, RMS q/μp0 (length-weighted over |x| < a),
 /// relative creepage error.
-fn carter_errors(s: &Solved) -> [f64; 3] {
+pub(crate) fn carter_errors(s: &Solved) -> [f64; 3] {
     let c = s.scene.carter_reference().expect("the case prescribes Q/μP");
     let sol = &s.solution;
     let p = nodal_error(&sol.x, c.half_width, |i| {

@@ -152,3 +152,114 @@ fn grids_geometry_and_error_control_do_not_share() {
     let adaptive = scene("carter2d_contact", &["contact.grid.tolerance=1e-3".to_string()]);
     assert!(matches!(Shared::new(&adaptive), Err(SequenceError::AdaptiveGrid)));
 }
+
+/// Error-controlled runs in a chain (src/sequence.rs, "Error-controlled chains"): carter_051 at
+/// the tolerance 1e-4 over Q/μP from 0.2 to 0.8, each run started warm from the last one's
+/// solution, on its own start grid (the sweep's [`GridReuse::StartGrid`]) and on the last
+/// one's final grid merged twice ([`GridReuse::LastGrid`]: the loop's entry from a given grid).
+/// Every run of both chains meets the tolerance in the true RMS errors of p/p0 and q/(μp0)
+/// against Hertz and Carter's closed form (the parabolic profile of Carter's solution departs
+/// from the case's circles by (a/R)²/4 = 2.5e-5 p0, a quarter of the tolerance) and in its own
+/// estimate, and agrees with the cold error-controlled run (every run alone, from the start
+/// grid) within twice the tolerance: both are within it of the exact solution, on other grids.
+/// (Measured, the run of Q/μP = 0.65 on the last grid: 1.08e-4 in q, each 4–5e-5 from Carter.)
+/// On the start grid
+/// the passes see the cold run's solutions to the Newton tolerance, so they refine to the
+/// cold run's grids: the chained run is the cold one, its tractions within 1e-8 p0 (the
+/// sequence's TOLERANCE), whatever run precedes it; a sweep's result does not depend on its
+/// chains (its threads).
+#[test]
+fn error_controlled_chains_meet_the_tolerance_and_agree_with_the_cold_runs() {
+    use crate::adaptive::{carter_errors, errors_against};
+    use rollbem::sequence::{GridChain, GridReuse};
+    let tolerance = 1e-4;
+    let tol = format!("contact.grid.tolerance={tolerance:e}");
+    let values = ["0.2", "0.35", "0.51", "0.65", "0.8"];
+    let set = |v: &str| vec![tol.clone(), format!("load.tangential.ratio={v}")];
+    let cold: Vec<Solved> = values
+        .iter()
+        .map(|v| rollbem::app::solve_case(crate::common::case_path("carter_051").as_path(), &set(v)).expect("cold"))
+        .collect();
+    for reuse in [GridReuse::StartGrid, GridReuse::LastGrid { merged: 2 }] {
+        let mut chain = GridChain::new(reuse);
+        for (k, v) in values.iter().enumerate() {
+            assert_eq!(chain.is_warm(), k > 0, "{reuse:?}: the chain carries its last run");
+            let run = chain
+                .solve_with(scene("carter_051", &set(v)), std::time::Instant::now(), Clone::clone)
+                .expect("chained run");
+            let label = format!("carter_051 Q/μP = {v}, {reuse:?}");
+            let estimate = run.adaptation.as_ref().and_then(|a| a.estimate).expect("an estimate");
+            assert!(estimate.within(tolerance), "{label}: estimate {estimate:?}");
+            let [p, q, xi] = carter_errors(&run);
+            assert!(
+                p <= tolerance && q <= tolerance && xi <= tolerance,
+                "{label}: true errors p {p:.3e}, q {q:.3e}, creepage {xi:.3e}"
+            );
+            let (dp, dq, dxi) = errors_against(&cold[k], &run);
+            let apart = 2.0 * tolerance;
+            assert!(
+                dp <= apart && dq <= apart && dxi <= apart,
+                "{label}: against the cold run p {dp:.3e}, q {dq:.3e}, creepage {dxi:.3e}"
+            );
+            let (n, n_cold) = (run.problem.grid.n_elements(), cold[k].problem.grid.n_elements());
+            let iterations = |s: &Solved| {
+                let a = s.adaptation.as_ref().expect("passes");
+                a.steps.iter().map(|p| p.iterations).sum::<usize>()
+            };
+            eprintln!(
+                "{label}: {n} elements ({n_cold} cold), {} Newton iterations ({} cold), true errors \
+                 p {p:.2e} q {q:.2e}, against cold p {dp:.1e} q {dq:.1e}",
+                iterations(&run),
+                iterations(&cold[k])
+            );
+            if reuse == GridReuse::StartGrid {
+                assert_eq!(
+                    run.problem.grid.edges, cold[k].problem.grid.edges,
+                    "{label}: the cold run's grid"
+                );
+                let diff = traction_difference(&cold[k], &run);
+                assert!(
+                    diff <= TOLERANCE,
+                    "{label}: tractions differ from the cold run's by {diff:e} p0"
+                );
+            }
+        }
+    }
+}
+
+/// An error-controlled chain under a prescribed creepage (carter_051, ξ from −2e-4 to −5e-5 at
+/// 1e-4): the warm start takes the run's own creepage, not the last run's (the Newton method
+/// keeps a prescribed unknown where it starts), so each run on its start grid is the cold run,
+/// its grid and tractions (within the sequence's TOLERANCE of p0) and its creepage exactly.
+#[test]
+fn an_error_controlled_chain_under_a_prescribed_creepage_solves_each_run_at_its_own() {
+    use rollbem::sequence::GridChain;
+    let set = |xi: &str| {
+        vec![
+            "contact.grid.tolerance=1e-4".to_string(),
+            "load.tangential.ratio=null".to_string(),
+            format!("load.tangential.creep={xi}"),
+        ]
+    };
+    let mut chain = GridChain::default();
+    for xi in ["-0.0002", "-0.00015", "-0.0001", "-0.00005"] {
+        let run = chain
+            .solve_with(scene("carter_051", &set(xi)), std::time::Instant::now(), Clone::clone)
+            .expect("chained run");
+        let cold = rollbem::app::solve_case(crate::common::case_path("carter_051").as_path(), &set(xi)).expect("cold");
+        assert_eq!(
+            run.solution.creep,
+            xi.parse::<f64>().unwrap(),
+            "ξ = {xi}: its own creepage"
+        );
+        assert_eq!(
+            run.problem.grid.edges, cold.problem.grid.edges,
+            "ξ = {xi}: the cold run's grid"
+        );
+        let diff = traction_difference(&cold, &run);
+        assert!(
+            diff <= TOLERANCE,
+            "ξ = {xi}: tractions differ from the cold run's by {diff:e} p0"
+        );
+    }
+}
