@@ -381,8 +381,8 @@ impl BemStandIn {
     /// file's fitted one), else on its start mesh's elements. A body cut along a grid puts its
     /// new contact nodes on that circle (src/mesh/cuts.rs), so on the fine grids of the passes
     /// its surface is the circle to the cut elements' tiny interpolation error; the start mesh's
-    /// quadratics instead change slope at their ends (by 2.8e-6 rad at a 1.06 mm element of the
-    /// roller R 30 of tests/data/bore_c30_tractive.yaml). The contact frame turns by that kink
+    /// quadratics instead change slope at their ends (beside the ends of the 1.06 mm elements of
+    /// the generated bore of tests/data/bore_c30_tractive.yaml, 1.4e-6 rad off the circle's). The contact frame turns by that kink
     /// ([`crate::scene::contact_frame`]), stepping the normal gap by tan ψ·w (docs/theory.md,
     /// "Tractions along the contact") at every start element's end: a step the passes resolved
     /// as a contact edge, grading towards it to 1e-8 mm and never meeting 1e-5
