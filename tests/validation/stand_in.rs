@@ -11,7 +11,7 @@ use rollbem::post::ContactSolution;
 use rollbem::scene::Scene;
 
 /// The solution of `scene` on `grid`.
-fn solved(scene: &Scene, grid: &ContactGrid) -> ContactSolution {
+pub(crate) fn solved(scene: &Scene, grid: &ContactGrid) -> ContactSolution {
     let on = scene.on_grid(grid.clone());
     let (_, problem) = on.assemble().expect("assembles");
     let (state, report) = methods::solve(&problem, &on.solver);

@@ -10,11 +10,10 @@
 //! at 8.4e-8 mm spacing), and the error-controlled run at 1e-5 stalled near 8e-5 p0
 //! (docs/validation.md, "Stand-ins at the start mesh's element ends").
 
+use crate::stand_in::solved;
 use rollbem::adapt::cells::{Action, DyadicGrid};
 use rollbem::body::Side;
-use rollbem::contact::methods;
 use rollbem::grid::ContactGrid;
-use rollbem::post::ContactSolution;
 use rollbem::scene::Scene;
 
 /// The generated bore at `contact.grid.tolerance` = 1e-5 (three stand-in levels).
@@ -57,15 +56,6 @@ fn graded_at_end(scene: &Scene, k: usize, depth: u32) -> (f64, ContactGrid) {
     action[k - 1] = Action::GradeTowards(end - nudge, depth);
     action[k] = Action::GradeTowards(end + nudge, depth);
     (end, start.refined(&action).grid())
-}
-
-/// The solution of `scene` on `grid`.
-fn solved(scene: &Scene, grid: &ContactGrid) -> ContactSolution {
-    let on = scene.on_grid(grid.clone());
-    let (_, problem) = on.assemble().expect("assembles");
-    let (state, report) = methods::solve(&problem, &on.solver);
-    assert!(report.converged, "solves");
-    ContactSolution::from_state(&problem, &state)
 }
 
 /// Near the end of a start element inside the contact (x = −3.706, 0.09 mm behind the
