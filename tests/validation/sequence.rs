@@ -263,3 +263,25 @@ fn an_error_controlled_chain_under_a_prescribed_creepage_solves_each_run_at_its_
         );
     }
 }
+
+/// Every shipped steady case on a fixed grid, its friction coefficient swept in a chain of
+/// three (μ, 1.02μ, 1.04μ: the third run starts from the secant extrapolation of the first
+/// two) on one assembly: each warm run equals its cold run to [`TOLERANCE`] and shares its
+/// flexibilities bit for bit (`compare`). Transient histories and error-controlled grids are
+/// left to their own tests (tests/validation/transient.rs, the error-controlled chains above).
+#[test]
+fn every_shipped_steady_case_swept_in_a_chain_equals_its_cold_runs() {
+    let mut swept = Vec::new();
+    for name in crate::solver::shipped_cases() {
+        let case = rollbem::case::load(&crate::common::case_path(&name), &[] as &[String]).expect("loads");
+        if case.case.transient.is_some() || Scene::from_case(&case).expect("scene").grid_control.is_some() {
+            continue;
+        }
+        let mu = case.case.contact.friction;
+        let values: Vec<String> = [1.0, 1.02, 1.04].iter().map(|f| format!("{}", mu * f)).collect();
+        let values: Vec<&str> = values.iter().map(String::as_str).collect();
+        compare(&name, &[], "contact.friction", &values, TOLERANCE);
+        swept.push(name);
+    }
+    assert!(swept.len() >= 30, "swept {} cases: {swept:?}", swept.len());
+}

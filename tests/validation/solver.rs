@@ -4,7 +4,7 @@ use crate::common::{case_path, solve};
 use rollbem::analytic;
 use rollbem::post::traction_ripple;
 
-fn shipped_cases() -> Vec<String> {
+pub(crate) fn shipped_cases() -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(case_path("x").parent().unwrap())
         .unwrap()
         .filter_map(|e| e.ok().map(|e| e.path()))
