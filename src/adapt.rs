@@ -192,7 +192,9 @@ fn solve_on(
 /// ([`solve_from`]), whose controls differ.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum WarmFrom {
+    /// The run's own previous grid.
     Pass,
+    /// A neighbouring run's result ([`solve_from`]).
     Neighbour,
 }
 
@@ -214,10 +216,7 @@ fn solve_on_from(
     let condense_s = condensation_share(&models, built);
     timings.assembly_s += t.elapsed().as_secs_f64() - condense_s;
     timings.condense_s += condense_s;
-    let (state, report) = match from {
-        WarmFrom::Pass => solve_problem(&problem, &scene.solver, warm, timings, ws),
-        WarmFrom::Neighbour => solve_from_neighbour(&problem, &scene.solver, warm, timings, ws),
-    };
+    let (state, report) = solve_problem(&problem, &scene.solver, warm, from, timings, ws);
     Ok(Solve {
         from_stand_ins: false,
         scene,
@@ -229,11 +228,15 @@ fn solve_on_from(
 }
 
 /// Solves `problem` with `solver` (from `warm`, carried from the grid it was solved on),
-/// adding the time to `timings`.
+/// adding the time to `timings`. A warm start `from` a neighbouring run (its controls differ)
+/// takes the problem's own prescribed overlap or creepage, its first Newton step in full, and
+/// gives way to the cold start after [`restart::NEIGHBOUR_BUDGET`] iterations, as a sequence's
+/// runs are started (src/sequence.rs, "The warm start").
 fn solve_problem(
     problem: &ContactProblem,
     solver: &SolverSettings,
     warm: Option<(&ContactGrid, &State)>,
+    from: WarmFrom,
     timings: &mut Timings,
     ws: &mut Workspace,
 ) -> (State, SolveReport) {
@@ -244,28 +247,14 @@ fn solve_problem(
         problem.n_nodes()
     );
     let t = Instant::now();
-    let warm = warm.map(|(from, z)| carried(&problem.grid, from, z));
-    let solved = methods::solve_from_in(problem, solver, warm, ws);
-    timings.solve_s += t.elapsed().as_secs_f64();
-    solved
-}
-
-/// [`solve_problem`] from the result of a neighbouring run (its controls differ): its
-/// prescribed overlap or creepage set to the problem's own, the first Newton step taken in
-/// full and a warm start that has not converged within [`restart::NEIGHBOUR_BUDGET`]
-/// iterations given up for the cold start, as a sequence's runs are started
-/// (src/sequence.rs, "The warm start").
-fn solve_from_neighbour(
-    problem: &ContactProblem,
-    solver: &SolverSettings,
-    warm: Option<(&ContactGrid, &State)>,
-    timings: &mut Timings,
-    ws: &mut Workspace,
-) -> (State, SolveReport) {
-    let t = Instant::now();
-    let warm = warm.map(|(from, z)| restart::with_prescribed(carried(&problem.grid, from, z), problem));
-    let budget = restart::NEIGHBOUR_BUDGET;
-    let solved = methods::solve_from_neighbour_in(problem, solver, warm, budget, ws);
+    let warm = warm.map(|(grid, z)| carried(&problem.grid, grid, z));
+    let solved = match from {
+        WarmFrom::Pass => methods::solve_from_in(problem, solver, warm, ws),
+        WarmFrom::Neighbour => {
+            let warm = warm.map(|z| restart::with_prescribed(z, problem));
+            methods::solve_from_neighbour_in(problem, solver, warm, restart::NEIGHBOUR_BUDGET, ws)
+        }
+    };
     timings.solve_s += t.elapsed().as_secs_f64();
     solved
 }

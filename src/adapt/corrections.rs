@@ -24,7 +24,7 @@
 //! problem's undeformed gap and frame are the given bodies', whose contact groups the changed
 //! ones share element for element.
 
-use super::{condensation_share, solve_problem};
+use super::{condensation_share, solve_problem, WarmFrom};
 use crate::body::{LowRankFlexibility, RunCaches, Side};
 use crate::contact::residual::State;
 use crate::contact::{SolverSettings, WithoutSlipBlocks, Workspace};
@@ -90,7 +90,7 @@ impl GivenBodies<'_> {
             timings.assembly_s += t.elapsed().as_secs_f64();
             let grid = self.problem.grid().clone();
             let (next, report) = self.problem.with_flexibility_changes([Some(&a), Some(&b)], |pb| {
-                solve_problem(pb, solver, Some((&grid, &z)), timings, ws)
+                solve_problem(pb, solver, Some((&grid, &z)), WarmFrom::Pass, timings, ws)
             });
             if !report.converged {
                 return Ok(None);

@@ -5,7 +5,7 @@ use super::body_mesh;
 use super::cells::DyadicGrid;
 use super::contribution::{Contribution, Env, ErrorContribution, Held, Rebuild, Round, Verdict};
 use super::estimate::Scales;
-use super::{carried, solve_on, solve_problem, Solve};
+use super::{carried, solve_on, solve_problem, Solve, WarmFrom};
 use crate::body::{FlexibilityChange, RunCaches, Side};
 use crate::contact::report::SolveReport;
 use crate::contact::residual::State;
@@ -318,7 +318,7 @@ fn solve_changed(
         [(0, Side::A), (1, Side::B)].map(|(k, side)| changes[k].as_ref().map(|c| c.on_grid(base.grid(), side)));
     base.with_flexibility_changes([a.as_ref(), b.as_ref()], |pb| {
         timings.assembly_s += t.elapsed().as_secs_f64();
-        solve_problem(pb, &check.solver, Some((&pb.grid, warm)), timings, ws)
+        solve_problem(pb, &check.solver, Some((&pb.grid, warm)), WarmFrom::Pass, timings, ws)
     })
 }
 

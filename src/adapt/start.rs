@@ -33,12 +33,6 @@ pub struct GridStart {
 }
 
 impl GridStart {
-    /// Number of elements of the grid the passes start from (G; its bisection has twice as
-    /// many).
-    pub fn elements(&self) -> usize {
-        self.coarse.len()
-    }
-
     /// The start with every pair of sibling pieces merged back, `levels` times over (one level
     /// undoes one halving of the refinement everywhere, the grading at the neighbour's
     /// square-root points included), then balanced; the solution is kept.
