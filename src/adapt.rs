@@ -53,6 +53,12 @@
 //! the run ends with exit code 2: the best solution comes back marked (`reached: false`), and
 //! `rollbem run` writes its summary.json with `converged: false` and the last estimate.
 //!
+//! Refinement has a floor (src/adapt/floor.rs): where a pass's traction estimate rises to more
+//! than [`floor::RISE`] times the best pass's on the same scene, the grid has reached element
+//! lengths at which the solution's own noise exceeds its discretisation error; the run ends
+//! with exit code 2, the best pass's solution and estimate its result, the error naming the
+//! element length at which the estimate rose.
+//!
 //! A fixed grid (no `contact.grid.tolerance`) is the same loop stopped after its first solve:
 //! [`solve`] is the one driver of every run.
 
@@ -63,6 +69,7 @@ pub mod contribution;
 mod corrections;
 pub mod estimate;
 pub mod fixed;
+pub mod floor;
 mod marking;
 pub mod overlap;
 mod scales;
@@ -391,6 +398,8 @@ fn controlled(
     let mut shortest = bodies.shortest_grid_element();
     // The passes on the current bodies start here (MAX_PASSES counts them).
     let mut first_step = 0;
+    // The best pass on the scene the passes solve now (src/adapt/floor.rs).
+    let mut watch = floor::FloorWatch::default();
     loop {
         // Solve: G and its bisection H.
         let pass_scene = passes.as_ref().unwrap_or(&bodies);
@@ -448,6 +457,7 @@ fn controlled(
                 return Ok(ended(h.whole(), &bodies, env, reached, too_coarse));
             }
             Verdict::Rebuild(rebuild) => {
+                watch.reset();
                 warm = Some(h.into_warm());
                 if let Rebuild::New(rebuilt) = rebuild {
                     bodies = *rebuilt;
@@ -460,8 +470,32 @@ fn controlled(
                 }
             }
             Verdict::Refine => {
-                // Mark.
                 let cmp = comparison.expect("the contact grid's comparison");
+                // The floor: an estimate risen far above the best pass's is the solution's noise.
+                let traction = floor::traction_estimate(&cmp.estimate);
+                if let Some(best) = watch.risen(traction) {
+                    let best = best.clone();
+                    let risen_shortest = floor::shortest_element(h.grid());
+                    drop(h);
+                    let pass_scene = passes.as_ref().unwrap_or(&bodies);
+                    return at_the_floor(
+                        pass_scene,
+                        &bodies,
+                        best,
+                        traction,
+                        risen_shortest,
+                        passes.is_some(),
+                        env,
+                    );
+                }
+                watch.offer(floor::Best {
+                    grid: h.grid().clone(),
+                    state: h.state().clone(),
+                    traction,
+                    estimate,
+                    pass: env.steps.len(),
+                });
+                // Mark.
                 let marked = marking::actions(&coarse, &cmp, &estimate, &singular, tolerance, &lengths, shortest);
                 let Some(marked) = marked else {
                     log::warn!(
@@ -484,6 +518,51 @@ fn controlled(
             }
         }
     }
+}
+
+/// The run's result when a pass's traction estimate `risen` (its bisected grid's shortest
+/// element `risen_shortest`) rose far above the `best` pass's on `pass_scene`
+/// (src/adapt/floor.rs): the best pass's grid solved again, warm from its solution, returned
+/// with its estimate, not reaching the tolerance.
+fn at_the_floor(
+    pass_scene: &Scene,
+    bodies: &Scene,
+    best: floor::Best,
+    risen: f64,
+    risen_shortest: f64,
+    from_stand_ins: bool,
+    mut env: Env<'_>,
+) -> Result<Adapted, Error> {
+    let risen_pass = env.steps.len();
+    log::warn!(
+        "error control, pass {risen_pass}: the estimate rose to {risen:.2e} from {:.2e} at pass {} as the elements \
+         reached {risen_shortest:.3e}: the solution's noise, not its discretisation error; the result is pass {}'s",
+        best.traction,
+        best.pass,
+        best.pass
+    );
+    let mut s = solve_on(
+        pass_scene.on_grid(best.grid.clone()),
+        Some((&best.grid, &best.state)),
+        false,
+        Some(env.run),
+        &mut env.timings,
+        &mut env.ws,
+    )?;
+    s.from_stand_ins = from_stand_ins;
+    let mut done = ended(s, bodies, env, false, None);
+    if let Some(a) = done.adaptation.as_mut() {
+        a.estimate = Some(best.estimate);
+        a.floor = Some(crate::post::adaptation::RefinementFloor {
+            best_pass: best.pass,
+            best_estimate: best.traction,
+            risen_pass,
+            risen_estimate: risen,
+            shortest_element: risen_shortest,
+            best_shortest_element: floor::shortest_element(&best.grid),
+        });
+    }
+    Ok(done)
 }
 
 /// The estimate of a pass before its contributions fill it in.
@@ -656,6 +735,7 @@ fn finished(mut s: Solve, bodies: &Scene, mut timings: Timings, passes: Option<(
             steps,
             reached: true,
             coarse_body_mesh: None,
+            floor: None,
             results_from_stand_ins: s.from_stand_ins,
         }),
         grid_start: None,

@@ -181,6 +181,22 @@ fn tolerance_not_reached(s: &Solved) -> Option<Error> {
             creep: b.creepage_rel,
         });
     }
+    if let Some(f) = a.floor {
+        return Some(Error::RefinementFloor {
+            case: s.scene.case.path.clone(),
+            tolerance: a.tolerance,
+            risen_pass: f.risen_pass,
+            risen: f.risen_estimate,
+            shortest: f.shortest_element,
+            best_pass: f.best_pass,
+            best: f.best_estimate,
+            elements: s.problem.grid.n_elements(),
+            best_shortest: f.best_shortest_element,
+            pressure: e.pressure_rms,
+            shear: e.shear_rms,
+            creep: e.creep_rel,
+        });
+    }
     Some(Error::ToleranceNotReached {
         case: s.scene.case.path.clone(),
         tolerance: a.tolerance,

@@ -140,6 +140,44 @@ pub enum Error {
         /// Their estimated relative creepage error.
         creep: f64,
     },
+    /// An error-controlled grid's estimate rose far above its best pass's when the grid was
+    /// refined: the elements had reached a length at which the solution's own noise exceeds its
+    /// discretisation error (src/adapt/floor.rs). Exit code 2; `rollbem run` writes the best
+    /// pass's solution and estimate (summary.json `converged: false`).
+    #[error(
+        "{case}: contact.grid.tolerance = {tolerance:e} is below what this scene's solution resolves: refining \
+         to elements of {shortest:.2e} (pass {risen_pass}) made the estimated traction error rise from \
+         {best:.2e} to {risen:.2e} instead of fall (the solution's own noise at that element length, which a \
+         BEM body shows on elements far shorter than its neighbours); the result is pass {best_pass}'s \
+         ({elements} elements, shortest {best_shortest:.2e}) with estimates pressure {pressure:.2e} p0, shear \
+         {shear:.2e} mu p0, creepage {creep:.2e} (relative); ask a tolerance of at least {best:.0e}"
+    )]
+    RefinementFloor {
+        /// Case file.
+        case: PathBuf,
+        /// The requested tolerance.
+        tolerance: f64,
+        /// The pass whose estimate rose.
+        risen_pass: usize,
+        /// Its traction estimate [-].
+        risen: f64,
+        /// Its bisected grid's shortest element [length].
+        shortest: f64,
+        /// The pass returned.
+        best_pass: usize,
+        /// Its traction estimate [-].
+        best: f64,
+        /// Its bisected grid's elements.
+        elements: usize,
+        /// Its bisected grid's shortest element [length].
+        best_shortest: f64,
+        /// Its estimated RMS pressure error [p0].
+        pressure: f64,
+        /// Its estimated RMS shear error [μp0].
+        shear: f64,
+        /// Its estimated relative creepage error.
+        creep: f64,
+    },
     /// An error-controlled grid cannot be built for the scene (the message names the key).
     #[error("{case}: {message}")]
     GridControl {
@@ -211,6 +249,7 @@ impl Error {
             Error::NotFinite { .. }
             | Error::ToleranceNotReached { .. }
             | Error::BodyMeshTooCoarse { .. }
+            | Error::RefinementFloor { .. }
             | Error::StepNotConverged { .. } => EXIT_NOT_CONVERGED,
             _ => EXIT_BAD_INPUT,
         }

@@ -126,6 +126,14 @@ impl Held {
         }
     }
 
+    /// Its grid.
+    pub(super) fn grid(&self) -> &crate::grid::ContactGrid {
+        match self {
+            Held::Whole(s) => &s.problem.grid,
+            Held::Waiting(s) => s.problem.grid(),
+        }
+    }
+
     /// Its solution.
     pub(super) fn state(&self) -> &crate::contact::residual::State {
         match self {

@@ -125,6 +125,25 @@ pub struct AdaptationStep {
     pub iterations: usize,
 }
 
+/// Where an error-controlled grid's refinement stopped because its estimate rose instead of
+/// falling (src/adapt/floor.rs): the grid had reached element lengths at which the solution's
+/// own noise exceeds its discretisation error.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RefinementFloor {
+    /// The pass whose result is returned, the best on its scene (1 the first).
+    pub best_pass: usize,
+    /// Its traction estimate, the larger of the RMS estimates of p/p0 and q/(μp0) [-].
+    pub best_estimate: f64,
+    /// The pass whose estimate rose.
+    pub risen_pass: usize,
+    /// Its traction estimate [-].
+    pub risen_estimate: f64,
+    /// The shortest element of the risen pass's bisected grid [length].
+    pub shortest_element: f64,
+    /// The shortest element of the best pass's bisected grid [length].
+    pub best_shortest_element: f64,
+}
+
 /// How an error-controlled grid was reached.
 #[derive(Debug, Clone, Serialize)]
 pub struct GridAdaptation {
@@ -146,6 +165,10 @@ pub struct GridAdaptation {
     /// run; None otherwise.
     #[serde(skip)]
     pub coarse_body_mesh: Option<String>,
+    /// Where refining made the estimate rise instead of fall, when that ended the run (the
+    /// result is then the best pass's; src/adapt/floor.rs); None otherwise.
+    #[serde(skip)]
+    pub floor: Option<RefinementFloor>,
     /// Whether the results on the final grid are the BEM bodies' stand-ins' (the half-plane
     /// plus the smooth remainder fitted on coarser grids, their own error estimated and
     /// included in `estimate`) rather than the full BEM bodies cut along that grid.

@@ -20,8 +20,12 @@ fn estimate(s: &Solved) -> ErrorEstimate {
 /// True errors against Hertz and Carter: RMS p/p0, RMS q/μp0 (length-weighted over |x| < a),
 /// relative creepage error.
 pub(crate) fn carter_errors(s: &Solved) -> [f64; 3] {
-    let c = s.scene.carter_reference().expect("the case prescribes Q/μP");
-    let sol = &s.solution;
+    carter_errors_of(&s.scene, &s.solution)
+}
+
+/// [`carter_errors`] of the solution `sol` of `scene`.
+pub(crate) fn carter_errors_of(scene: &rollbem::scene::Scene, sol: &rollbem::post::ContactSolution) -> [f64; 3] {
+    let c = scene.carter_reference().expect("the case prescribes Q/μP");
     let p = nodal_error(&sol.x, c.half_width, |i| {
         (sol.pressure[i] - hertz_pressure(sol.x[i], c.half_width, c.peak_pressure)).abs() / c.peak_pressure
     })
@@ -31,7 +35,7 @@ pub(crate) fn carter_errors(s: &Solved) -> [f64; 3] {
         (sol.shear[i] - c.shear(sol.x[i])).abs() / mu_p0
     })
     .rms;
-    let xi = c.creep(s.scene.estimates.effective_radius);
+    let xi = c.creep(scene.estimates.effective_radius);
     [p, q, (sol.creep / xi - 1.0).abs()]
 }
 

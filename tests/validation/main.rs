@@ -34,6 +34,7 @@ mod fixed_estimate;
 #[allow(dead_code)]
 #[path = "../../examples/fixed_grid_report.rs"]
 mod fixed_grid_report;
+mod floor;
 mod free_rolling_creepage;
 mod friction_limits;
 mod hertz_carter;
