@@ -195,6 +195,7 @@ fn tolerance_not_reached(s: &Solved) -> Option<Error> {
             pressure: e.pressure_rms,
             shear: e.shear_rms,
             creep: e.creep_rel,
+            reachable: rounded_up(e.largest()),
         });
     }
     Some(Error::ToleranceNotReached {
@@ -206,6 +207,15 @@ fn tolerance_not_reached(s: &Solved) -> Option<Error> {
         shear: e.shear_rms,
         creep: e.creep_rel,
     })
+}
+
+/// `v` > 0 rounded up to two significant digits (1.0651e-5 → 1.1e-5).
+fn rounded_up(v: f64) -> f64 {
+    if v <= 0.0 || !v.is_finite() {
+        return v;
+    }
+    let scale = 10f64.powi(v.log10().floor() as i32 - 1);
+    (v / scale).ceil() * scale
 }
 
 /// Everything a run produced.

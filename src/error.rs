@@ -150,7 +150,7 @@ pub enum Error {
          {best:.2e} to {risen:.2e} instead of fall (the solution's own noise at that element length, which a \
          BEM body shows on elements far shorter than its neighbours); the result is pass {best_pass}'s \
          ({elements} elements, shortest {best_shortest:.2e}) with estimates pressure {pressure:.2e} p0, shear \
-         {shear:.2e} mu p0, creepage {creep:.2e} (relative); ask a tolerance of at least {best:.0e}"
+         {shear:.2e} mu p0, creepage {creep:.2e} (relative); a tolerance of {reachable:.1e} or more is within reach"
     )]
     RefinementFloor {
         /// Case file.
@@ -177,6 +177,8 @@ pub enum Error {
         shear: f64,
         /// Its estimated relative creepage error.
         creep: f64,
+        /// The largest of its estimates, rounded up: the smallest tolerance the run met [-].
+        reachable: f64,
     },
     /// An error-controlled grid cannot be built for the scene (the message names the key).
     #[error("{case}: {message}")]
