@@ -19,6 +19,7 @@
 pub mod kept;
 pub mod setup;
 pub mod stand_in;
+mod surface;
 
 use super::kind::Capabilities;
 use super::{

@@ -75,6 +75,24 @@ impl Circle {
         let side = if p[1] >= self.centre[1] { 1.0 } else { -1.0 };
         [p[0], self.centre[1] + side * h2.sqrt()]
     }
+
+    /// The angle [rad] of the circle's tangent from +x at its point of abscissa `p[0]` on the
+    /// side of the centre that `p` is on ([`Self::at_abscissa_of`]); None where the circle has
+    /// no point at that abscissa or its tangent there is vertical. Computed from the centre's
+    /// offsets, each to a relative round-off, not from differences of nearby points.
+    pub fn slope_angle_at(&self, p: [f64; 2]) -> Option<f64> {
+        let on = self.at_abscissa_of(p);
+        let dy = on[1] - self.centre[1];
+        let dx = on[0] - self.centre[0];
+        (dy != 0.0 && dx * dx < self.radius * self.radius).then(|| (-dx / dy).atan())
+    }
+
+    /// The round-off [length] of a point placed on the circle by [`Self::at_abscissa_of`]: a
+    /// few ulps of the centre's coordinates and the radius it is computed from.
+    pub fn placement_round_off(&self) -> f64 {
+        let scale = self.centre[0].abs().max(self.centre[1].abs()) + self.radius;
+        4.0 * f64::EPSILON * scale
+    }
 }
 
 /// [`cut_along_grid`] with the new and moved contact nodes placed on `exact` (keeping their

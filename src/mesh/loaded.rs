@@ -167,11 +167,16 @@ impl LoadedMesh {
     /// The contact surface above x: its point's y and its slope dy/dx [length, -], from the
     /// contact element whose x-range holds x (None beyond the contact group).
     pub fn surface_at(&self, x: f64) -> Option<(f64, f64)> {
-        self.contact_elements().find_map(|g| {
-            let xi = g.parameter_at_x(x)?;
-            let t = g.tangent(xi);
-            Some((g.point(xi)[1], t[1] / t[0]))
-        })
+        let (g, xi) = self.contact_element_at(x)?;
+        let t = g.tangent(xi);
+        Some((g.point(xi)[1], t[1] / t[0]))
+    }
+
+    /// The contact element whose x-range holds x and the ξ at which it reaches x (None beyond
+    /// the contact group).
+    pub fn contact_element_at(&self, x: f64) -> Option<(ElementGeometry, f64)> {
+        self.contact_elements()
+            .find_map(|g| g.parameter_at_x(x).map(|xi| (g, xi)))
     }
 
     /// Total length of the elements of a group (polyline through end, mid, end nodes) [length].

@@ -365,13 +365,19 @@ impl BodySetup for BemSetup {
     }
 
     /// The mesh's contact surface (clamped to the contact group's x-range), its profile from
-    /// its touching point at x = 0, turning about the contact group's fitted circle.
+    /// its touching point at x = 0, turning about the contact group's fitted circle. The slope
+    /// is the element's, or the contact circle's where the two agree to within the round-off
+    /// of the element's nodes (src/body/bem/surface.rs).
     fn surface_at(&self, x: f64, side: Side) -> Option<SurfaceAt> {
         let [x0, x1] = self.shape.range;
-        let (y, slope) = self.mesh.surface_at(x.clamp(x0, x1))?;
+        let xc = x.clamp(x0, x1);
+        // What `LoadedMesh::surface_at` gives, with the element kept for its round-off.
+        let (element, xi) = self.mesh.contact_element_at(xc)?;
+        let t = element.tangent(xi);
+        let (y, slope) = (element.point(xi)[1], t[1] / t[0]);
         let touch = self.shape.touch.unwrap_or(y);
         Some(SurfaceAt {
-            slope_angle: slope.atan(),
+            slope_angle: self.slope_angle_at(&element, xi, [xc, y], slope.atan()),
             profile: (y - touch) * side.sign(),
             radius: self.shape.radius,
         })
