@@ -147,8 +147,8 @@ pub enum Error {
     #[error(
         "{case}: contact.grid.tolerance = {tolerance:e} is below what this scene's solution resolves: refining \
          to elements of {shortest:.2e} (pass {risen_pass}) made the estimated traction error rise from \
-         {best:.2e} to {risen:.2e} instead of fall (the solution's own noise at that element length, which a \
-         BEM body shows on elements far shorter than its neighbours); the result is pass {best_pass}'s \
+         {best:.2e} to {risen:.2e} instead of fall (the solution's own noise at that element length, not its \
+         discretisation error); the result is pass {best_pass}'s \
          ({elements} elements, shortest {best_shortest:.2e}) with estimates pressure {pressure:.2e} p0, shear \
          {shear:.2e} mu p0, creepage {creep:.2e} (relative); a tolerance of {reachable:.1e} or more is within reach"
     )]

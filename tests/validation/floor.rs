@@ -4,9 +4,9 @@
 //!
 //! The noise is put in by the estimator: CONTACT's Carter case (carter2d_contact.yaml) at
 //! tolerance 1e-5, its solutions read with a node-to-node ripple on the pressure that grows as
-//! ℓ/h where the node spacing h falls below ℓ — round-off that grows with the system's
-//! condition, as a BEM body's does on elements far shorter than their neighbours
-//! (docs/validation.md, "The refinement's floor"). Carter's closed form is the reference.
+//! ℓ/h where the node spacing h falls below ℓ — round-off that grows as the elements shrink, as
+//! the BEM bodies' contact frame did on tiny cut elements before they took their circle's slope
+//! there (docs/validation.md, "The bodies' ripple, measured" and "The refinement's floor"). Carter's closed form is the reference.
 
 use crate::adaptive::carter_errors_of;
 use rollbem::adapt::estimate::{compare, Comparison, ErrorEstimator, Pass};
