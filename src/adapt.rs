@@ -473,28 +473,11 @@ fn controlled(
                 let cmp = comparison.expect("the contact grid's comparison");
                 // The floor: an estimate risen far above the best pass's is the solution's noise.
                 let traction = floor::traction_estimate(&cmp.estimate);
-                if let Some(best) = watch.risen(traction) {
-                    let best = best.clone();
-                    let risen_shortest = floor::shortest_element(h.grid());
-                    drop(h);
+                if let Some(best) = watch.risen(traction).cloned() {
                     let pass_scene = passes.as_ref().unwrap_or(&bodies);
-                    return at_the_floor(
-                        pass_scene,
-                        &bodies,
-                        best,
-                        traction,
-                        risen_shortest,
-                        passes.is_some(),
-                        env,
-                    );
+                    return floor::at_the_floor(pass_scene, &bodies, best, traction, h, passes.is_some(), env);
                 }
-                watch.offer(floor::Best {
-                    grid: h.grid().clone(),
-                    state: h.state().clone(),
-                    traction,
-                    estimate,
-                    pass: env.steps.len(),
-                });
+                watch.offer(floor::Best::of(&h, traction, estimate, env.steps.len()));
                 // Mark.
                 let marked = marking::actions(&coarse, &cmp, &estimate, &singular, tolerance, &lengths, shortest);
                 let Some(marked) = marked else {
@@ -518,51 +501,6 @@ fn controlled(
             }
         }
     }
-}
-
-/// The run's result when a pass's traction estimate `risen` (its bisected grid's shortest
-/// element `risen_shortest`) rose far above the `best` pass's on `pass_scene`
-/// (src/adapt/floor.rs): the best pass's grid solved again, warm from its solution, returned
-/// with its estimate, not reaching the tolerance.
-fn at_the_floor(
-    pass_scene: &Scene,
-    bodies: &Scene,
-    best: floor::Best,
-    risen: f64,
-    risen_shortest: f64,
-    from_stand_ins: bool,
-    mut env: Env<'_>,
-) -> Result<Adapted, Error> {
-    let risen_pass = env.steps.len();
-    log::warn!(
-        "error control, pass {risen_pass}: the estimate rose to {risen:.2e} from {:.2e} at pass {} as the elements \
-         reached {risen_shortest:.3e}: the solution's noise, not its discretisation error; the result is pass {}'s",
-        best.traction,
-        best.pass,
-        best.pass
-    );
-    let mut s = solve_on(
-        pass_scene.on_grid(best.grid.clone()),
-        Some((&best.grid, &best.state)),
-        false,
-        Some(env.run),
-        &mut env.timings,
-        &mut env.ws,
-    )?;
-    s.from_stand_ins = from_stand_ins;
-    let mut done = ended(s, bodies, env, false, None);
-    if let Some(a) = done.adaptation.as_mut() {
-        a.estimate = Some(best.estimate);
-        a.floor = Some(crate::post::adaptation::RefinementFloor {
-            best_pass: best.pass,
-            best_estimate: best.traction,
-            risen_pass,
-            risen_estimate: risen,
-            shortest_element: risen_shortest,
-            best_shortest_element: floor::shortest_element(&best.grid),
-        });
-    }
-    Ok(done)
 }
 
 /// The estimate of a pass before its contributions fill it in.

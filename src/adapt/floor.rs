@@ -24,9 +24,13 @@
 //! solution) and returned as the result with its estimate, not reaching the tolerance
 //! (exit code 2), and the error names the element length at which the estimate rose.
 
+use super::contribution::{Env, Held};
+use super::{ended, solve_on, Adapted};
 use crate::contact::residual::State;
+use crate::error::Error;
 use crate::grid::ContactGrid;
-use crate::post::adaptation::ErrorEstimate;
+use crate::post::adaptation::{ErrorEstimate, RefinementFloor};
+use crate::scene::Scene;
 
 /// How many times the best pass's traction estimate a later pass's must exceed for the loop to
 /// take the rise as noise [-]. The refinement aims each pass at 0.6 times the tolerance and a
@@ -48,6 +52,20 @@ pub(super) struct Best {
     pub estimate: ErrorEstimate,
     /// Its number among the run's passes (1 the first).
     pub pass: usize,
+}
+
+impl Best {
+    /// The pass whose result is `h`, with its traction estimate `traction`, its whole
+    /// `estimate` and its number `pass`.
+    pub(super) fn of(h: &Held, traction: f64, estimate: ErrorEstimate, pass: usize) -> Self {
+        Best {
+            grid: h.grid().clone(),
+            state: h.state().clone(),
+            traction,
+            estimate,
+            pass,
+        }
+    }
 }
 
 /// The passes' best so far, reset when the scene they solve changes.
@@ -84,6 +102,54 @@ impl FloorWatch {
             self.best = Some(pass);
         }
     }
+}
+
+/// The run's result when the pass `risen_h` (the bisected grid's solve), whose traction
+/// estimate `risen` rose far above the `best` pass's on `pass_scene` (module docs): the best
+/// pass's grid solved again, warm from its solution, returned with its estimate, not reaching
+/// the tolerance.
+pub(super) fn at_the_floor(
+    pass_scene: &Scene,
+    bodies: &Scene,
+    best: Best,
+    risen: f64,
+    risen_h: Held,
+    from_stand_ins: bool,
+    mut env: Env<'_>,
+) -> Result<Adapted, Error> {
+    let risen_shortest = shortest_element(risen_h.grid());
+    // The risen pass's matrices go before the best pass's are built again.
+    drop(risen_h);
+    let risen_pass = env.steps.len();
+    log::warn!(
+        "error control, pass {risen_pass}: the estimate rose to {risen:.2e} from {:.2e} at pass {} as the elements \
+         reached {risen_shortest:.3e}: the solution's noise, not its discretisation error; the result is pass {}'s",
+        best.traction,
+        best.pass,
+        best.pass
+    );
+    let mut s = solve_on(
+        pass_scene.on_grid(best.grid.clone()),
+        Some((&best.grid, &best.state)),
+        false,
+        Some(env.run),
+        &mut env.timings,
+        &mut env.ws,
+    )?;
+    s.from_stand_ins = from_stand_ins;
+    let mut done = ended(s, bodies, env, false, None);
+    if let Some(a) = done.adaptation.as_mut() {
+        a.estimate = Some(best.estimate);
+        a.floor = Some(RefinementFloor {
+            best_pass: best.pass,
+            best_estimate: best.traction,
+            risen_pass,
+            risen_estimate: risen,
+            shortest_element: risen_shortest,
+            best_shortest_element: shortest_element(&best.grid),
+        });
+    }
+    Ok(done)
 }
 
 #[cfg(test)]
