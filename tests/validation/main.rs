@@ -23,6 +23,7 @@ mod body_mesh;
 #[allow(dead_code)]
 #[path = "../../examples/body_mesh_report.rs"]
 mod body_mesh_report;
+mod bore_creepage;
 mod conformal_bem;
 mod conformal_series;
 mod effectivity;
