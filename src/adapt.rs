@@ -54,7 +54,7 @@
 //! `rollbem run` writes its summary.json with `converged: false` and the last estimate.
 //!
 //! Refinement has a floor (src/adapt/floor.rs): where a pass's traction estimate rises to more
-//! than [`floor::RISE`] times the best pass's on the same scene, the grid has reached element
+//! than [`floor::RISE`] times the best pass's on the same scene, and above the tolerance, the grid has reached element
 //! lengths at which the solution's own noise exceeds its discretisation error; the run ends
 //! with exit code 2, the best pass's solution and estimate its result, the error naming the
 //! element length at which the estimate rose.
@@ -473,7 +473,7 @@ fn controlled(
                 let cmp = comparison.expect("the contact grid's comparison");
                 // The floor: an estimate risen far above the best pass's is the solution's noise.
                 let traction = floor::traction_estimate(&cmp.estimate);
-                if let Some(best) = watch.risen(traction).cloned() {
+                if let Some(best) = watch.risen(traction, tolerance).cloned() {
                     let pass_scene = passes.as_ref().unwrap_or(&bodies);
                     return floor::at_the_floor(pass_scene, &bodies, best, traction, h, passes.is_some(), env);
                 }

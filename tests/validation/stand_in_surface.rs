@@ -18,17 +18,7 @@ use rollbem::scene::Scene;
 
 /// The generated bore at `contact.grid.tolerance` = 1e-5 (three stand-in levels).
 fn bore() -> Scene {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bore_c30_tractive.yaml");
-    let overrides: Vec<String> = [
-        "bodies.A.mesh=null",
-        "bodies.A.geometry={roller: {radius: 30, shaft: 5}}",
-        "bodies.B.mesh=null",
-        "bodies.B.geometry={ring: {bore: 30.6, rim: 42}}",
-        "contact.grid.tolerance=1e-5",
-    ]
-    .map(String::from)
-    .to_vec();
-    Scene::from_case(&rollbem::case::load(&path, &overrides).expect("loads")).expect("scene")
+    bore_with(&[])
 }
 
 /// The stand-ins' scene of `scene`, fitted on its start grid bisected once, twice and three
