@@ -252,6 +252,11 @@ impl ContactGrid {
         self.edges.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max)
     }
 
+    /// Smallest element length [length].
+    pub fn shortest_element(&self) -> f64 {
+        self.edges.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min)
+    }
+
     /// Smallest distance between neighbouring nodes [length] (the spacing of a uniform grid:
     /// L/3 for discontinuous quadratic elements, L for constant ones).
     pub fn node_spacing(&self) -> f64 {

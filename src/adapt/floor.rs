@@ -79,11 +79,6 @@ pub(super) fn traction_estimate(e: &ErrorEstimate) -> f64 {
     e.pressure_rms.max(e.shear_rms)
 }
 
-/// The shortest element of `grid` [length].
-pub(super) fn shortest_element(grid: &ContactGrid) -> f64 {
-    grid.edges.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min)
-}
-
 impl FloorWatch {
     /// Forgets the best pass: the passes solve another scene from now on.
     pub(super) fn reset(&mut self) {
@@ -122,7 +117,7 @@ pub(super) fn at_the_floor(
     from_stand_ins: bool,
     mut env: Env<'_>,
 ) -> Result<Adapted, Error> {
-    let risen_shortest = shortest_element(risen_h.grid());
+    let risen_shortest = risen_h.grid().shortest_element();
     // The risen pass's matrices go before the best pass's are built again.
     drop(risen_h);
     let risen_pass = env.steps.len();
@@ -151,7 +146,7 @@ pub(super) fn at_the_floor(
             risen_pass,
             risen_estimate: risen,
             shortest_element: risen_shortest,
-            best_shortest_element: shortest_element(&best.grid),
+            best_shortest_element: best.grid.shortest_element(),
         });
     }
     Ok(done)

@@ -92,6 +92,13 @@ impl ElementGeometry {
         (t[0] * t[0] + t[1] * t[1]).sqrt()
     }
 
+    /// The curve's height y [length] and slope dy/dx [-] at ξ (the contact surface of an
+    /// element of a contact group, walked along x).
+    pub fn height_and_slope(&self, xi: f64) -> (f64, f64) {
+        let t = self.tangent(xi);
+        (self.point(xi)[1], t[1] / t[0])
+    }
+
     /// A bound on the error [rad] of the tangent's direction at ξ that comes from the nodes'
     /// coordinates alone, each off the curve it stands for by up to `node_error` [length] (their
     /// round-off: a few ulps of the largest coordinate that placed them). The tangent

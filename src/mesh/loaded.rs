@@ -168,8 +168,7 @@ impl LoadedMesh {
     /// contact element whose x-range holds x (None beyond the contact group).
     pub fn surface_at(&self, x: f64) -> Option<(f64, f64)> {
         let (g, xi) = self.contact_element_at(x)?;
-        let t = g.tangent(xi);
-        Some((g.point(xi)[1], t[1] / t[0]))
+        Some(g.height_and_slope(xi))
     }
 
     /// The contact element whose x-range holds x and the ξ at which it reaches x (None beyond

@@ -63,8 +63,8 @@ fn scene() -> rollbem::scene::Scene {
 
 /// With a ripple that grows as the grid grades below 1e-3 a, the estimate rises after the pass
 /// that first reaches that spacing; the run stops there: not reached, its result the best pass's
-/// solution (its grid, its estimate), whose true error against Carter is within 3 times that
-/// estimate, and the floor named at an element length below the best pass's. Without the ripple
+/// solution (its grid, its estimate), whose true errors against Carter are within the
+/// tolerance, and the floor named at an element length below the best pass's. Without the ripple
 /// the same estimator (amplitude 0) meets the tolerance, so the stop is the ripple's.
 #[test]
 fn a_rising_estimate_stops_the_run_at_its_best_pass() {
@@ -114,5 +114,7 @@ fn a_rising_estimate_stops_the_run_at_its_best_pass() {
         "best pass {}: {} elements, estimate p {:.2e} q {:.2e}; true p {p:.2e} q {q:.2e}",
         floor.best_pass, best.elements, e.pressure_rms, e.shear_rms
     );
-    assert!(p <= 3.0 * e.pressure_rms.max(1e-7) && q <= 3.0 * e.shear_rms.max(1e-7));
+    // The best pass's grid, solved again, carries the clean Carter solution of its pass: within
+    // the tolerance although its estimate, read with the ripple, is not.
+    assert!(p <= 1e-5 && q <= 1e-5, "true p {p:e}, q {q:e}");
 }

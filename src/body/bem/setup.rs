@@ -373,8 +373,7 @@ impl BodySetup for BemSetup {
         let xc = x.clamp(x0, x1);
         // What `LoadedMesh::surface_at` gives, with the element kept for its round-off.
         let (element, xi) = self.mesh.contact_element_at(xc)?;
-        let t = element.tangent(xi);
-        let (y, slope) = (element.point(xi)[1], t[1] / t[0]);
+        let (y, slope) = element.height_and_slope(xi);
         let touch = self.shape.touch.unwrap_or(y);
         Some(SurfaceAt {
             slope_angle: self.slope_angle_at(&element, xi, [xc, y], slope.atan()),
