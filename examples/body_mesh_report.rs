@@ -188,6 +188,9 @@ pub fn coarse_roller() -> CoarseRoller {
         friction: mu,
         creep_prescribed: false,
         creep_floor: CREEP_FLOOR * mu * est.hertz_half_width / est.effective_radius.abs(),
+        complete_slip_creep: mu * est.hertz_half_width / est.effective_radius.abs(),
+        // The body meshes' differences read the creepage's difference alone.
+        geometry_share: 0.0,
     };
     let grid = &run.problem.grid;
     // The plain difference: the reference stands for the exact body.

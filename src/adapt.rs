@@ -70,6 +70,7 @@ mod corrections;
 pub mod estimate;
 pub mod fixed;
 pub mod floor;
+pub mod geometry_share;
 mod marking;
 pub mod overlap;
 mod scales;

@@ -456,6 +456,8 @@ mod tests {
             friction: 0.25,
             creep_prescribed: false,
             creep_floor: 0.0,
+            complete_slip_creep: 0.0,
+            geometry_share: 0.0,
         };
         let (given, other) = (
             state(&grid, 1.0, 0.1, 1e-3, 2e-2),
@@ -508,6 +510,8 @@ mod tests {
             friction: scene.friction(),
             creep_prescribed: false,
             creep_floor: 0.0,
+            complete_slip_creep: 0.0,
+            geometry_share: 0.0,
         };
         let state = given.state.clone();
         for changed in [coarsened(&scene).unwrap(), bisected(&scene, ChangedFor::Check).unwrap()] {

@@ -83,6 +83,13 @@ pub struct Scales {
     /// The smallest creepage the relative creepage error is taken of [-]: [`CREEP_FLOOR`] times
     /// Carter's complete-slip creepage μa/R*.
     pub creep_floor: f64,
+    /// Carter's complete-slip creepage μa/R* [-]: the creepage a shear error of μp0 over the
+    /// contact moves, the unit of the creepage's estimate from the shear's.
+    pub complete_slip_creep: f64,
+    /// The share of the creepage the bodies' true geometry sets, w ∈ [0, 1]
+    /// (src/adapt/geometry_share.rs): the creepage's estimate is at least w times the shear's
+    /// estimate times μa/R*, relative; 0 for half-plane models.
+    pub geometry_share: f64,
 }
 
 /// The two solutions of one pass that an estimator compares: a grid's and its bisection's.
@@ -222,17 +229,12 @@ pub fn compare(
                 / contact_length
         })
         .collect();
-    // Without friction the creepage does not act on the tractions: no error to estimate.
-    let creep_rel = if scales.creep_prescribed || scales.friction == 0.0 || fine.creep == coarse.creep {
-        0.0
-    } else {
-        (fine.creep - coarse.creep).abs() / fine.creep.abs().max(scales.creep_floor).max(f64::MIN_POSITIVE)
-    };
+    let shear_rms = SHEAR_ESTIMATE_FACTOR * rms(&dq);
     Comparison {
         estimate: ErrorEstimate {
             pressure_rms: PRESSURE_ESTIMATE_FACTOR * rms(&dp),
-            shear_rms: SHEAR_ESTIMATE_FACTOR * rms(&dq),
-            creep_rel,
+            shear_rms,
+            creep_rel: creep_estimate(coarse.creep, fine.creep, shear_rms, scales),
             // Set by the driver, which knows the controls and the bodies (`super::overlap`).
             overlap_rel: None,
             body_mesh: None,
@@ -240,6 +242,25 @@ pub fn compare(
         detail,
         open,
     }
+}
+
+/// The relative creepage error of the bisected grid's solution: the difference of the two
+/// grids' creepages `coarse` and `fine` [-], and at least the geometry's share of the shear's
+/// estimate `shear_rms` [μp0] times μa/R* (src/adapt/geometry_share.rs), each relative to
+/// max(|ξ|, the floor). Zero with a prescribed creepage, and without friction, where the
+/// creepage does not act on the tractions.
+fn creep_estimate(coarse: f64, fine: f64, shear_rms: f64, scales: Scales) -> f64 {
+    if scales.creep_prescribed || scales.friction == 0.0 {
+        return 0.0;
+    }
+    let of = fine.abs().max(scales.creep_floor).max(f64::MIN_POSITIVE);
+    let bisection = if fine == coarse {
+        0.0
+    } else {
+        (fine - coarse).abs() / of
+    };
+    let geometry = scales.geometry_share * shear_rms * scales.complete_slip_creep / of;
+    bisection.max(geometry)
 }
 
 /// Σ w_k r_k² of the weighted least-squares fit of a polynomial of `degree` to (t_k, v_k):
@@ -313,6 +334,8 @@ mod tests {
                 friction: 0.2,
                 creep_prescribed: false,
                 creep_floor: 0.0,
+                complete_slip_creep: 0.0,
+                geometry_share: 0.0,
             },
         );
         assert!(c.estimate.largest() < 1e-14, "{:?}", c.estimate);
@@ -335,6 +358,8 @@ mod tests {
                 friction: 0.2,
                 creep_prescribed: true,
                 creep_floor: 0.0,
+                complete_slip_creep: 0.0,
+                geometry_share: 0.0,
             },
         );
         let edge = c.detail[0].max(c.detail[5]);
@@ -359,6 +384,8 @@ mod tests {
                 friction: 0.2,
                 creep_prescribed: false,
                 creep_floor: 0.0,
+                complete_slip_creep: 0.0,
+                geometry_share: 0.0,
             },
         );
         assert_eq!(c.estimate.shear_rms, 0.0);
@@ -379,6 +406,8 @@ mod tests {
             friction: 0.2,
             creep_prescribed: false,
             creep_floor: 1e-4,
+            complete_slip_creep: 2e-3,
+            geometry_share: 0.0,
         };
         let creep_error = |xi_coarse: f64, xi_fine: f64| {
             compare(

@@ -234,6 +234,15 @@ pub trait BodySetup: std::fmt::Debug + Send + Sync {
         false
     }
 
+    /// The body's true geometry idealised: the elastic half-plane of its material and profile
+    /// radius, for a model of the true geometry (`bem`); None for a model that is already an
+    /// idealisation or has none of the kind (the default). The error control solves the scene
+    /// once with these in the bodies' place to tell the share of the creepage the geometry sets
+    /// (src/adapt/geometry_share.rs).
+    fn half_plane_twin(&self) -> Option<std::sync::Arc<dyn BodySetup>> {
+        None
+    }
+
     /// Whether the body is the elastic half-plane of [`Self::hertz_material`] that the Hertz
     /// estimates describe, so that they compare with its solved contact (the run's table
     /// prints them beside it when both bodies are); false by default.

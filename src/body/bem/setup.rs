@@ -357,6 +357,21 @@ impl BodySetup for BemSetup {
         Some(self.material)
     }
 
+    /// A flat body's twin has a radius 1e6 times the mesh's extent: the half-space model takes
+    /// its displacement datum at its radius, which must be finite, and the contact does not
+    /// feel that curvature.
+    fn half_plane_twin(&self) -> Option<std::sync::Arc<dyn BodySetup>> {
+        let radius = if self.radius.is_finite() {
+            self.radius
+        } else {
+            1e6 * self.mesh.mesh.size()
+        };
+        Some(std::sync::Arc::new(crate::body::half_space::setup::HalfSpaceSetup {
+            material: self.material,
+            radius,
+        }))
+    }
+
     fn contact_mesh(&self) -> Option<ContactMesh<'_>> {
         Some(ContactMesh {
             mesh: &self.mesh,

@@ -441,6 +441,10 @@ impl BodySetup for BemStandIn {
         self.surface(x, side)
     }
 
+    fn half_plane_twin(&self) -> Option<std::sync::Arc<dyn BodySetup>> {
+        self.inner.half_plane_twin()
+    }
+
     fn datum_distance(&self) -> f64 {
         self.inner.datum_distance()
     }
