@@ -130,7 +130,9 @@ fn the_bore_s_creepage_error_changes_sign_under_bisection() {
 /// shear error of that size over the contact would move). On the bore it lies within [1/3, 3] of
 /// the true error at tolerances 1e-3 to 1e-4 (measured 1.24–1.97), where the bisection's reads
 /// 0.03–0.81; on Carter's half-planes it over-reads 2 to 340 times, where the bisection's is
-/// within 0.33–1.24 but for Q/μP 0.99 at 1e-5 (whose true error nearly cancels): not adopted.
+/// within 0.33–1.24 but for Q/μP 0.99 at 1e-5 (whose true error nearly cancels): not adopted
+/// as it stands; the error control weights it by the share of ξ the bodies' true geometry sets,
+/// zero on half-planes (src/adapt/geometry_share.rs), and the printed estimate now holds it.
 /// Asserts the bore's window and Carter's over-reading, the two facts the docs quote.
 #[test]
 #[ignore]
