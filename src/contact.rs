@@ -365,7 +365,7 @@ impl ContactProblem {
     /// the outputs: [`Self::slip`] at every
     /// node but the upstream end, whose row in the problem is the datum equation of w (see
     /// [`SlipOperator`]); there the derivative is taken downstream
-    /// ([`SlipOperator::derivative`]). Same tractions, same solution: only that node differs.
+    /// (src/contact/slip_operator.rs). Same tractions, same solution: only that node differs.
     pub fn slip_velocity(&self, p: &[f64], q: &[f64], creep: f64) -> Vec<f64> {
         let mut s = self.slip(p, q, creep);
         let op = &self.slip_operator;

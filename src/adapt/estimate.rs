@@ -425,4 +425,33 @@ mod tests {
         // Above the floor the error stays relative.
         assert!((creep_error(1.1e-3, 1e-3) - 0.1).abs() < 1e-12);
     }
+
+    /// With a share w of true geometry, the creepage's estimate is at least w·e_q·μa/R* over
+    /// max(|ξ|, floor), whichever grids' creepages agree; the larger of the two otherwise.
+    #[test]
+    fn the_geometry_s_share_bounds_the_creepage_estimate_from_below() {
+        let scales = Scales {
+            peak_pressure: 1.0,
+            friction: 0.2,
+            creep_prescribed: false,
+            creep_floor: 1e-4,
+            complete_slip_creep: 2e-3,
+            geometry_share: 0.5,
+        };
+        // Two grids that agree: the geometry's term alone, 0.5·1e-3·2e-3/1e-3.
+        assert!((creep_estimate(1e-3, 1e-3, 1e-3, scales) - 1e-3).abs() < 1e-15);
+        // A difference above it: the difference.
+        assert!((creep_estimate(1.1e-3, 1e-3, 1e-3, scales) - 0.1).abs() < 1e-12);
+        // Half-planes (w = 0) and a prescribed creepage: as before.
+        let half_planes = Scales {
+            geometry_share: 0.0,
+            ..scales
+        };
+        assert_eq!(creep_estimate(1e-3, 1e-3, 1e-3, half_planes), 0.0);
+        let prescribed = Scales {
+            creep_prescribed: true,
+            ..scales
+        };
+        assert_eq!(creep_estimate(1.1e-3, 1e-3, 1e-3, prescribed), 0.0);
+    }
 }
