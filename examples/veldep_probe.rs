@@ -6,6 +6,7 @@
 //! ```text
 //! cargo run --release --example veldep_probe -- exponent        # 641 elements, ~1 min
 //! cargo run --release --example veldep_probe -- passes 1e-5     # several minutes
+//! cargo run --release --example veldep_probe -- passes 1e-4 1e-5 # the same, then 1e-4
 //! ```
 //!
 //! `exponent` solves the case on a uniform grid of 641 elements, with the law and with constant
@@ -20,7 +21,9 @@
 //! `passes TOL` runs the error control at tolerance TOL and prints, per pass: the shear
 //! estimate, the shares of its squared sum in bands of distance from the stick/slip point, the
 //! largest indicators; at the end each pass's RMS differences of p/p0 and q/(μ_s p0) from the
-//! final result (over |x| < a, at the pass's nodes), the final result's own estimate beside them.
+//! reference (over |x| < a, at the pass's nodes), the pass's estimate beside them. The reference
+//! is the run's own final result, or with a second tolerance the result of a run at that one
+//! (solved first).
 use rollbem::adapt::estimate::{BisectionEstimator, Comparison, ErrorEstimator, Pass};
 use rollbem::contact::residual::State;
 use rollbem::grid::ContactGrid;
@@ -157,7 +160,18 @@ fn exponent() {
     }
 }
 
-fn passes(tolerance: &str) {
+fn passes(tolerance: &str, reference: Option<&str>) {
+    // The reference: the run's own last pass, or a run at the tolerance `reference`.
+    let referenced = reference.map(|r| {
+        let done = rollbem::adapt::solve(&scene(&[format!("contact.grid.tolerance={r}")])).expect("solved");
+        let est = done.adaptation.as_ref().and_then(|a| a.estimate).expect("an estimate");
+        println!(
+            "reference at {r}: {} elements, shear estimate {:.2e}",
+            done.problem.grid.n_elements(),
+            est.shear_rms
+        );
+        done
+    });
     let sc = scene(&[format!("contact.grid.tolerance={tolerance}")]);
     let mut probe = Probe { passes: Vec::new() };
     let t = std::time::Instant::now();
@@ -172,19 +186,20 @@ fn passes(tolerance: &str) {
     );
     let (half_width, p0) = (sc.estimates.hertz_half_width, sc.estimates.hertz_peak_pressure);
     let mu_p0 = sc.friction() * p0;
-    let last = &done.problem.grid;
+    let reference = referenced.as_ref().unwrap_or(&done);
+    let last = &reference.problem.grid;
     for (k, (grid, z, est)) in probe.passes.iter().enumerate() {
         let x = &grid.nodes;
         let p = nodal_error(x, half_width, |i| {
-            (z.pressure[i] - last.interpolate(&done.state.pressure, x[i])).abs() / p0
+            (z.pressure[i] - last.interpolate(&reference.state.pressure, x[i])).abs() / p0
         })
         .rms;
         let q = nodal_error(x, half_width, |i| {
-            (z.shear[i] - last.interpolate(&done.state.shear, x[i])).abs() / mu_p0
+            (z.shear[i] - last.interpolate(&reference.state.shear, x[i])).abs() / mu_p0
         })
         .rms;
         println!(
-            "pass {}: from the final result p {p:.2e}, q {q:.2e}; shear estimate {est:.2e}",
+            "pass {}: from the reference p {p:.2e}, q {q:.2e}; shear estimate {est:.2e}",
             k + 1
         );
     }
@@ -194,7 +209,10 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
         Some("exponent") => exponent(),
-        Some("passes") => passes(args.get(1).map_or("1e-5", String::as_str)),
-        _ => eprintln!("usage: veldep_probe exponent | passes [TOLERANCE]"),
+        Some("passes") => passes(
+            args.get(1).map_or("1e-5", String::as_str),
+            args.get(2).map(String::as_str),
+        ),
+        _ => eprintln!("usage: veldep_probe exponent | passes [TOLERANCE [REFERENCE_TOLERANCE]]"),
     }
 }
