@@ -7,7 +7,11 @@
 //! cargo run --release --example veldep_probe -- exponent        # 641 elements, ~1 min
 //! cargo run --release --example veldep_probe -- passes 1e-5     # several minutes
 //! cargo run --release --example veldep_probe -- passes 1e-4 1e-5 # the same, then 1e-4
+//! cargo run --release --example veldep_probe -- against 1e-5 1e-4 3e-5
 //! ```
+//!
+//! `against REF TOL…` solves the case at tolerance REF, then at each TOL, and prints the RMS
+//! distances of each result from REF's.
 //!
 //! `exponent` solves the case on a uniform grid of 641 elements, with the law and with constant
 //! μ = 0.30, and fits s ∝ d^λ to the slip on the slip side and μ_s p − |q| ∝ d^λ on the stick
@@ -205,6 +209,50 @@ fn passes(tolerance: &str, reference: Option<&str>) {
     }
 }
 
+/// The RMS distances of p/p0 and q/(μ_s p0) of `run`'s result from `reference`'s (over |x| < a,
+/// at `run`'s nodes).
+fn distance(run: &rollbem::adapt::Adapted, reference: &rollbem::adapt::Adapted) -> (f64, f64) {
+    let sc = &reference.scene;
+    let (half_width, p0) = (sc.estimates.hertz_half_width, sc.estimates.hertz_peak_pressure);
+    let (x, g) = (&run.problem.grid.nodes, &reference.problem.grid);
+    let p = nodal_error(x, half_width, |i| {
+        (run.state.pressure[i] - g.interpolate(&reference.state.pressure, x[i])).abs() / p0
+    })
+    .rms;
+    let q = nodal_error(x, half_width, |i| {
+        (run.state.shear[i] - g.interpolate(&reference.state.shear, x[i])).abs() / (sc.friction() * p0)
+    })
+    .rms;
+    (p, q)
+}
+
+/// The results at `tolerances` against the result at `reference`.
+fn against(reference: &str, tolerances: &[String]) {
+    let solve = |t: &str| rollbem::adapt::solve(&scene(&[format!("contact.grid.tolerance={t}")])).expect("solved");
+    let r = solve(reference);
+    let shear = |a: &rollbem::adapt::Adapted| {
+        a.adaptation
+            .as_ref()
+            .and_then(|a| a.estimate)
+            .map_or(0.0, |e| e.shear_rms)
+    };
+    println!(
+        "reference at {reference}: {} elements, shear estimate {:.2e}",
+        r.problem.grid.n_elements(),
+        shear(&r)
+    );
+    for t in tolerances {
+        let run = solve(t);
+        let (p, q) = distance(&run, &r);
+        println!(
+            "at {t}: {} passes, {} elements, shear estimate {:.2e}; from the reference p {p:.2e}, q {q:.2e}",
+            run.adaptation.as_ref().map_or(0, |a| a.steps.len()),
+            run.problem.grid.n_elements(),
+            shear(&run)
+        );
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
@@ -213,6 +261,9 @@ fn main() {
             args.get(1).map_or("1e-5", String::as_str),
             args.get(2).map(String::as_str),
         ),
-        _ => eprintln!("usage: veldep_probe exponent | passes [TOLERANCE [REFERENCE_TOLERANCE]]"),
+        Some("against") => against(args.get(1).map_or("1e-5", String::as_str), &args[2.min(args.len())..]),
+        _ => eprintln!(
+            "usage: veldep_probe exponent | passes [TOLERANCE [REFERENCE_TOLERANCE]] | against REFERENCE TOLERANCE..."
+        ),
     }
 }
