@@ -11,7 +11,9 @@
 //! ```
 //!
 //! `against REF TOL…` solves the case at tolerance REF, then at each TOL, and prints the RMS
-//! distances of each result from REF's.
+//! distances of each result from REF's. `passes` and `against` take further overrides from the
+//! environment variable `SET` (comma-separated `key=value`), e.g.
+//! `SET=contact.falling_friction.slip_velocity=144.2695` for CONTACT's law.
 //!
 //! `exponent` solves the case on a uniform grid of 641 elements, with the law and with constant
 //! μ = 0.30, and fits s ∝ d^λ to the slip on the slip side and μ_s p − |q| ∝ d^λ on the stick
@@ -93,9 +95,14 @@ impl ErrorEstimator for Probe {
     }
 }
 
-/// The case with `set`.
+/// The case with `set`, after the overrides of the environment variable `SET` (comma-separated
+/// `key=value`, as `rollbem run --set`).
 fn scene(set: &[String]) -> rollbem::scene::Scene {
-    let loaded = rollbem::app::load_case(Path::new("cases/veldep_fric.yaml"), set).expect("the case");
+    let mut all: Vec<String> = std::env::var("SET")
+        .map(|v| v.split(',').filter(|k| !k.is_empty()).map(String::from).collect())
+        .unwrap_or_default();
+    all.extend_from_slice(set);
+    let loaded = rollbem::app::load_case(Path::new("cases/veldep_fric.yaml"), &all).expect("the case");
     rollbem::scene::Scene::from_case(&loaded).expect("its scene")
 }
 
