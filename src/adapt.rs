@@ -109,7 +109,9 @@ pub const CREEPAGE_ALONE: f64 = 0.1;
 pub const MAX_DEPTH_PER_PASS: u32 = 12;
 
 /// The a-priori length rule: an element of the result that holds a square-root point is at
-/// most this times tolerance·a long (docs/theory.md, "Error-controlled grids").
+/// most this times tolerance·a long (docs/theory.md, "Error-controlled grids"); at the end of a
+/// stick zone under a falling friction law, of exponent λ < 1/2, a·(this·tolerance)^(1/(λ+1/2))
+/// (src/adapt/a_priori.rs).
 pub const A_PRIORI_LENGTH: f64 = 30.0;
 
 /// Most passes before the run gives up (each pass at least halves one element).

@@ -165,6 +165,7 @@ mod tests {
         let lengths = APriori {
             everywhere: A_PRIORI_LENGTH * 1e-4,
             leading_edge: None,
+            stick_ends: Vec::new(),
         };
         actions(&coarse, &cmp, &cmp.estimate, &[0.3], 1e-4, &lengths, shortest)
     }
