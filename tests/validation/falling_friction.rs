@@ -177,21 +177,7 @@ fn veldep_fric_creep_force_matches_contact() {
 fn veldep_fric_at_1e_4_meets_its_tolerance() {
     let run = solve("veldep_fric", &["contact.grid.tolerance=1e-4"]);
     let reference = solve("veldep_fric", &["contact.grid.tolerance=3e-5"]);
-    let est = &reference.scene.estimates;
-    let (a, p0, mu) = (
-        est.hertz_half_width,
-        est.hertz_peak_pressure,
-        reference.scene.friction(),
-    );
-    let (x, g) = (&run.solution.x, &reference.problem.grid);
-    let q = rollbem::post::norms::nodal_error(x, a, |i| {
-        (run.solution.shear[i] - g.interpolate(&reference.solution.shear, x[i])).abs() / (mu * p0)
-    })
-    .rms;
-    let p = rollbem::post::norms::nodal_error(x, a, |i| {
-        (run.solution.pressure[i] - g.interpolate(&reference.solution.pressure, x[i])).abs() / p0
-    })
-    .rms;
+    let [p, q, _] = crate::effectivity_matrix::errors_against_with_creep_floor(&reference, &run, 0.0);
     let passes = run.adaptation.as_ref().map_or(0, |a| a.steps.len());
     eprintln!(
         "veldep_fric at 1e-4: {passes} passes, {} elements; from the run at 3e-5: q {q:.2e} mu p0, p {p:.2e} p0",
