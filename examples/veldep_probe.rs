@@ -11,9 +11,9 @@
 //! ```
 //!
 //! `against REF TOL…` solves the case at tolerance REF, then at each TOL, and prints the RMS
-//! distances of each result from REF's. `passes` and `against` take further overrides from the
-//! environment variable `SET` (comma-separated `key=value`), e.g.
-//! `SET=contact.falling_friction.slip_velocity=144.2695` for CONTACT's law.
+//! distances of each result from REF's. `passes` and `against` take further overrides as
+//! `--set key=value` (as `rollbem run --set`), e.g.
+//! `--set contact.falling_friction.slip_velocity=144.2695` for CONTACT's law.
 //!
 //! `exponent` solves the case on a uniform grid of 641 elements, with the law and with constant
 //! μ = 0.30, and fits s ∝ d^λ to the slip on the slip side and μ_s p − |q| ∝ d^λ on the stick
@@ -95,12 +95,12 @@ impl ErrorEstimator for Probe {
     }
 }
 
-/// The case with `set`, after the overrides of the environment variable `SET` (comma-separated
-/// `key=value`, as `rollbem run --set`).
+/// The `--set` overrides of the command line.
+static OVERRIDES: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();
+
+/// The case with `set`, after the command line's `--set` overrides.
 fn scene(set: &[String]) -> rollbem::scene::Scene {
-    let mut all: Vec<String> = std::env::var("SET")
-        .map(|v| v.split(',').filter(|k| !k.is_empty()).map(String::from).collect())
-        .unwrap_or_default();
+    let mut all: Vec<String> = OVERRIDES.get().cloned().unwrap_or_default();
     all.extend_from_slice(set);
     let loaded = rollbem::app::load_case(Path::new("cases/veldep_fric.yaml"), &all).expect("the case");
     rollbem::scene::Scene::from_case(&loaded).expect("its scene")
@@ -261,7 +261,17 @@ fn against(reference: &str, tolerances: &[String]) {
 }
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = Vec::new();
+    let mut sets: Vec<String> = Vec::new();
+    let mut given = std::env::args().skip(1);
+    while let Some(a) = given.next() {
+        if a == "--set" {
+            sets.extend(given.next());
+        } else {
+            args.push(a);
+        }
+    }
+    OVERRIDES.set(sets).expect("set once");
     match args.first().map(String::as_str) {
         Some("exponent") => exponent(),
         Some("passes") => passes(
@@ -270,7 +280,7 @@ fn main() {
         ),
         Some("against") => against(args.get(1).map_or("1e-5", String::as_str), &args[2.min(args.len())..]),
         _ => eprintln!(
-            "usage: veldep_probe exponent | passes [TOLERANCE [REFERENCE_TOLERANCE]] | against REFERENCE TOLERANCE..."
+            "usage: veldep_probe exponent | passes [TOLERANCE [REFERENCE_TOLERANCE]] | against REFERENCE TOLERANCE... [--set KEY=VALUE]..."
         ),
     }
 }
