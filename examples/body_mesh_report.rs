@@ -17,7 +17,7 @@ mod common;
 
 use common::Table;
 use rollbem::adapt::body_mesh::{difference, estimate};
-use rollbem::adapt::estimate::{Scales, CREEP_FLOOR};
+use rollbem::adapt::estimate::Scales;
 use rollbem::app::{self, Solved};
 use rollbem::bem::BoundaryCondition;
 use rollbem::body::setup::ChangedFor;
@@ -187,7 +187,6 @@ pub fn coarse_roller() -> CoarseRoller {
         peak_pressure: est.hertz_peak_pressure,
         friction: mu,
         creep_prescribed: false,
-        creep_floor: CREEP_FLOOR * mu * est.hertz_half_width / est.effective_radius.abs(),
         complete_slip_creep: mu * est.hertz_half_width / est.effective_radius.abs(),
         // The body meshes' differences read the creepage's difference alone.
         geometry_share: 0.0,

@@ -415,7 +415,7 @@ pub fn difference(
     let creepage_rel = if scales.creep_prescribed || scales.friction == 0.0 || fine.creep == coarse.creep {
         0.0
     } else {
-        (fine.creep - coarse.creep).abs() / fine.creep.abs().max(scales.creep_floor).max(f64::MIN_POSITIVE)
+        (fine.creep - coarse.creep).abs() / fine.creep.abs().max(scales.creep_floor()).max(f64::MIN_POSITIVE)
     };
     BodyMeshError {
         creepage_rel,
@@ -455,7 +455,6 @@ mod tests {
             peak_pressure: 2.0,
             friction: 0.25,
             creep_prescribed: false,
-            creep_floor: 0.0,
             complete_slip_creep: 0.0,
             geometry_share: 0.0,
         };
@@ -509,7 +508,6 @@ mod tests {
             peak_pressure: scene.estimates.hertz_peak_pressure,
             friction: scene.friction(),
             creep_prescribed: false,
-            creep_floor: 0.0,
             complete_slip_creep: 0.0,
             geometry_share: 0.0,
         };

@@ -31,11 +31,11 @@ use crate::scene::Scene;
 use std::sync::Arc;
 
 /// The share w ∈ [0, 1] (module docs) of the creepage `creep` [-] solved on `grid` for `scene`
-/// under the normal force `normal_force` [force/length]: 0 without a body of true geometry,
+/// under the normal force `normal_force()` [force/length] (asked only for a twin): 0 without a body of true geometry,
 /// with a prescribed creepage or without friction; 1 (the candidate unweighted, on the safe
 /// side) when the half-plane twin does not solve. The twin carries the solved normal force
 /// whatever controls the scene's (an overlap's meaning depends on the bodies' datums).
-pub fn geometry_share(scene: &Scene, grid: &ContactGrid, creep: f64, normal_force: f64) -> f64 {
+pub fn geometry_share(scene: &Scene, grid: &ContactGrid, creep: f64, normal_force: impl FnOnce() -> f64) -> f64 {
     if matches!(scene.tangential, TangentialControl::Creep(_)) || scene.friction() == 0.0 {
         return 0.0;
     }
@@ -43,10 +43,11 @@ pub fn geometry_share(scene: &Scene, grid: &ContactGrid, creep: f64, normal_forc
     if twins.iter().all(Option::is_none) {
         return 0.0;
     }
-    let bodies: [Arc<dyn BodySetup>; 2] = [0, 1].map(|k| twins[k].clone().unwrap_or_else(|| scene.bodies[k].clone()));
+    let normal_force = normal_force();
     if !(normal_force > 0.0 && normal_force.is_finite()) {
         return 1.0;
     }
+    let bodies: [Arc<dyn BodySetup>; 2] = [0, 1].map(|k| twins[k].clone().unwrap_or_else(|| scene.bodies[k].clone()));
     let twin = Scene {
         bodies,
         normal: NormalControl::Force(normal_force),

@@ -1,6 +1,6 @@
 //! The Hertz contact that sets the units of a run's error estimate.
 
-use super::estimate::{Scales, CREEP_FLOOR};
+use super::estimate::Scales;
 use super::geometry_share::geometry_share;
 use crate::analytic::{hertz_half_width, hertz_peak_pressure};
 use crate::contact::residual::State;
@@ -28,7 +28,7 @@ impl HertzScales {
     /// the bodies apart, P = 0, keeps the case's estimates.)
     pub fn of_run(scene: &Scene, problem: &ContactProblem, first: &State) -> Self {
         let est = &scene.estimates;
-        let force = ContactSolution::from_state(problem, first).normal_force;
+        let force = || ContactSolution::from_state(problem, first).normal_force;
         let geometry_share = geometry_share(scene, &problem.grid, first.creep, force);
         let of_estimates = Self {
             peak_pressure: est.hertz_peak_pressure,
@@ -39,6 +39,7 @@ impl HertzScales {
         if matches!(scene.normal, NormalControl::Force(_)) || est.scales_from.is_some() {
             return of_estimates;
         }
+        let force = force();
         if !(force > 0.0 && force.is_finite()) {
             return of_estimates;
         }
@@ -57,7 +58,6 @@ impl HertzScales {
             peak_pressure: self.peak_pressure,
             friction: scene.friction(),
             creep_prescribed: matches!(scene.tangential, TangentialControl::Creep(_)),
-            creep_floor: CREEP_FLOOR * complete_slip_creep,
             complete_slip_creep,
             geometry_share: self.geometry_share,
         }

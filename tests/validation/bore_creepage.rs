@@ -80,7 +80,7 @@ fn the_geometry_s_share_is_the_creepage_beyond_carter_s() {
         .creep(scene.estimates.effective_radius.abs())
         .abs();
     let load = scene.estimates.normal_force;
-    let w = geometry_share(&scene, &scene.grid, REFERENCE, load);
+    let w = geometry_share(&scene, &scene.grid, REFERENCE, || load);
     let expected = (REFERENCE - carter) / REFERENCE;
     assert!(
         (w - expected).abs() < 0.02,
@@ -89,7 +89,7 @@ fn the_geometry_s_share_is_the_creepage_beyond_carter_s() {
     let half_planes = crate::common::case_path("carter2d_contact");
     let scene = Scene::from_case(&rollbem::case::load(&half_planes, &[]).expect("loads")).expect("scene");
     assert_eq!(
-        geometry_share(&scene, &scene.grid, 1e-3, scene.estimates.normal_force),
+        geometry_share(&scene, &scene.grid, 1e-3, || scene.estimates.normal_force),
         0.0
     );
 }
